@@ -1,0 +1,20 @@
+"""Physical constants and unit factors: the one home of every conversion constant.
+
+SI is used at every public boundary (N, m, s, kg, degC, Pa). The paper's equations are in
+N/mm^2 and mm/s; they convert with the factors below at their own door.
+"""
+
+STANDARD_GRAVITY = 9.80665
+"""Standard acceleration of gravity [m/s^2]."""
+
+PA_PER_N_PER_MM2 = 1.0e6
+"""Pascal in one N/mm^2 (= MPa) [Pa]."""
+
+MM_PER_M = 1.0e3
+"""Millimetres in one metre [-]."""
+
+M_PER_INCH = 0.0254
+"""Metres in one inch [m]."""
+
+N_PER_KIP = 4448.2216152605
+"""Newtons in one kip [N]."""

@@ -1,0 +1,164 @@
+"""Parameter validation with one error template.
+
+Every bad parameter raises ``ValueError`` (or ``TypeError`` for a wrong kind) with the message
+
+    The 'mu0' parameter of ConstantFriction must be a float in (0, 1]. Got -0.1 instead.
+
+so the user sees the parameter, its owner, the allowed range and the value given.
+"""
+
+from __future__ import annotations
+
+import math
+from numbers import Integral, Real
+
+import numpy as np
+
+
+def _interval(low: float | None, high: float | None, low_open: bool, high_open: bool) -> str:
+    left = "(" if (low is None or low_open) else "["
+    right = ")" if (high is None or high_open) else "]"
+    lo = "-inf" if low is None else f"{low:g}"
+    hi = "inf" if high is None else f"{high:g}"
+    return f"{left}{lo}, {hi}{right}"
+
+
+def check_real(
+    value: object,
+    name: str,
+    owner: str,
+    *,
+    low: float | None = None,
+    high: float | None = None,
+    low_open: bool = False,
+    high_open: bool = False,
+    allow_inf: bool = False,
+) -> float:
+    """Return ``value`` as a float after checking it lies in the interval given.
+
+    Parameters
+    ----------
+    value : object
+        The value given by the user.
+    name, owner : str
+        Parameter name and the class or function that owns it (for the message).
+    low, high : float or None
+        Bounds of the allowed interval; None means unbounded.
+    low_open, high_open : bool
+        Whether the bound itself is excluded.
+    allow_inf : bool
+        Whether +inf is accepted (e.g. a flat slider's effective radius).
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not a real number.
+    ValueError
+        If ``value`` is NaN, infinite (unless allowed) or outside the interval.
+    """
+    interval = _interval(low, high, low_open, high_open)
+    kind = "a float"
+    if isinstance(value, bool) or not isinstance(value, Real | np.floating | np.integer):
+        raise TypeError(
+            f"The {name!r} parameter of {owner} must be {kind} in {interval}. "
+            f"Got {value!r} instead."
+        )
+    x = float(value)
+    bad = math.isnan(x) or (math.isinf(x) and not allow_inf)
+    if low is not None:
+        bad = bad or x < low or (low_open and x == low)
+    if high is not None and not (allow_inf and x == math.inf):
+        bad = bad or x > high or (high_open and x == high)
+    if bad:
+        raise ValueError(
+            f"The {name!r} parameter of {owner} must be {kind} in {interval}. "
+            f"Got {value!r} instead."
+        )
+    return x
+
+
+def check_int(
+    value: object, name: str, owner: str, *, low: int | None = None, high: int | None = None
+) -> int:
+    """Return ``value`` as an int after checking it lies in ``[low, high]``.
+
+    Raises
+    ------
+    TypeError, ValueError
+        As :func:`check_real`, with "an int" in the message.
+    """
+    interval = _interval(low, high, False, False)
+    if isinstance(value, bool) or not isinstance(value, Integral):
+        raise TypeError(
+            f"The {name!r} parameter of {owner} must be an int in {interval}. "
+            f"Got {value!r} instead."
+        )
+    x = int(value)
+    if (low is not None and x < low) or (high is not None and x > high):
+        raise ValueError(
+            f"The {name!r} parameter of {owner} must be an int in {interval}. "
+            f"Got {value!r} instead."
+        )
+    return x
+
+
+def check_choice(value: object, name: str, owner: str, choices: tuple[str, ...]) -> str:
+    """Return ``value`` after checking it is one of ``choices``.
+
+    Raises
+    ------
+    ValueError
+        Naming the allowed choices and the value given.
+    """
+    if value not in choices:
+        allowed = ", ".join(repr(c) for c in choices)
+        raise ValueError(
+            f"The {name!r} parameter of {owner} must be one of {{{allowed}}}. "
+            f"Got {value!r} instead."
+        )
+    return str(value)
+
+
+def check_array(
+    values: object,
+    name: str,
+    owner: str,
+    *,
+    low: float | None = None,
+    high: float | None = None,
+    low_open: bool = False,
+    ndim: int = 1,
+    min_length: int = 1,
+) -> np.ndarray:
+    """Return ``values`` as a float array after checking shape, finiteness and bounds.
+
+    Raises
+    ------
+    ValueError
+        Naming the array, the first offending index and its value.
+    """
+    arr = np.asarray(values, dtype=float)
+    if arr.ndim != ndim:
+        raise ValueError(
+            f"The {name!r} parameter of {owner} must be a {ndim}-d array. "
+            f"Got shape {arr.shape} instead."
+        )
+    if arr.shape[0] < min_length:
+        raise ValueError(
+            f"The {name!r} parameter of {owner} must have at least {min_length} values. "
+            f"Got {arr.shape[0]} instead."
+        )
+    interval = _interval(low, high, low_open, False)
+    bad = ~np.isfinite(arr)
+    if low is not None:
+        bad |= (arr < low) | ((arr == low) if low_open else False)
+    if high is not None:
+        bad |= arr > high
+    if bad.any():
+        index = tuple(int(i) for i in np.argwhere(bad)[0])
+        where = index[0] if len(index) == 1 else index
+        raise ValueError(
+            f"The {name!r} parameter of {owner} must hold finite floats in {interval}. "
+            f"Got {arr[index]!r} at index {where} instead."
+        )
+    return arr

@@ -1,0 +1,1 @@
+"""Ground motions: records, readers, spectra, scaling. Imports nothing of ours but dcfpb.units/validation."""

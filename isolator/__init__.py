@@ -1,0 +1,1 @@
+"""Isolator layer: friction laws, frictional heating, the DCFPB element, bearing tests."""

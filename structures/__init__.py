@@ -1,0 +1,1 @@
+"""Structures layer: shear building, integrators, analyses and workflows."""
