@@ -1,1 +1,4 @@
-"""Ground motions: records, readers, spectra, scaling. Imports nothing of ours but dcfpb.units/validation."""
+"""Ground motions: records, readers, spectra, scaling.
+
+Imports nothing of ours but ``dcfpb.units`` and ``dcfpb.validation``.
+"""

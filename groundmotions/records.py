@@ -1,0 +1,206 @@
+"""Ground-motion records: the `GroundMotion` object and the error its readers raise.
+
+A record is an acceleration array [m/s^2] at a fixed time step plus a checked header. Methods
+return new objects and append what was done to ``processing`` (as obspy does), so a scaled or
+truncated record still says where it came from. Nothing is cached and nothing is changed in
+place: the acceleration array is read-only.
+
+Records shipped with the package: `load_bundled`, `bundled_names`. The file readers
+(`read_peer_at2`, `read_text_record`, `read_record`) live in `groundmotions.readers` and can be
+imported from here as well.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from dcfpb.validation import check_array, check_choice, check_real
+
+__all__ = ["GroundMotion", "RecordFormatError", "bundled_names", "load_bundled"]
+
+PathLike = str | os.PathLike[str]
+
+_READER_NAMES = ("read_peer_at2", "read_record", "read_text_record")
+
+
+def __getattr__(name: str) -> Any:
+    """Re-export the readers lazily (they import this module, so not at import time)."""
+    if name in _READER_NAMES:
+        from groundmotions import readers
+
+        return getattr(readers, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+class RecordFormatError(ValueError):
+    """A record file that cannot be read as written.
+
+    The message reads ``"<file name>, line <n>: <what is wrong>"``; the parts are kept in the
+    attributes ``file``, ``line`` and ``reason``.
+    """
+
+    def __init__(self, file: PathLike, line: int, reason: str) -> None:
+        self.file = Path(file).name
+        self.line = line
+        self.reason = reason
+        super().__init__(f"{self.file}, line {line}: {reason}")
+
+    def __reduce__(self) -> tuple[Any, ...]:  # picklable across processes (Dask suites)
+        return (type(self), (self.file, self.line, self.reason))
+
+
+@dataclass(frozen=True, eq=False)
+class GroundMotion:
+    """One horizontal ground-acceleration record at a fixed time step.
+
+    Parameters
+    ----------
+    acceleration : array_like
+        Ground acceleration [m/s^2], at least 2 finite samples; stored as a read-only copy.
+    dt : float
+        Time step [s], > 0.
+    name : str
+        Short name (by default the readers use the file stem).
+    metadata : dict
+        Header information: ``event``, ``date``, ``station``, ``component``, ``source_file``,
+        ``units_in_file``, ``header_lines`` ... (a shallow copy is stored).
+    processing : tuple of str
+        What was done to the record, oldest first.
+
+    Notes
+    -----
+    Equality is identity (``eq=False``): compare ``acceleration`` arrays to compare records.
+    """
+
+    acceleration: np.ndarray
+    dt: float
+    name: str = ""
+    metadata: dict[str, Any] = field(default_factory=dict)
+    processing: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        owner = "GroundMotion"
+        dt = check_real(self.dt, "dt", owner, low=0.0, low_open=True)
+        acc = np.array(check_array(self.acceleration, "acceleration", owner, min_length=2))
+        acc.flags.writeable = False
+        steps = self.processing
+        for key, value, ok, kind in (
+            ("name", self.name, isinstance(self.name, str), "a str"),
+            ("metadata", self.metadata, isinstance(self.metadata, Mapping), "a mapping"),
+            ("processing", steps, not isinstance(steps, str)
+             and all(isinstance(s, str) for s in steps), "a tuple of str"),
+        ):  # fmt: skip
+            if not ok:
+                raise TypeError(
+                    f"The {key!r} parameter of {owner} must be {kind}. Got {value!r} instead."
+                )
+        object.__setattr__(self, "acceleration", acc)
+        object.__setattr__(self, "dt", dt)
+        object.__setattr__(self, "metadata", dict(self.metadata))
+        object.__setattr__(self, "processing", tuple(steps))
+
+    def __repr__(self) -> str:
+        return (
+            f"GroundMotion(name={self.name!r}, npts={self.npts}, dt={self.dt:g} s, "
+            f"pga={self.pga:.4g} m/s^2, processing={len(self.processing)} steps)"
+        )
+
+    @property
+    def npts(self) -> int:
+        """Number of samples [-]."""
+        return int(self.acceleration.size)
+
+    @property
+    def time(self) -> np.ndarray:
+        """Sample times, starting at 0 [s]."""
+        return np.arange(self.npts) * self.dt
+
+    @property
+    def duration(self) -> float:
+        """Time of the last sample, ``(npts - 1) * dt`` [s] (PEER tables quote ``npts * dt``)."""
+        return (self.npts - 1) * self.dt
+
+    @property
+    def pga(self) -> float:
+        """Peak ground acceleration, max |a| [m/s^2]."""
+        return float(np.max(np.abs(self.acceleration)))
+
+    def _derived(self, acceleration: np.ndarray, step: str) -> GroundMotion:
+        return GroundMotion(
+            acceleration, self.dt, self.name, dict(self.metadata), (*self.processing, step)
+        )
+
+    def scaled(self, factor: float) -> GroundMotion:
+        """Return a new record with the acceleration multiplied by ``factor`` [-]."""
+        k = check_real(factor, "factor", "GroundMotion.scaled")
+        return self._derived(self.acceleration * k, f"scaled by {k:.12g}")
+
+    def negated(self) -> GroundMotion:
+        """Return a new record with the sign of the acceleration reversed."""
+        return self._derived(-self.acceleration, "negated")
+
+    def truncated(self, duration: float) -> GroundMotion:
+        """Return the first ``duration`` seconds (samples with t <= duration) as a new record.
+
+        Parameters
+        ----------
+        duration : float
+            Kept length [s], in [dt, self.duration].
+        """
+        d = check_real(
+            duration, "duration", "GroundMotion.truncated", low=self.dt, high=self.duration
+        )
+        n = min(self.npts, math.floor(d / self.dt + 1e-9) + 1)
+        return self._derived(self.acceleration[:n], f"truncated to {d:g} s ({n} samples)")
+
+
+# --------------------------------------------------------------------------- bundled records
+
+_BUNDLED: dict[str, tuple[str, dict[str, Any]]] = {
+    "elcentro": (
+        "elcentro_1940_ns.at2",
+        {
+            "event": "Imperial Valley 1940",
+            "date": "1940-05-19",  # UTC; 18 May 1940, 20:37 local time
+            "station": "El Centro (Imperial Valley Irrigation District substation)",
+            "component": "NS",
+            "agency": "US Coast and Geodetic Survey",
+            "licence": "public domain (US government recording)",
+            "origin": "OpenSees EXAMPLES/ExampleScripts/elCentro.AT2 (Peknold version)",
+        },
+    ),
+}
+
+
+def bundled_names() -> tuple[str, ...]:
+    """Names of the records shipped in ``groundmotions/data`` (for `load_bundled`)."""
+    return tuple(sorted(_BUNDLED))
+
+
+def load_bundled(name: str = "elcentro") -> GroundMotion:
+    """Load a record shipped with the package (works without any data folder of the project).
+
+    Parameters
+    ----------
+    name : str
+        One of `bundled_names()`; ``"elcentro"`` is El Centro 1940 N-S (1559 samples at
+        0.02 s, PGA 0.319 g).
+    """
+    check_choice(name, "name", "load_bundled", bundled_names())
+    file_name, extra = _BUNDLED[name]
+    resource = resources.files(__package__ or "groundmotions").joinpath("data", file_name)
+    from groundmotions.readers import read_peer_at2  # the readers import this module
+
+    with resources.as_file(resource) as path:
+        motion = read_peer_at2(path, name=name)
+    return GroundMotion(
+        motion.acceleration, motion.dt, name, {**motion.metadata, **extra}, motion.processing
+    )

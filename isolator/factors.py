@@ -1,0 +1,209 @@
+"""Dependency factors of the friction coefficient on pressure, velocity and temperature.
+
+Two sets are provided, selectable by name with :func:`factor_set`:
+
+``"paper"``
+    The SSB paper's equations (Nishimoto et al. 2016; Nakamura et al. 2015), Eq. 1-3:
+    gamma(sigma) = 2.03 sigma^-0.19 + 0.068 with sigma in N/mm^2,
+    alpha(v) = 1 - 0.55 exp(-0.019 v) with v in mm/s,
+    beta(T) = 1.13 exp(-0.007 T) with T in degC.
+``"kumar"``
+    Kumar, Whittaker & Constantinou (2015), as used by OpenSees ``FPBearingPTV``:
+    kp = 0.7^((p - p_ref) / 50 MPa), kT = 0.789 (0.7^(T / 50 degC) + 0.4),
+    kv = 1 - 0.5 exp(-a v) with a the rate parameter [s/m].
+
+All public arguments are SI (Pa, m/s, degC). The paper's equations are in N/mm^2 and mm/s;
+the conversion happens here, at their own door, and nowhere else. Every factor method returns
+``(value, derivative)`` with the derivative taken with respect to the SI argument, so a friction
+model can build a consistent tangent. Velocity factors depend on the speed ``|v|``; their
+derivative is with respect to the speed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from dcfpb.units import MM_PER_M, PA_PER_N_PER_MM2
+from dcfpb.validation import check_choice, check_real
+
+ArrayLike = float | np.ndarray
+
+
+class FactorSet(Protocol):
+    """Pressure, velocity and temperature factors of a friction coefficient."""
+
+    name: str
+
+    def pressure(self, pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+        """Pressure factor and its derivative [1/Pa] at ``pressure`` [Pa]."""
+        ...
+
+    def velocity(self, speed: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+        """Velocity factor and its derivative [s/m] at ``speed`` = |v| [m/s]."""
+        ...
+
+    def temperature(self, temperature: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+        """Temperature factor and its derivative [1/degC] at ``temperature`` [degC]."""
+        ...
+
+
+def paper_pressure_factor(pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+    """Pressure dependency factor gamma of the paper, Eq. 1.
+
+    Parameters
+    ----------
+    pressure : float or ndarray
+        Bearing stress sigma at the contact area [Pa]; must be positive.
+
+    Returns
+    -------
+    gamma : float or ndarray
+        Factor [-], 1.0004 at 60 N/mm^2.
+    dgamma_dp : float or ndarray
+        Derivative with respect to the pressure [1/Pa].
+
+    References
+    ----------
+    Eq. 1: gamma = 2.03 sigma^-0.19 + 0.068, sigma in N/mm^2.
+    """
+    sigma = np.asarray(pressure, dtype=float) / PA_PER_N_PER_MM2
+    power = 2.03 * sigma**-0.19
+    gamma = power + 0.068  # Eq. 1
+    dgamma = -0.19 * power / sigma / PA_PER_N_PER_MM2
+    return _scalar(gamma), _scalar(dgamma)
+
+
+def paper_velocity_factor(speed: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+    """Velocity dependency factor alpha of the paper, Eq. 2.
+
+    Parameters
+    ----------
+    speed : float or ndarray
+        Relative sliding speed of the two concave plates |v| [m/s].
+
+    Returns
+    -------
+    alpha : float or ndarray
+        Factor [-]: 0.45 at rest, 0.9997 at 400 mm/s.
+    dalpha_dv : float or ndarray
+        Derivative with respect to the speed [s/m].
+
+    References
+    ----------
+    Eq. 2: alpha = 1 - 0.55 exp(-0.019 v), v in mm/s.
+    """
+    v_mm = np.abs(np.asarray(speed, dtype=float)) * MM_PER_M
+    decay = 0.55 * np.exp(-0.019 * v_mm)
+    alpha = 1.0 - decay  # Eq. 2
+    dalpha = 0.019 * decay * MM_PER_M
+    return _scalar(alpha), _scalar(dalpha)
+
+
+def paper_temperature_factor(temperature: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+    """Temperature dependency factor beta of the paper, Eq. 3.
+
+    Parameters
+    ----------
+    temperature : float or ndarray
+        Temperature of the contact area [degC].
+
+    Returns
+    -------
+    beta : float or ndarray
+        Factor [-]. Note that Eq. 3 as published gives 0.982 (not exactly 1) at 20 degC.
+    dbeta_dT : float or ndarray
+        Derivative [1/degC].
+
+    References
+    ----------
+    Eq. 3: beta = 1.13 exp(-0.007 T).
+    """
+    beta = 1.13 * np.exp(-0.007 * np.asarray(temperature, dtype=float))  # Eq. 3
+    return _scalar(beta), _scalar(-0.007 * beta)
+
+
+@dataclass(frozen=True)
+class PaperFactors:
+    """The SSB paper's dependency factors (Eq. 1-3); no parameters."""
+
+    name: str = "paper"
+
+    def pressure(self, pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+        """Eq. 1, see :func:`paper_pressure_factor`."""
+        return paper_pressure_factor(pressure)
+
+    def velocity(self, speed: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+        """Eq. 2, see :func:`paper_velocity_factor`."""
+        return paper_velocity_factor(speed)
+
+    def temperature(self, temperature: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+        """Eq. 3, see :func:`paper_temperature_factor`."""
+        return paper_temperature_factor(temperature)
+
+
+@dataclass(frozen=True)
+class KumarFactors:
+    """Kumar et al. (2015) dependency factors, as in OpenSees ``FPBearingPTV``.
+
+    Parameters
+    ----------
+    reference_pressure : float
+        Pressure p_ref at which kp = 1 [Pa]; default 60 MPa (the paper's reference).
+    rate_parameter : float
+        Rate parameter a of kv = 1 - 0.5 exp(-a v) [s/m]; default 100 s/m.
+
+    References
+    ----------
+    Kumar M., Whittaker A.S., Constantinou M.C. (2015). Characterizing friction in sliding
+    isolation bearings. Earthquake Engng Struct. Dyn. 44, 1409-1425.
+    """
+
+    reference_pressure: float = 60.0e6
+    rate_parameter: float = 100.0
+    name: str = "kumar"
+
+    def __post_init__(self) -> None:
+        owner = type(self).__name__
+        check_real(self.reference_pressure, "reference_pressure", owner, low=0.0, low_open=True)
+        check_real(self.rate_parameter, "rate_parameter", owner, low=0.0, low_open=True)
+
+    def pressure(self, pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+        """kp = 0.7^((p - p_ref) / 50 MPa) and its derivative [1/Pa]."""
+        p = np.asarray(pressure, dtype=float)
+        kp = 0.7 ** ((p - self.reference_pressure) / 50.0e6)
+        return _scalar(kp), _scalar(kp * np.log(0.7) / 50.0e6)
+
+    def velocity(self, speed: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+        """kv = 1 - 0.5 exp(-a |v|) and its derivative with respect to |v| [s/m]."""
+        decay = 0.5 * np.exp(-self.rate_parameter * np.abs(np.asarray(speed, dtype=float)))
+        return _scalar(1.0 - decay), _scalar(self.rate_parameter * decay)
+
+    def temperature(self, temperature: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
+        """kT = 0.789 (0.7^(T / 50) + 0.4) and its derivative [1/degC]."""
+        power = 0.7 ** (np.asarray(temperature, dtype=float) / 50.0)
+        return _scalar(0.789 * (power + 0.4)), _scalar(0.789 * power * np.log(0.7) / 50.0)
+
+
+FACTOR_SETS = {"paper": PaperFactors, "kumar": KumarFactors}
+
+
+def factor_set(name: str, **parameters: float) -> PaperFactors | KumarFactors:
+    """Return the factor set called ``name`` (``"paper"`` or ``"kumar"``).
+
+    Parameters
+    ----------
+    name : str
+        ``"paper"`` (Eq. 1-3) or ``"kumar"`` (OpenSees FPBearingPTV).
+    **parameters
+        Passed to the set (e.g. ``reference_pressure``, ``rate_parameter`` for Kumar).
+    """
+    check_choice(name, "name", "factor_set", tuple(FACTOR_SETS))
+    return FACTOR_SETS[name](**parameters)
+
+
+def _scalar(x: np.ndarray) -> ArrayLike:
+    """Return a Python float for 0-d arrays so scalar callers stay scalar."""
+    return float(x) if np.ndim(x) == 0 else x

@@ -1,0 +1,389 @@
+"""Frictional heating of a sliding surface: a semi-infinite solid under a moving heat source.
+
+The temperature rise at a point of the surface under a heat flux history q(t) is (Eq. 4)
+
+    dT(t) = c * integral_0^t q(t - tau) / sqrt(tau) dtau,    c = sqrt(D) / (k sqrt(pi)),
+
+with k the thermal conductivity and D the diffusivity. A point takes the flux while the slider
+covers it (Eq. 5: distance from the slider centre at most sqrt(pi) r / 2, the half side of the
+square of equal area; Eq. 6: at most lambda r for the refined centre point).
+
+The flux is piecewise constant over the time steps. The newest interval's contribution is
+integrated exactly, 2 c q_n sqrt(dt_n); the older history is carried by a sum of exponentials
+1/sqrt(tau) ~ sum_k w_k exp(-s_k tau), valid for lags from ``min_lag`` to ``max_lag``, whose
+states obey an exact one-step recursion for any step size. The cost is O(1) per step and per
+monitor point, never a re-summation of the history (Jiang, Zhang, Zhang & Zhang 2017,
+Commun. Comput. Phys. 21; Beylkin & Monzon 2005).
+
+State lives inside trial / commit / revert: :meth:`SurfaceHeating.trial` never changes it,
+:meth:`SurfaceHeating.commit` adds one interval, and an uncommitted trial is simply dropped.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import numpy as np
+from scipy.optimize import nnls
+
+from dcfpb.validation import check_real
+
+
+@dataclass(frozen=True)
+class ThermalProperties:
+    """Thermal properties of the sliding plate, taken as a semi-infinite solid.
+
+    Parameters
+    ----------
+    conductivity : float
+        Thermal conductivity k [W/(m degC)]; default 16 (0.016 W/(mm degC), JSME data book).
+    diffusivity : float
+        Thermal diffusivity D [m^2/s]; default 4.07e-6 (4.07 mm^2/s).
+    initial_temperature : float
+        Temperature T0 of the surface before any sliding [degC]; default 20.
+    """
+
+    conductivity: float = 16.0
+    diffusivity: float = 4.07e-6
+    initial_temperature: float = 20.0
+
+    def __post_init__(self) -> None:
+        owner = type(self).__name__
+        check_real(self.conductivity, "conductivity", owner, low=0.0, low_open=True)
+        check_real(self.diffusivity, "diffusivity", owner, low=0.0, low_open=True)
+        check_real(self.initial_temperature, "initial_temperature", owner, low=-273.15, high=1000.0)
+
+    @property
+    def flux_coefficient(self) -> float:
+        """c = sqrt(D) / (k sqrt(pi)) of Eq. 4 [degC m^2 / (W s^0.5)]."""
+        return float(np.sqrt(self.diffusivity) / (self.conductivity * np.sqrt(np.pi)))
+
+
+@dataclass(frozen=True)
+class SumOfExponentials:
+    """1/sqrt(tau) ~ sum_k weights_k exp(-rates_k tau) for min_lag <= tau <= max_lag.
+
+    Attributes
+    ----------
+    rates : ndarray
+        Decay rates s_k [1/s].
+    weights : ndarray
+        Non-negative weights w_k [s^-0.5].
+    min_lag, max_lag : float
+        Range of lags over which the relative error is at most ``tolerance`` [s].
+    tolerance : float
+        Maximum relative error of the kernel on that range (checked on a dense grid) [-].
+    """
+
+    rates: np.ndarray = field(repr=False)
+    weights: np.ndarray = field(repr=False)
+    min_lag: float
+    max_lag: float
+    tolerance: float
+
+    def __call__(self, lag: np.ndarray) -> np.ndarray:
+        """Evaluate the approximation of 1/sqrt(lag) [s^-0.5]."""
+        lag = np.asarray(lag, dtype=float)
+        return np.exp(-np.multiply.outer(lag, self.rates)) @ self.weights
+
+    def interval_integral(self, lag_start: np.ndarray, lag_stop: np.ndarray) -> np.ndarray:
+        """Approximate integral of 1/sqrt(tau) from ``lag_start`` to ``lag_stop`` [s^0.5]."""
+        a = np.exp(-np.multiply.outer(np.asarray(lag_start, float), self.rates))
+        b = np.exp(-np.multiply.outer(np.asarray(lag_stop, float), self.rates))
+        return (a - b) @ (self.weights / self.rates)
+
+
+@lru_cache(maxsize=8)
+def sum_of_exponentials(
+    min_lag: float = 1.0e-6, max_lag: float = 1.0e5, tolerance: float = 1.0e-8
+) -> SumOfExponentials:
+    """Build a sum-of-exponentials approximation of the kernel 1/sqrt(tau).
+
+    The rates are geometric from 0.1 / max_lag to 10 / min_lag and the weights are fitted by
+    non-negative least squares to the relative error on a logarithmic grid; the number of terms
+    grows until the maximum relative error on a grid ten times denser is below ``tolerance``.
+    About 60 terms give 1e-8 over eleven decades of lag.
+
+    Parameters
+    ----------
+    min_lag, max_lag : float
+        Range of lags [s] over which the approximation must hold.
+    tolerance : float
+        Maximum relative error [-].
+
+    Returns
+    -------
+    SumOfExponentials
+
+    Raises
+    ------
+    ValueError
+        For a bad range or tolerance, or when no fit with at most 200 terms reaches it.
+    """
+    owner = "sum_of_exponentials"
+    check_real(min_lag, "min_lag", owner, low=1e-12, high=1.0)
+    check_real(max_lag, "max_lag", owner, low=10.0 * min_lag, high=1e12)
+    check_real(tolerance, "tolerance", owner, low=1e-13, high=1e-2)
+    decades = np.log10(max_lag / min_lag)
+    check_grid = np.geomspace(min_lag, max_lag, int(2000 * decades))
+    n_terms = int(np.ceil(4.0 * decades))
+    while n_terms <= 200:
+        rates = np.geomspace(0.1 / max_lag, 10.0 / min_lag, n_terms)
+        fit_grid = np.geomspace(min_lag, max_lag, 20 * n_terms)
+        design = np.exp(-np.outer(fit_grid, rates)) * np.sqrt(fit_grid)[:, None]
+        weights, _ = nnls(design, np.ones_like(fit_grid), maxiter=50 * n_terms)
+        approx = np.exp(-np.outer(check_grid, rates)) @ weights
+        error = float(np.max(np.abs(approx * np.sqrt(check_grid) - 1.0)))
+        if error <= tolerance:
+            keep = weights > 0.0
+            return SumOfExponentials(
+                rates[keep].copy(), weights[keep].copy(), min_lag, max_lag, error
+            )
+        n_terms += 4
+    raise ValueError(
+        f"sum_of_exponentials could not reach a relative error of {tolerance:g} on "
+        f"[{min_lag:g}, {max_lag:g}] s with 200 terms; widen the tolerance."
+    )
+
+
+@dataclass(frozen=True)
+class MonitorLine:
+    """The precise model's monitor points: a line along the sliding direction (Fig. 3a).
+
+    Points every ``spacing`` along the plate through its centre. A point takes the flux while
+    its distance from the slider centre is at most sqrt(pi) r / 2 (Eq. 5) and the contact
+    temperature is the mean over the points inside that half side of the equal-area square.
+
+    Parameters
+    ----------
+    spacing : float
+        Distance between monitor points [m]; default 0.005 (5 mm, the paper's).
+    half_length : float or None
+        Half length of the line [m], measured on the plate from its centre. None: the bearing
+        sizes it to cover the slider's whole path at its displacement capacity.
+    """
+
+    spacing: float = 0.005
+    half_length: float | None = None
+
+    def __post_init__(self) -> None:
+        owner = type(self).__name__
+        check_real(self.spacing, "spacing", owner, low=1e-5, high=0.1)
+        if self.half_length is not None:
+            check_real(self.half_length, "half_length", owner, low=0.0, low_open=True, high=100.0)
+
+    def points(self, contact_radius: float, travel: float) -> np.ndarray:
+        """Point positions on the plate [m] covering a slider path of +-``travel`` [m]."""
+        half = self.half_length
+        if half is None:
+            half = travel + 0.5 * np.sqrt(np.pi) * contact_radius + self.spacing
+        n_half = int(np.ceil(half / self.spacing - 1e-9))
+        return self.spacing * np.arange(-n_half, n_half + 1, dtype=float)
+
+    def flux_half_width(self, contact_radius: float) -> float:
+        """Half side of the square of equal area, sqrt(pi) r / 2 (Eq. 5) [m]."""
+        return float(0.5 * np.sqrt(np.pi) * contact_radius)
+
+    average_over_contact = True
+
+
+@dataclass(frozen=True)
+class CentrePoint:
+    """The simplified model's single monitor point at the plate centre (Fig. 3b, 3c).
+
+    The point takes the flux while the slider centre is within ``refinement`` x r of it
+    (Eq. 6) and its temperature is the contact temperature at all times.
+
+    Parameters
+    ----------
+    refinement : float
+        Refinement factor lambda [-]; default 0.5 (the paper's refined simplified model);
+        sqrt(pi)/2 = 0.886 reproduces Kumar's unrefined centre point (Eq. 5 at one point).
+    """
+
+    refinement: float = 0.5
+
+    def __post_init__(self) -> None:
+        check_real(self.refinement, "refinement", type(self).__name__, low=0.0, low_open=True,
+                   high=2.0)
+
+    def points(self, contact_radius: float, travel: float) -> np.ndarray:
+        """The single point at the plate centre [m]."""
+        return np.zeros(1)
+
+    def flux_half_width(self, contact_radius: float) -> float:
+        """lambda r (Eq. 6) [m]."""
+        return float(self.refinement * contact_radius)
+
+    average_over_contact = False
+
+
+HeatingLayout = MonitorLine | CentrePoint
+
+
+def history_rise(states: np.ndarray, weighted_decay: np.ndarray) -> np.ndarray:
+    """History part of the temperature integral at each monitor point [W s^0.5 / m^2].
+
+    Parameters
+    ----------
+    states : ndarray, shape (m, K)
+        Exponential-sum states G_jk at the last committed time.
+    weighted_decay : ndarray, shape (K,)
+        w_k exp(-s_k dt) for the trial step dt.
+    """
+    return states @ weighted_decay
+
+
+def advance_states(
+    states: np.ndarray, decay: np.ndarray, gain: np.ndarray, heated: slice, flux: float
+) -> None:
+    """Advance the exponential-sum states by one step in place (exact for constant flux).
+
+    G_jk <- exp(-s_k dt) G_jk + q_j (1 - exp(-s_k dt)) / s_k, with q_j = ``flux`` on the
+    ``heated`` points and zero elsewhere.
+    """
+    states *= decay
+    if flux != 0.0:
+        states[heated] += flux * gain
+
+
+class SurfaceHeating:
+    """Temperature of one sliding surface under a moving slider; trial / commit / revert.
+
+    Parameters
+    ----------
+    layout : MonitorLine or CentrePoint
+        Where the monitor points are and how the contact temperature is formed.
+    contact_radius : float
+        Contact radius r of the slider (= slider radius) [m].
+    travel : float
+        Largest distance of the slider centre from the plate centre the line must cover [m].
+    thermal : ThermalProperties
+        Conductivity, diffusivity and initial temperature.
+    kernel : SumOfExponentials
+        Approximation of the history kernel.
+    """
+
+    def __init__(
+        self,
+        layout: HeatingLayout,
+        contact_radius: float,
+        travel: float,
+        thermal: ThermalProperties,
+        kernel: SumOfExponentials,
+    ) -> None:
+        self.layout = layout
+        self.thermal = thermal
+        self.kernel = kernel
+        self.points = layout.points(contact_radius, travel)
+        self.flux_half_width = layout.flux_half_width(contact_radius)
+        self.average_over_contact = layout.average_over_contact
+        self._coefficient = thermal.flux_coefficient
+        self._gain_rates = 1.0 / kernel.rates
+        self._states = np.zeros((self.points.size, kernel.rates.size))
+        self._touched = (self.points.size, -1)  # index range of points ever heated
+        self._cached_dt = -1.0
+        self._decay = self._gain = self._weighted_decay = np.empty(0)
+
+    def _step_factors(self, dt: float) -> None:
+        if dt != self._cached_dt:
+            if dt < self.kernel.min_lag:
+                raise ValueError(
+                    f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
+                    f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag."
+                )
+            self._decay = np.exp(-self.kernel.rates * dt)
+            self._gain = (1.0 - self._decay) * self._gain_rates
+            self._weighted_decay = self.kernel.weights * self._decay
+            self._cached_dt = dt
+
+    def _window(self, position: float, half_width: float) -> slice:
+        lo = int(np.searchsorted(self.points, position - half_width - 1e-12, side="left"))
+        hi = int(np.searchsorted(self.points, position + half_width + 1e-12, side="right"))
+        return slice(lo, hi)
+
+    def trial(self, position: float, dt: float) -> tuple[float, float, slice]:
+        """Contact temperature terms for a trial slider position after a step ``dt``.
+
+        Parameters
+        ----------
+        position : float
+            Slider centre on this plate, measured from the plate centre [m].
+        dt : float
+            Trial step since the last commit [s].
+
+        Returns
+        -------
+        base_temperature : float
+            T0 + history part of the contact temperature (all committed flux) [degC].
+        newest_coefficient : float
+            d T / d q_n: the contact temperature rises by this times the newest flux
+            [degC m^2 / W] (2 c sqrt(dt) times the fraction of averaged points heated).
+        heated : slice
+            Points that take the newest flux.
+        """
+        self._step_factors(dt)
+        heated = self._window(position, self.flux_half_width)
+        newest = 2.0 * self._coefficient * np.sqrt(dt)
+        if self.average_over_contact:
+            if heated.start == 0 or heated.stop == self.points.size:
+                raise ValueError(
+                    f"The slider centre at {position:.4f} m has left the monitor line "
+                    f"(+-{self.points[-1]:.4f} m): the displacement exceeds the bearing's "
+                    "displacement_capacity; give a larger capacity or MonitorLine.half_length."
+                )
+            rise = history_rise(self._states[heated], self._weighted_decay)
+            base = float(rise.mean()) if rise.size else 0.0
+            fraction = 1.0 if heated.stop > heated.start else 0.0
+        else:
+            base = float(history_rise(self._states[0:1], self._weighted_decay)[0])
+            fraction = 1.0 if heated.stop > heated.start else 0.0
+        base = self.thermal.initial_temperature + self._coefficient * base
+        return base, newest * fraction, heated
+
+    def commit(self, dt: float, heated: slice, flux: float) -> None:
+        """Add one interval of constant ``flux`` [W/m^2] on the ``heated`` points."""
+        self._step_factors(dt)
+        lo, hi = self._touched
+        if flux != 0.0 and heated.stop > heated.start:
+            lo, hi = min(lo, heated.start), max(hi, heated.stop - 1)
+            self._touched = (lo, hi)
+        if hi >= lo:
+            active = slice(lo, hi + 1)
+            local = slice(heated.start - lo, heated.stop - lo)
+            advance_states(self._states[active], self._decay, self._gain, local, flux)
+
+    def profile(self, dt: float = 0.0) -> np.ndarray:
+        """Temperature at every monitor point ``dt`` after the last commit [degC]."""
+        if dt <= 0.0:
+            weighted = self.kernel.weights
+        else:
+            weighted = self.kernel.weights * np.exp(-self.kernel.rates * dt)
+        rise = history_rise(self._states, weighted)
+        return self.thermal.initial_temperature + self._coefficient * rise
+
+    def snapshot(self) -> tuple[np.ndarray, tuple[int, int]]:
+        """A copy of the committed state (for tests and checkpoints)."""
+        return self._states.copy(), self._touched
+
+
+def exact_rise(
+    times: np.ndarray, fluxes: np.ndarray, at: float, thermal: ThermalProperties
+) -> float:
+    """Exact Eq. 4 for a piecewise-constant flux: the reference for tests [degC].
+
+    Parameters
+    ----------
+    times : ndarray, shape (n + 1,)
+        Interval boundaries t_0 < t_1 < ... < t_n [s].
+    fluxes : ndarray, shape (n,)
+        Flux on each interval [W/m^2].
+    at : float
+        Time of evaluation, at least t_n [s].
+    """
+    times = np.asarray(times, dtype=float)
+    start = np.sqrt(np.maximum(at - times[:-1], 0.0))
+    stop = np.sqrt(np.maximum(at - times[1:], 0.0))
+    return float(2.0 * thermal.flux_coefficient * np.sum(np.asarray(fluxes) * (start - stop)))
+

@@ -1,0 +1,428 @@
+"""Imposed displacement histories for a virtual bearing test machine.
+
+A history is an :class:`ImposedHistory`: time [s], displacement [m] and the exact analytic
+velocity [m/s] at every sample, plus labelled ``segments`` (one per loading block) so a test rig
+or :mod:`isolator.characteristics` can pick out one block of a long sequence.
+
+Sampling convention: ``dt`` is the largest time step allowed. A block of duration ``D`` is cut
+into ``ceil(D / dt)`` equal steps so that its last sample falls exactly on its end (the step used
+equals ``dt`` whenever ``dt`` divides ``D``). Blocks are joined at a shared sample (see
+:func:`concatenate`), so the time step may differ slightly from block to block.
+
+References
+----------
+ASCE/SEI 7-16, Section 17.8.2.2 "Sequence and Cycles" (prototype tests of isolator units), cited
+as [7] by the paper (ssb-part2-friction-models), whose wind-load test T02 runs at a peak velocity
+of about 15 mm/s and whose other ASCE tests run at a constant period of 4.26 s.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from dcfpb.validation import check_array, check_choice, check_int, check_real
+
+WIND_PEAK_VELOCITY = 0.015
+"""Peak velocity of the paper's wind-load test T02 [m/s] (about 15 mm/s)."""
+
+DM_MULTIPLES = ((0.25, "0.25"), (0.5, "0.5"), (0.67, "0.67"), (1.0, "1.0"))
+"""Multiples of D_M of ASCE 7-16 17.8.2.2 item 2, with the text of their block labels."""
+
+_STEPS_PER_PERIOD_MIN = 20  # dt <= period / 20: a sine is resolved by at least 20 steps
+_ROUNDING = 1e-9  # relative slack when deciding how many steps of dt fill a duration
+
+
+@dataclass(frozen=True, eq=False)
+class ImposedHistory:
+    """A displacement history imposed on a bearing, with its exact velocity.
+
+    Parameters
+    ----------
+    time : array_like
+        Sample times, strictly increasing [s].
+    displacement : array_like
+        Imposed displacement at each sample [m].
+    velocity : array_like
+        Imposed velocity at each sample [m/s] (analytic, not differentiated).
+    name : str
+        What the history is, e.g. ``"sine"`` or ``"ASCE 7-16 prototype sequence"``.
+    segments : tuple of (str, int, int)
+        Labelled blocks ``(label, start, stop)``: ``displacement[start:stop]`` is the whole
+        block, both end samples included; consecutive blocks share their joining sample.
+
+    The arrays are stored as read-only float copies.
+    """
+
+    time: np.ndarray
+    displacement: np.ndarray
+    velocity: np.ndarray
+    name: str
+    segments: tuple[tuple[str, int, int], ...] = ()
+
+    def __post_init__(self) -> None:
+        owner = "ImposedHistory"
+        time = check_array(self.time, "time", owner, min_length=2)
+        if np.any(np.diff(time) <= 0.0):
+            index = int(np.argmax(np.diff(time) <= 0.0)) + 1
+            raise ValueError(
+                f"The 'time' parameter of {owner} must be strictly increasing. "
+                f"Got {time[index]!r} after {time[index - 1]!r} at index {index} instead."
+            )
+        arrays = {"time": time}
+        for name in ("displacement", "velocity"):
+            arr = check_array(getattr(self, name), name, owner, min_length=2)
+            if arr.shape != time.shape:
+                raise ValueError(
+                    f"The {name!r} parameter of {owner} must have the length of 'time' "
+                    f"({time.size}). Got {arr.size} instead."
+                )
+            arrays[name] = arr
+        for name, arr in arrays.items():
+            arr = arr.copy()
+            arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
+        if not isinstance(self.name, str):
+            raise TypeError(f"The 'name' parameter of {owner} must be a str. Got {self.name!r}.")
+        segments = tuple(tuple(s) for s in self.segments)
+        for seg in segments:
+            ok = (
+                len(seg) == 3
+                and isinstance(seg[0], str)
+                and all(isinstance(i, int | np.integer) for i in seg[1:])
+                and 0 <= seg[1] < seg[2] <= time.size
+            )
+            if not ok:
+                raise ValueError(
+                    f"The 'segments' parameter of {owner} must hold (label, start, stop) with "
+                    f"0 <= start < stop <= {time.size}. Got {seg!r} instead."
+                )
+        object.__setattr__(
+            self, "segments", tuple((str(s[0]), int(s[1]), int(s[2])) for s in segments)
+        )
+
+    def __len__(self) -> int:
+        return int(self.time.size)
+
+    @property
+    def duration(self) -> float:
+        """Time from the first to the last sample [s]."""
+        return float(self.time[-1] - self.time[0])
+
+    def segment_slices(self, label: str) -> list[slice]:
+        """Slices of every block labelled ``label`` (both end samples included)."""
+        return [slice(start, stop) for lab, start, stop in self.segments if lab == label]
+
+
+def _steps(duration: float, dt: float) -> int:
+    """Number of equal steps no longer than ``dt`` that fill ``duration``."""
+    return max(1, math.ceil(duration / dt - _ROUNDING))
+
+
+def sine(
+    amplitude: float, period: float, cycles: int, dt: float, *, start_time: float = 0.0
+) -> ImposedHistory:
+    """Fully reversed sine cycles ``u = A sin(2 pi (t - t0) / T)``.
+
+    Parameters
+    ----------
+    amplitude : float
+        Displacement amplitude A [m], > 0.
+    period : float
+        Period T [s], > 0.
+    cycles : int
+        Number of full cycles, >= 1; the last sample lies at the end of the last cycle.
+    dt : float
+        Largest time step [s], in (0, T/20] (see the module's sampling convention).
+    start_time : float
+        Time t0 of the first sample [s].
+
+    Returns
+    -------
+    ImposedHistory
+        Displacement starting and ending at exactly 0, velocity ``A (2 pi / T) cos(...)``
+        (exact), one segment labelled ``"sine"``.
+    """
+    owner = "sine"
+    amplitude = check_real(amplitude, "amplitude", owner, low=0.0, low_open=True)
+    period = check_real(period, "period", owner, low=0.0, low_open=True)
+    cycles = check_int(cycles, "cycles", owner, low=1)
+    dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=period / _STEPS_PER_PERIOD_MIN)
+    start_time = check_real(start_time, "start_time", owner)
+    n = _steps(cycles * period, dt)
+    k = np.arange(n + 1)
+    # Phase as an exact fraction of a cycle (integer arithmetic), so that whole cycles end on 0.
+    phase = 2.0 * np.pi * ((k * cycles) % n) / n
+    time = start_time + cycles * period * k / n
+    displacement = amplitude * np.sin(phase)
+    displacement[0] = displacement[-1] = 0.0
+    velocity = amplitude * (2.0 * np.pi / period) * np.cos(phase)
+    return ImposedHistory(time, displacement, velocity, "sine", (("sine", 0, n + 1),))
+
+
+def wind_cycles(
+    amplitude: float,
+    peak_velocity: float = WIND_PEAK_VELOCITY,
+    cycles: int = 20,
+    dt: float | None = None,
+) -> ImposedHistory:
+    """Slow fully reversed sine cycles standing for a wind load (the paper's test T02).
+
+    The period ``T = 2 pi A / v_peak`` gives the requested peak velocity.
+
+    Parameters
+    ----------
+    amplitude : float
+        Displacement amplitude A [m], > 0 (see :func:`wind_displacement_from_force`).
+    peak_velocity : float
+        Peak velocity v_peak [m/s], > 0; 0.015 m/s as in the paper's test T02.
+    cycles : int
+        Number of cycles, >= 1; ASCE 7-16 17.8.2.2 item 1 asks for 20.
+    dt : float or None
+        Largest time step [s], in (0, T/20]; None takes T/100.
+
+    Returns
+    -------
+    ImposedHistory
+        Named and labelled ``"wind"``.
+    """
+    owner = "wind_cycles"
+    amplitude = check_real(amplitude, "amplitude", owner, low=0.0, low_open=True)
+    peak_velocity = check_real(peak_velocity, "peak_velocity", owner, low=0.0, low_open=True)
+    period = 2.0 * np.pi * amplitude / peak_velocity
+    if dt is None:
+        dt = period / 100.0
+    dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=period / _STEPS_PER_PERIOD_MIN)
+    history = sine(amplitude, period, cycles, dt)
+    return ImposedHistory(
+        history.time, history.displacement, history.velocity, "wind", (("wind", 0, len(history)),)
+    )
+
+
+def wind_displacement_from_force(
+    wind_force: float, axial_load: float, effective_radius: float, friction_coefficient: float
+) -> float:
+    """Displacement at which a pendulum bearing resists the wind design force [m].
+
+    Solves ``N u / R + mu N = F_w`` for u (the sliding branch of the bilinear loop, Fig. 7);
+    returns 0 when ``F_w <= mu N`` (the bearing does not slide).
+
+    Parameters
+    ----------
+    wind_force : float
+        Wind design force on the bearing F_w [N], >= 0.
+    axial_load : float
+        Axial load N [N], > 0.
+    effective_radius : float
+        Effective radius of curvature R [m], > 0 and finite.
+    friction_coefficient : float
+        Friction coefficient mu [-], in [0, 1].
+    """
+    owner = "wind_displacement_from_force"
+    wind_force = check_real(wind_force, "wind_force", owner, low=0.0)
+    axial_load = check_real(axial_load, "axial_load", owner, low=0.0, low_open=True)
+    radius = check_real(effective_radius, "effective_radius", owner, low=0.0, low_open=True)
+    mu = check_real(friction_coefficient, "friction_coefficient", owner, low=0.0, high=1.0)
+    breakaway = mu * axial_load
+    if wind_force <= breakaway:
+        return 0.0
+    return radius * (wind_force - breakaway) / axial_load
+
+
+def hold(duration: float, dt: float) -> ImposedHistory:
+    """The bearing held at zero displacement for ``duration`` [s] (steps no longer than dt).
+
+    Named and labelled ``"rest"``.
+    """
+    owner = "hold"
+    duration = check_real(duration, "duration", owner, low=0.0, low_open=True)
+    dt = check_real(dt, "dt", owner, low=0.0, low_open=True)
+    n = _steps(duration, dt)
+    time = duration * np.arange(n + 1) / n
+    zeros = np.zeros(n + 1)
+    return ImposedHistory(time, zeros, zeros, "rest", (("rest", 0, n + 1),))
+
+
+def concatenate(*histories: ImposedHistory, name: str | None = None) -> ImposedHistory:
+    """Join histories end to start into one.
+
+    Each history is shifted in time so its first sample coincides with the previous history's
+    last sample, and the two become one joining sample. Displacement must be continuous at every
+    join (to 1e-9 of the largest displacement); velocity may jump and is taken from the later
+    history at the joining sample (right-continuous). Segments keep their labels.
+
+    Parameters
+    ----------
+    *histories : ImposedHistory
+        At least one.
+    name : str or None
+        Name of the result; None joins the names with ``" + "``.
+    """
+    owner = "concatenate"
+    if not histories:
+        raise ValueError(f"The 'histories' parameter of {owner} must hold at least one history.")
+    for h in histories:
+        if not isinstance(h, ImposedHistory):
+            raise TypeError(
+                f"The 'histories' parameter of {owner} must hold ImposedHistory objects. "
+                f"Got {type(h).__name__} instead."
+            )
+    scale = max(float(np.max(np.abs(h.displacement))) for h in histories)
+    first = histories[0]
+    time, disp, vel = [first.time], [first.displacement], [first.velocity.copy()]
+    segments, offset = list(first.segments), len(first) - 1
+    for i, h in enumerate(histories[1:], start=1):
+        t_end, u_end = time[-1][-1], disp[-1][-1]
+        if abs(h.displacement[0] - u_end) > 1e-9 * scale:
+            raise ValueError(
+                f"The 'histories' parameter of {owner} must be continuous in displacement. "
+                f"Got a jump from {u_end!r} to {h.displacement[0]!r} m at history {i} instead."
+            )
+        vel[-1][-1] = h.velocity[0]  # right-continuous velocity at the joining sample
+        time.append(h.time[1:] - h.time[0] + t_end)
+        disp.append(h.displacement[1:])
+        vel.append(h.velocity[1:].copy())
+        segments.extend((lab, start + offset, stop + offset) for lab, start, stop in h.segments)
+        offset += len(h) - 1
+    if name is None:
+        name = " + ".join(h.name for h in histories)
+    return ImposedHistory(
+        np.concatenate(time), np.concatenate(disp), np.concatenate(vel), name, tuple(segments)
+    )
+
+
+def _labelled(history: ImposedHistory, label: str) -> ImposedHistory:
+    return ImposedHistory(
+        history.time, history.displacement, history.velocity, label, ((label, 0, len(history)),)
+    )
+
+
+def long_duration_cycles(
+    S_M1: float | None, S_MS: float | None, B_M: float | None, owner: str = "long_duration_cycles"
+) -> int:
+    """Cycles of ASCE 7-16 17.8.2.2 item 4: ``30 S_M1 / (S_MS B_M)``, but not less than 10.
+
+    The ratio is rounded up (never fewer cycles than asked). All three None gives the minimum, 10.
+
+    Parameters
+    ----------
+    S_M1, S_MS : float or None
+        MCE_R spectral response accelerations at 1 s and short periods [g], > 0.
+    B_M : float or None
+        Damping coefficient at the maximum displacement (ASCE 7-16 Table 17.7-1) [-],
+        in [0.8, 2.0].
+    """
+    given = {"S_M1": S_M1, "S_MS": S_MS, "B_M": B_M}
+    if all(v is None for v in given.values()):
+        return 10
+    for key, value in given.items():
+        if value is None:
+            raise ValueError(
+                f"The {key!r} parameter of {owner} must be a float when any of S_M1, S_MS, "
+                f"B_M is given. Got None instead."
+            )
+    s1 = check_real(S_M1, "S_M1", owner, low=0.0, low_open=True)
+    ss = check_real(S_MS, "S_MS", owner, low=0.0, low_open=True)
+    bm = check_real(B_M, "B_M", owner, low=0.8, high=2.0)
+    return max(10, math.ceil(30.0 * s1 / (ss * bm) - _ROUNDING))
+
+
+def asce7_prototype_sequence(
+    maximum_displacement: float,
+    total_maximum_displacement: float,
+    period: float,
+    dt: float,
+    *,
+    wind_displacement: float,
+    wind_peak_velocity: float = WIND_PEAK_VELOCITY,
+    S_M1: float | None = None,
+    S_MS: float | None = None,
+    B_M: float | None = None,
+    rest: float = 0.0,
+    item2: str = "a",
+) -> ImposedHistory:
+    """The cyclic prototype-test sequence of ASCE 7-16 Section 17.8.2.2 as one history.
+
+    Clauses implemented (ASCE 7-16 17.8.2.2, quoted from memory, to be checked against the text):
+
+    1. Twenty fully reversed cycles of loading at a lateral force corresponding to the wind
+       design force. The force-controlled test is imposed here as displacement cycles of
+       amplitude ``wind_displacement`` (see :func:`wind_displacement_from_force`) at a slow
+       period giving ``wind_peak_velocity`` (the paper's T02: about 15 mm/s). A wind
+       displacement of 0 (no sliding under wind) omits this block.
+    2. (a) Three fully reversed cycles of loading at each of 0.25, 0.5, 0.67 and 1.0 D_M; or
+       (b) performed dynamically at T_M: continuous loading of one fully reversed cycle at each
+       of 1.0, 0.67, 0.5, 0.25 D_M followed by continuous loading of one cycle at each of 0.25,
+       0.5, 0.67, 1.0 D_M, a rest interval being permitted between the two sequences.
+    3. Three fully reversed cycles of loading at the total maximum displacement D_TM.
+    4. ``30 S_M1 / (S_MS B_M)``, but not less than 10, continuous fully reversed cycles of
+       loading at 0.75 D_TM (see :func:`long_duration_cycles`).
+
+    Tests are performed dynamically at the effective period T_M (17.8.2.3), as in the paper
+    (T = 4.26 s). Not implemented: the two extra vertical-load cases of item 2 for
+    vertical-load-carrying isolators, and the option of splitting item 4 into segments of no
+    fewer than five cycles.
+
+    Parameters
+    ----------
+    maximum_displacement : float
+        D_M [m], > 0.
+    total_maximum_displacement : float
+        D_TM [m], >= D_M.
+    period : float
+        Effective period T_M of every block but the wind block [s], > 0.
+    dt : float
+        Largest time step [s], at most 1/20 of the period and of the wind period.
+    wind_displacement : float
+        Amplitude of the wind cycles [m], >= 0.
+    wind_peak_velocity : float
+        Peak velocity of the wind cycles [m/s], > 0.
+    S_M1, S_MS, B_M : float or None
+        Set the number of item-4 cycles; all None gives 10.
+    rest : float
+        Time held at zero displacement between blocks [s], >= 0 (not inside the continuous
+        sequences of item 2b).
+    item2 : {"a", "b"}
+        Which option of item 2.
+
+    Returns
+    -------
+    ImposedHistory
+        Blocks labelled ``"wind"``, ``"0.25 D_M"``, ``"0.5 D_M"``, ``"0.67 D_M"``,
+        ``"1.0 D_M"``, ``"D_TM"``, ``"0.75 D_TM"`` and ``"rest"``. Each block starts and ends at
+        zero displacement; velocity jumps where the amplitude changes.
+    """
+    owner = "asce7_prototype_sequence"
+    d_m = check_real(maximum_displacement, "maximum_displacement", owner, low=0.0, low_open=True)
+    d_tm = check_real(total_maximum_displacement, "total_maximum_displacement", owner, low=d_m)
+    period = check_real(period, "period", owner, low=0.0, low_open=True)
+    d_w = check_real(wind_displacement, "wind_displacement", owner, low=0.0)
+    v_w = check_real(wind_peak_velocity, "wind_peak_velocity", owner, low=0.0, low_open=True)
+    n_long = long_duration_cycles(S_M1, S_MS, B_M, owner)
+    rest_time = check_real(rest, "rest", owner, low=0.0)
+    item2 = check_choice(item2, "item2", owner, ("a", "b"))
+    shortest = period if d_w == 0.0 else min(period, 2.0 * np.pi * d_w / v_w)
+    dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=shortest / _STEPS_PER_PERIOD_MIN)
+
+    def block(amplitude: float, label: str, cycles: int) -> ImposedHistory:
+        return _labelled(sine(amplitude, period, cycles, dt), label)
+
+    multiples = [(f * d_m, f"{label} D_M") for f, label in DM_MULTIPLES]
+    groups: list[list[ImposedHistory]] = []  # blocks inside a group are joined without rest
+    if d_w > 0.0:
+        groups.append([wind_cycles(d_w, v_w, 20, dt)])
+    if item2 == "a":
+        groups.extend([block(f, label, 3)] for f, label in multiples)
+    else:
+        groups.append([block(f, label, 1) for f, label in reversed(multiples)])
+        groups.append([block(f, label, 1) for f, label in multiples])
+    groups.append([block(d_tm, "D_TM", 3)])
+    groups.append([block(0.75 * d_tm, "0.75 D_TM", n_long)])
+    parts: list[ImposedHistory] = []
+    for i, group in enumerate(groups):
+        if i > 0 and rest_time > 0.0:
+            parts.append(hold(rest_time, dt))
+        parts.extend(group)
+    return concatenate(*parts, name="ASCE 7-16 prototype sequence")

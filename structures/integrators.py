@@ -1,0 +1,418 @@
+"""Implicit time integration of ``M a + C v + f(u, v) = -M r a_g(t)``: Newmark and HHT-alpha.
+
+As in ``scipy.integrate``, a method is data over one shared algorithm: :class:`Newmark` and
+:class:`HHT` are small frozen parameter sets (``gamma``, ``beta``, ``alpha``) and
+:class:`NewmarkStepper` is the one Newton step that uses them. :func:`integrate` is the entry
+point; ``method`` is a name from :data:`METHODS` or an instance. Misuse raises; a numerical
+failure ends the run with ``success=False`` and a message, keeping the steps already taken.
+
+The step from ``t_n`` to ``t_{n+1} = t_n + h`` solves for ``u_{n+1}`` (Hilber, Hughes & Taylor
+1977; ``alpha = 0`` is Newmark)::
+
+    M a_{n+1} + (1 + alpha) [C v_{n+1} + f_{n+1}] - alpha [C v_n + f_n]
+        = (1 + alpha) p_{n+1} - alpha p_n
+    u_{n+1} = u_n + h v_n + h^2 [(1/2 - beta) a_n + beta a_{n+1}]
+    v_{n+1} = v_n + h [(1 - gamma) a_n + gamma a_{n+1}]
+
+by Newton's method on the consistent tangent
+``K_eff = c0 M + (1 + alpha) [c1 (C + df/dv) + df/du]``, ``c0 = 1/(beta h^2)``,
+``c1 = gamma/(beta h)``, from the predictor ``a_{n+1} = a_n``.
+
+Convergence: with ``R`` the residual (right side minus left side) and ``du = K_eff^-1 R`` the next
+Newton correction at the current iterate, the iterate is accepted when both
+
+- ``|R| <= tolerance * F_ref``, ``F_ref`` the largest norm among the terms of the balance:
+  ``M a_{n+1}``, ``C v_{n+1} + f_{n+1}``, ``p_{n+1}``, ``C v_n + f_n``, ``p_n`` [N];
+- ``|du| <= tolerance * max(|u_{n+1}|, |u_n|)`` [m];
+
+(Euclidean norms). One iteration is one restoring-force evaluation, so a linear model converges
+in two: a correction and the check of it. A step that does not converge in ``max_iterations`` is
+reverted and solved as two half steps, with the ground acceleration interpolated linearly,
+recursively down to ``max_subdivisions`` halvings; the model is committed after each sub-step.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from dcfpb.validation import check_array, check_choice, check_int, check_real
+from structures.model import DynamicModel
+
+__all__ = ["HHT", "METHODS", "IntegrationResult", "Newmark", "NewmarkStepper", "integrate"]
+
+
+@dataclass(frozen=True)
+class Newmark:
+    """Newmark's method; the default pair is the average acceleration (trapezoidal) rule.
+
+    Parameters
+    ----------
+    gamma : float
+        Velocity weight, in [1/2, 1] (1/2: no numerical damping).
+    beta : float
+        Displacement weight, in (0, 1/2] (1/4: average, 1/6: linear acceleration).
+    """
+
+    gamma: float = 0.5
+    beta: float = 0.25
+
+    def __post_init__(self) -> None:
+        check_real(self.gamma, "gamma", "Newmark", low=0.5, high=1.0)
+        check_real(self.beta, "beta", "Newmark", low=0.0, high=0.5, low_open=True)
+
+    @property
+    def alpha(self) -> float:
+        """HHT weight; zero for Newmark [-]."""
+        return 0.0
+
+    @property
+    def stability_limit(self) -> float:
+        """Largest stable ``omega dt`` for a linear undamped system [-] (``inf``: unconditional)."""
+        if 2.0 * self.beta >= self.gamma:
+            return np.inf
+        return float(1.0 / np.sqrt(0.5 * self.gamma - self.beta))
+
+
+@dataclass(frozen=True)
+class HHT:
+    """The HHT-alpha method: second order, numerical damping of the high modes.
+
+    Parameters
+    ----------
+    alpha : float
+        In [-1/3, 0]; the spectral radius at ``dt/T -> inf`` is ``(1 + alpha)/(1 - alpha)``.
+        ``gamma = (1 - 2 alpha)/2`` and ``beta = (1 - alpha)^2/4`` follow from it.
+    """
+
+    alpha: float = -0.05
+
+    def __post_init__(self) -> None:
+        check_real(self.alpha, "alpha", "HHT", low=-1.0 / 3.0, high=0.0)
+
+    @property
+    def gamma(self) -> float:
+        """Velocity weight ``(1 - 2 alpha)/2`` [-]."""
+        return 0.5 - self.alpha
+
+    @property
+    def beta(self) -> float:
+        """Displacement weight ``(1 - alpha)^2/4`` [-]."""
+        return 0.25 * (1.0 - self.alpha) ** 2
+
+    @property
+    def stability_limit(self) -> float:
+        """HHT-alpha is unconditionally stable for alpha in [-1/3, 0]."""
+        return np.inf
+
+
+METHODS: dict[str, type[Newmark] | type[HHT]] = {"newmark": Newmark, "hht": HHT}
+"""Method names accepted by :func:`integrate`, each mapped to its class (default parameters)."""
+
+
+@dataclass(frozen=True, eq=False)
+class IntegrationResult:
+    """A time history, relative to the ground, up to the last committed step.
+
+    Attributes
+    ----------
+    time : numpy.ndarray
+        Times of the committed steps, shape (nt,) [s].
+    displacement, velocity, acceleration : numpy.ndarray
+        Response relative to the ground, shape (nt, n) [m], [m/s], [m/s^2].
+    absolute_acceleration : numpy.ndarray
+        ``acceleration + r a_g``, shape (nt, n) [m/s^2].
+    success : bool
+        Whether the whole record was integrated.
+    message : str
+        Why the run ended; on failure, the time, iteration count and residual norm.
+    iterations : numpy.ndarray
+        Newton iterations spent on each committed step, failed attempts included, (nt-1,).
+    subdivisions : numpy.ndarray
+        Step halvings needed by each committed step, shape (nt-1,).
+    method : Newmark or HHT
+        The method used.
+    """
+
+    time: np.ndarray
+    displacement: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+    absolute_acceleration: np.ndarray
+    success: bool
+    message: str
+    iterations: np.ndarray
+    subdivisions: np.ndarray
+    method: Newmark | HHT
+
+
+def _matrix(value: object, name: str, shape: tuple[int, ...]) -> np.ndarray:
+    arr = np.asarray(value, dtype=float)
+    if arr.shape != shape or not np.all(np.isfinite(arr)):
+        raise ValueError(
+            f"The model's {name!r} must be a finite array of shape {shape}. "
+            f"Got shape {arr.shape} instead."
+        )
+    return arr
+
+
+class NewmarkStepper:
+    """The shared Newton step of the Newmark family, with step subdivision.
+
+    Holds the committed state ``(t, u, v, a)``, ground acceleration ``ag`` and the committed
+    internal force ``q = C v + f`` and load ``p`` that the HHT balance needs. :meth:`step` is
+    the bookkeeping (subdivision, commit, messages); :meth:`_solve` is one Newton attempt on one
+    (sub-)step. Arrays handed to the model are never modified afterwards, so a model may keep
+    references to its trial state.
+
+    Parameters
+    ----------
+    model : DynamicModel
+        The structure; its committed state must match the initial conditions.
+    method : Newmark or HHT
+        Parameters of the step.
+    time, ground_acceleration : float
+        Initial time [s] and ground acceleration [m/s^2].
+    displacement, velocity : numpy.ndarray
+        Initial state relative to the ground, shape (n,) [m], [m/s].
+    tolerance : float
+        Relative tolerance of the force and displacement tests [-].
+    max_iterations, max_subdivisions : int
+        Newton iterations per attempt; nested halvings of a step.
+    """
+
+    def __init__(
+        self,
+        model: DynamicModel,
+        method: Newmark | HHT,
+        time: float,
+        ground_acceleration: float,
+        displacement: np.ndarray,
+        velocity: np.ndarray,
+        *,
+        tolerance: float,
+        max_iterations: int,
+        max_subdivisions: int,
+    ) -> None:
+        self.model = model
+        self.gamma, self.beta, self.alpha = method.gamma, method.beta, method.alpha
+        self.tolerance, self.max_iterations = tolerance, max_iterations
+        self.max_subdivisions = max_subdivisions
+        n = displacement.shape[0]
+        self.mass = _matrix(model.mass_matrix, "mass_matrix", (n, n))
+        self.damping = _matrix(model.damping_matrix, "damping_matrix", (n, n))
+        self.mass_influence = self.mass @ _matrix(model.influence, "influence", (n,))
+        self.t, self.u, self.v = float(time), displacement.copy(), velocity.copy()
+        trial = model.restoring_force(self.u, self.v, self.t)
+        for name, value, shape in zip(trial._fields, trial, ((n,), (n, n), (n, n)), strict=True):
+            _matrix(value, f"restoring_force(...).{name}", shape)
+        model.revert()  # the integrator never changes the history before the first step
+        self.ag = float(ground_acceleration)
+        self.p = -self.mass_influence * self.ag
+        self.q = self.damping @ self.v + trial.force
+        self.a = np.linalg.solve(self.mass, self.p - self.q)
+        self.step_iterations = self.step_subdivisions = 0
+        self.message = ""
+
+    def step(self, time: float, ground_acceleration: float) -> bool:
+        """Advance and commit to ``time`` [s]; return False (see :attr:`message`) on failure."""
+        self.step_iterations = self.step_subdivisions = 0
+        self._start, self._end, self._span = self.t, float(time), float(time) - self.t
+        self._ag_start, self._ag_end = self.ag, float(ground_acceleration)
+        return self._advance(0.0, 1.0, 0)
+
+    def _advance(self, s0: float, s1: float, depth: int) -> bool:
+        """Solve the fraction ``[s0, s1]`` of the step, halving it on failure."""
+        if s1 == 1.0:
+            t_end, ag_end = self._end, self._ag_end
+        else:
+            t_end = self._start + s1 * self._span
+            ag_end = self._ag_start + s1 * (self._ag_end - self._ag_start)
+        converged, iterations, residual, reference = self._solve(
+            (s1 - s0) * self._span, t_end, ag_end
+        )
+        self.step_iterations += iterations
+        if converged:
+            self.model.commit()
+            return True
+        self.model.revert()
+        if depth >= self.max_subdivisions:
+            self.message = (
+                f"Newton iteration did not converge in the step to t = {t_end:.6g} s (sub-step "
+                f"of {(s1 - s0) * self._span:.3g} s after {depth} halvings): after {iterations} "
+                f"iterations the residual norm was {residual:.3e} N ({residual / reference:.3e} "
+                f"of the force reference {reference:.3e} N; tolerance {self.tolerance:g})."
+            )
+            return False
+        self.step_subdivisions += 1
+        middle = 0.5 * (s0 + s1)
+        return self._advance(s0, middle, depth + 1) and self._advance(middle, s1, depth + 1)
+
+    def _solve(
+        self, h: float, time: float, ground_acceleration: float
+    ) -> tuple[bool, int, float, float]:
+        """One Newton attempt; on success the committed state moves to ``time``.
+
+        Returns ``(converged, iterations, residual norm [N], force reference [N])``.
+        """
+        alpha, weight = self.alpha, 1.0 + self.alpha
+        c0, c1 = 1.0 / (self.beta * h * h), self.gamma / (self.beta * h)
+        p = -self.mass_influence * ground_acceleration
+        load = weight * p - alpha * self.p + alpha * self.q
+        a = self.a
+        u = self.u + h * self.v + (0.5 * h * h) * a
+        v = self.v + h * a
+        previous = max(np.linalg.norm(self.p), np.linalg.norm(self.q))
+        u_norm = np.linalg.norm(self.u)
+        r_norm = reference = np.inf
+        for iteration in range(1, self.max_iterations + 1):
+            trial = self.model.restoring_force(u, v, time)
+            q = self.damping @ v + trial.force
+            inertia = self.mass @ a
+            residual = load - inertia - weight * q
+            tangent = c0 * self.mass + weight * (
+                c1 * (self.damping + trial.damping) + trial.stiffness
+            )
+            r_norm = float(np.linalg.norm(residual))
+            reference = max(previous, np.linalg.norm(inertia), np.linalg.norm(q), np.linalg.norm(p))
+            try:
+                du = np.linalg.solve(tangent, residual)
+            except np.linalg.LinAlgError:
+                return False, iteration, r_norm, reference
+            if not np.all(np.isfinite(du)):
+                return False, iteration, r_norm, reference
+            if r_norm <= self.tolerance * reference and np.linalg.norm(du) <= self.tolerance * max(
+                np.linalg.norm(u), u_norm
+            ):
+                self.t, self.u, self.v, self.a = time, u, v, a
+                self.ag, self.p, self.q = ground_acceleration, p, q
+                return True, iteration, r_norm, reference
+            u, v, a = u + du, v + c1 * du, a + c0 * du
+        return False, self.max_iterations, r_norm, reference
+
+
+def _method(method: object) -> Newmark | HHT:
+    if isinstance(method, Newmark | HHT):
+        return method
+    if isinstance(method, str):
+        return METHODS[check_choice(method, "method", "integrate", tuple(METHODS))]()
+    raise TypeError(
+        f"The 'method' parameter of integrate must be one of {tuple(METHODS)} or a Newmark or "
+        f"HHT instance. Got {method!r} instead."
+    )
+
+
+def integrate(
+    model: DynamicModel,
+    ground_acceleration: object,
+    dt: float,
+    method: str | Newmark | HHT = "newmark",
+    *,
+    initial_displacement: object = None,
+    initial_velocity: object = None,
+    tolerance: float = 1e-8,
+    max_iterations: int = 25,
+    max_subdivisions: int = 4,
+    on_commit: Callable[[int, float, np.ndarray, np.ndarray, np.ndarray], None] | None = None,
+) -> IntegrationResult:
+    """Integrate a model through a ground-acceleration record.
+
+    Parameters
+    ----------
+    model : DynamicModel
+        The structure. Its committed state must correspond to the initial conditions.
+    ground_acceleration : array_like
+        Ground acceleration sampled every ``dt`` from ``t = 0``, shape (nt,) [m/s^2].
+    dt : float
+        Time step of the record and of the integration [s].
+    method : {"newmark", "hht"} or Newmark or HHT
+        A name from :data:`METHODS` (default parameters) or a configured instance.
+    initial_displacement, initial_velocity : array_like, optional
+        Initial state relative to the ground, shape (n,) [m], [m/s]; zeros by default.
+    tolerance : float
+        Relative tolerance of the force-residual and displacement-increment tests, in (0, 1).
+    max_iterations : int
+        Newton iterations per attempt, at least 1.
+    max_subdivisions : int
+        Nested halvings of a step that does not converge, at least 0.
+    on_commit : callable, optional
+        ``on_commit(step_index, time, u, v, a)`` after each committed full step (index >= 1),
+        e.g. to record the bearing state; the arrays are rows of the result and must not be
+        modified.
+
+    Returns
+    -------
+    IntegrationResult
+        The history up to the last committed step, with ``success`` and ``message``.
+    """
+    owner = "integrate"
+    chosen = _method(method)
+    record = check_array(ground_acceleration, "ground_acceleration", owner, min_length=2)
+    step = check_real(dt, "dt", owner, low=0.0, low_open=True)
+    tol = check_real(
+        tolerance, "tolerance", owner, low=0.0, high=1.0, low_open=True, high_open=True
+    )
+    iterations_max = check_int(max_iterations, "max_iterations", owner, low=1)
+    subdivisions_max = check_int(max_subdivisions, "max_subdivisions", owner, low=0)
+    n = np.asarray(model.mass_matrix).shape[0]
+    u0 = (
+        np.zeros(n)
+        if initial_displacement is None
+        else check_array(initial_displacement, "initial_displacement", owner)
+    )
+    v0 = (
+        np.zeros(n)
+        if initial_velocity is None
+        else check_array(initial_velocity, "initial_velocity", owner)
+    )
+    for name, value in (("initial_displacement", u0), ("initial_velocity", v0)):
+        if value.shape != (n,):
+            raise ValueError(
+                f"The {name!r} parameter of {owner} must have shape ({n},). "
+                f"Got {value.shape} instead."
+            )
+
+    nt = record.shape[0]
+    time = step * np.arange(nt)
+    displacement, velocity, acceleration = np.empty((nt, n)), np.empty((nt, n)), np.empty((nt, n))
+    iterations, subdivisions = np.zeros(nt - 1, dtype=int), np.zeros(nt - 1, dtype=int)
+    stepper = NewmarkStepper(
+        model,
+        chosen,
+        time[0],
+        record[0],
+        u0,
+        v0,
+        tolerance=tol,
+        max_iterations=iterations_max,
+        max_subdivisions=subdivisions_max,
+    )
+    displacement[0], velocity[0], acceleration[0] = stepper.u, stepper.v, stepper.a
+    last, success = nt - 1, True
+    message = "The integration reached the end of the record."
+    for k in range(1, nt):
+        success = stepper.step(time[k], record[k])
+        iterations[k - 1], subdivisions[k - 1] = stepper.step_iterations, stepper.step_subdivisions
+        if not success:
+            last, message = k - 1, f"Step {k}: {stepper.message}"
+            break
+        displacement[k], velocity[k], acceleration[k] = stepper.u, stepper.v, stepper.a
+        if on_commit is not None:
+            on_commit(k, time[k], displacement[k], velocity[k], acceleration[k])
+
+    kept = slice(0, last + 1)
+    influence = np.asarray(model.influence, dtype=float)
+    arrays = [
+        time[kept],
+        displacement[kept],
+        velocity[kept],
+        acceleration[kept],
+        acceleration[kept] + record[kept, None] * influence,
+        iterations[:last],
+        subdivisions[:last],
+    ]
+    for array in arrays:
+        array.setflags(write=False)
+    return IntegrationResult(*arrays[:5], success, message, *arrays[5:], method=chosen)

@@ -1,0 +1,176 @@
+"""The seam between the integrators and whatever they integrate: a dynamic-model protocol.
+
+An integrator solves ``M a + C v + f(u, v) = p(t)`` with ``p = -M r a_g(t)`` and never sees a
+bearing: it only asks a :class:`DynamicModel` for its constant matrices and for the restoring
+force ``f`` with its tangents at a trial state. As in OpenSees materials, a trial is a pure
+function of the committed history and the trial state, so Newton may call
+:meth:`DynamicModel.restoring_force` as often as it likes; the history moves only on
+:meth:`DynamicModel.commit`, and :meth:`DynamicModel.revert` discards every trial since.
+
+:class:`LinearModel` implements the protocol for ``f = K u`` (the fixed-base building, tests).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple, Protocol, runtime_checkable
+
+import numpy as np
+
+__all__ = ["DynamicModel", "LinearModel", "RestoringForce"]
+
+
+class RestoringForce(NamedTuple):
+    """Restoring force of a model at a trial state, with its consistent tangents.
+
+    Attributes
+    ----------
+    force : numpy.ndarray
+        Restoring force ``f(u, v)``, shape (n,) [N].
+    stiffness : numpy.ndarray
+        Tangent ``d f / d u``, shape (n, n) [N/m].
+    damping : numpy.ndarray
+        Tangent ``d f / d v`` of the velocity-dependent part of ``f`` (e.g. friction through
+        ``d mu / d v``), shape (n, n) [N s/m]; zeros if ``f`` does not depend on ``v``. The
+        linear viscous damping is *not* in here: it is :attr:`DynamicModel.damping_matrix`.
+    """
+
+    force: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+
+
+@runtime_checkable
+class DynamicModel(Protocol):
+    """What an integrator needs from a structure: matrices, a restoring force, commit/revert.
+
+    All displacements, velocities and accelerations are relative to the ground.
+    """
+
+    @property
+    def mass_matrix(self) -> np.ndarray:
+        """Mass matrix, shape (n, n) [kg]."""
+        ...
+
+    @property
+    def damping_matrix(self) -> np.ndarray:
+        """Linear viscous damping matrix, shape (n, n) [N s/m]."""
+        ...
+
+    @property
+    def influence(self) -> np.ndarray:
+        """Ground-motion influence vector ``r``, shape (n,) [-]."""
+        ...
+
+    def restoring_force(self, u: np.ndarray, v: np.ndarray, time: float) -> RestoringForce:
+        """Restoring force and tangents at the trial state.
+
+        Parameters
+        ----------
+        u, v : numpy.ndarray
+            Trial displacement [m] and velocity [m/s], shape (n,).
+        time : float
+            Trial time [s] (the end of the step or sub-step being solved).
+
+        Returns
+        -------
+        RestoringForce
+            A pure function of the committed history and the trial state.
+        """
+        ...
+
+    def commit(self) -> None:
+        """Accept the last trial as converged (the history moves on)."""
+        ...
+
+    def revert(self) -> None:
+        """Discard every trial since the last commit."""
+        ...
+
+
+def _square(matrix: object, name: str, n: int | None) -> np.ndarray:
+    arr = np.array(matrix, dtype=float)
+    if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or (n is not None and arr.shape[0] != n):
+        size = "n" if n is None else str(n)
+        raise ValueError(
+            f"The {name!r} parameter of LinearModel must be a ({size}, {size}) array of floats. "
+            f"Got shape {arr.shape} instead."
+        )
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(
+            f"The {name!r} parameter of LinearModel must hold finite floats. Got {arr!r} instead."
+        )
+    arr.setflags(write=False)
+    return arr
+
+
+class LinearModel:
+    """A linear model ``M a + C v + K u = -M r a_g``: the :class:`DynamicModel` with no history.
+
+    Parameters
+    ----------
+    mass : array_like
+        Mass matrix, shape (n, n), symmetric positive definite [kg].
+    damping : array_like
+        Viscous damping matrix, shape (n, n) [N s/m].
+    stiffness : array_like
+        Stiffness matrix, shape (n, n) [N/m].
+    influence : array_like
+        Ground-motion influence vector ``r``, shape (n,) [-].
+
+    Raises
+    ------
+    ValueError
+        If a shape disagrees, a value is not finite or the mass matrix is not symmetric
+        positive definite.
+    """
+
+    def __init__(self, mass: object, damping: object, stiffness: object, influence: object) -> None:
+        self._mass = _square(mass, "mass", None)
+        n = self._mass.shape[0]
+        if not np.allclose(self._mass, self._mass.T) or np.any(np.linalg.eigvalsh(self._mass) <= 0):
+            raise ValueError(
+                "The 'mass' parameter of LinearModel must be a symmetric positive definite "
+                f"matrix. Got {self._mass!r} instead."
+            )
+        self._damping = _square(damping, "damping", n)
+        self._stiffness = _square(stiffness, "stiffness", n)
+        r = np.array(influence, dtype=float)
+        if r.shape != (n,) or not np.all(np.isfinite(r)):
+            raise ValueError(
+                f"The 'influence' parameter of LinearModel must be a finite ({n},) array. "
+                f"Got {r!r} instead."
+            )
+        r.setflags(write=False)
+        self._influence = r
+        self._no_velocity_tangent = np.zeros((n, n))
+        self._no_velocity_tangent.setflags(write=False)
+
+    @property
+    def mass_matrix(self) -> np.ndarray:
+        """Mass matrix, shape (n, n) [kg]."""
+        return self._mass
+
+    @property
+    def damping_matrix(self) -> np.ndarray:
+        """Viscous damping matrix, shape (n, n) [N s/m]."""
+        return self._damping
+
+    @property
+    def stiffness_matrix(self) -> np.ndarray:
+        """Stiffness matrix, shape (n, n) [N/m]."""
+        return self._stiffness
+
+    @property
+    def influence(self) -> np.ndarray:
+        """Ground-motion influence vector, shape (n,) [-]."""
+        return self._influence
+
+    def restoring_force(self, u: np.ndarray, v: np.ndarray, time: float) -> RestoringForce:
+        """Return ``K u`` with tangents ``K`` and zero (``f`` does not depend on ``v``)."""
+        return RestoringForce(self._stiffness @ u, self._stiffness, self._no_velocity_tangent)
+
+    def commit(self) -> None:
+        """Nothing to commit: a linear model has no history."""
+
+    def revert(self) -> None:
+        """Nothing to revert: a linear model has no history."""
