@@ -50,6 +50,43 @@ class FactorSet(Protocol):
         ...
 
 
+def paper_pressure_raw(pressure):
+    """Eq. 1 on a float or an array in Pa: (gamma, d gamma / d p [1/Pa]). Compilable."""
+    sigma = pressure / PA_PER_N_PER_MM2
+    power = 2.03 * sigma**-0.19
+    return power + 0.068, -0.19 * power / sigma / PA_PER_N_PER_MM2  # Eq. 1
+
+
+def paper_velocity_raw(speed):
+    """Eq. 2 on a speed in m/s: (alpha, d alpha / d|v| [s/m]). Compilable."""
+    decay = 0.55 * np.exp(-0.019 * MM_PER_M * speed)
+    return 1.0 - decay, 0.019 * MM_PER_M * decay  # Eq. 2
+
+
+def paper_temperature_raw(temperature):
+    """Eq. 3 on a temperature in degC: (beta, d beta / d T [1/degC]). Compilable."""
+    beta = 1.13 * np.exp(-0.007 * temperature)
+    return beta, -0.007 * beta  # Eq. 3
+
+
+def kumar_pressure_raw(pressure, reference_pressure):
+    """kp = 0.7^((p - p_ref) / 50 MPa) and its derivative [1/Pa]. Compilable."""
+    kp = np.exp(np.log(0.7) * (pressure - reference_pressure) / 50.0e6)
+    return kp, kp * np.log(0.7) / 50.0e6
+
+
+def kumar_velocity_raw(speed, rate_parameter):
+    """kv = 1 - 0.5 exp(-a |v|) and its derivative [s/m]. Compilable."""
+    decay = 0.5 * np.exp(-rate_parameter * speed)
+    return 1.0 - decay, rate_parameter * decay
+
+
+def kumar_temperature_raw(temperature):
+    """kT = 0.789 (0.7^(T / 50) + 0.4) and its derivative [1/degC]. Compilable."""
+    power = np.exp(np.log(0.7) * temperature / 50.0)
+    return 0.789 * (power + 0.4), 0.789 * power * np.log(0.7) / 50.0
+
+
 def paper_pressure_factor(pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
     """Pressure dependency factor gamma of the paper, Eq. 1.
 
@@ -69,10 +106,7 @@ def paper_pressure_factor(pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
     ----------
     Eq. 1: gamma = 2.03 sigma^-0.19 + 0.068, sigma in N/mm^2.
     """
-    sigma = np.asarray(pressure, dtype=float) / PA_PER_N_PER_MM2
-    power = 2.03 * sigma**-0.19
-    gamma = power + 0.068  # Eq. 1
-    dgamma = -0.19 * power / sigma / PA_PER_N_PER_MM2
+    gamma, dgamma = paper_pressure_raw(np.asarray(pressure, dtype=float))
     return _scalar(gamma), _scalar(dgamma)
 
 
@@ -95,10 +129,7 @@ def paper_velocity_factor(speed: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
     ----------
     Eq. 2: alpha = 1 - 0.55 exp(-0.019 v), v in mm/s.
     """
-    v_mm = np.abs(np.asarray(speed, dtype=float)) * MM_PER_M
-    decay = 0.55 * np.exp(-0.019 * v_mm)
-    alpha = 1.0 - decay  # Eq. 2
-    dalpha = 0.019 * decay * MM_PER_M
+    alpha, dalpha = paper_velocity_raw(np.abs(np.asarray(speed, dtype=float)))
     return _scalar(alpha), _scalar(dalpha)
 
 
@@ -121,8 +152,8 @@ def paper_temperature_factor(temperature: ArrayLike) -> tuple[ArrayLike, ArrayLi
     ----------
     Eq. 3: beta = 1.13 exp(-0.007 T).
     """
-    beta = 1.13 * np.exp(-0.007 * np.asarray(temperature, dtype=float))  # Eq. 3
-    return _scalar(beta), _scalar(-0.007 * beta)
+    beta, dbeta = paper_temperature_raw(np.asarray(temperature, dtype=float))
+    return _scalar(beta), _scalar(dbeta)
 
 
 @dataclass(frozen=True)
@@ -130,6 +161,11 @@ class PaperFactors:
     """The SSB paper's dependency factors (Eq. 1-3); no parameters."""
 
     name: str = "paper"
+
+    @property
+    def kernel_parameters(self) -> tuple[int, float, float]:
+        """(set code, reference pressure, rate parameter) for the compiled kernels."""
+        return 0, 0.0, 0.0
 
     def pressure(self, pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
         """Eq. 1, see :func:`paper_pressure_factor`."""
@@ -170,21 +206,25 @@ class KumarFactors:
         check_real(self.reference_pressure, "reference_pressure", owner, low=0.0, low_open=True)
         check_real(self.rate_parameter, "rate_parameter", owner, low=0.0, low_open=True)
 
+    @property
+    def kernel_parameters(self) -> tuple[int, float, float]:
+        """(set code, reference pressure, rate parameter) for the compiled kernels."""
+        return 1, float(self.reference_pressure), float(self.rate_parameter)
+
     def pressure(self, pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
         """kp = 0.7^((p - p_ref) / 50 MPa) and its derivative [1/Pa]."""
-        p = np.asarray(pressure, dtype=float)
-        kp = 0.7 ** ((p - self.reference_pressure) / 50.0e6)
-        return _scalar(kp), _scalar(kp * np.log(0.7) / 50.0e6)
+        kp, dkp = kumar_pressure_raw(np.asarray(pressure, dtype=float), self.reference_pressure)
+        return _scalar(kp), _scalar(dkp)
 
     def velocity(self, speed: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
         """kv = 1 - 0.5 exp(-a |v|) and its derivative with respect to |v| [s/m]."""
-        decay = 0.5 * np.exp(-self.rate_parameter * np.abs(np.asarray(speed, dtype=float)))
-        return _scalar(1.0 - decay), _scalar(self.rate_parameter * decay)
+        kv, dkv = kumar_velocity_raw(np.abs(np.asarray(speed, dtype=float)), self.rate_parameter)
+        return _scalar(kv), _scalar(dkv)
 
     def temperature(self, temperature: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
         """kT = 0.789 (0.7^(T / 50) + 0.4) and its derivative [1/degC]."""
-        power = 0.7 ** (np.asarray(temperature, dtype=float) / 50.0)
-        return _scalar(0.789 * (power + 0.4)), _scalar(0.789 * power * np.log(0.7) / 50.0)
+        kt, dkt = kumar_temperature_raw(np.asarray(temperature, dtype=float))
+        return _scalar(kt), _scalar(dkt)
 
 
 FACTOR_SETS = {"paper": PaperFactors, "kumar": KumarFactors}

@@ -21,6 +21,7 @@ method. The velocity derivative includes that coupling.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import NamedTuple, Protocol
 
@@ -37,6 +38,7 @@ from isolator.heating import (
     ThermalProperties,
     sum_of_exponentials,
 )
+from isolator.kernels import PTV_PARAMETERS, cold_friction, ptv_trial, solve_friction
 
 DEPENDENCIES = ("pressure", "velocity", "temperature")
 REFERENCE_PRESSURE = 60.0e6  # [Pa] 60 N/mm^2, the paper's reference condition
@@ -68,7 +70,7 @@ class FrictionState(Protocol):
     """A bound friction model with trial / commit / revert."""
 
     def trial(self, position: float, velocity: float, pressure: float, dt: float) -> Friction:
-        """Friction for a trial relative displacement [m], velocity [m/s], pressure [Pa], step [s]."""
+        """Friction at a trial displacement [m], velocity [m/s], pressure [Pa], step [s]."""
         ...
 
     def commit(self) -> None:
@@ -175,8 +177,11 @@ class PTVFriction:
     surfaces : int
         Sliding surfaces sharing the relative displacement: 2 for a DCFPB (the slider travels
         u/2 over each plate and each takes q = mu p v / 2), 1 for a single concave bearing.
-    kernel_min_lag : float
-        Shortest time step the heating kernel must resolve [s]; default 1e-6.
+    kernel_min_lag, kernel_max_lag : float
+        Range of time lags over which the heating kernel holds [s]: steps down to 1e-6 s and
+        histories up to 1e4 s (2.8 h) by default.
+    kernel_tolerance : float
+        Largest relative error of the heating kernel on that range [-]; default 1e-7.
     """
 
     mu_t0: float = 0.075
@@ -186,6 +191,8 @@ class PTVFriction:
     thermal: ThermalProperties = field(default_factory=ThermalProperties)
     surfaces: int = 2
     kernel_min_lag: float = 1.0e-6
+    kernel_max_lag: float = 1.0e4
+    kernel_tolerance: float = 1.0e-7
 
     def __post_init__(self) -> None:
         owner = type(self).__name__
@@ -207,6 +214,8 @@ class PTVFriction:
             check_choice(name, "dependencies", owner, DEPENDENCIES)
         check_int(self.surfaces, "surfaces", owner, low=1, high=2)
         check_real(self.kernel_min_lag, "kernel_min_lag", owner, low=1e-9, high=1e-2)
+        check_real(self.kernel_max_lag, "kernel_max_lag", owner, low=1.0, high=1e9)
+        check_real(self.kernel_tolerance, "kernel_tolerance", owner, low=1e-12, high=1e-3)
 
     @property
     def heats(self) -> bool:
@@ -227,16 +236,28 @@ class PTVFrictionState:
 
     def __init__(self, model: PTVFriction, contact_radius: float, travel: float) -> None:
         self.model = model
-        self._factors = model.factors
-        self._use = {name: name in model.dependencies for name in DEPENDENCIES}
-        self._surfaces = model.surfaces
+        self._kernel_parameters = model.factors.kernel_parameters
+        self._use_pressure = "pressure" in model.dependencies
+        self._use_velocity = "velocity" in model.dependencies
+        self._use_temperature = "temperature" in model.dependencies
+        self._initial_temperature = model.thermal.initial_temperature
+        self._surfaces = float(model.surfaces)
         self._heating: SurfaceHeating | None = None
         if model.heating is not None:
-            kernel: SumOfExponentials = sum_of_exponentials(min_lag=model.kernel_min_lag)
+            kernel: SumOfExponentials = sum_of_exponentials(
+                model.kernel_min_lag, model.kernel_max_lag, model.kernel_tolerance)
             self._heating = SurfaceHeating(
                 model.heating, contact_radius, travel / model.surfaces, model.thermal, kernel
             )
-        self._pending: tuple[float, slice, float] | None = None
+        self._pending: tuple[float, tuple[int, int], float] | None = None
+        if self._heating is not None:  # constant arguments of the fused kernel, packed once
+            h = self._heating
+            self._parameters = np.array(
+                [h.first_point, h.spacing, h.n_points, h.flux_half_width,
+                 h.average_over_contact, self._initial_temperature, h.coefficient,
+                 *self._kernel_parameters, model.mu_t0, self._use_pressure, self._use_velocity,
+                 self._use_temperature, self._surfaces], dtype=float)
+            assert self._parameters.size == len(PTV_PARAMETERS)
 
     @property
     def heating(self) -> SurfaceHeating | None:
@@ -258,48 +279,30 @@ class PTVFrictionState:
         dt : float
             Time since the last commit [s].
         """
-        m = self.model
         speed = abs(velocity)
-        gamma = self._factors.pressure(pressure)[0] if self._use["pressure"] else 1.0
-        alpha, dalpha = self._factors.velocity(speed) if self._use["velocity"] else (1.0, 0.0)
-        mu_cold = m.mu_t0 * gamma * alpha  # Eq. 7 without beta
-        temperature = m.thermal.initial_temperature
-        if self._heating is None or dt <= 0.0:
-            beta, dbeta = (
-                self._factors.temperature(temperature) if self._use["temperature"] else (1.0, 0.0)
-            )
-            mu = mu_cold * beta
+        code, reference_pressure, rate = self._kernel_parameters
+        heating = self._heating
+        if heating is None or dt <= 0.0:
+            mu_cold, dmu_cold = cold_friction(code, reference_pressure, rate, self.model.mu_t0,
+                                              self._use_pressure, self._use_velocity, pressure,
+                                              speed)
+            mu, dmu_dspeed, temperature = solve_friction(
+                code, mu_cold, dmu_cold, self._use_temperature, self._initial_temperature, 0.0,
+                0.0)
+            flux = mu * pressure * speed / self._surfaces
             self._pending = None
-            return Friction(mu, m.mu_t0 * gamma * dalpha * beta * np.sign(velocity),
-                            temperature, mu * pressure * speed / self._surfaces)
-        base, newest, heated = self._heating.trial(position / self._surfaces, dt)
-        flux_per_mu = pressure * speed / self._surfaces  # q = mu p |v| / surfaces (Eq. 5)
-        a = newest * flux_per_mu  # dT/dmu through the newest interval
-        mu, beta, dbeta = self._solve(mu_cold, base, a)
-        temperature = base + a * mu
-        # d mu / d|v|: explicit velocity factor plus the heat-flux coupling through T.
-        coupling = mu_cold * dbeta
-        dmu_dspeed = (m.mu_t0 * gamma * dalpha * beta + coupling * newest * pressure * mu
-                      / self._surfaces) / (1.0 - coupling * a)
-        flux = mu * flux_per_mu
-        self._pending = (dt, heated, flux)
-        return Friction(mu, dmu_dspeed * np.sign(velocity), temperature, flux)
-
-    def _solve(self, mu_cold: float, base: float, a: float) -> tuple[float, float, float]:
-        """Solve mu = mu_cold beta(base + a mu) by Newton's method; return mu, beta, dbeta."""
-        if not self._use["temperature"]:
-            return mu_cold, 1.0, 0.0
-        beta, dbeta = self._factors.temperature(base)
-        mu = mu_cold * beta
-        for _ in range(30):
-            beta, dbeta = self._factors.temperature(base + a * mu)
-            residual = mu - mu_cold * beta
-            step = residual / (1.0 - mu_cold * dbeta * a)
-            mu -= step
-            if abs(step) <= 1e-15 * abs(mu):
-                break
-        beta, dbeta = self._factors.temperature(base + a * mu)
-        return mu, beta, dbeta
+        else:
+            if dt != heating.prepared_step:
+                heating.prepare(dt)
+            mu, dmu_dspeed, temperature, flux, lo, hi, inside = ptv_trial(
+                heating.states, heating.weighted_decay, self._parameters,
+                position / self._surfaces, heating.newest_coefficient, pressure, speed,
+            )
+            if not inside:
+                heating.window(position / self._surfaces)  # raises with the full message
+            self._pending = (dt, (lo, hi), flux)
+        return Friction(mu, math.copysign(dmu_dspeed, velocity) if velocity else 0.0,
+                        temperature, flux)
 
     def commit(self) -> None:
         """Add the last trial's heat to the history."""

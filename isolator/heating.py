@@ -21,6 +21,7 @@ State lives inside trial / commit / revert: :meth:`SurfaceHeating.trial` never c
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -28,6 +29,7 @@ import numpy as np
 from scipy.optimize import nnls
 
 from dcfpb.validation import check_real
+from isolator.kernels import advance_states, contact_history, heated_window
 
 
 @dataclass(frozen=True)
@@ -96,14 +98,14 @@ class SumOfExponentials:
 
 @lru_cache(maxsize=8)
 def sum_of_exponentials(
-    min_lag: float = 1.0e-6, max_lag: float = 1.0e5, tolerance: float = 1.0e-8
+    min_lag: float = 1.0e-6, max_lag: float = 1.0e4, tolerance: float = 1.0e-7
 ) -> SumOfExponentials:
     """Build a sum-of-exponentials approximation of the kernel 1/sqrt(tau).
 
     The rates are geometric from 0.1 / max_lag to 10 / min_lag and the weights are fitted by
     non-negative least squares to the relative error on a logarithmic grid; the number of terms
     grows until the maximum relative error on a grid ten times denser is below ``tolerance``.
-    About 60 terms give 1e-8 over eleven decades of lag.
+    About 50 terms give 4e-8 over ten decades of lag (the default, 1 us to 1e4 s).
 
     Parameters
     ----------
@@ -222,32 +224,6 @@ class CentrePoint:
 HeatingLayout = MonitorLine | CentrePoint
 
 
-def history_rise(states: np.ndarray, weighted_decay: np.ndarray) -> np.ndarray:
-    """History part of the temperature integral at each monitor point [W s^0.5 / m^2].
-
-    Parameters
-    ----------
-    states : ndarray, shape (m, K)
-        Exponential-sum states G_jk at the last committed time.
-    weighted_decay : ndarray, shape (K,)
-        w_k exp(-s_k dt) for the trial step dt.
-    """
-    return states @ weighted_decay
-
-
-def advance_states(
-    states: np.ndarray, decay: np.ndarray, gain: np.ndarray, heated: slice, flux: float
-) -> None:
-    """Advance the exponential-sum states by one step in place (exact for constant flux).
-
-    G_jk <- exp(-s_k dt) G_jk + q_j (1 - exp(-s_k dt)) / s_k, with q_j = ``flux`` on the
-    ``heated`` points and zero elsewhere.
-    """
-    states *= decay
-    if flux != 0.0:
-        states[heated] += flux * gain
-
-
 class SurfaceHeating:
     """Temperature of one sliding surface under a moving slider; trial / commit / revert.
 
@@ -279,31 +255,49 @@ class SurfaceHeating:
         self.points = layout.points(contact_radius, travel)
         self.flux_half_width = layout.flux_half_width(contact_radius)
         self.average_over_contact = layout.average_over_contact
-        self._coefficient = thermal.flux_coefficient
+        self.first_point = float(self.points[0])
+        self.spacing = float(self.points[1] - self.points[0]) if self.points.size > 1 else 1.0
+        self.n_points = int(self.points.size)
+        self.coefficient = thermal.flux_coefficient
         self._gain_rates = 1.0 / kernel.rates
-        self._states = np.zeros((self.points.size, kernel.rates.size))
-        self._touched = (self.points.size, -1)  # index range of points ever heated
-        self._cached_dt = -1.0
-        self._decay = self._gain = self._weighted_decay = np.empty(0)
+        self.states = np.zeros((self.points.size, kernel.rates.size))
+        self._touched = (self.points.size, 0)  # [lo, hi) of points ever heated
+        self.prepared_step = self._factors_step = -1.0
+        self._step = np.empty((2, 0))
+        self.weighted_decay = np.empty(0)
+        self.newest_coefficient = 0.0
 
-    def _step_factors(self, dt: float) -> None:
-        if dt != self._cached_dt:
+    def prepare(self, dt: float) -> None:
+        """Compute the step factors exp(-s_k dt) once per distinct step size ``dt`` [s].
+
+        Steps that differ by less than 1e-12 relative (rounding of t_n - t_(n-1)) share them.
+        """
+        self.prepared_step = dt  # the last step seen: an equal next step skips this call
+        if abs(dt - self._factors_step) > 1e-12 * dt:
             if dt < self.kernel.min_lag:
                 raise ValueError(
                     f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
                     f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag."
                 )
-            self._decay = np.exp(-self.kernel.rates * dt)
-            self._gain = (1.0 - self._decay) * self._gain_rates
-            self._weighted_decay = self.kernel.weights * self._decay
-            self._cached_dt = dt
+            decay = np.exp(-self.kernel.rates * dt)
+            self._step = np.stack([decay, (1.0 - decay) * self._gain_rates])
+            self.weighted_decay = self.kernel.weights * decay
+            self.newest_coefficient = 2.0 * self.coefficient * math.sqrt(dt)
+            self._factors_step = dt
 
-    def _window(self, position: float, half_width: float) -> slice:
-        lo = int(np.searchsorted(self.points, position - half_width - 1e-12, side="left"))
-        hi = int(np.searchsorted(self.points, position + half_width + 1e-12, side="right"))
-        return slice(lo, hi)
+    def window(self, position: float) -> tuple[int, int]:
+        """Index range ``[lo, hi)`` of the points within the flux half width of ``position``."""
+        lo, hi, inside = heated_window(position, self.first_point, self.spacing, self.n_points,
+                                       self.flux_half_width, self.average_over_contact)
+        if not inside:
+            raise ValueError(
+                f"The slider centre at {position:.4f} m has left the monitor line "
+                f"(+-{self.points[-1]:.4f} m): the displacement exceeds the bearing's "
+                "displacement_capacity; give a larger capacity or MonitorLine.half_length."
+            )
+        return lo, hi
 
-    def trial(self, position: float, dt: float) -> tuple[float, float, slice]:
+    def trial(self, position: float, dt: float) -> tuple[float, float, tuple[int, int]]:
         """Contact temperature terms for a trial slider position after a step ``dt``.
 
         Parameters
@@ -319,53 +313,35 @@ class SurfaceHeating:
             T0 + history part of the contact temperature (all committed flux) [degC].
         newest_coefficient : float
             d T / d q_n: the contact temperature rises by this times the newest flux
-            [degC m^2 / W] (2 c sqrt(dt) times the fraction of averaged points heated).
-        heated : slice
-            Points that take the newest flux.
+            [degC m^2 / W] (2 c sqrt(dt) when the averaged points take the flux, else 0).
+        heated : (int, int)
+            Index range of the points that take the newest flux.
         """
-        self._step_factors(dt)
-        heated = self._window(position, self.flux_half_width)
-        newest = 2.0 * self._coefficient * np.sqrt(dt)
+        self.prepare(dt)
+        heated = self.window(position)
         if self.average_over_contact:
-            if heated.start == 0 or heated.stop == self.points.size:
-                raise ValueError(
-                    f"The slider centre at {position:.4f} m has left the monitor line "
-                    f"(+-{self.points[-1]:.4f} m): the displacement exceeds the bearing's "
-                    "displacement_capacity; give a larger capacity or MonitorLine.half_length."
-                )
-            rise = history_rise(self._states[heated], self._weighted_decay)
-            base = float(rise.mean()) if rise.size else 0.0
-            fraction = 1.0 if heated.stop > heated.start else 0.0
+            lo, hi = heated
         else:
-            base = float(history_rise(self._states[0:1], self._weighted_decay)[0])
-            fraction = 1.0 if heated.stop > heated.start else 0.0
-        base = self.thermal.initial_temperature + self._coefficient * base
-        return base, newest * fraction, heated
+            lo, hi = 0, 1
+        rise = contact_history(self.states, self.weighted_decay, lo, hi)
+        base = self.thermal.initial_temperature + self.coefficient * rise
+        newest = self.newest_coefficient if heated[1] > heated[0] else 0.0
+        return base, newest, heated
 
-    def commit(self, dt: float, heated: slice, flux: float) -> None:
+    def commit(self, dt: float, heated: tuple[int, int], flux: float) -> None:
         """Add one interval of constant ``flux`` [W/m^2] on the ``heated`` points."""
-        self._step_factors(dt)
-        lo, hi = self._touched
-        if flux != 0.0 and heated.stop > heated.start:
-            lo, hi = min(lo, heated.start), max(hi, heated.stop - 1)
-            self._touched = (lo, hi)
-        if hi >= lo:
-            active = slice(lo, hi + 1)
-            local = slice(heated.start - lo, heated.stop - lo)
-            advance_states(self._states[active], self._decay, self._gain, local, flux)
+        if dt != self.prepared_step:
+            self.prepare(dt)
+        self._touched = advance_states(self.states, self._step, *self._touched, *heated, flux)
 
     def profile(self, dt: float = 0.0) -> np.ndarray:
         """Temperature at every monitor point ``dt`` after the last commit [degC]."""
-        if dt <= 0.0:
-            weighted = self.kernel.weights
-        else:
-            weighted = self.kernel.weights * np.exp(-self.kernel.rates * dt)
-        rise = history_rise(self._states, weighted)
-        return self.thermal.initial_temperature + self._coefficient * rise
+        weighted = self.kernel.weights * np.exp(-self.kernel.rates * max(dt, 0.0))
+        return self.thermal.initial_temperature + self.coefficient * (self.states @ weighted)
 
     def snapshot(self) -> tuple[np.ndarray, tuple[int, int]]:
         """A copy of the committed state (for tests and checkpoints)."""
-        return self._states.copy(), self._touched
+        return self.states.copy(), self._touched
 
 
 def exact_rise(

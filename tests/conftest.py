@@ -14,5 +14,5 @@ SHARED_DIR = REPO_ROOT.parent / "shared"
 def shared_dir() -> Path:
     """The project's ``../shared`` folder; tests that need it skip on a user's clone."""
     if not SHARED_DIR.is_dir():
-        pytest.skip(f"../shared is absent ({SHARED_DIR}): these tests need the project's shared data")
+        pytest.skip(f"../shared is absent ({SHARED_DIR}): this test needs the shared data")
     return SHARED_DIR

@@ -1,0 +1,241 @@
+"""Compiled kernels of the isolator's hot path, with the same functions in plain Python.
+
+The per-step work of the friction models is done here on floats and arrays: the history part
+of the contact temperature, the exponential-sum state update, and the implicit solve of
+mu = mu_cold beta(T(mu)). With numba installed the functions are compiled on first use and
+cached on disk; without it, or with the environment variable ``DCFPB_DISABLE_NUMBA=1``, the
+same source runs as plain Python. Every compiled function keeps its Python original as
+``py_func`` so the tests check both.
+"""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from isolator.factors import (
+    kumar_pressure_raw,
+    kumar_temperature_raw,
+    kumar_velocity_raw,
+    paper_pressure_raw,
+    paper_temperature_raw,
+    paper_velocity_raw,
+)
+
+try:  # pragma: no cover - exercised by whichever environment runs the tests
+    if os.environ.get("DCFPB_DISABLE_NUMBA", "") not in ("", "0"):
+        raise ImportError("disabled by DCFPB_DISABLE_NUMBA")
+    import numba
+
+    COMPILED = True
+
+    def jit(function):
+        """Compile ``function`` with numba (cached on disk)."""
+        return numba.njit(cache=True, nogil=True)(function)
+
+except ImportError:  # pragma: no cover
+    COMPILED = False
+
+    def jit(function):
+        """Without numba: the plain function, with ``py_func`` pointing at itself."""
+        function.py_func = function
+        return function
+
+
+_paper_pressure = jit(paper_pressure_raw)
+_paper_velocity = jit(paper_velocity_raw)
+_paper_temperature = jit(paper_temperature_raw)
+_kumar_pressure = jit(kumar_pressure_raw)
+_kumar_velocity = jit(kumar_velocity_raw)
+_kumar_temperature = jit(kumar_temperature_raw)
+
+
+@jit
+def temperature_factor(code, temperature):
+    """(beta, d beta / d T) of factor set ``code`` (0 paper, 1 Kumar)."""
+    if code == 0:
+        return _paper_temperature(temperature)
+    return _kumar_temperature(temperature)
+
+
+@jit
+def cold_friction(code, reference_pressure, rate, mu_t0, use_pressure, use_velocity,
+                  pressure, speed):
+    """mu_t0 gamma(p) alpha(|v|) and its derivative with respect to |v| [s/m] (Eq. 7)."""
+    gamma = 1.0
+    alpha = 1.0
+    dalpha = 0.0
+    if code == 0:
+        if use_pressure:
+            gamma = _paper_pressure(pressure)[0]
+        if use_velocity:
+            alpha, dalpha = _paper_velocity(speed)
+    else:
+        if use_pressure:
+            gamma = _kumar_pressure(pressure, reference_pressure)[0]
+        if use_velocity:
+            alpha, dalpha = _kumar_velocity(speed, rate)
+    return mu_t0 * gamma * alpha, mu_t0 * gamma * dalpha
+
+
+@jit
+def contact_history(states, weighted_decay, lo, hi):
+    """Mean over points ``lo:hi`` of sum_k w_k exp(-s_k dt) G_jk [W s^0.5 / m^2]."""
+    if hi <= lo:
+        return 0.0
+    n_terms = weighted_decay.shape[0]
+    column_sums = np.zeros(n_terms)
+    for j in range(lo, hi):  # sum the rows first: this inner loop vectorises
+        for k in range(n_terms):
+            column_sums[k] += states[j, k]
+    total = 0.0
+    for k in range(n_terms):
+        total += column_sums[k] * weighted_decay[k]
+    return total / (hi - lo)
+
+
+@jit
+def advance_states(states, step, lo, hi, heated_lo, heated_hi, flux):
+    """G_jk <- exp(-s_k dt) G_jk + q (1 - exp(-s_k dt)) / s_k, in place; returns ``(lo, hi)``.
+
+    ``step`` stacks exp(-s_k dt) and (1 - exp(-s_k dt)) / s_k, shape (2, K). The flux ``q``
+    [W/m^2] enters the points ``heated_lo:heated_hi`` only. ``[lo, hi)`` are the points ever
+    heated (the others are zero and stay so); the range grown by this step's heated points is
+    returned.
+    """
+    if flux != 0.0 and heated_hi > heated_lo:
+        lo = min(lo, heated_lo)
+        hi = max(hi, heated_hi)
+    decay = step[0]
+    gain = step[1]
+    n_terms = decay.shape[0]
+    for j in range(lo, hi):
+        if heated_lo <= j < heated_hi and flux != 0.0:
+            for k in range(n_terms):
+                states[j, k] = states[j, k] * decay[k] + flux * gain[k]
+        else:
+            for k in range(n_terms):
+                states[j, k] *= decay[k]
+    return lo, hi
+
+
+@jit
+def solve_friction(code, mu_cold, dmu_cold, use_temperature, base, a, newest_per_mu_speed):
+    """Solve mu = mu_cold beta(base + a mu) by Newton's method.
+
+    Parameters
+    ----------
+    code : int
+        Factor set (0 paper, 1 Kumar).
+    mu_cold, dmu_cold : float
+        mu_t0 gamma alpha and its derivative with respect to |v|.
+    use_temperature : bool
+        Whether beta acts.
+    base : float
+        Contact temperature without the newest interval [degC].
+    a : float
+        d T / d mu through the newest interval's flux [degC].
+    newest_per_mu_speed : float
+        a / |v| (d T / d(mu |v|)) [degC s/m].
+
+    Returns
+    -------
+    mu, dmu_dspeed, temperature : float
+    """
+    if not use_temperature:
+        return mu_cold, dmu_cold, base + a * mu_cold
+    beta, dbeta = temperature_factor(code, base)
+    mu = mu_cold * beta
+    for _ in range(50):
+        beta, dbeta = temperature_factor(code, base + a * mu)
+        step = (mu - mu_cold * beta) / (1.0 - mu_cold * dbeta * a)
+        mu -= step
+        if abs(step) <= 1e-15 * abs(mu):
+            break
+    temperature = base + a * mu
+    beta, dbeta = temperature_factor(code, temperature)
+    coupling = mu_cold * dbeta  # d mu / d T at fixed velocity
+    dmu_dspeed = (dmu_cold * beta + coupling * newest_per_mu_speed * mu) / (1.0 - coupling * a)
+    return mu, dmu_dspeed, temperature
+
+
+@jit
+def heated_window(position, first, spacing, n_points, half_width, average_over_contact):
+    """Points ``[lo, hi)`` within ``half_width`` of the slider centre at ``position`` [m].
+
+    For a line of points (``average_over_contact``) at ``first + j spacing``; for the single
+    centre point, ``(0, 1)`` when it is covered and ``(0, 0)`` when not. The window is closed
+    (Eq. 5, 6: delta <= half width) with a relative slack of 1e-9 of a spacing against
+    rounding. ``inside`` is False when the window reaches past either end of the line.
+    """
+    if average_over_contact:
+        lo = int(np.ceil((position - half_width - first) / spacing - 1e-9))
+        hi = int(np.floor((position + half_width - first) / spacing + 1e-9)) + 1
+        return lo, hi, (lo > 0 and hi < n_points)
+    if abs(position) <= half_width * (1.0 + 1e-12):
+        return 0, 1, True
+    return 0, 0, True
+
+
+PTV_PARAMETERS = (
+    "first_point", "spacing", "n_points", "flux_half_width", "average_over_contact",
+    "initial_temperature", "flux_coefficient", "factor_code", "reference_pressure",
+    "rate_parameter", "mu_t0", "use_pressure", "use_velocity", "use_temperature", "surfaces",
+)
+"""Order of the constant parameters packed into the ``parameters`` array of :func:`ptv_trial`."""
+
+
+@jit
+def ptv_trial(states, weighted_decay, parameters, position, newest, pressure, speed):
+    """One trial of the precise or simplified friction model, fused for speed.
+
+    Finds the monitor points under the slider (``position`` on the plate [m]), forms the
+    contact temperature from their committed history, and solves Eq. 7 with the newest
+    interval's flux q = mu p |v| / surfaces entering the temperature (``newest`` = 2 c
+    sqrt(dt) [degC m^2/W]). ``parameters`` holds the constants named in ``PTV_PARAMETERS``.
+
+    Returns
+    -------
+    mu, dmu_dspeed, temperature, flux : float
+    heated_lo, heated_hi : int
+        Points ``[lo, hi)`` that take the flux.
+    inside : bool
+        False when the slider has left the monitor line (nothing else is valid then).
+    """
+    average_over_contact = parameters[4] != 0.0
+    lo, hi, inside = heated_window(position, parameters[0], parameters[1], int(parameters[2]),
+                                   parameters[3], average_over_contact)
+    if not inside:
+        return 0.0, 0.0, 0.0, 0.0, 0, 0, False
+    if average_over_contact:
+        rise = contact_history(states, weighted_decay, lo, hi)
+    else:
+        rise = contact_history(states, weighted_decay, 0, 1)
+    fraction = 1.0 if hi > lo else 0.0
+    base = parameters[5] + parameters[6] * rise
+    code = int(parameters[7])
+    mu_cold, dmu_cold = cold_friction(code, parameters[8], parameters[9], parameters[10],
+                                      parameters[11] != 0.0, parameters[12] != 0.0, pressure,
+                                      speed)
+    flux_per_mu_speed = pressure / parameters[14]
+    newest_per_mu_speed = newest * fraction * flux_per_mu_speed
+    mu, dmu_dspeed, temperature = solve_friction(code, mu_cold, dmu_cold, parameters[13] != 0.0,
+                                                 base, newest_per_mu_speed * speed,
+                                                 newest_per_mu_speed)
+    return mu, dmu_dspeed, temperature, mu * flux_per_mu_speed * speed, lo, hi, True
+
+
+def warm_up() -> None:
+    """Compile every kernel now (the first call otherwise pays for it)."""
+    states = np.zeros((2, 3))
+    vec = np.ones(3)
+    contact_history(states, vec, 0, 2)
+    advance_states(states, np.ones((2, 3)), 0, 2, 0, 1, 1.0)
+    for code in (0, 1):
+        cold_friction(code, 60e6, 100.0, 0.075, True, True, 60e6, 0.4)
+        solve_friction(code, 0.07, 0.0, True, 20.0, 1.0, 1.0)
+        for average in (1.0, 0.0):
+            parameters = np.array([-1.0, 1.0, 3.0, 0.1, average, 20.0, 1e-4, code, 60e6,
+                                   100.0, 0.075, 1.0, 1.0, 1.0, 2.0])
+            ptv_trial(states, vec, parameters, 0.0, 0.01, 60e6, 0.4)
