@@ -1,19 +1,17 @@
 """Imposed displacement histories for a virtual bearing test machine.
 
-A history is an :class:`ImposedHistory`: time [s], displacement [m] and the exact analytic
-velocity [m/s] at every sample, plus labelled ``segments`` (one per loading block) so a test rig
-or :mod:`isolator.characteristics` can pick out one block of a long sequence.
+An :class:`ImposedHistory` holds time [s], displacement [m] and the exact analytic velocity
+[m/s] at every sample, and labelled ``segments`` (one per loading block) so that one block of a
+long sequence can be picked out.
 
-Sampling convention: ``dt`` is the largest time step allowed. A block of duration ``D`` is cut
-into ``ceil(D / dt)`` equal steps so that its last sample falls exactly on its end (the step used
-equals ``dt`` whenever ``dt`` divides ``D``). Blocks are joined at a shared sample (see
-:func:`concatenate`), so the time step may differ slightly from block to block.
+Sampling: ``dt`` is the largest time step allowed. A block of duration D is cut into
+``ceil(D / dt)`` equal steps so that its last sample falls on its end (the step is ``dt`` when
+``dt`` divides D). Blocks are joined at a shared sample (:func:`concatenate`).
 
 References
 ----------
-ASCE/SEI 7-16, Section 17.8.2.2 "Sequence and Cycles" (prototype tests of isolator units), cited
-as [7] by the paper (ssb-part2-friction-models), whose wind-load test T02 runs at a peak velocity
-of about 15 mm/s and whose other ASCE tests run at a constant period of 4.26 s.
+ASCE/SEI 7-16, Section 17.8.2.2 "Sequence and Cycles", cited as [7] by the paper, whose ASCE
+tests run at a period of 4.26 s and whose wind-load test T02 at a peak velocity of ~15 mm/s.
 """
 
 from __future__ import annotations
@@ -28,16 +26,13 @@ from dcfpb.validation import check_array, check_choice, check_int, check_real
 WIND_PEAK_VELOCITY = 0.015
 """Peak velocity of the paper's wind-load test T02 [m/s] (about 15 mm/s)."""
 
-DM_MULTIPLES = ((0.25, "0.25"), (0.5, "0.5"), (0.67, "0.67"), (1.0, "1.0"))
-"""Multiples of D_M of ASCE 7-16 17.8.2.2 item 2, with the text of their block labels."""
-
 _STEPS_PER_PERIOD_MIN = 20  # dt <= period / 20: a sine is resolved by at least 20 steps
 _ROUNDING = 1e-9  # relative slack when deciding how many steps of dt fill a duration
 
 
 @dataclass(frozen=True, eq=False)
 class ImposedHistory:
-    """A displacement history imposed on a bearing, with its exact velocity.
+    """A displacement history imposed on a bearing, with its exact velocity (read-only arrays).
 
     Parameters
     ----------
@@ -52,8 +47,6 @@ class ImposedHistory:
     segments : tuple of (str, int, int)
         Labelled blocks ``(label, start, stop)``: ``displacement[start:stop]`` is the whole
         block, both end samples included; consecutive blocks share their joining sample.
-
-    The arrays are stored as read-only float copies.
     """
 
     time: np.ndarray
@@ -66,35 +59,30 @@ class ImposedHistory:
         owner = "ImposedHistory"
         time = check_array(self.time, "time", owner, min_length=2)
         if np.any(np.diff(time) <= 0.0):
-            index = int(np.argmax(np.diff(time) <= 0.0)) + 1
+            i = int(np.argmax(np.diff(time) <= 0.0)) + 1
             raise ValueError(
                 f"The 'time' parameter of {owner} must be strictly increasing. "
-                f"Got {time[index]!r} after {time[index - 1]!r} at index {index} instead."
+                f"Got {time[i]!r} after {time[i - 1]!r} at index {i} instead."
             )
-        arrays = {"time": time}
-        for name in ("displacement", "velocity"):
-            arr = check_array(getattr(self, name), name, owner, min_length=2)
+        for name in ("time", "displacement", "velocity"):
+            arr = check_array(getattr(self, name), name, owner, min_length=2).copy()
             if arr.shape != time.shape:
                 raise ValueError(
                     f"The {name!r} parameter of {owner} must have the length of 'time' "
                     f"({time.size}). Got {arr.size} instead."
                 )
-            arrays[name] = arr
-        for name, arr in arrays.items():
-            arr = arr.copy()
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
         if not isinstance(self.name, str):
             raise TypeError(f"The 'name' parameter of {owner} must be a str. Got {self.name!r}.")
         segments = tuple(tuple(s) for s in self.segments)
         for seg in segments:
-            ok = (
-                len(seg) == 3
-                and isinstance(seg[0], str)
-                and all(isinstance(i, int | np.integer) for i in seg[1:])
-                and 0 <= seg[1] < seg[2] <= time.size
-            )
-            if not ok:
+            label, *bounds = seg if len(seg) == 3 else (None, 0, 0)
+            if not (
+                isinstance(label, str)
+                and all(isinstance(i, int | np.integer) for i in bounds)
+                and 0 <= bounds[0] < bounds[1] <= time.size
+            ):
                 raise ValueError(
                     f"The 'segments' parameter of {owner} must hold (label, start, stop) with "
                     f"0 <= start < stop <= {time.size}. Got {seg!r} instead."
@@ -121,6 +109,12 @@ def _steps(duration: float, dt: float) -> int:
     return max(1, math.ceil(duration / dt - _ROUNDING))
 
 
+def _labelled(history: ImposedHistory, label: str) -> ImposedHistory:
+    return ImposedHistory(
+        history.time, history.displacement, history.velocity, label, ((label, 0, len(history)),)
+    )
+
+
 def sine(
     amplitude: float, period: float, cycles: int, dt: float, *, start_time: float = 0.0
 ) -> ImposedHistory:
@@ -142,8 +136,7 @@ def sine(
     Returns
     -------
     ImposedHistory
-        Displacement starting and ending at exactly 0, velocity ``A (2 pi / T) cos(...)``
-        (exact), one segment labelled ``"sine"``.
+        Starts and ends at exactly 0 [m]; exact velocity; one segment labelled "sine".
     """
     owner = "sine"
     amplitude = check_real(amplitude, "amplitude", owner, low=0.0, low_open=True)
@@ -168,7 +161,7 @@ def wind_cycles(
     cycles: int = 20,
     dt: float | None = None,
 ) -> ImposedHistory:
-    """Slow fully reversed sine cycles standing for a wind load (the paper's test T02).
+    """Slow sine cycles standing for a wind load (the paper's test T02), labelled "wind".
 
     The period ``T = 2 pi A / v_peak`` gives the requested peak velocity.
 
@@ -183,10 +176,6 @@ def wind_cycles(
     dt : float or None
         Largest time step [s], in (0, T/20]; None takes T/100.
 
-    Returns
-    -------
-    ImposedHistory
-        Named and labelled ``"wind"``.
     """
     owner = "wind_cycles"
     amplitude = check_real(amplitude, "amplitude", owner, low=0.0, low_open=True)
@@ -195,10 +184,7 @@ def wind_cycles(
     if dt is None:
         dt = period / 100.0
     dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=period / _STEPS_PER_PERIOD_MIN)
-    history = sine(amplitude, period, cycles, dt)
-    return ImposedHistory(
-        history.time, history.displacement, history.velocity, "wind", (("wind", 0, len(history)),)
-    )
+    return _labelled(sine(amplitude, period, cycles, dt), "wind")
 
 
 def wind_displacement_from_force(
@@ -225,17 +211,11 @@ def wind_displacement_from_force(
     axial_load = check_real(axial_load, "axial_load", owner, low=0.0, low_open=True)
     radius = check_real(effective_radius, "effective_radius", owner, low=0.0, low_open=True)
     mu = check_real(friction_coefficient, "friction_coefficient", owner, low=0.0, high=1.0)
-    breakaway = mu * axial_load
-    if wind_force <= breakaway:
-        return 0.0
-    return radius * (wind_force - breakaway) / axial_load
+    return max(0.0, radius * (wind_force - mu * axial_load) / axial_load)
 
 
 def hold(duration: float, dt: float) -> ImposedHistory:
-    """The bearing held at zero displacement for ``duration`` [s] (steps no longer than dt).
-
-    Named and labelled ``"rest"``.
-    """
+    """The bearing held at zero displacement for ``duration`` [s], labelled ``"rest"``."""
     owner = "hold"
     duration = check_real(duration, "duration", owner, low=0.0, low_open=True)
     dt = check_real(dt, "dt", owner, low=0.0, low_open=True)
@@ -250,8 +230,10 @@ def concatenate(*histories: ImposedHistory, name: str | None = None) -> ImposedH
 
     Each history is shifted in time so its first sample coincides with the previous history's
     last sample, and the two become one joining sample. Displacement must be continuous at every
-    join (to 1e-9 of the largest displacement); velocity may jump and is taken from the later
-    history at the joining sample (right-continuous). Segments keep their labels.
+    join (to 1e-9 of the largest displacement). Velocity may jump there: the joining sample gets
+    the mean of the two sides (the midpoint of the jump, as a central difference would give),
+    which keeps their sign when they agree, e.g. at the end of a sine block and the start of a
+    rest. Segments keep their labels.
 
     Parameters
     ----------
@@ -261,14 +243,12 @@ def concatenate(*histories: ImposedHistory, name: str | None = None) -> ImposedH
         Name of the result; None joins the names with ``" + "``.
     """
     owner = "concatenate"
-    if not histories:
-        raise ValueError(f"The 'histories' parameter of {owner} must hold at least one history.")
-    for h in histories:
-        if not isinstance(h, ImposedHistory):
-            raise TypeError(
-                f"The 'histories' parameter of {owner} must hold ImposedHistory objects. "
-                f"Got {type(h).__name__} instead."
-            )
+    if not histories or not all(isinstance(h, ImposedHistory) for h in histories):
+        kinds = [type(h).__name__ for h in histories]
+        raise TypeError(
+            f"The 'histories' parameter of {owner} must be one or more ImposedHistory objects. "
+            f"Got {kinds} instead."
+        )
     scale = max(float(np.max(np.abs(h.displacement))) for h in histories)
     first = histories[0]
     time, disp, vel = [first.time], [first.displacement], [first.velocity.copy()]
@@ -280,7 +260,7 @@ def concatenate(*histories: ImposedHistory, name: str | None = None) -> ImposedH
                 f"The 'histories' parameter of {owner} must be continuous in displacement. "
                 f"Got a jump from {u_end!r} to {h.displacement[0]!r} m at history {i} instead."
             )
-        vel[-1][-1] = h.velocity[0]  # right-continuous velocity at the joining sample
+        vel[-1][-1] = 0.5 * (vel[-1][-1] + h.velocity[0])  # midpoint of the jump
         time.append(h.time[1:] - h.time[0] + t_end)
         disp.append(h.displacement[1:])
         vel.append(h.velocity[1:].copy())
@@ -290,12 +270,6 @@ def concatenate(*histories: ImposedHistory, name: str | None = None) -> ImposedH
         name = " + ".join(h.name for h in histories)
     return ImposedHistory(
         np.concatenate(time), np.concatenate(disp), np.concatenate(vel), name, tuple(segments)
-    )
-
-
-def _labelled(history: ImposedHistory, label: str) -> ImposedHistory:
-    return ImposedHistory(
-        history.time, history.displacement, history.velocity, label, ((label, 0, len(history)),)
     )
 
 
@@ -311,18 +285,16 @@ def long_duration_cycles(
     S_M1, S_MS : float or None
         MCE_R spectral response accelerations at 1 s and short periods [g], > 0.
     B_M : float or None
-        Damping coefficient at the maximum displacement (ASCE 7-16 Table 17.7-1) [-],
-        in [0.8, 2.0].
+        Damping coefficient at D_M (ASCE 7-16 Table 17.7-1) [-], in [0.8, 2.0].
     """
-    given = {"S_M1": S_M1, "S_MS": S_MS, "B_M": B_M}
-    if all(v is None for v in given.values()):
+    missing = [k for k, v in {"S_M1": S_M1, "S_MS": S_MS, "B_M": B_M}.items() if v is None]
+    if len(missing) == 3:
         return 10
-    for key, value in given.items():
-        if value is None:
-            raise ValueError(
-                f"The {key!r} parameter of {owner} must be a float when any of S_M1, S_MS, "
-                f"B_M is given. Got None instead."
-            )
+    if missing:
+        raise ValueError(
+            f"The {missing[0]!r} parameter of {owner} must be a float when any of S_M1, S_MS, "
+            f"B_M is given. Got None instead."
+        )
     s1 = check_real(S_M1, "S_M1", owner, low=0.0, low_open=True)
     ss = check_real(S_MS, "S_MS", owner, low=0.0, low_open=True)
     bm = check_real(B_M, "B_M", owner, low=0.8, high=2.0)
@@ -409,7 +381,7 @@ def asce7_prototype_sequence(
     def block(amplitude: float, label: str, cycles: int) -> ImposedHistory:
         return _labelled(sine(amplitude, period, cycles, dt), label)
 
-    multiples = [(f * d_m, f"{label} D_M") for f, label in DM_MULTIPLES]
+    multiples = [(f * d_m, f"{f} D_M") for f in (0.25, 0.5, 0.67, 1.0)]  # item 2
     groups: list[list[ImposedHistory]] = []  # blocks inside a group are joined without rest
     if d_w > 0.0:
         groups.append([wind_cycles(d_w, v_w, 20, dt)])
