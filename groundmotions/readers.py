@@ -1,4 +1,4 @@
-"""Readers of ground-motion record files, and the records bundled with the package.
+"""Readers of ground-motion record files (the records bundled with the package: `records`).
 
 ``read_peer_at2``
     PEER .AT2 files in every header layout met so far: ``NPTS=  7996, DT= .00500 SEC``,
@@ -361,12 +361,18 @@ def read_text_record(
         step = (times[-1] - times[0]) / (times.size - 1)
         if not step > 0.0:
             raise RecordFormatError(path, numbers[-1], "the time column does not increase")
+        # Uniform if every time lies within 1 % of a step of the grid from the first to the
+        # last time (robust to times printed with few digits: rounding does not accumulate).
         off = np.abs(times - (times[0] + step * np.arange(times.size)))
         if off.max() > 0.01 * step:
-            i = int(np.argmax(off > 0.01 * step))
+            steps = np.diff(times)
+            typical = float(np.median(steps))
+            irregular = np.abs(steps - typical) > 0.01 * typical
+            i = int(np.argmax(irregular)) + 1 if irregular.any() else int(np.argmax(off))
             raise RecordFormatError(
-                path, numbers[i], f"time {times[i]:g} s is {off[i]:.3g} s off the uniform grid "
-                f"of dt = {step:.6g} s (first to last time): the record is not uniformly sampled",
+                path, numbers[i], f"time {times[i]:g} s follows {times[i - 1]:g} s, a step of "
+                f"{times[i] - times[i - 1]:.6g} s where the usual step is {typical:.6g} s: "
+                "the record is not uniformly sampled",
             )  # fmt: skip
         if dt is not None:
             given = check_real(dt, "dt", owner, low=0.0, low_open=True)

@@ -57,6 +57,12 @@ class RecordFormatError(ValueError):
         return (type(self), (self.file, self.line, self.reason))
 
 
+def _type_error(name: str, kind: str, value: object) -> TypeError:
+    return TypeError(
+        f"The {name!r} parameter of GroundMotion must be {kind}. Got {value!r} instead."
+    )
+
+
 @dataclass(frozen=True, eq=False)
 class GroundMotion:
     """One horizontal ground-acceleration record at a fixed time step.
@@ -92,16 +98,12 @@ class GroundMotion:
         acc = np.array(check_array(self.acceleration, "acceleration", owner, min_length=2))
         acc.flags.writeable = False
         steps = self.processing
-        for key, value, ok, kind in (
-            ("name", self.name, isinstance(self.name, str), "a str"),
-            ("metadata", self.metadata, isinstance(self.metadata, Mapping), "a mapping"),
-            ("processing", steps, not isinstance(steps, str)
-             and all(isinstance(s, str) for s in steps), "a tuple of str"),
-        ):  # fmt: skip
-            if not ok:
-                raise TypeError(
-                    f"The {key!r} parameter of {owner} must be {kind}. Got {value!r} instead."
-                )
+        if not isinstance(self.name, str):
+            raise _type_error("name", "a str", self.name)
+        if not isinstance(self.metadata, Mapping):
+            raise _type_error("metadata", "a mapping", self.metadata)
+        if not (isinstance(steps, tuple | list) and all(isinstance(s, str) for s in steps)):
+            raise _type_error("processing", "a tuple of str", steps)
         object.__setattr__(self, "acceleration", acc)
         object.__setattr__(self, "dt", dt)
         object.__setattr__(self, "metadata", dict(self.metadata))
@@ -169,10 +171,10 @@ _BUNDLED: dict[str, tuple[str, dict[str, Any]]] = {
         "elcentro_1940_ns.at2",
         {
             "event": "Imperial Valley 1940",
-            "date": "1940-05-19",  # UTC; 18 May 1940, 20:37 local time
-            "station": "El Centro (Imperial Valley Irrigation District substation)",
+            "date": "1940-05-19",  # UTC; the evening of 18 May 1940 local time
+            "station": "El Centro Array #9 (Imperial Valley Irrigation District substation)",
             "component": "NS",
-            "agency": "US Coast and Geodetic Survey",
+            "agency": "US Coast and Geodetic Survey (its strong-motion work is now USGS's)",
             "licence": "public domain (US government recording)",
             "origin": "OpenSees EXAMPLES/ExampleScripts/elCentro.AT2 (Peknold version)",
         },
