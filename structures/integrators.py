@@ -60,8 +60,10 @@ class Newmark:
     beta: float = 0.25
 
     def __post_init__(self) -> None:
-        check_real(self.gamma, "gamma", "Newmark", low=0.5, high=1.0)
-        check_real(self.beta, "beta", "Newmark", low=0.0, high=0.5, low_open=True)
+        gamma = check_real(self.gamma, "gamma", "Newmark", low=0.5, high=1.0)
+        beta = check_real(self.beta, "beta", "Newmark", low=0.0, high=0.5, low_open=True)
+        object.__setattr__(self, "gamma", gamma)
+        object.__setattr__(self, "beta", beta)
 
     @property
     def alpha(self) -> float:
@@ -90,7 +92,9 @@ class HHT:
     alpha: float = -0.05
 
     def __post_init__(self) -> None:
-        check_real(self.alpha, "alpha", "HHT", low=-1.0 / 3.0, high=0.0)
+        object.__setattr__(
+            self, "alpha", check_real(self.alpha, "alpha", "HHT", low=-1 / 3, high=0)
+        )
 
     @property
     def gamma(self) -> float:
@@ -169,18 +173,12 @@ class NewmarkStepper:
 
     Parameters
     ----------
-    model : DynamicModel
-        The structure; its committed state must match the initial conditions.
-    method : Newmark or HHT
-        Parameters of the step.
-    time, ground_acceleration : float
-        Initial time [s] and ground acceleration [m/s^2].
-    displacement, velocity : numpy.ndarray
-        Initial state relative to the ground, shape (n,) [m], [m/s].
-    tolerance : float
-        Relative tolerance of the force and displacement tests [-].
-    max_iterations, max_subdivisions : int
-        Newton iterations per attempt; nested halvings of a step.
+    model, method
+        As :func:`integrate`; the model's committed state must match the initial state.
+    time, ground_acceleration, displacement, velocity
+        Initial time [s], ground acceleration [m/s^2], state (n,) [m], [m/s].
+    tolerance, max_iterations, max_subdivisions
+        As :func:`integrate`.
     """
 
     def __init__(
@@ -239,11 +237,12 @@ class NewmarkStepper:
             return True
         self.model.revert()
         if depth >= self.max_subdivisions:
+            relative = residual / reference if reference > 0.0 else np.inf
             self.message = (
                 f"Newton iteration did not converge in the step to t = {t_end:.6g} s (sub-step "
                 f"of {(s1 - s0) * self._span:.3g} s after {depth} halvings): after {iterations} "
-                f"iterations the residual norm was {residual:.3e} N ({residual / reference:.3e} "
-                f"of the force reference {reference:.3e} N; tolerance {self.tolerance:g})."
+                f"iterations the residual norm was {residual:.3e} N ({relative:.3e} of the force "
+                f"reference {reference:.3e} N; tolerance {self.tolerance:g})."
             )
             return False
         self.step_subdivisions += 1
@@ -304,6 +303,18 @@ def _method(method: object) -> Newmark | HHT:
     )
 
 
+def _initial_state(value: object, name: str, n: int) -> np.ndarray:
+    if value is None:
+        return np.zeros(n)
+    state = check_array(value, name, "integrate")
+    if state.shape != (n,):
+        raise ValueError(
+            f"The {name!r} parameter of integrate must have shape ({n},). "
+            f"Got {state.shape} instead."
+        )
+    return state
+
+
 def integrate(
     model: DynamicModel,
     ground_acceleration: object,
@@ -351,44 +362,19 @@ def integrate(
     chosen = _method(method)
     record = check_array(ground_acceleration, "ground_acceleration", owner, min_length=2)
     step = check_real(dt, "dt", owner, low=0.0, low_open=True)
-    tol = check_real(
-        tolerance, "tolerance", owner, low=0.0, high=1.0, low_open=True, high_open=True
-    )
+    tol = check_real(tolerance, "tolerance", owner, low=0, high=1, low_open=True, high_open=True)
     iterations_max = check_int(max_iterations, "max_iterations", owner, low=1)
     subdivisions_max = check_int(max_subdivisions, "max_subdivisions", owner, low=0)
     n = np.asarray(model.mass_matrix).shape[0]
-    u0 = (
-        np.zeros(n)
-        if initial_displacement is None
-        else check_array(initial_displacement, "initial_displacement", owner)
-    )
-    v0 = (
-        np.zeros(n)
-        if initial_velocity is None
-        else check_array(initial_velocity, "initial_velocity", owner)
-    )
-    for name, value in (("initial_displacement", u0), ("initial_velocity", v0)):
-        if value.shape != (n,):
-            raise ValueError(
-                f"The {name!r} parameter of {owner} must have shape ({n},). "
-                f"Got {value.shape} instead."
-            )
+    u0 = _initial_state(initial_displacement, "initial_displacement", n)
+    v0 = _initial_state(initial_velocity, "initial_velocity", n)
 
     nt = record.shape[0]
     time = step * np.arange(nt)
     displacement, velocity, acceleration = np.empty((nt, n)), np.empty((nt, n)), np.empty((nt, n))
     iterations, subdivisions = np.zeros(nt - 1, dtype=int), np.zeros(nt - 1, dtype=int)
-    stepper = NewmarkStepper(
-        model,
-        chosen,
-        time[0],
-        record[0],
-        u0,
-        v0,
-        tolerance=tol,
-        max_iterations=iterations_max,
-        max_subdivisions=subdivisions_max,
-    )
+    limits = {"max_iterations": iterations_max, "max_subdivisions": subdivisions_max}
+    stepper = NewmarkStepper(model, chosen, time[0], record[0], u0, v0, tolerance=tol, **limits)
     displacement[0], velocity[0], acceleration[0] = stepper.u, stepper.v, stepper.a
     last, success = nt - 1, True
     message = "The integration reached the end of the record."
@@ -404,15 +390,9 @@ def integrate(
 
     kept = slice(0, last + 1)
     influence = np.asarray(model.influence, dtype=float)
-    arrays = [
-        time[kept],
-        displacement[kept],
-        velocity[kept],
-        acceleration[kept],
-        acceleration[kept] + record[kept, None] * influence,
-        iterations[:last],
-        subdivisions[:last],
-    ]
+    absolute = acceleration[kept] + record[kept, None] * influence
+    arrays = [time[kept], displacement[kept], velocity[kept], acceleration[kept], absolute]
+    arrays += [iterations[:last], subdivisions[:last]]
     for array in arrays:
         array.setflags(write=False)
     return IntegrationResult(*arrays[:5], success, message, *arrays[5:], method=chosen)

@@ -84,7 +84,7 @@ def modal_analysis(mass: np.ndarray, stiffness: np.ndarray) -> ModalProperties:
     omega_squared, shapes = scipy.linalg.eigh(stiffness, mass)
     omega = np.sqrt(np.clip(omega_squared, 0.0, None))
     with np.errstate(divide="ignore"):
-        periods = np.where(omega > 0.0, 2.0 * np.pi / np.where(omega > 0.0, omega, 1.0), np.inf)
+        periods = 2.0 * np.pi / omega  # inf for a mode without stiffness
     top = shapes[-1, :]
     largest = shapes[np.argmax(np.abs(shapes), axis=0), np.arange(shapes.shape[1])]
     reference = np.where(np.abs(top) > 1e-12 * np.abs(largest), top, largest)
@@ -108,7 +108,8 @@ class RayleighDamping:
 
     def __post_init__(self) -> None:
         owner = type(self).__name__
-        if len(self.ratios) != 2 or len(self.modes) != 2:
+        pairs = (self.ratios, self.modes)
+        if any(not isinstance(x, tuple | list) or len(x) != 2 for x in pairs):
             raise ValueError(
                 f"The 'ratios' and 'modes' parameters of {owner} must hold two values each. "
                 f"Got {self.ratios!r} and {self.modes!r} instead."
@@ -171,17 +172,14 @@ class ModalDamping:
 
     def __post_init__(self) -> None:
         owner = type(self).__name__
+
+        def checked(ratio: object) -> float:
+            return check_real(ratio, "ratio", owner, low=0.0, high=1.0, high_open=True)
+
         if isinstance(self.ratio, tuple | list | np.ndarray):
-            value: float | tuple[float, ...] = tuple(
-                float(x) for x in check_array(self.ratio, "ratio", owner, low=0.0, high=1.0)
-            )
-            if max(value) >= 1.0:
-                raise ValueError(
-                    f"The 'ratio' parameter of {owner} must hold floats in [0, 1). "
-                    f"Got {self.ratio!r} instead."
-                )
+            value: float | tuple[float, ...] = tuple(map(checked, self.ratio))
         else:
-            value = check_real(self.ratio, "ratio", owner, low=0.0, high=1.0, high_open=True)
+            value = checked(self.ratio)
         object.__setattr__(self, "ratio", value)
 
     def check(self, n_modes: int) -> None:
@@ -264,7 +262,9 @@ class ShearBuilding:
         profile: str | object = "uniform",
         damping: RayleighDamping | ModalDamping = _DEFAULT_DAMPING,
     ) -> ShearBuilding:
-        """Scale a storey-stiffness profile so the fixed-base fundamental period is the target.
+        """Scale a storey-stiffness profile to hit a fixed-base fundamental period.
+
+        Periods scale as ``1 / sqrt(stiffness)``, so one scaling hits the target exactly.
 
         Parameters
         ----------
@@ -279,10 +279,6 @@ class ShearBuilding:
             proportional to the mass carried by each storey; or a positive (n,) array.
         damping : RayleighDamping or ModalDamping
             Superstructure damping.
-
-        Notes
-        -----
-        The periods scale as ``1 / sqrt(stiffness)``, so one scaling hits the target exactly.
         """
         owner = f"{cls.__name__}.from_period"
         masses = check_array(floor_masses, "floor_masses", owner, low=0.0, low_open=True)
