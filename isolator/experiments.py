@@ -45,6 +45,8 @@ def friction_model(
         T_0 [degC].
     """
     check_choice(model, "model", "friction_model", MODELS)
+    if mu0 is not None:  # checked even where the model does not use it: no silent ignoring
+        check_real(mu0, "mu0", "friction_model", low=0.0, high=1.0, low_open=True)
     if model == "constant":
         kwargs = {"design_pressure": design_pressure, "design_velocity": design_velocity,
                   "initial_temperature": initial_temperature}

@@ -63,10 +63,11 @@ class BearingTestResult:
         return cycle_characteristics(self.displacement, self.force, **kwargs)
 
     def to_csv(self, path: str | Path) -> Path:
-        """Write the histories to a CSV file with a header of names and units."""
+        """Write time [s], displacement [m], velocity [m/s], force [N], mu [-] and
+        temperature [degC] to a CSV file with one header line of those names."""
         path = Path(path)
         names = ("time", "displacement", "velocity", "force", "mu", "temperature")
-        header = ",".join(names) + "\n# units: " + ",".join(UNITS[n] for n in names)
+        header = ",".join(names)
         data = np.column_stack([getattr(self, n) for n in names])
         np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")
         return path
