@@ -51,3 +51,104 @@ def plot_bearing_test(result: Any, path: str | Path, *, title: str = "") -> Path
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
+
+
+MODEL_COLOURS = {"precise": "tab:red", "simplified": "tab:orange", "constant": "tab:blue",
+                 "ptv-no-heating": "tab:green", "opensees": "black"}
+
+
+def _colour(name: str, index: int) -> str:
+    return MODEL_COLOURS.get(name, f"C{index}")
+
+
+def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = "") -> list[Path]:
+    """Figures comparing building runs (one dataset per friction model or program).
+
+    Writes ``isolator_hysteresis.png``, ``temperature.png``, ``roof_acceleration.png``,
+    ``storey_drift.png`` and ``response_histories.png`` to ``directory``.
+
+    Parameters
+    ----------
+    results : dict of str to xarray.Dataset
+        Output of :func:`structures.analysis.run`, keyed by a label.
+    directory : str or Path
+        Folder for the PNG files (created if missing).
+    """
+    import numpy as np
+
+    plt = _pyplot()
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    written = []
+
+    def save(fig, name):
+        if title:
+            fig.suptitle(title)
+        path = directory / name
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+        written.append(path)
+
+    fig, ax = plt.subplots(figsize=(6.5, 5), constrained_layout=True)
+    for i, (label, r) in enumerate(results.items()):
+        ax.plot(1e3 * r["isolator_displacement"], r["isolator_force"] / 1e3, lw=0.7,
+                color=_colour(label, i), label=label)
+    ax.set_xlabel("isolator displacement [mm]")
+    ax.set_ylabel("isolator force, all bearings [kN]")
+    ax.set_title("isolator hysteresis")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    save(fig, "isolator_hysteresis.png")
+
+    fig, ax = plt.subplots(figsize=(8, 4), constrained_layout=True)
+    for i, (label, r) in enumerate(results.items()):
+        ax.plot(r["time"], r["temperature"], lw=0.8, color=_colour(label, i), label=label)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("contact temperature [degC]")
+    ax.set_title("temperature of the sliding surface (contact area)")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    save(fig, "temperature.png")
+
+    first = next(iter(results.values()))
+    fig, axes = plt.subplots(len(results), 1, figsize=(9, 1.2 + 1.9 * len(results)),
+                             sharex=True, sharey=True, constrained_layout=True, squeeze=False)
+    for i, (ax, (label, r)) in enumerate(zip(axes[:, 0], results.items(), strict=True)):
+        ax.plot(r["time"], r["ground_acceleration"], lw=0.5, color="0.65", label="ground")
+        ax.plot(r["time"], r["absolute_acceleration"].isel(floor=-1), lw=0.6,
+                color=_colour(label, i), label=f"roof, {label}")
+        ax.set_ylabel("[m/s$^2$]")
+        ax.grid(alpha=0.3)
+        ax.legend(loc="upper right", ncol=2, fontsize=8)
+    axes[0, 0].set_title("roof absolute acceleration against the ground acceleration")
+    axes[-1, 0].set_xlabel("time [s]")
+    save(fig, "roof_acceleration.png")
+
+    fig, ax = plt.subplots(figsize=(5, 5.5), constrained_layout=True)
+    for i, (label, r) in enumerate(results.items()):
+        drift = np.abs(r["storey_drift"]).max("time")
+        ax.plot(1e3 * drift, r["storey"], marker="o", color=_colour(label, i), label=label)
+    ax.set_xlabel("peak storey drift [mm]")
+    ax.set_ylabel("storey")
+    ax.set_yticks(first["storey"].values)
+    ax.set_xlim(left=0.0)
+    ax.set_title("storey drift profile")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    save(fig, "storey_drift.png")
+
+    fig, axes = plt.subplots(3, 1, figsize=(9, 7), sharex=True, constrained_layout=True)
+    for i, (label, r) in enumerate(results.items()):
+        c = _colour(label, i)
+        axes[0].plot(r["time"], 1e3 * r["isolator_displacement"], lw=0.7, color=c, label=label)
+        axes[1].plot(r["time"], r["base_shear"] / 1e3, lw=0.7, color=c)
+        axes[2].plot(r["time"], r["mu"], lw=0.5, color=c)
+    axes[0].set_ylabel("isolator disp. [mm]")
+    axes[1].set_ylabel("base shear [kN]")
+    axes[2].set_ylabel("friction coeff. [-]")
+    axes[2].set_xlabel("time [s]")
+    axes[0].legend(ncol=3, fontsize=8)
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    save(fig, "response_histories.png")
+    return written

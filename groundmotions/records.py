@@ -170,6 +170,7 @@ _BUNDLED: dict[str, tuple[str, dict[str, Any]]] = {
     "elcentro": (
         "elcentro_1940_ns.at2",
         {
+            "title": "El Centro 1940 N-S",
             "event": "Imperial Valley 1940",
             "date": "1940-05-19",  # UTC; the evening of 18 May 1940 local time
             "station": "El Centro Array #9 (Imperial Valley Irrigation District substation)",
@@ -203,6 +204,5 @@ def load_bundled(name: str = "elcentro") -> GroundMotion:
 
     with resources.as_file(resource) as path:
         motion = read_peer_at2(path, name=name)
-    return GroundMotion(
-        motion.acceleration, motion.dt, name, {**motion.metadata, **extra}, motion.processing
-    )
+    return GroundMotion(motion.acceleration, motion.dt, extra.get("title", name),
+                        {**motion.metadata, **extra}, motion.processing)

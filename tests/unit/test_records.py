@@ -123,7 +123,7 @@ def test_bundled_file_is_the_shared_el_centro_byte_for_byte(shared_dir):
 def test_bundled_el_centro_loads_without_shared_data():
     motion = load_bundled("elcentro")
     assert bundled_names() == ("elcentro",)
-    assert (motion.npts, motion.dt, motion.name) == (1559, 0.02, "elcentro")
+    assert (motion.npts, motion.dt, motion.name) == (1559, 0.02, "El Centro 1940 N-S")
     assert motion.pga / STANDARD_GRAVITY == pytest.approx(0.31882, abs=5e-6)
     assert motion.metadata["licence"].startswith("public domain")
     with pytest.raises(ValueError, match=r"'name' parameter of load_bundled"):

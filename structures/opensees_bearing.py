@@ -1,0 +1,466 @@
+"""One bearing in OpenSees under an imposed horizontal displacement history.
+
+:func:`run_opensees_test` is the OpenSees twin of :func:`isolator.testrig.run_test`: it builds
+one OpenSees element from a :class:`~isolator.bearing.DCFPBearing` (the one source of truth),
+loads it with the bearing's constant axial load, drives its top node through the history and
+returns a :class:`~isolator.testrig.BearingTestResult`. Three elements:
+
+``"coulomb"``
+    ``singleFPBearing`` (2D) with ``frictionModel Coulomb``, for a :class:`ConstantFriction`.
+``"velocity"``
+    ``singleFPBearing`` (2D) with ``frictionModel VelDependent``, for a :class:`PTVFriction`
+    whose friction varies with velocity only (see :func:`velocity_dependent_parameters`).
+``"ptv"``
+    ``FPBearingPTV`` (3D only, 6-DOF nodes), pressure, velocity and temperature dependent with
+    Kumar's factors, for a :class:`PTVFriction` shaped as FPBearingPTV models it (see
+    :func:`fpbearingptv_equivalent`).
+
+A flat slider (``effective_radius = inf``) becomes ``flatSliderBearing`` for the first two.
+
+How the history is imposed. A static analysis is no use: OpenSees gives the element zero
+velocity there (``ubdotAbs = 0``), so VelDependent sits at mu_slow and FPBearingPTV falls back
+to displacement differences. The analysis is transient (Newmark, gamma = 1/2, beta = 1/4) and
+the horizontal DOF of the top node is driven by ``imposedMotion`` in a ``MultipleSupport``
+pattern whose ground motion carries the displacement, velocity and acceleration as ``Path``
+series. ``ImposedMotionSP::applyConstraint`` writes the velocity and acceleration straight into
+the node and the ``Transformation`` handler the displacement, so the element sees the imposed
+velocity exactly, not a Newmark difference of displacements (which with the trapezoidal rule
+would oscillate about the true velocity for ever after a wrong start). The vertical DOF is free
+and massless, held by a stiff elastic axial material under the constant load; every other DOF
+is fixed. Newton converges in two iterations per step (the vertical DOF is linear).
+
+Conventions found in the OpenSees sources (``SRC/element/frictionBearing/``):
+
+- ``SingleFPSimple2d.cpp``: ``kInit`` is the *total* initial stiffness; the hysteretic
+  (friction) part has ``kInit - N/R``. So ``kInit = mu N / u_y + N / R`` gives the friction
+  part our return map's yield displacement u_y. The normal force is
+  ``N = W + F u / R`` (``-qb(0) + qb(1)/Reff*ub(1)``, iterated to convergence inside the
+  element), in 2D and whatever drives the node; restoring force ``N u / R``, friction
+  ``mu(v) N``; the friction model gets the speed ``|v| sqrt(1 + (u/R)^2)``
+  (horizontal plus the vertical velocity of the pendulum). See :func:`singlefp_normal_force`.
+- ``VelDependent.cpp``: ``mu = muFast - (muFast - muSlow) exp(-transRate |v|)``, arguments
+  ``tag muSlow muFast transRate`` with transRate in s/length.
+- ``FPBearingPTV.cpp``: arguments ``MuRef IsPDependent pRef IsTDependent Diffusivity
+  Conductivity IsVDependent rateParameter Reff rContact kInitial matP matT matMy matMz
+  x1 x2 x3 y1 y2 y3 shearDist doRayleigh mass iter tol unit``; with unit code 1 (N, m, s, degC)
+  pRef is in Pa, the diffusivity in m^2/s, the conductivity in W/(m degC) and the rate
+  parameter in s/m; ``mu = MuRef kp kT kv`` with Kumar's factors (MuRef = our ``mu_t0``).
+  N = W (no shear coupling), restoring force ``N u / sqrt(R^2 - u^2)``, friction part with
+  ``kInitial - N / sqrt(R^2 - u^2)``. The factors of a step are frozen at the first update
+  of the step that has an axial force (the predictor); the heat flux ``mu p v`` uses the
+  previous step's mu and enters one surface while ``|u| < r sqrt(22/28)``; the temperature is
+  ``20 + sqrt(D 7/22)/k sum_j q_(n-j) dt / sqrt(t_j)``, a rectangle rule over the whole
+  history re-summed every step, with the absolute times t_j = (j+1) dt as lags (so the time
+  must start at 0) and the current dt applied to every past interval. It is left at 20 degC
+  on the first two steps and whenever u is exactly 0. Responses: ``temperature``,
+  ``MuFactors`` (kp, kT, kv), ``MuAdjusted``, ``HeatFlux``.
+
+openseespy keeps one global model: every call wipes it before and after.
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from dataclasses import replace
+from typing import NamedTuple
+
+import numpy as np
+
+from dcfpb.validation import check_array, check_choice
+from isolator.bearing import AxialLoadHistory, DCFPBearing
+from isolator.factors import KumarFactors
+from isolator.friction import ConstantFriction, PTVFriction
+from isolator.heating import CentrePoint
+from isolator.testrig import HISTORY_FIELDS, BearingTestResult, run_test
+from structures.opensees_runtime import import_opensees
+
+__all__ = [
+    "ELEMENTS",
+    "FPBEARINGPTV_AMBIENT",
+    "VelDependentParameters",
+    "fpbearingptv_equivalent",
+    "run_opensees_test",
+    "singlefp_normal_force",
+    "velocity_dependent_parameters",
+]
+
+ELEMENTS = ("coulomb", "velocity", "ptv")
+FPBEARINGPTV_AMBIENT = 20.0
+"""Initial (ambient) temperature hard-coded in FPBearingPTV [degC]."""
+FPBEARINGPTV_REFINEMENT = 0.5 * math.sqrt(np.pi)
+"""FPBearingPTV heats the centre while |u| < r sqrt(pi)/2 (Kumar's unrefined centre point)."""
+_SI_UNITS = 1  # FPBearingPTV unit code: N, m, s, degC
+_AXIAL_SHORTENING = 1.0e-6  # [m] shortening of the stiff axial spring under the axial load
+_FAST_SPEED = 1.0e6  # [m/s] a speed at which an exponential velocity factor has saturated
+_BOTTOM, _TOP = 1, 2  # node tags
+
+
+class VelDependentParameters(NamedTuple):
+    """Arguments of OpenSees ``frictionModel VelDependent``.
+
+    Attributes
+    ----------
+    mu_slow, mu_fast : float
+        Friction coefficient at zero and at large sliding speed [-].
+    transition_rate : float
+        transRate of ``mu = mu_fast - (mu_fast - mu_slow) exp(-transRate |v|)`` [s/m].
+    """
+
+    mu_slow: float
+    mu_fast: float
+    transition_rate: float
+
+
+def velocity_dependent_parameters(friction: PTVFriction, pressure: float) -> VelDependentParameters:
+    """VelDependent parameters reproducing ``friction`` at a constant contact pressure.
+
+    The velocity factors of both factor sets are exponential, ``k(v) = 1 - c exp(-a |v|)``
+    (Kumar: c = 0.5, a = rate_parameter; the paper's Eq. 2: c = 0.55, a = 19 s/m), so
+    ``mu = C k(v)`` maps to ``mu_fast = C``, ``mu_slow = C (1 - c)``, ``transRate = a``, with
+    C = mu_t0 times the pressure factor at ``pressure`` and the temperature factor at the
+    initial temperature (where those dependencies act). c and a are read off the factor set
+    itself (k(0) and k'(0) / (1 - k(0))), so no constant is repeated here.
+
+    Parameters
+    ----------
+    friction : PTVFriction
+        A model whose mu varies with velocity only: no heating, or temperature not among its
+        dependencies.
+    pressure : float
+        Constant contact pressure [Pa].
+
+    Raises
+    ------
+    TypeError
+        If ``friction`` is not a PTVFriction.
+    ValueError
+        If mu would vary with temperature, or the velocity factor is not exponential.
+    """
+    owner = "velocity_dependent_parameters"
+    if not isinstance(friction, PTVFriction):
+        raise TypeError(f"The 'friction' parameter of {owner} must be a PTVFriction. "
+                        f"Got {friction!r} instead.")
+    dependencies = friction.dependencies
+    if friction.heats and "temperature" in dependencies:
+        raise ValueError(
+            f"The 'friction' parameter of {owner} must not depend on a heated temperature "
+            "(VelDependent has velocity dependence only). Got heating "
+            f"{friction.heating!r} with dependencies {dependencies!r} instead."
+        )
+    factors = friction.factors
+    scale = friction.mu_t0
+    if "pressure" in dependencies:
+        scale *= factors.pressure(pressure)[0]
+    if "temperature" in dependencies:
+        scale *= factors.temperature(friction.thermal.initial_temperature)[0]
+    if "velocity" not in dependencies:
+        return VelDependentParameters(scale, scale, 0.0)
+    at_rest, slope = factors.velocity(0.0)
+    fast = factors.velocity(_FAST_SPEED)[0]
+    drop = fast - at_rest
+    rate = slope / drop
+    probe = 1.0 / rate
+    exponential = fast - drop * math.exp(-rate * probe)
+    if abs(fast - 1.0) > 1e-12 or abs(factors.velocity(probe)[0] - exponential) > 1e-12:
+        raise ValueError(
+            f"The velocity factor of {factors!r} is not of the form 1 - c exp(-a |v|) that "
+            f"{owner} maps to VelDependent."
+        )
+    return VelDependentParameters(scale * at_rest, scale * fast, rate)
+
+
+def fpbearingptv_equivalent(bearing: DCFPBearing) -> DCFPBearing:
+    """``bearing`` shaped as OpenSees FPBearingPTV models it, for a like-for-like comparison.
+
+    One sliding surface (``surfaces=1``) heated at its centre while |u| < sqrt(pi)/2 r
+    (``CentrePoint(refinement=sqrt(pi)/2)``), the spherical restoring law; friction
+    parameters, factors, dependencies and thermal properties are kept.
+
+    Raises
+    ------
+    ValueError
+        If the friction is not a PTVFriction with Kumar factors, or its initial temperature is
+        not FPBearingPTV's fixed 20 degC.
+    """
+    _check_ptv_friction(bearing.friction, "fpbearingptv_equivalent")
+    friction = replace(bearing.friction, heating=CentrePoint(FPBEARINGPTV_REFINEMENT),
+                       surfaces=1)
+    return replace(bearing, friction=friction, restoring="spherical")
+
+
+def singlefp_normal_force(
+    bearing: DCFPBearing,
+    time: np.ndarray,
+    displacement: np.ndarray,
+    velocity: np.ndarray | None = None,
+    *,
+    tolerance: float = 1e-12,
+    max_iterations: int = 20,
+) -> AxialLoadHistory:
+    """The normal force ``N = W + F u / R`` that singleFPBearing uses, from our own element.
+
+    Fixed-point iteration on :func:`~isolator.testrig.run_test`: N_0 = W,
+    N_(k+1) = W + F_k u / R_eff. The map contracts by about |u|/R (|u|/R + mu) (0.4 % for
+    u = 0.2 m, R = 4.5 m), so a few iterations reach ``tolerance`` (relative to W). Giving the
+    result as the axial load of our bearing makes it see what singleFPBearing sees.
+
+    Raises
+    ------
+    ValueError
+        If the axial load is not constant, or the iteration does not converge.
+    """
+    owner = "singlefp_normal_force"
+    weight = _constant_axial_load(bearing, owner)
+    t = np.asarray(time, dtype=float)
+    u = np.asarray(displacement, dtype=float)
+    normal = np.full(t.shape, weight)
+    for _ in range(max_iterations):
+        trial = replace(bearing, axial_load=AxialLoadHistory(t, normal))
+        force = run_test(trial, t, u, velocity).force
+        updated = weight + force * u / bearing.effective_radius
+        change = float(np.max(np.abs(updated - normal))) / weight
+        normal = updated
+        if change <= tolerance:
+            return AxialLoadHistory(t, normal)
+    raise ValueError(f"{owner} did not converge in {max_iterations} iterations "
+                     f"(last relative change {change:.3g}).")
+
+
+def run_opensees_test(
+    bearing: DCFPBearing,
+    time: np.ndarray,
+    displacement: np.ndarray,
+    velocity: np.ndarray | None = None,
+    *,
+    element: str = "coulomb",
+    name: str = "imposed history",
+) -> BearingTestResult:
+    """Drive ``bearing`` built as an OpenSees element through an imposed history.
+
+    Parameters
+    ----------
+    bearing : DCFPBearing
+        The bearing; its friction model must be one the element represents (see the module
+        docstring) and its axial load constant.
+    time : array_like
+        Strictly increasing sample times [s]; OpenSees runs from 0 (the times are shifted).
+    displacement : array_like
+        Imposed horizontal displacement [m], starting at 0 (the element starts at rest).
+    velocity : array_like, optional
+        Imposed velocity [m/s]; by default ``numpy.gradient`` of the displacement (as
+        :func:`~isolator.testrig.run_test`). Give the analytic velocity where it is known.
+    element : {"coulomb", "velocity", "ptv"}
+        Which OpenSees element (see the module docstring).
+    name : str
+        Name of the history, kept in the result (prefixed with the element).
+
+    Returns
+    -------
+    BearingTestResult
+        One value per sample. Sample 0 is the initial state (zero force, the axial load, mu
+        NaN). ``mu`` is the friction model's COF (``MuAdjusted`` for FPBearingPTV),
+        ``axial_load`` the normal force the element uses (W + F u/R for singleFPBearing),
+        ``friction_force`` the force less the element's restoring force, ``temperature`` and
+        ``heat_flux`` FPBearingPTV's (NaN for the other elements).
+
+    Raises
+    ------
+    ImportError
+        Without openseespy.
+    ValueError, TypeError
+        For a bearing or history the element cannot represent.
+    RuntimeError
+        If an OpenSees step fails.
+    """
+    owner = "run_opensees_test"
+    element = check_choice(element, "element", owner, ELEMENTS)
+    t, u, v = _history(time, displacement, velocity, owner)
+    weight = _constant_axial_load(bearing, owner)
+    build = _build_fpbearingptv if element == "ptv" else _build_singlefp
+    ops = import_opensees()
+    start = _time.perf_counter()
+    ops.wipe()
+    try:
+        record = build(ops, bearing, element, weight)
+        _impose(ops, t - t[0], u, v, dof=1)
+        ops.constraints("Transformation")
+        ops.numberer("Plain")
+        ops.system("FullGeneral")
+        ops.test("NormDispIncr", 1.0e-12, 25)
+        ops.algorithm("Newton")
+        ops.integrator("Newmark", 0.5, 0.25)
+        ops.analysis("Transient")
+        out = {n: np.full(t.size, np.nan) for n in HISTORY_FIELDS}
+        out["force"][0] = out["friction_force"][0] = 0.0
+        out["displacement"][0], out["velocity"][0], out["axial_load"][0] = u[0], v[0], weight
+        if element == "ptv":
+            out["temperature"][0], out["heat_flux"][0] = FPBEARINGPTV_AMBIENT, 0.0
+        for k, dt in enumerate(np.diff(t), start=1):
+            if ops.analyze(1, float(dt)) != 0:
+                raise RuntimeError(f"OpenSees failed at step {k} (t = {t[k] - t[0]:g} s) of "
+                                   f"{owner} with element {element!r}.")
+            for field, value in record(ops).items():
+                out[field][k] = value
+    finally:
+        ops.wipe()
+    out["time"] = t
+    label = {"coulomb": "singleFPBearing Coulomb", "velocity": "singleFPBearing VelDependent",
+             "ptv": "FPBearingPTV"}[element]
+    return BearingTestResult(**out, bearing=bearing, name=f"OpenSees {label}: {name}",
+                             wall_time=_time.perf_counter() - start)
+
+
+def _history(time, displacement, velocity, owner):
+    t = check_array(time, "time", owner, min_length=2)
+    u = check_array(displacement, "displacement", owner, min_length=2)
+    if u.shape != t.shape:
+        raise ValueError(f"The 'displacement' parameter of {owner} must have the length of "
+                         f"'time' ({t.size}). Got {u.size} instead.")
+    if np.any(np.diff(t) <= 0.0):
+        raise ValueError(f"The 'time' parameter of {owner} must be strictly increasing.")
+    if u[0] != 0.0:
+        raise ValueError(f"The 'displacement' parameter of {owner} must start at 0 (the "
+                         f"element starts at rest). Got {u[0]!r} instead.")
+    if velocity is None:
+        v = np.gradient(u, t)
+    else:
+        v = check_array(velocity, "velocity", owner, min_length=2)
+        if v.shape != t.shape:
+            raise ValueError(f"The 'velocity' parameter of {owner} must have the length of "
+                             f"'time' ({t.size}). Got {v.size} instead.")
+    return t, u, v
+
+
+def _constant_axial_load(bearing: DCFPBearing, owner: str) -> float:
+    if isinstance(bearing.axial_load, AxialLoadHistory):
+        raise ValueError(f"The 'bearing' parameter of {owner} must have a constant axial load. "
+                         "Got an AxialLoadHistory instead.")
+    return float(bearing.axial_load)
+
+
+def _check_ptv_friction(friction, owner: str) -> PTVFriction:
+    if not isinstance(friction, PTVFriction) or not isinstance(friction.factors, KumarFactors):
+        raise ValueError(f"The bearing of {owner} must have a PTVFriction with KumarFactors "
+                         f"(the factors FPBearingPTV implements). Got {friction!r} instead.")
+    if friction.thermal.initial_temperature != FPBEARINGPTV_AMBIENT:
+        raise ValueError(
+            f"The initial temperature of the bearing of {owner} must be "
+            f"{FPBEARINGPTV_AMBIENT:g} degC (hard-coded in FPBearingPTV). Got "
+            f"{friction.thermal.initial_temperature!r} instead."
+        )
+    return friction
+
+
+def _friction_model(ops, bearing: DCFPBearing, element: str, weight: float) -> float:
+    """Define friction model 1 for singleFPBearing; return the mu that sets kInit."""
+    friction, owner = bearing.friction, "run_opensees_test"
+    if element == "coulomb":
+        if not isinstance(friction, ConstantFriction):
+            raise ValueError(f"Element 'coulomb' of {owner} needs a ConstantFriction. "
+                             f"Got {friction!r} instead.")
+        ops.frictionModel("Coulomb", 1, friction.mu)
+        return friction.mu
+    parameters = velocity_dependent_parameters(friction, weight / bearing.contact_area)
+    ops.frictionModel("VelDependent", 1, *parameters)
+    return parameters.mu_fast
+
+
+def _build_singlefp(ops, bearing: DCFPBearing, element: str, weight: float):
+    """singleFPBearing (flatSliderBearing if R is infinite) in 2D; return the recorder."""
+    if bearing.restoring != "linear":
+        raise ValueError(f"Element {element!r} of run_opensees_test has the linear restoring "
+                         f"law N u / R. Got a bearing with {bearing.restoring!r} instead.")
+    radius = bearing.effective_radius
+    flat = math.isinf(radius)
+    mu = _friction_model(ops, bearing, element, weight)
+    ops.model("basic", "-ndm", 2, "-ndf", 3)
+    ops.node(_BOTTOM, 0.0, 0.0)
+    ops.node(_TOP, 0.0, 1.0)  # vertical: local x up, local y = -global X (signs cancel)
+    ops.fix(_BOTTOM, 1, 1, 1)
+    ops.fix(_TOP, 0, 0, 1)
+    ops.uniaxialMaterial("Elastic", 1, weight / _AXIAL_SHORTENING)
+    ops.uniaxialMaterial("Elastic", 2, weight / _AXIAL_SHORTENING)
+    pendulum = 0.0 if flat else weight / radius
+    k_initial = mu * weight / bearing.yield_displacement + pendulum
+    if flat:
+        ops.element("flatSliderBearing", 1, _BOTTOM, _TOP, 1, k_initial, "-P", 1, "-Mz", 2)
+    else:
+        ops.element("singleFPBearing", 1, _BOTTOM, _TOP, 1, radius, k_initial,
+                    "-P", 1, "-Mz", 2)
+    ops.timeSeries("Constant", 1)
+    ops.pattern("Plain", 1, 1)
+    ops.load(_TOP, 0.0, -weight, 0.0)
+
+    def record(ops) -> dict[str, float]:
+        force = ops.eleResponse(1, "force")[3]
+        normal = ops.eleResponse(1, "frictionModel", "normalForce")[0]
+        u = ops.nodeDisp(_TOP, 1)
+        restoring = 0.0 if flat else normal * u / radius
+        return {"displacement": u, "velocity": ops.nodeVel(_TOP, 1), "force": force,
+                "friction_force": force - restoring, "axial_load": normal,
+                "mu": ops.eleResponse(1, "frictionModel", "COF")[0]}
+
+    return record
+
+
+def _build_fpbearingptv(ops, bearing: DCFPBearing, element: str, weight: float):
+    """FPBearingPTV in 3D (x vertical, y = global X); return the recorder."""
+    owner = "run_opensees_test"
+    friction = _check_ptv_friction(bearing.friction, owner)
+    if bearing.restoring != "spherical" or math.isinf(bearing.effective_radius):
+        raise ValueError(f"Element 'ptv' of {owner} has the spherical restoring law "
+                         "N u / sqrt(R^2 - u^2) with a finite R. Got a bearing with "
+                         f"{bearing.restoring!r} and R = {bearing.effective_radius!r} instead.")
+    if friction.heating is None and "temperature" in friction.dependencies:
+        raise ValueError(f"Element 'ptv' of {owner} always heats its surface; a temperature "
+                         "dependent PTVFriction without heating has no OpenSees twin.")
+    radius = bearing.effective_radius
+    factors = friction.factors
+    flag = {name: int(name in friction.dependencies)
+            for name in ("pressure", "temperature", "velocity")}
+    k_initial = friction.mu_t0 * weight / bearing.yield_displacement + weight / radius
+    ops.model("basic", "-ndm", 3, "-ndf", 6)
+    ops.node(_BOTTOM, 0.0, 0.0, 0.0)
+    ops.node(_TOP, 0.0, 0.0, 0.0)  # zero length: the orientation vectors below hold
+    ops.fix(_BOTTOM, 1, 1, 1, 1, 1, 1)
+    ops.fix(_TOP, 0, 1, 0, 1, 1, 1)
+    ops.uniaxialMaterial("Elastic", 1, weight / _AXIAL_SHORTENING)
+    ops.uniaxialMaterial("Elastic", 2, weight / _AXIAL_SHORTENING)
+    ops.element(
+        "FPBearingPTV", 1, _BOTTOM, _TOP, friction.mu_t0,
+        flag["pressure"], factors.reference_pressure,
+        flag["temperature"], friction.thermal.diffusivity, friction.thermal.conductivity,
+        flag["velocity"], factors.rate_parameter,
+        radius, bearing.contact_radius, k_initial,
+        1, 2, 2, 2,  # materials: axial, torsion, rocking about local y and z
+        0.0, 0.0, 1.0, 1.0, 0.0, 0.0,  # local x = global Z (axial), local y = global X
+        0.0, 0, 0.0, 100, 1.0e-10, _SI_UNITS,  # shearDist, doRayleigh, mass, iter, tol, unit
+    )
+    ops.timeSeries("Constant", 1)
+    ops.pattern("Plain", 1, 1)
+    ops.load(_TOP, 0.0, 0.0, -weight, 0.0, 0.0, 0.0)
+
+    def record(ops) -> dict[str, float]:
+        force = ops.eleResponse(1, "force")[6]
+        normal = -ops.eleResponse(1, "basicForce")[0]
+        u = ops.nodeDisp(_TOP, 1)
+        restoring = normal * u / math.sqrt(radius**2 - u * u)
+        return {"displacement": u, "velocity": ops.nodeVel(_TOP, 1), "force": force,
+                "friction_force": force - restoring, "axial_load": normal,
+                "mu": ops.eleResponse(1, "MuAdjusted")[0],
+                "temperature": ops.eleResponse(1, "temperature")[0],
+                "heat_flux": ops.eleResponse(1, "HeatFlux")[0]}
+
+    return record
+
+
+def _impose(ops, time: np.ndarray, displacement: np.ndarray, velocity: np.ndarray,
+            dof: int) -> None:
+    """Drive ``dof`` of the top node through the history (exact velocity, see module doc)."""
+    acceleration = np.gradient(velocity, time)  # only completes the ground motion: no mass
+    for tag, values in ((2, displacement), (3, velocity), (4, acceleration)):
+        ops.timeSeries("Path", tag, "-time", *time.tolist(), "-values", *values.tolist())
+    ops.pattern("MultipleSupport", 2)
+    ops.groundMotion(1, "Plain", "-disp", 2, "-vel", 3, "-accel", 4)
+    ops.imposedMotion(_TOP, dof, 1)
