@@ -15,6 +15,7 @@ demo
 from __future__ import annotations
 
 import argparse
+import importlib
 import json
 import math
 import sys
@@ -238,6 +239,10 @@ def _example_path(name: str) -> Path:
     return Path(str(files("dcfpb").joinpath("data", name)))
 
 
+COMMAND_MODULES: tuple[str, ...] = ()
+"""Modules with a ``register(subparsers)`` function adding further sub-commands."""
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``dcfpb`` command."""
     parser = argparse.ArgumentParser(
@@ -250,6 +255,8 @@ def build_parser() -> argparse.ArgumentParser:
     _protocol_parser(sub)
     _run_parser(sub)
     _demo_parser(sub)
+    for module in COMMAND_MODULES:  # sub-commands that keep their code in a module of their own
+        importlib.import_module(module).register(sub)
     return parser
 
 

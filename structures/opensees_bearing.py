@@ -1,59 +1,53 @@
 """One bearing in OpenSees under an imposed horizontal displacement history.
 
 :func:`run_opensees_test` is the OpenSees twin of :func:`isolator.testrig.run_test`: it builds
-one OpenSees element from a :class:`~isolator.bearing.DCFPBearing` (the one source of truth),
-loads it with the bearing's constant axial load, drives its top node through the history and
-returns a :class:`~isolator.testrig.BearingTestResult`. Three elements:
+one element from a :class:`~isolator.bearing.DCFPBearing` (the one source of truth), loads it
+with the bearing's constant axial load, drives its top node through the history and returns a
+:class:`~isolator.testrig.BearingTestResult`. Elements:
 
 ``"coulomb"``
     ``singleFPBearing`` (2D) with ``frictionModel Coulomb``, for a :class:`ConstantFriction`.
 ``"velocity"``
     ``singleFPBearing`` (2D) with ``frictionModel VelDependent``, for a :class:`PTVFriction`
-    whose friction varies with velocity only (see :func:`velocity_dependent_parameters`).
+    whose mu varies with velocity only (:func:`velocity_dependent_parameters`).
 ``"ptv"``
-    ``FPBearingPTV`` (3D only, 6-DOF nodes), pressure, velocity and temperature dependent with
-    Kumar's factors, for a :class:`PTVFriction` shaped as FPBearingPTV models it (see
-    :func:`fpbearingptv_equivalent`).
+    ``FPBearingPTV`` (3D only), pressure, velocity and temperature dependent with Kumar's
+    factors, for a :class:`PTVFriction` shaped as it models one (:func:`fpbearingptv_equivalent`).
 
 A flat slider (``effective_radius = inf``) becomes ``flatSliderBearing`` for the first two.
 
-How the history is imposed. A static analysis is no use: OpenSees gives the element zero
-velocity there (``ubdotAbs = 0``), so VelDependent sits at mu_slow and FPBearingPTV falls back
-to displacement differences. The analysis is transient (Newmark, gamma = 1/2, beta = 1/4) and
-the horizontal DOF of the top node is driven by ``imposedMotion`` in a ``MultipleSupport``
-pattern whose ground motion carries the displacement, velocity and acceleration as ``Path``
-series. ``ImposedMotionSP::applyConstraint`` writes the velocity and acceleration straight into
-the node and the ``Transformation`` handler the displacement, so the element sees the imposed
-velocity exactly, not a Newmark difference of displacements (which with the trapezoidal rule
-would oscillate about the true velocity for ever after a wrong start). The vertical DOF is free
-and massless, held by a stiff elastic axial material under the constant load; every other DOF
-is fixed. Newton converges in two iterations per step (the vertical DOF is linear).
+Driving. A static analysis gives the element zero velocity (``ubdotAbs = 0``: VelDependent sits
+at mu_slow, FPBearingPTV falls back to displacement differences), so the analysis is transient
+(Newmark 1/2, 1/4). The top node's horizontal DOF follows ``imposedMotion`` in a
+``MultipleSupport`` pattern whose ground motion holds displacement, velocity and acceleration as
+``Path`` series: ``ImposedMotionSP::applyConstraint`` writes the velocity into the node and the
+``Transformation`` handler the displacement, so the element sees the imposed velocity exactly,
+not a Newmark difference of displacements (the trapezoidal rule would oscillate about it for
+ever after a wrong start). The vertical DOF is free and massless on a stiff elastic axial
+material under the constant load; all other DOFs are fixed.
 
-Conventions found in the OpenSees sources (``SRC/element/frictionBearing/``):
+Conventions read in ``SRC/element/frictionBearing/`` of OpenSees:
 
-- ``SingleFPSimple2d.cpp``: ``kInit`` is the *total* initial stiffness; the hysteretic
-  (friction) part has ``kInit - N/R``. So ``kInit = mu N / u_y + N / R`` gives the friction
-  part our return map's yield displacement u_y. The normal force is
-  ``N = W + F u / R`` (``-qb(0) + qb(1)/Reff*ub(1)``, iterated to convergence inside the
-  element), in 2D and whatever drives the node; restoring force ``N u / R``, friction
-  ``mu(v) N``; the friction model gets the speed ``|v| sqrt(1 + (u/R)^2)``
-  (horizontal plus the vertical velocity of the pendulum). See :func:`singlefp_normal_force`.
-- ``VelDependent.cpp``: ``mu = muFast - (muFast - muSlow) exp(-transRate |v|)``, arguments
-  ``tag muSlow muFast transRate`` with transRate in s/length.
-- ``FPBearingPTV.cpp``: arguments ``MuRef IsPDependent pRef IsTDependent Diffusivity
-  Conductivity IsVDependent rateParameter Reff rContact kInitial matP matT matMy matMz
-  x1 x2 x3 y1 y2 y3 shearDist doRayleigh mass iter tol unit``; with unit code 1 (N, m, s, degC)
-  pRef is in Pa, the diffusivity in m^2/s, the conductivity in W/(m degC) and the rate
-  parameter in s/m; ``mu = MuRef kp kT kv`` with Kumar's factors (MuRef = our ``mu_t0``).
-  N = W (no shear coupling), restoring force ``N u / sqrt(R^2 - u^2)``, friction part with
-  ``kInitial - N / sqrt(R^2 - u^2)``. The factors of a step are frozen at the first update
-  of the step that has an axial force (the predictor); the heat flux ``mu p v`` uses the
-  previous step's mu and enters one surface while ``|u| < r sqrt(22/28)``; the temperature is
-  ``20 + sqrt(D 7/22)/k sum_j q_(n-j) dt / sqrt(t_j)``, a rectangle rule over the whole
-  history re-summed every step, with the absolute times t_j = (j+1) dt as lags (so the time
-  must start at 0) and the current dt applied to every past interval. It is left at 20 degC
-  on the first two steps and whenever u is exactly 0. Responses: ``temperature``,
-  ``MuFactors`` (kp, kT, kv), ``MuAdjusted``, ``HeatFlux``.
+- ``SingleFPSimple2d.cpp``: ``kInit`` is the *total* initial stiffness, the friction part has
+  ``kInit - N/R``; so ``kInit = mu N / u_y + N / R`` gives it our yield displacement u_y. The
+  normal force is ``N = W + F u / R`` (``-qb(0) + qb(1)/Reff*ub(1)``, iterated inside the
+  element), whatever drives the node (:func:`singlefp_normal_force`); restoring force
+  ``N u / R``, friction ``mu N`` at the speed ``|v| sqrt(1 + (u/R)^2)``.
+- ``VelDependent.cpp``: ``frictionModel VelDependent tag muSlow muFast transRate``,
+  ``mu = muFast - (muFast - muSlow) exp(-transRate |v|)``, transRate in s/m.
+- ``FPBearingPTV.cpp``: ``MuRef IsPDependent pRef IsTDependent Diffusivity Conductivity
+  IsVDependent rateParameter Reff rContact kInitial matP matT matMy matMz x1 x2 x3 y1 y2 y3
+  shearDist doRayleigh mass iter tol unit``. With unit 1 (N, m, s, degC) pRef is in Pa, the
+  diffusivity in m^2/s, the conductivity in W/(m degC), the rate in s/m; ``mu = MuRef kp kT kv``
+  (MuRef = our ``mu_t0``) with p = N / (22/7 r^2) and the speed ``|v| R / sqrt(R^2 - u^2)``.
+  N = W; restoring force ``N u / sqrt(R^2 - u^2)``, friction part ``kInitial - N/sqrt(R^2-u^2)``.
+  The factors of a step are frozen at its first update with an axial force (the predictor); the
+  flux ``q = mu p v`` uses the previous step's mu and heats one surface while
+  ``|u| < r sqrt(22/28)``; the temperature ``20 + sqrt(7 D/22)/k sum_j q_(n-j) dt / sqrt(t_j)``
+  is a rectangle rule re-summed over the whole history every step, with the times
+  t_j = (j+1) dt as lags (the time must start at 0) and the current dt for every interval. It
+  stays 20 degC on the first two steps and whenever u is exactly 0. Responses
+  ``temperature``, ``MuFactors`` (kp, kT, kv), ``MuAdjusted``, ``HeatFlux``.
 
 openseespy keeps one global model: every call wipes it before and after.
 """
@@ -94,6 +88,8 @@ _SI_UNITS = 1  # FPBearingPTV unit code: N, m, s, degC
 _AXIAL_SHORTENING = 1.0e-6  # [m] shortening of the stiff axial spring under the axial load
 _FAST_SPEED = 1.0e6  # [m/s] a speed at which an exponential velocity factor has saturated
 _BOTTOM, _TOP = 1, 2  # node tags
+_ELEMENT_ITERATIONS = 100  # element-level iterations (N = W + F u / R in singleFPBearing)
+_ELEMENT_TOLERANCE = 1.0e-12  # their force tolerance relative to W (the default is 1e-12 N)
 
 
 class VelDependentParameters(NamedTuple):
@@ -384,10 +380,11 @@ def _build_singlefp(ops, bearing: DCFPBearing, element: str, weight: float):
     pendulum = 0.0 if flat else weight / radius
     k_initial = mu * weight / bearing.yield_displacement + pendulum
     if flat:
-        ops.element("flatSliderBearing", 1, _BOTTOM, _TOP, 1, k_initial, "-P", 1, "-Mz", 2)
+        ops.element("flatSliderBearing", 1, _BOTTOM, _TOP, 1, k_initial, "-P", 1, "-Mz", 2,
+                    "-iter", _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * weight)
     else:
         ops.element("singleFPBearing", 1, _BOTTOM, _TOP, 1, radius, k_initial,
-                    "-P", 1, "-Mz", 2)
+                    "-P", 1, "-Mz", 2, "-iter", _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * weight)
     ops.timeSeries("Constant", 1)
     ops.pattern("Plain", 1, 1)
     ops.load(_TOP, 0.0, -weight, 0.0)
@@ -435,7 +432,8 @@ def _build_fpbearingptv(ops, bearing: DCFPBearing, element: str, weight: float):
         radius, bearing.contact_radius, k_initial,
         1, 2, 2, 2,  # materials: axial, torsion, rocking about local y and z
         0.0, 0.0, 1.0, 1.0, 0.0, 0.0,  # local x = global Z (axial), local y = global X
-        0.0, 0, 0.0, 100, 1.0e-10, _SI_UNITS,  # shearDist, doRayleigh, mass, iter, tol, unit
+        0.0, 0, 0.0,  # shearDist, doRayleigh, mass
+        _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * weight, _SI_UNITS,
     )
     ops.timeSeries("Constant", 1)
     ops.pattern("Plain", 1, 1)
@@ -460,7 +458,8 @@ def _impose(ops, time: np.ndarray, displacement: np.ndarray, velocity: np.ndarra
     """Drive ``dof`` of the top node through the history (exact velocity, see module doc)."""
     acceleration = np.gradient(velocity, time)  # only completes the ground motion: no mass
     for tag, values in ((2, displacement), (3, velocity), (4, acceleration)):
-        ops.timeSeries("Path", tag, "-time", *time.tolist(), "-values", *values.tolist())
+        ops.timeSeries("Path", tag, "-time", *time.tolist(), "-values", *values.tolist(),
+                       "-useLast")  # rounding of the summed steps must not fall off the end
     ops.pattern("MultipleSupport", 2)
     ops.groundMotion(1, "Plain", "-disp", 2, "-vel", 3, "-accel", 4)
     ops.imposedMotion(_TOP, dof, 1)

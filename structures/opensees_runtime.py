@@ -27,8 +27,8 @@ BUNDLED_LIBRARIES = ("libquadmath.so.0", "libgfortran.so.4", "libblas.so.3", "li
 """Bundled libraries of openseespylinux, in load order (each after its own dependencies)."""
 
 INSTALL_HINT = (
-    "Install it with `pip install openseespy` (or `pip install dcfpb[opensees]`); "
-    "3.7.1.2 is the newest wheel for Python 3.11."
+    "`pip install openseespy` (or `pip install dcfpb[opensees]`); 3.7.1.2 is the newest wheel "
+    "for Python 3.11."
 )
 
 _module: ModuleType | None = None
@@ -92,13 +92,14 @@ def import_opensees() -> ModuleType:
     if _module is not None:
         return _module
     if importlib.util.find_spec("openseespy") is None:
-        raise ImportError(f"openseespy is needed for the OpenSees comparison. {INSTALL_HINT}")
+        raise ImportError(f"openseespy is needed for the OpenSees comparison: {INSTALL_HINT}")
     preload_bundled_libraries()
     try:
         _module = importlib.import_module("openseespy.opensees")
     except (ImportError, RuntimeError) as error:  # openseespy turns ImportError into this
         cause = error.__cause__ or error.__context__ or error
         raise ImportError(
-            f"openseespy is installed but could not be imported: {cause}. {INSTALL_HINT}"
+            f"openseespy is installed but could not be imported ({cause}); reinstall it: "
+            f"{INSTALL_HINT}"
         ) from error
     return _module
