@@ -56,6 +56,7 @@ from __future__ import annotations
 
 import math
 import time as _time
+import warnings
 from dataclasses import replace
 from typing import NamedTuple
 
@@ -88,6 +89,7 @@ _SI_UNITS = 1  # FPBearingPTV unit code: N, m, s, degC
 _AXIAL_SHORTENING = 1.0e-6  # [m] shortening of the stiff axial spring under the axial load
 _FAST_SPEED = 1.0e6  # [m/s] a speed at which an exponential velocity factor has saturated
 _BOTTOM, _TOP = 1, 2  # node tags
+_UNIFORM_STEP = 1.0e-9  # relative spread of the steps below which they count as uniform
 _ELEMENT_ITERATIONS = 100  # element-level iterations (N = W + F u / R in singleFPBearing)
 _ELEMENT_TOLERANCE = 1.0e-12  # their force tolerance relative to W (the default is 1e-12 N)
 
@@ -268,11 +270,21 @@ def run_opensees_test(
         For a bearing or history the element cannot represent.
     RuntimeError
         If an OpenSees step fails.
+
+    Warns
+    -----
+    UserWarning
+        For ``"ptv"`` with a non-uniform time step (see the module docstring).
     """
     owner = "run_opensees_test"
     element = check_choice(element, "element", owner, ELEMENTS)
     t, u, v = _history(time, displacement, velocity, owner)
     weight = _constant_axial_load(bearing, owner)
+    steps = np.diff(t)
+    if element == "ptv" and np.ptp(steps) > _UNIFORM_STEP * np.max(steps):
+        warnings.warn(f"FPBearingPTV in {owner} takes the times as heating lags and applies the "
+                      "current step to its whole flux history: its temperature is only "
+                      "meaningful for a uniform time step.", UserWarning, stacklevel=2)
     build = _build_fpbearingptv if element == "ptv" else _build_singlefp
     ops = import_opensees()
     start = _time.perf_counter()
@@ -292,7 +304,7 @@ def run_opensees_test(
         out["displacement"][0], out["velocity"][0], out["axial_load"][0] = u[0], v[0], weight
         if element == "ptv":
             out["temperature"][0], out["heat_flux"][0] = FPBEARINGPTV_AMBIENT, 0.0
-        for k, dt in enumerate(np.diff(t), start=1):
+        for k, dt in enumerate(steps, start=1):
             if ops.analyze(1, float(dt)) != 0:
                 raise RuntimeError(f"OpenSees failed at step {k} (t = {t[k] - t[0]:g} s) of "
                                    f"{owner} with element {element!r}.")

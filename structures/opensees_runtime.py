@@ -97,9 +97,12 @@ def import_opensees() -> ModuleType:
     try:
         _module = importlib.import_module("openseespy.opensees")
     except (ImportError, RuntimeError) as error:  # openseespy turns ImportError into this
-        cause = error.__cause__ or error.__context__ or error
+        cause: BaseException = error  # openseespy wraps the loader's error twice: unwrap it
+        while (cause.__cause__ or cause.__context__) is not None:
+            cause = cause.__cause__ or cause.__context__
         raise ImportError(
-            f"openseespy is installed but could not be imported ({cause}); reinstall it: "
-            f"{INSTALL_HINT}"
+            f"openseespy is installed but could not be imported ({cause}); reinstall it with "
+            f"{INSTALL_HINT} A missing BLAS or LAPACK may also come from the system (libblas3, "
+            "liblapack3)."
         ) from error
     return _module
