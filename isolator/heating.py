@@ -21,7 +21,6 @@ State lives inside trial / commit / revert: :meth:`SurfaceHeating.trial` never c
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -29,7 +28,7 @@ import numpy as np
 from scipy.optimize import nnls
 
 from dcfpb.validation import check_real
-from isolator.kernels import advance_states, contact_history, heated_window
+from isolator.kernels import advance_states, contact_history, heated_window, jit
 
 
 @dataclass(frozen=True)
@@ -224,6 +223,18 @@ class CentrePoint:
 HeatingLayout = MonitorLine | CentrePoint
 
 
+@jit
+def step_factors(rates, weights, coefficient, dt, step, weighted_decay):
+    """Fill ``step`` (2, K) with exp(-s_k dt) and (1 - exp(-s_k dt)) / s_k, and
+    ``weighted_decay`` (K,) with w_k exp(-s_k dt); return 2 c sqrt(dt) [degC m^2 / W]."""
+    for k in range(rates.shape[0]):
+        decay = np.exp(-rates[k] * dt)
+        step[0, k] = decay
+        step[1, k] = (1.0 - decay) / rates[k]
+        weighted_decay[k] = weights[k] * decay
+    return 2.0 * coefficient * np.sqrt(dt)
+
+
 class SurfaceHeating:
     """Temperature of one sliding surface under a moving slider; trial / commit / revert.
 
@@ -259,33 +270,29 @@ class SurfaceHeating:
         self.spacing = float(self.points[1] - self.points[0]) if self.points.size > 1 else 1.0
         self.n_points = int(self.points.size)
         self.coefficient = thermal.flux_coefficient
-        self._gain_rates = 1.0 / kernel.rates
         self.states = np.zeros((self.points.size, kernel.rates.size))
         self._touched = (self.points.size, 0)  # [lo, hi) of points ever heated
-        self.prepared_step = self._factors_step = -1.0
-        self._step = np.empty((2, 0))
-        self.weighted_decay = np.empty(0)
+        self.prepared_step = -1.0
+        self._step = np.empty((2, kernel.rates.size))
+        self.weighted_decay = np.empty(kernel.rates.size)
         self.newest_coefficient = 0.0
 
     def prepare(self, dt: float) -> None:
-        """Compute the step factors exp(-s_k dt) once per distinct step size ``dt`` [s].
+        """Compute the step factors exp(-s_k dt) for the step ``dt`` [s], exactly.
 
-        Steps that differ by less than 1e-9 relative share them: that is the rounding of
-        t_n - t_(n-1) for times up to 1e4 s at 5 ms steps (t eps / dt = 4e-10), far below the
-        kernel's own error, and it keeps a long run from recomputing them every step.
+        They are recomputed whenever dt changes at all (a compiled kernel, well under a
+        microsecond), so a trial is a pure function of its own dt: steps that differ only by
+        the rounding of t_n - t_(n-1) get their own exact factors.
         """
-        self.prepared_step = dt  # the last step seen: an equal next step skips this call
-        if abs(dt - self._factors_step) > 1e-9 * dt:
-            if dt < self.kernel.min_lag:
-                raise ValueError(
-                    f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
-                    f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag."
-                )
-            decay = np.exp(-self.kernel.rates * dt)
-            self._step = np.stack([decay, (1.0 - decay) * self._gain_rates])
-            self.weighted_decay = self.kernel.weights * decay
-            self.newest_coefficient = 2.0 * self.coefficient * math.sqrt(dt)
-            self._factors_step = dt
+        self.prepared_step = dt
+        if dt < self.kernel.min_lag:
+            raise ValueError(
+                f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
+                f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag."
+            )
+        self.newest_coefficient = step_factors(self.kernel.rates, self.kernel.weights,
+                                               self.coefficient, dt, self._step,
+                                               self.weighted_decay)
 
     def window(self, position: float) -> tuple[int, int]:
         """Index range ``[lo, hi)`` of the points within the flux half width of ``position``."""

@@ -59,8 +59,9 @@ def test_edc_is_invariant_under_a_force_offset(loop: tuple, offset: float) -> No
 
 
 @SETTINGS
-@given(loops(), st.floats(-1e3, 1e3))
+@given(loops(), st.floats(-1e3, 1e3).filter(lambda x: x == 0.0 or abs(x) > 1e-200))
 def test_edc_scales_linearly_with_force(loop: tuple, factor: float) -> None:
+    # factors below 1e-200 make subnormal products whose rounding no relative bound covers
     u, force = loop
     expected = factor * edc(u, force)
     tolerance = 1e-12 * u.size * abs(factor) * scale(u, force)
