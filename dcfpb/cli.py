@@ -239,7 +239,7 @@ def _example_path(name: str) -> Path:
     return Path(str(files("dcfpb").joinpath("data", name)))
 
 
-COMMAND_MODULES: tuple[str, ...] = ()
+COMMAND_MODULES: tuple[str, ...] = ("dcfpb.cli_spectrum",)
 """Modules with a ``register(subparsers)`` function adding further sub-commands."""
 
 

@@ -3,7 +3,8 @@
 A record is an acceleration array [m/s^2] at a fixed time step plus a checked header. Methods
 return new objects and append what was done to ``processing`` (as obspy does), so a scaled or
 truncated record still says where it came from. Nothing is cached and nothing is changed in
-place: the acceleration array is read-only.
+place: the acceleration array is read-only. ``baseline_corrected``, ``filtered`` and
+``resampled`` delegate to the pure functions of `groundmotions.processing`.
 
 Records shipped with the package: `load_bundled`, `bundled_names`. The file readers
 (`read_peer_at2`, `read_text_record`, `read_record`) live in `groundmotions.readers` and can be
@@ -162,6 +163,28 @@ class GroundMotion:
         )
         n = min(self.npts, math.floor(d / self.dt + 1e-9) + 1)
         return self._derived(self.acceleration[:n], f"truncated to {d:g} s ({n} samples)")
+
+    # Thin wrappers of the pure functions in `groundmotions.processing` (see there for details).
+
+    def baseline_corrected(self, order: int = 1) -> GroundMotion:
+        """`groundmotions.processing.baseline_corrected` of this record."""
+        from groundmotions.processing import baseline_corrected
+
+        return baseline_corrected(self, order)
+
+    def filtered(
+        self, low: float | None = None, high: float | None = None, order: int = 4
+    ) -> GroundMotion:
+        """`groundmotions.processing.filtered` of this record (corners [Hz])."""
+        from groundmotions.processing import filtered
+
+        return filtered(self, low, high, order)
+
+    def resampled(self, dt: float, *, anti_alias: bool = True) -> GroundMotion:
+        """`groundmotions.processing.resampled` of this record (new time step ``dt`` [s])."""
+        from groundmotions.processing import resampled
+
+        return resampled(self, dt, anti_alias=anti_alias)
 
 
 # --------------------------------------------------------------------------- bundled records

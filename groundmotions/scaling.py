@@ -1,0 +1,342 @@
+"""Target spectra and amplitude scaling of a ground-motion suite (ASCE 7-16 for isolation).
+
+``TargetSpectrum``
+    a pseudo-acceleration table [m/s^2] with log-log interpolation.
+``asce7_design_spectrum``
+    the ASCE 7-16 Section 11.4.6 design spectrum (or the MCE_R spectrum, 1.5 times it).
+``isolated_period_range``
+    the ASCE 7-16 Section 17.3.3 period range 0.75 T_M ... 1.25 T_M of an isolated structure.
+``scale_suite``
+    one amplitude factor per record so that the mean spectrum of the scaled suite is nowhere
+    below the target in the period range and touches it at its tightest period.
+
+Single horizontal components are scaled (the shear-building models are planar); the SRSS
+spectra of component pairs that ASCE 7-16 17.3.3 uses for three-dimensional analysis are not
+formed here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.validation import check_array, check_choice, check_int, check_real
+from groundmotions.records import GroundMotion
+from groundmotions.spectra import spectrum
+
+__all__ = [
+    "ScalingReport",
+    "TargetSpectrum",
+    "asce7_design_spectrum",
+    "isolated_period_range",
+    "scale_suite",
+]
+
+MCE_FACTOR = 1.5
+"""MCE_R over design spectral ordinates, ASCE 7-16 Section 11.4.7 [-]."""
+
+
+@dataclass(frozen=True, eq=False)
+class TargetSpectrum:
+    """A target pseudo-acceleration spectrum given as a table.
+
+    Parameters
+    ----------
+    periods : array_like
+        Periods, > 0 and strictly increasing, at least 2 [s].
+    sa : array_like
+        Pseudo-spectral acceleration at those periods, > 0 [m/s^2].
+    name : str
+        A label for reports and plots.
+    damping : float
+        Damping ratio the spectrum is defined for, in [0, 1) [-].
+
+    Notes
+    -----
+    Between table periods ``sa`` is interpolated linearly in log(T)-log(Sa), which is exact for
+    the power-law branches of code spectra (constant, 1/T, 1/T^2). Outside the table it is
+    not extrapolated: asking for it raises ``ValueError``.
+    """
+
+    periods: np.ndarray
+    sa: np.ndarray
+    name: str = "target"
+    damping: float = 0.05
+
+    def __post_init__(self) -> None:
+        owner = "TargetSpectrum"
+        periods = check_array(self.periods, "periods", owner, low=0.0, low_open=True,
+                              min_length=2).copy()
+        sa = check_array(self.sa, "sa", owner, low=0.0, low_open=True).copy()
+        if sa.shape != periods.shape:
+            raise ValueError(f"The 'sa' parameter of {owner} must have one value per period "
+                             f"({periods.size}). Got {sa.size} instead.")
+        steps = np.diff(periods)
+        if (steps <= 0.0).any():
+            i = int(np.argmax(steps <= 0.0)) + 1
+            here, before = float(periods[i]), float(periods[i - 1])
+            raise ValueError(f"The 'periods' parameter of {owner} must be strictly increasing. "
+                             f"Got {here!r} after {before!r} at index {i} instead.")
+        damping = check_real(self.damping, "damping", owner, low=0.0, high=1.0, high_open=True)
+        periods.flags.writeable = False
+        sa.flags.writeable = False
+        object.__setattr__(self, "periods", periods)
+        object.__setattr__(self, "sa", sa)
+        object.__setattr__(self, "damping", damping)
+
+    def sa_at(self, periods: Any) -> np.ndarray:
+        """Pseudo-spectral acceleration [m/s^2] at ``periods`` [s] within the table's range."""
+        t = check_array(np.atleast_1d(np.asarray(periods, dtype=float)), "periods",
+                        f"TargetSpectrum.sa_at ({self.name})", low=self.periods[0],
+                        high=self.periods[-1])
+        return np.exp(np.interp(np.log(t), np.log(self.periods), np.log(self.sa)))
+
+
+def asce7_design_spectrum(
+    S_DS: float,
+    S_D1: float,
+    T_L: float,
+    periods: Any = None,
+    *,
+    level: str = "design",
+) -> TargetSpectrum:
+    """The ASCE 7-16 design (Section 11.4.6) or MCE_R (Section 11.4.7) response spectrum.
+
+    Parameters
+    ----------
+    S_DS, S_D1 : float
+        Design spectral acceleration parameters at short periods and at 1 s, > 0 [g] (as the
+        standard gives them; the result is converted to m/s^2).
+    T_L : float
+        Long-period transition period, > T_S = S_D1 / S_DS [s].
+    periods : array_like, optional
+        Periods of the table, > 0 [s]; by default 300 log-spaced from 0.01 s to
+        max(20 s, 2 T_L). The corner periods T_0, T_S and T_L within their range are added.
+    level : {"design", "mce"}
+        The design spectrum, or the MCE_R spectrum (1.5 times the design spectrum).
+
+    Returns
+    -------
+    TargetSpectrum
+        ``sa`` [m/s^2] with 5 % damping.
+
+    Notes
+    -----
+    With ``T_0 = 0.2 S_D1 / S_DS`` and ``T_S = S_D1 / S_DS`` (ASCE 7-16 Eq. 11.4-5 to 11.4-8):
+    ``Sa = S_DS (0.4 + 0.6 T / T_0)`` for T < T_0, ``S_DS`` for T_0 <= T <= T_S,
+    ``S_D1 / T`` for T_S < T <= T_L, and ``S_D1 T_L / T^2`` for T > T_L. Log-log
+    interpolation of the table is exact except on the rising branch below T_0.
+    """
+    owner = "asce7_design_spectrum"
+    s_ds = check_real(S_DS, "S_DS", owner, low=0.0, low_open=True)
+    s_d1 = check_real(S_D1, "S_D1", owner, low=0.0, low_open=True)
+    t_s = s_d1 / s_ds
+    t_l = check_real(T_L, "T_L", owner, low=t_s, low_open=True)
+    kind = check_choice(level, "level", owner, ("design", "mce"))
+    t_0 = 0.2 * t_s
+    if periods is None:
+        periods = np.geomspace(0.01, max(20.0, 2.0 * t_l), 300)
+    t = check_array(np.atleast_1d(np.asarray(periods, dtype=float)), "periods", owner,
+                    low=0.0, low_open=True)
+    corners = [c for c in (t_0, t_s, t_l) if t.min() < c < t.max()]
+    t = np.unique(np.concatenate((t, corners)))
+    sa = np.where(t < t_0, s_ds * (0.4 + 0.6 * t / t_0), s_ds)  # Eq. 11.4-5, 11.4-6
+    sa = np.where(t > t_s, s_d1 / t, sa)  # Eq. 11.4-7
+    sa = np.where(t > t_l, s_d1 * t_l / t**2, sa)  # Eq. 11.4-8
+    factor = STANDARD_GRAVITY * (MCE_FACTOR if kind == "mce" else 1.0)
+    label = "MCE_R" if kind == "mce" else "design"
+    return TargetSpectrum(t, sa * factor, f"ASCE 7-16 {label} (S_DS={s_ds:g} g, "
+                          f"S_D1={s_d1:g} g, T_L={t_l:g} s)", 0.05)
+
+
+def isolated_period_range(
+    lower_bound_period: float, upper_bound_period: float
+) -> tuple[float, float]:
+    """The ASCE 7-16 Section 17.3.3 scaling period range of an isolated structure.
+
+    Parameters
+    ----------
+    lower_bound_period : float
+        The shorter effective isolated period T_M, > 0 [s]: the one computed with the
+        upper-bound isolator properties (stiffer, more friction).
+    upper_bound_period : float
+        The longer T_M, >= ``lower_bound_period`` [s]: computed with the lower-bound properties.
+
+    Returns
+    -------
+    (float, float)
+        ``(0.75 lower_bound_period, 1.25 upper_bound_period)`` [s].
+    """
+    owner = "isolated_period_range"
+    lower = check_real(lower_bound_period, "lower_bound_period", owner, low=0.0, low_open=True)
+    upper = check_real(upper_bound_period, "upper_bound_period", owner, low=lower)
+    return 0.75 * lower, 1.25 * upper
+
+
+@dataclass(frozen=True, eq=False)
+class ScalingReport:
+    """What `scale_suite` did.
+
+    Attributes
+    ----------
+    names : tuple of str
+        Record names, in the order given.
+    individual_factors : numpy.ndarray
+        Step 1: the factor that matches each record to the target on average over the range
+        (geometric mean of target / record spectrum) [-].
+    common_factor : float
+        Step 2: the one factor applied to all records so the mean touches the target [-].
+    scale_factors : numpy.ndarray
+        The factors applied, ``common_factor * individual_factors`` [-].
+    periods, target_sa, mean_sa : numpy.ndarray
+        The period grid [s], the target and the mean spectrum of the scaled suite [m/s^2].
+    ratio : numpy.ndarray
+        ``mean_sa / target_sa`` on the grid [-].
+    min_ratio, tightest_period : float
+        The minimum of ``ratio`` (1 to round-off with ``method="mean"``, >= 1 with
+        ``"individual"``) [-] and the grid period where it occurs [s].
+    motions : tuple of GroundMotion
+        The scaled records.
+    period_range : (float, float)
+        [s]. Also ``damping`` [-], ``method`` and ``target_name``.
+    """
+
+    names: tuple[str, ...]
+    individual_factors: np.ndarray
+    common_factor: float
+    scale_factors: np.ndarray
+    periods: np.ndarray
+    target_sa: np.ndarray
+    mean_sa: np.ndarray
+    ratio: np.ndarray
+    min_ratio: float
+    tightest_period: float
+    motions: tuple[GroundMotion, ...] = field(repr=False)
+    period_range: tuple[float, float] = (0.0, 0.0)
+    damping: float = 0.05
+    method: str = "mean"
+    target_name: str = ""
+
+    def to_frame(self) -> Any:
+        """One row per record (index ``record``): individual, common and final factors, PGA of
+        the scaled record [m/s^2]; the summary (min ratio, tightest period ...) in ``attrs``."""
+        import pandas as pd
+
+        frame = pd.DataFrame(
+            {
+                "individual_factor": self.individual_factors,
+                "common_factor": self.common_factor,
+                "scale_factor": self.scale_factors,
+                "scaled_pga": [m.pga for m in self.motions],
+            },
+            index=pd.Index(self.names, name="record"),
+        )
+        frame.attrs.update(min_ratio=self.min_ratio, tightest_period=self.tightest_period,
+                           period_range=self.period_range, damping=self.damping,
+                           method=self.method, target=self.target_name)
+        return frame
+
+    def spectrum_frame(self) -> Any:
+        """One row per period [s]: ``target_sa``, ``mean_sa`` [m/s^2] and ``ratio`` [-]."""
+        import pandas as pd
+
+        return pd.DataFrame({"target_sa": self.target_sa, "mean_sa": self.mean_sa,
+                             "ratio": self.ratio}, index=pd.Index(self.periods, name="period"))
+
+
+def scale_suite(
+    motions: Sequence[GroundMotion],
+    target: TargetSpectrum | tuple[Any, Any],
+    period_range: tuple[float, float],
+    damping: float = 0.05,
+    method: str = "mean",
+    *,
+    n_periods: int = 60,
+) -> ScalingReport:
+    """Amplitude-scale a suite so its mean spectrum envelopes the target over a period range.
+
+    Parameters
+    ----------
+    motions : sequence of GroundMotion
+        The records, at least one.
+    target : TargetSpectrum or (array_like, array_like)
+        The target, or a ``(periods [s], sa [m/s^2])`` table made into one; its periods must
+        cover ``period_range``.
+    period_range : (float, float)
+        ``(T_min, T_max)`` with 0 < T_min <= T_max [s], e.g. `isolated_period_range`.
+    damping : float
+        Damping ratio of the record spectra, in [0, 1) [-].
+    method : {"mean", "individual"}
+        ``"mean"`` (ASCE 7-16 17.3.3): the arithmetic mean spectrum of the scaled suite is not
+        below the target anywhere on the grid and equals it at the tightest period.
+        ``"individual"``: each record's own spectrum satisfies that (more conservative).
+    n_periods : int
+        Number of log-spaced grid periods over the range, in [2, 1000] (1 if T_min = T_max).
+
+    Returns
+    -------
+    ScalingReport
+        The factors, the scaled records and the mean-to-target ratio on the grid.
+
+    Notes
+    -----
+    Step 1 scales each record to match the target on average over the range: its factor is
+    the geometric mean over the log-spaced grid of ``target / Sa_record`` (a least-squares fit
+    in log(Sa), so no single period dominates). Step 2 multiplies all records by one common
+    factor ``1 / min_T(mean_i(Sa_i) / target)``, so the mean touches the target at one grid
+    period and is above it at the others. With ``"individual"`` step 2 is made per record.
+    The criterion is checked on the grid only; between grid periods the mean may dip by
+    the spectrum's variation over one grid interval.
+    """
+    owner = "scale_suite"
+    records = tuple(motions)
+    if not records or not all(isinstance(m, GroundMotion) for m in records):
+        raise TypeError(f"The 'motions' parameter of {owner} must be a non-empty sequence of "
+                        f"GroundMotion. Got {motions!r} instead.")
+    if isinstance(target, tuple) and len(target) == 2:
+        target = TargetSpectrum(*target)
+    if not isinstance(target, TargetSpectrum):
+        raise TypeError(f"The 'target' parameter of {owner} must be a TargetSpectrum or a "
+                        f"(periods, sa) pair. Got {target!r} instead.")
+    kind = check_choice(method, "method", owner, ("mean", "individual"))
+    zeta = check_real(damping, "damping", owner, low=0.0, high=1.0, high_open=True)
+    try:
+        t_min, t_max = (float(t) for t in period_range)
+    except (TypeError, ValueError):
+        raise TypeError(f"The 'period_range' parameter of {owner} must be a pair of floats "
+                        f"(T_min, T_max). Got {period_range!r} instead.") from None
+    t_min = check_real(t_min, "period_range[0]", owner, low=target.periods[0],
+                       high=target.periods[-1])
+    t_max = check_real(t_max, "period_range[1]", owner, low=t_min, high=target.periods[-1])
+    n = check_int(n_periods, "n_periods", owner, low=2, high=1000) if t_max > t_min else 1
+    periods = np.geomspace(t_min, t_max, n)
+    target_sa = target.sa_at(periods)
+    spectra = np.array([spectrum(m, periods, zeta).sa for m in records])
+    empty = np.flatnonzero(~(spectra > 0.0).all(axis=1))
+    if empty.size:
+        raise ValueError(f"The 'motions' parameter of {owner} must hold records with a "
+                         f"non-zero spectrum over the range. Got {records[empty[0]]!r} at "
+                         f"index {empty[0]} instead.")
+    individual = np.exp(np.mean(np.log(target_sa / spectra), axis=1))
+    scaled = individual[:, None] * spectra
+    if kind == "mean":
+        common = 1.0 / float(np.min(scaled.mean(axis=0) / target_sa))
+        factors = common * individual
+    else:
+        common = 1.0
+        factors = individual / np.min(scaled / target_sa, axis=1)
+    out = tuple(m.scaled(float(k)) for m, k in zip(records, factors, strict=True))
+    mean_sa = (factors[:, None] * spectra).mean(axis=0)
+    ratio = mean_sa / target_sa
+    tight = int(np.argmin(ratio))
+    return ScalingReport(
+        names=tuple(m.name for m in records), individual_factors=individual,
+        common_factor=common, scale_factors=factors, periods=periods, target_sa=target_sa,
+        mean_sa=mean_sa, ratio=ratio, min_ratio=float(ratio[tight]),
+        tightest_period=float(periods[tight]), motions=out, period_range=(t_min, t_max),
+        damping=zeta, method=kind, target_name=target.name,
+    )
