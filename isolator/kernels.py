@@ -187,6 +187,33 @@ PTV_PARAMETERS = (
 
 
 @jit
+def ptv_friction(rise, heated, parameters, newest, pressure, speed):
+    """Eq. 7 for a contact whose temperature history part is ``rise``: the end of a PTV trial.
+
+    The contact temperature is T0 + c ``rise`` plus the newest interval's share, whose flux
+    q = mu p |v| / surfaces enters only when the averaged points take it (``heated``).
+    ``rise`` is :func:`contact_history` over the averaged points (or the same sum held by
+    :mod:`isolator.contact_window`); the other arguments are those of :func:`ptv_trial`.
+
+    Returns
+    -------
+    mu, dmu_dspeed, temperature, flux : float
+    """
+    fraction = 1.0 if heated else 0.0
+    base = parameters[5] + parameters[6] * rise
+    code = int(parameters[7])
+    mu_cold, dmu_cold = cold_friction(code, parameters[8], parameters[9], parameters[10],
+                                      parameters[11] != 0.0, parameters[12] != 0.0, pressure,
+                                      speed)
+    flux_per_mu_speed = pressure / parameters[14]
+    newest_per_mu_speed = newest * fraction * flux_per_mu_speed
+    mu, dmu_dspeed, temperature = solve_friction(code, mu_cold, dmu_cold, parameters[13] != 0.0,
+                                                 base, newest_per_mu_speed * speed,
+                                                 newest_per_mu_speed)
+    return mu, dmu_dspeed, temperature, mu * flux_per_mu_speed * speed
+
+
+@jit
 def ptv_trial(states, weighted_decay, parameters, position, newest, pressure, speed):
     """One trial of the precise or simplified friction model, fused for speed.
 
@@ -194,6 +221,7 @@ def ptv_trial(states, weighted_decay, parameters, position, newest, pressure, sp
     contact temperature from their committed history, and solves Eq. 7 with the newest
     interval's flux q = mu p |v| / surfaces entering the temperature (``newest`` = 2 c
     sqrt(dt) [degC m^2/W]). ``parameters`` holds the constants named in ``PTV_PARAMETERS``.
+    It is :func:`heated_window`, :func:`contact_history` and :func:`ptv_friction` in turn.
 
     Returns
     -------
@@ -212,18 +240,9 @@ def ptv_trial(states, weighted_decay, parameters, position, newest, pressure, sp
         rise = contact_history(states, weighted_decay, lo, hi)
     else:
         rise = contact_history(states, weighted_decay, 0, 1)
-    fraction = 1.0 if hi > lo else 0.0
-    base = parameters[5] + parameters[6] * rise
-    code = int(parameters[7])
-    mu_cold, dmu_cold = cold_friction(code, parameters[8], parameters[9], parameters[10],
-                                      parameters[11] != 0.0, parameters[12] != 0.0, pressure,
-                                      speed)
-    flux_per_mu_speed = pressure / parameters[14]
-    newest_per_mu_speed = newest * fraction * flux_per_mu_speed
-    mu, dmu_dspeed, temperature = solve_friction(code, mu_cold, dmu_cold, parameters[13] != 0.0,
-                                                 base, newest_per_mu_speed * speed,
-                                                 newest_per_mu_speed)
-    return mu, dmu_dspeed, temperature, mu * flux_per_mu_speed * speed, lo, hi, True
+    mu, dmu_dspeed, temperature, flux = ptv_friction(rise, hi > lo, parameters, newest,
+                                                     pressure, speed)
+    return mu, dmu_dspeed, temperature, flux, lo, hi, True
 
 
 def warm_up() -> None:

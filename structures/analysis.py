@@ -3,6 +3,11 @@
 :func:`run` builds the dynamic model, integrates it with Newmark or HHT-alpha, records the
 isolators' state at every committed step and returns an ``xarray.Dataset`` (time x floor) with
 the energy balance. :func:`peaks` reduces it to the numbers engineers look at first.
+
+Two engines give the same result: :func:`reference_history`, the integrator of
+:mod:`structures.integrators` on the model objects (the readable specification), and the
+compiled engine of :mod:`structures.engine` (the same algorithm as one numba function, about a
+hundred times faster), which ``run`` uses whenever it can.
 """
 
 from __future__ import annotations
@@ -17,12 +22,10 @@ from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction, PTVFriction
 from structures.energy import energy_balance
-from structures.integrators import HHT, Newmark, integrate
+from structures.engine import BEARING_FIELDS, EngineHistory, compiled_history, select_engine
+from structures.integrators import HHT, Newmark, as_method, integrate
 from structures.isolated_building import IsolatedShearBuilding
 from structures.shear_building import ShearBuilding
-
-BEARING_FIELDS = ("displacement", "velocity", "force", "friction_force", "mu", "temperature",
-                  "heat_flux")
 
 
 def friction_name(friction: ConstantFriction | PTVFriction) -> str:
@@ -45,6 +48,34 @@ def _resampled(motion: GroundMotion, dt: float | None) -> tuple[np.ndarray, floa
     return np.interp(t, motion.time, motion.acceleration), float(dt)
 
 
+def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, step: float,
+                      integrator: str | Newmark | HHT, *, tolerance: float,
+                      max_iterations: int = 25, max_subdivisions: int) -> EngineHistory:
+    """The reference engine: :func:`integrate` on the model, recording the bearing at each
+    committed step (the arguments as :func:`structures.engine.compiled_history`)."""
+    nt = acceleration.size
+    record = {name: np.empty(nt) for name in BEARING_FIELDS}
+    restoring = np.empty((nt, model.mass_matrix.shape[0]))
+    element = model.element
+
+    def on_commit(k: int, t: float, u: np.ndarray, v: np.ndarray, a: np.ndarray) -> None:
+        state = element.committed
+        for name in BEARING_FIELDS:
+            record[name][k] = getattr(state, name)
+        restoring[k] = model.superstructure_stiffness @ u
+        restoring[k, 0] += model.n_bearings * state.force
+
+    on_commit(0, 0.0, np.zeros(restoring.shape[1]), None, None)
+    start = _time.perf_counter()
+    result = integrate(model, acceleration, step, integrator, tolerance=tolerance,
+                       max_iterations=max_iterations, max_subdivisions=max_subdivisions,
+                       on_commit=on_commit)
+    wall = _time.perf_counter() - start
+    kept = result.time.size
+    record = {name: values[:kept] for name, values in record.items()}
+    return EngineHistory(result, record, restoring[:kept], wall, "reference")
+
+
 def run(
     building: ShearBuilding,
     bearing: DCFPBearing,
@@ -55,6 +86,7 @@ def run(
     dt: float | None = None,
     tolerance: float = 1e-8,
     max_subdivisions: int = 6,
+    engine: str = "auto",
 ):
     """Run a time-history analysis.
 
@@ -74,6 +106,11 @@ def run(
         Analysis step [s], at most the record's (finer steps interpolate the record linearly).
     tolerance, max_subdivisions
         Passed to :func:`structures.integrators.integrate`.
+    engine : {"auto", "compiled", "reference"}
+        ``"reference"``: :func:`structures.integrators.integrate` on the model objects (the
+        specification); ``"compiled"``: the same algorithm as one numba function
+        (:mod:`structures.compiled`); ``"auto"`` (default): the compiled engine whenever numba
+        is available and it supports the configuration. Both give the same Dataset.
 
     Returns
     -------
@@ -85,33 +122,21 @@ def run(
         ``temperature``, ``heat_flux``, ``ground_acceleration`` and the energies
         ``energy_input``, ``energy_kinetic``, ``energy_damping``, ``energy_strain``,
         ``energy_friction``, ``energy_error`` (time). Attributes describe the model and the
-        run, including ``success``, ``message`` and ``energy_balance_error``.
+        run, including ``success``, ``message``, ``energy_balance_error`` and ``engine``.
     """
     import xarray as xr
 
     model = IsolatedShearBuilding(building, bearing, n_bearings)
     acceleration, step = _resampled(motion, dt)
-    nt = acceleration.size
-    record = {name: np.empty(nt) for name in BEARING_FIELDS}
-    restoring = np.empty((nt, building.n_storeys + 1))
-    element = model.element
-
-    def on_commit(k: int, t: float, u: np.ndarray, v: np.ndarray, a: np.ndarray) -> None:
-        state = element.committed
-        for name in BEARING_FIELDS:
-            record[name][k] = getattr(state, name)
-        restoring[k] = model.superstructure_stiffness @ u
-        restoring[k, 0] += model.n_bearings * state.force
-
-    on_commit(0, 0.0, np.zeros(building.n_storeys + 1), None, None)
-    start = _time.perf_counter()
-    result = integrate(model, acceleration, step, integrator, tolerance=tolerance,
-                       max_subdivisions=max_subdivisions, on_commit=on_commit)
-    wall = _time.perf_counter() - start
+    method = as_method(integrator)
+    if select_engine(engine, model, method) == "compiled":
+        history = compiled_history(model, acceleration, step, method, tolerance=tolerance,
+                                   max_subdivisions=max_subdivisions)
+    else:
+        history = reference_history(model, acceleration, step, method, tolerance=tolerance,
+                                    max_subdivisions=max_subdivisions)
+    result, record, restoring = history.result, history.bearing, history.restoring
     kept = result.time.size
-    for name in BEARING_FIELDS:
-        record[name] = record[name][:kept]
-    restoring = restoring[:kept]
     ag = acceleration[:kept]
     u, v = result.displacement, result.velocity
     energies = energy_balance(u, v, ag, model.mass_matrix, model.damping_matrix,
@@ -168,7 +193,8 @@ def run(
         "steps": int(kept - 1),
         "newton_iterations": int(result.iterations.sum()),
         "subdivisions": int(result.subdivisions.sum()),
-        "wall_time": wall,
+        "wall_time": history.wall_time,
+        "engine": history.engine,
         "energy_balance_error": energies.relative_error,
     }
     coords = {"time": ("time", result.time, time_attrs), "floor": np.arange(n + 1),

@@ -41,7 +41,9 @@ import numpy as np
 from dcfpb.validation import check_array, check_choice, check_int, check_real
 from structures.model import DynamicModel
 
-__all__ = ["HHT", "METHODS", "IntegrationResult", "Newmark", "NewmarkStepper", "integrate"]
+__all__ = [
+    "HHT", "METHODS", "IntegrationResult", "Newmark", "NewmarkStepper", "as_method", "integrate",
+]
 
 
 @dataclass(frozen=True)
@@ -292,7 +294,14 @@ class NewmarkStepper:
         return False, self.max_iterations, r_norm, reference
 
 
-def _method(method: object) -> Newmark | HHT:
+def as_method(method: object) -> Newmark | HHT:
+    """The method instance for a name from :data:`METHODS` (default parameters) or an instance.
+
+    Raises
+    ------
+    TypeError
+        For anything else.
+    """
     if isinstance(method, Newmark | HHT):
         return method
     if isinstance(method, str):
@@ -359,7 +368,7 @@ def integrate(
         The history up to the last committed step, with ``success`` and ``message``.
     """
     owner = "integrate"
-    chosen = _method(method)
+    chosen = as_method(method)
     record = check_array(ground_acceleration, "ground_acceleration", owner, min_length=2)
     step = check_real(dt, "dt", owner, low=0.0, low_open=True)
     tol = check_real(tolerance, "tolerance", owner, low=0, high=1, low_open=True, high_open=True)

@@ -1,0 +1,284 @@
+"""The two engines of :func:`structures.analysis.run` behind one result: reference and compiled.
+
+``"reference"``
+    :func:`structures.integrators.integrate` on :class:`IsolatedShearBuilding` objects: the
+    readable specification, one Python call per Newton iteration.
+``"compiled"``
+    :func:`structures.compiled.integrate_building`, the same algorithm as one numba function;
+    this module packs the model into arrays, runs it and turns its status into the reference's
+    result, message or exception.
+``"auto"``
+    The compiled engine when numba is available and the configuration is one it knows
+    (:func:`unsupported` returns None), else the reference.
+
+Both return an :class:`EngineHistory`, from which :func:`structures.analysis.run` builds the
+same ``xarray.Dataset``.
+"""
+
+from __future__ import annotations
+
+import time as _time
+from typing import NamedTuple
+
+import numpy as np
+
+from dcfpb.validation import check_choice
+from isolator import kernels
+from isolator.bearing import AxialLoadHistory
+from isolator.friction import ConstantFriction, PTVFriction, PTVFrictionState
+from isolator.heating import CentrePoint, MonitorLine
+from isolator.kernels import PTV_PARAMETERS
+from structures import compiled
+from structures import compiled_bearing as cb
+from structures.compiled_bearing import BEARING_FIELDS
+from structures.integrators import HHT, IntegrationResult, Newmark
+from structures.isolated_building import IsolatedShearBuilding
+
+ENGINES = ("auto", "compiled", "reference")
+
+__all__ = ["BEARING_FIELDS", "ENGINES", "EngineHistory", "compiled_history", "select_engine",
+           "unsupported", "warm_up"]
+
+
+class EngineHistory(NamedTuple):
+    """What an engine hands to the result builder.
+
+    Attributes
+    ----------
+    result : IntegrationResult
+        Time, relative response, iterations, success and message.
+    bearing : dict of str to ndarray
+        One bearing's committed state at every step, keyed by ``BEARING_FIELDS`` (SI units).
+    restoring : ndarray, shape (nt, n)
+        Total restoring force (storey springs + all isolators) at every step [N].
+    wall_time : float
+        Time spent integrating [s].
+    engine : str
+        ``"reference"`` or ``"compiled"``.
+    """
+
+    result: IntegrationResult
+    bearing: dict[str, np.ndarray]
+    restoring: np.ndarray
+    wall_time: float
+    engine: str
+
+
+def unsupported(model: object, method: object) -> str | None:
+    """Why the compiled engine cannot run ``model`` with ``method``, or None when it can."""
+    if type(model) is not IsolatedShearBuilding:
+        return f"the model is a {type(model).__name__}, not an IsolatedShearBuilding"
+    if not isinstance(method, Newmark | HHT):
+        return f"the method {method!r} is not a Newmark or HHT instance"
+    bearing = model.bearing
+    if isinstance(bearing.axial_load, AxialLoadHistory):
+        return "the axial load varies in time"
+    if bearing.restoring not in ("linear", "spherical"):
+        return f"the restoring law {bearing.restoring!r} is unknown to it"
+    friction = bearing.friction
+    if type(friction) is ConstantFriction:
+        return None
+    if type(friction) is not PTVFriction:
+        return f"the friction model {type(friction).__name__} is unknown to it"
+    if friction.heating is not None and type(friction.heating) not in (MonitorLine, CentrePoint):
+        return f"the heating layout {type(friction.heating).__name__} is unknown to it"
+    return None
+
+
+def select_engine(engine: str, model: object, method: object) -> str:
+    """The engine that runs: ``"compiled"`` or ``"reference"``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``engine``, or ``"compiled"`` for a configuration it cannot run.
+    """
+    check_choice(engine, "engine", "run", ENGINES)
+    reason = unsupported(model, method)
+    if engine == "compiled" and reason is not None:
+        raise ValueError(f"The 'engine' parameter of run is 'compiled' but {reason}; use "
+                         "engine='reference' or 'auto'.")
+    if engine == "auto":
+        return "compiled" if reason is None and kernels.COMPILED else "reference"
+    return engine
+
+
+def _bearing_arrays(model: IsolatedShearBuilding):
+    """The bearing packed for the engine: (bearing, ptv, rates, weights, states, heating)."""
+    bearing = model.bearing
+    friction = bearing.friction
+    packed = np.zeros(cb.BEARING_PARAMETERS)
+    packed[cb.N_BEARINGS] = model.n_bearings
+    packed[cb.YIELD_DISPLACEMENT] = bearing.yield_displacement
+    if np.isinf(bearing.effective_radius):
+        packed[cb.RESTORING_LAW] = cb.FLAT
+    else:
+        packed[cb.RESTORING_LAW] = (cb.SPHERICAL if bearing.restoring == "spherical"
+                                          else cb.LINEAR)
+        packed[cb.EFFECTIVE_RADIUS] = bearing.effective_radius
+    load = bearing.axial_load_at(0.0)
+    packed[cb.AXIAL_LOAD] = load
+    packed[cb.PRESSURE] = load / bearing.contact_area
+    ptv = np.zeros(len(PTV_PARAMETERS))
+    rates, weights, states, heating = np.ones(1), np.zeros(1), np.zeros((1, 1)), None
+    if isinstance(friction, ConstantFriction):
+        packed[cb.FRICTION_MODEL] = cb.CONSTANT
+        packed[cb.CONSTANT_MU] = friction.mu
+        packed[cb.INITIAL_TEMPERATURE] = friction.initial_temperature
+        return packed, ptv, rates, weights, states, heating
+    state = model.element.friction_state
+    assert isinstance(state, PTVFrictionState)
+    heating = state.heating
+    code, reference_pressure, rate = friction.factors.kernel_parameters
+    values = {
+        "initial_temperature": friction.thermal.initial_temperature, "factor_code": code,
+        "reference_pressure": reference_pressure, "rate_parameter": rate,
+        "mu_t0": friction.mu_t0, "surfaces": float(friction.surfaces),
+        **{f"use_{name}": float(name in friction.dependencies)
+           for name in ("pressure", "velocity", "temperature")},
+    }
+    if values["use_pressure"]:  # the pressure is constant: mu_t0 gamma(p) once, bit for bit
+        values["mu_t0"] = kernels.cold_friction(code, reference_pressure, rate, friction.mu_t0,
+                                                True, False, packed[cb.PRESSURE], 0.0)[0]
+        values["use_pressure"] = 0.0
+    packed[cb.INITIAL_TEMPERATURE] = friction.thermal.initial_temperature
+    packed[cb.SURFACES] = friction.surfaces
+    if heating is None:
+        packed[cb.FRICTION_MODEL] = cb.COLD_PTV
+    else:
+        packed[cb.FRICTION_MODEL] = cb.HEATED_PTV
+        packed[cb.MIN_LAG] = heating.kernel.min_lag
+        packed[cb.FLUX_COEFFICIENT] = heating.coefficient
+        values.update(first_point=heating.first_point, spacing=heating.spacing,
+                      n_points=heating.n_points, flux_half_width=heating.flux_half_width,
+                      average_over_contact=float(heating.average_over_contact),
+                      flux_coefficient=heating.coefficient)
+        rates = np.ascontiguousarray(heating.kernel.rates, dtype=float)
+        weights = np.ascontiguousarray(heating.kernel.weights, dtype=float)
+        states = np.zeros((heating.n_points, rates.size))
+    for i, name in enumerate(PTV_PARAMETERS):
+        ptv[i] = values.get(name, 0.0)
+    return packed, ptv, rates, weights, states, heating
+
+
+def _method_array(method: Newmark | HHT, tolerance: float, max_iterations: int,
+                  max_subdivisions: int) -> np.ndarray:
+    return np.array([method.gamma, method.beta, method.alpha, tolerance, max_iterations,
+                     max_subdivisions], dtype=float)
+
+
+def _raise_model_error(info: np.ndarray, model: IsolatedShearBuilding, heating) -> None:
+    """Raise what the reference element raises for the engine's error ``info``."""
+    status = int(info[compiled.STATUS])
+    value = float(info[compiled.FAIL_VALUE])
+    if status == cb.LEFT_MONITOR_LINE:
+        heating.window(value / model.bearing.friction.surfaces)
+    elif status == cb.STEP_BELOW_MIN_LAG:
+        heating.prepare(value)
+    raise ValueError(
+        f"The isolator displacement {value!r} m at t = {info[compiled.FAIL_TIME]:.6g} s reached "
+        f"the effective radius {model.bearing.effective_radius!r} m of the spherical law."
+    )
+
+
+def _failure_message(info: np.ndarray, tolerance: float) -> str:
+    """The reference integrator's message for a step that did not converge."""
+    t_end, h = info[compiled.FAIL_TIME], info[compiled.FAIL_SUBSTEP]
+    residual, reference = info[compiled.FAIL_RESIDUAL], info[compiled.FAIL_REFERENCE]
+    relative = residual / reference if reference > 0.0 else np.inf
+    return (
+        f"Step {int(info[compiled.LAST_STEP]) + 1}: Newton iteration did not converge in the "
+        f"step to t = {t_end:.6g} s (sub-step of {h:.3g} s after "
+        f"{int(info[compiled.FAIL_DEPTH])} halvings): after "
+        f"{int(info[compiled.FAIL_ITERATIONS])} iterations the residual norm was "
+        f"{residual:.3e} N ({relative:.3e} of the force reference {reference:.3e} N; "
+        f"tolerance {tolerance:g})."
+    )
+
+
+def compiled_history(
+    model: IsolatedShearBuilding,
+    acceleration: np.ndarray,
+    dt: float,
+    method: Newmark | HHT,
+    *,
+    tolerance: float,
+    max_iterations: int = 25,
+    max_subdivisions: int,
+    python: bool = False,
+) -> EngineHistory:
+    """Run the compiled engine from rest through ``acceleration`` sampled every ``dt``.
+
+    Parameters
+    ----------
+    model : IsolatedShearBuilding
+        A fresh model (its bearing at rest).
+    acceleration : ndarray, shape (nt,)
+        Ground acceleration [m/s^2].
+    dt : float
+        Time step [s].
+    method : Newmark or HHT
+        Integration method.
+    tolerance, max_iterations, max_subdivisions
+        As :func:`structures.integrators.integrate`.
+    python : bool
+        Run the Python original of the top-level loop (tests; slow).
+
+    Raises
+    ------
+    ValueError
+        Where the reference element raises: the slider leaves the monitor line, a (sub-)step
+        shorter than the heating kernel's shortest lag, or a displacement beyond the radius
+        of the spherical law.
+    """
+    acceleration = np.ascontiguousarray(acceleration, dtype=float)
+    nt = acceleration.size
+    n = model.mass_matrix.shape[0]
+    time = dt * np.arange(nt)
+    bearing, ptv, rates, weights, states, heating = _bearing_arrays(model)
+    method_array = _method_array(method, tolerance, max_iterations, max_subdivisions)
+    u, v, a = np.empty((nt, n)), np.empty((nt, n)), np.empty((nt, n))
+    record, restoring = np.empty((len(BEARING_FIELDS), nt)), np.empty((nt, n))
+    iterations = np.zeros(nt - 1, dtype=np.int64)
+    subdivisions = np.zeros(nt - 1, dtype=np.int64)
+    info = np.zeros(compiled.INFO_SIZE)
+    function = compiled.integrate_building
+    if python:
+        function = getattr(function, "py_func", function)
+    matrices = [np.ascontiguousarray(m, dtype=float) for m in (
+        model.mass_matrix, model.damping_matrix, model.superstructure_stiffness,
+        model.influence)]
+    start = _time.perf_counter()
+    function(*matrices, acceleration, time, method_array, bearing, ptv, rates, weights, states,
+             u, v, a, record, restoring, iterations, subdivisions, info)
+    wall = _time.perf_counter() - start
+    status = int(info[compiled.STATUS])
+    if status not in (cb.SUCCESS, cb.NOT_CONVERGED):
+        _raise_model_error(info, model, heating)
+    last = int(info[compiled.LAST_STEP])
+    success = status == cb.SUCCESS
+    message = ("The integration reached the end of the record." if success
+               else _failure_message(info, tolerance))
+    kept = slice(0, last + 1)
+    absolute = a[kept] + acceleration[kept, None] * np.asarray(model.influence, dtype=float)
+    arrays = [time[kept], u[kept], v[kept], a[kept], absolute, iterations[:last],
+              subdivisions[:last]]
+    for array in arrays:
+        array.setflags(write=False)
+    result = IntegrationResult(*arrays[:5], success, message, *arrays[5:], method=method)
+    fields = {name: record[i, kept] for i, name in enumerate(BEARING_FIELDS)}
+    return EngineHistory(result, fields, restoring[kept], wall, "compiled")
+
+
+def warm_up() -> float:
+    """Compile (or load from the disk cache) the engine and the kernels; return the time [s]."""
+    from isolator.bearing import DCFPBearing
+    from structures.shear_building import ModalDamping, ShearBuilding
+
+    start = _time.perf_counter()
+    building = ShearBuilding(np.array([1.0e5]), np.array([1.0e8]), 1.0e5, ModalDamping())
+    bearing = DCFPBearing(2.0, 0.3, 1.0e6, PTVFriction(heating=CentrePoint()))
+    model = IsolatedShearBuilding(building, bearing)
+    compiled_history(model, np.array([0.0, 1.0, 0.0]), 0.01, Newmark(), tolerance=1e-8,
+                     max_subdivisions=2)
+    return _time.perf_counter() - start
