@@ -1,0 +1,269 @@
+"""The native time-history analysis repeated in OpenSees, returned in the same form.
+
+:func:`run_opensees` builds the building and its isolation level in openseespy from the very
+objects :func:`structures.analysis.run` takes (:mod:`structures.opensees_model` describes the
+model), drives it with the same ground-acceleration samples and the same integrator, and
+returns an ``xarray.Dataset`` with the variables, dimensions and attributes of
+:func:`~structures.analysis.run`, the energy balance computed from the recorded histories with
+our matrices by :func:`structures.energy.energy_balance`.
+
+Conventions (read in ``SRC/analysis/integrator`` and ``SRC/domain/pattern`` of OpenSees):
+
+- Ground motion: ``timeSeries Path -dt dt -values ...`` of the samples the native run uses
+  (resampled the same way) in m/s^2 and ``pattern UniformExcitation 2 1 -accel``; OpenSees
+  then solves for the motion relative to the ground, as we do, and absolute accelerations are
+  the relative ones plus the ground's.
+- Initial state: our integrator starts from the acceleration in equilibrium with the first
+  sample, ``a_0 = -r a_g(0)``; OpenSees's Newmark and HHT start from the nodes' committed
+  accelerations, so they are set to that (``setNodeAccel ... -commit``).
+- ``Newmark(gamma, beta)`` is ``integrator Newmark gamma beta``. ``HHT(alpha)`` with our
+  alpha in [-1/3, 0] is ``integrator HHT (1 + alpha)``: OpenSees's alpha in [2/3, 1] weights
+  the new step (``gamma = 3/2 - alpha_OS``, ``beta = (2 - alpha_OS)^2 / 4`` give ours). For a
+  linear model both are the same method; for the isolator they differ in one respect:
+  OpenSees evaluates the element at the weighted state ``u_(n + alpha_OS)``, ours weights the
+  forces, ``(1 + alpha) f(u_(n+1)) - alpha f(u_n)``.
+- Solution: Newton with ``NormDispIncr`` (``tolerance`` in m); a step that fails is retried as
+  two halves, recursively up to ``max_subdivisions`` times, as our integrator does.
+
+The run is recorded after each full step (nodal displacement, velocity and acceleration, the
+bearing state of :class:`~structures.opensees_model.BearingRecord`).
+"""
+
+from __future__ import annotations
+
+import time as _time
+from typing import Any
+
+import numpy as np
+
+from dcfpb.validation import check_int, check_real
+from groundmotions.records import GroundMotion
+from isolator.bearing import DCFPBearing
+from structures.analysis import _resampled, friction_name
+from structures.energy import energy_balance
+from structures.integrators import HHT, METHODS, Newmark
+from structures.isolated_building import IsolatedShearBuilding
+from structures.opensees_model import BearingRecord, build_model, element_kind
+from structures.opensees_runtime import import_opensees
+from structures.shear_building import ShearBuilding
+
+__all__ = ["opensees_integrator", "run_opensees"]
+
+
+def opensees_integrator(method: str | Newmark | HHT) -> tuple:
+    """Arguments of OpenSees's ``integrator`` command for one of our methods.
+
+    Parameters
+    ----------
+    method : {"newmark", "hht"} or Newmark or HHT
+        As :func:`structures.integrators.integrate`.
+
+    Returns
+    -------
+    tuple
+        ``("Newmark", gamma, beta)`` or ``("HHT", 1 + alpha)``.
+    """
+    if isinstance(method, str):
+        method = METHODS[method]() if method in METHODS else method
+    if isinstance(method, HHT):
+        return ("HHT", 1.0 + method.alpha)
+    if isinstance(method, Newmark):
+        return ("Newmark", method.gamma, method.beta)
+    raise TypeError(f"The 'integrator' parameter of run_opensees must be one of {tuple(METHODS)} "
+                    f"or a Newmark or HHT instance. Got {method!r} instead.")
+
+
+def _analysis(ops, integrator: tuple, tolerance: float) -> None:
+    ops.constraints("Plain")
+    ops.numberer("Plain")
+    ops.system("FullGeneral")
+    ops.test("NormDispIncr", tolerance, 50)
+    ops.algorithm("Newton")
+    ops.integrator(*integrator)
+    ops.analysis("Transient")
+
+
+def _step(ops, dt: float, depth: int, limit: int, counts: list[int]) -> bool:
+    """One step of ``dt`` [s], halved recursively on failure; counts = [iterations, halvings]."""
+    if ops.analyze(1, dt) == 0:
+        counts[0] += ops.testIter()
+        return True
+    counts[0] += ops.testIter()
+    if depth >= limit:
+        return False
+    counts[1] += 1
+    half = 0.5 * dt
+    return (_step(ops, half, depth + 1, limit, counts)
+            and _step(ops, half, depth + 1, limit, counts))
+
+
+def run_opensees(
+    building: ShearBuilding,
+    bearing: DCFPBearing,
+    motion: GroundMotion,
+    integrator: str | Newmark | HHT = "newmark",
+    *,
+    n_bearings: int = 1,
+    dt: float | None = None,
+    pendulum: str = "singlefp",
+    tolerance: float = 1e-10,
+    max_subdivisions: int = 6,
+):
+    """Run the time-history analysis of :func:`structures.analysis.run` in OpenSees.
+
+    Parameters
+    ----------
+    building, bearing, motion, integrator, n_bearings, dt
+        As :func:`structures.analysis.run`. The bearing's friction model selects the element
+        (:func:`~structures.opensees_model.element_kind`).
+    pendulum : {"singlefp", "spring"}
+        singleFPBearing (N = W + F u / R) or flatSliderBearing plus a linear spring (N = W,
+        our law); see :mod:`structures.opensees_model`. Ignored for FPBearingPTV.
+    tolerance : float
+        Displacement-increment tolerance of Newton's method [m].
+    max_subdivisions : int
+        Nested halvings of a step that does not converge.
+
+    Returns
+    -------
+    xarray.Dataset
+        As :func:`structures.analysis.run`, with the attributes ``program``, ``element`` and
+        ``pendulum`` besides; ``heat_flux`` is NaN for elements without heating.
+
+    Raises
+    ------
+    ImportError
+        Without openseespy.
+    ValueError, TypeError
+        For a bearing or method OpenSees cannot represent here (HHT with FPBearingPTV
+        among them: on the example its temperature peak falls from 119 to 111 degC).
+    """
+    owner = "run_opensees"
+    n_bearings = check_int(n_bearings, "n_bearings", owner, low=1)
+    check_real(tolerance, "tolerance", owner, low=0.0, low_open=True)
+    check_int(max_subdivisions, "max_subdivisions", owner, low=0)
+    arguments = opensees_integrator(integrator)
+    method = integrator if not isinstance(integrator, str) else METHODS[integrator]()
+    native = IsolatedShearBuilding(building, bearing, n_bearings)  # our matrices, W / n
+    if arguments[0] == "HHT" and element_kind(native.bearing) == "ptv":
+        raise ValueError(
+            f"The 'integrator' parameter of {owner} must be Newmark for FPBearingPTV: the "
+            "element appends to its heat history whenever the domain time advances, and "
+            "OpenSees's HHT moves it to t + alpha dt within each step, so the history gets "
+            f"two uneven entries per step. Got {integrator!r} instead."
+        )
+    acceleration, step = _resampled(motion, dt)
+    ops = import_opensees()
+    ops.wipe()
+    start = _time.perf_counter()
+    try:
+        model = build_model(ops, building, native.bearing, n_bearings, pendulum)
+        ops.timeSeries("Path", 2, "-dt", step, "-values", *acceleration.tolist(),
+                       "-useLast")  # the summed steps may pass the last sample by round-off
+        ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
+        for tag in model.nodes:  # a_0 = -r a_g(0), as our integrator starts
+            ops.setNodeAccel(tag, 1, -float(acceleration[0]), "-commit")
+        _analysis(ops, arguments, tolerance)
+        histories, records, counts, message = _integrate(ops, model, step, acceleration.size,
+                                                         max_subdivisions)
+        wall = _time.perf_counter() - start
+        version = ops.version()
+    finally:
+        ops.wipe()
+    kept = records.shape[0]
+    return _dataset(native, motion, acceleration[:kept], step, histories, records, method, {
+        "program": f"OpenSees {version} (openseespy)",
+        "element": model.element,
+        "pendulum": pendulum if "FPBearingPTV" not in model.element else "spherical",
+        "success": int(kept == acceleration.size),
+        "message": message,
+        "newton_iterations": counts[0],
+        "subdivisions": counts[1],
+        "wall_time": wall,
+    })
+
+
+def _integrate(ops, model, step: float, nt: int, max_subdivisions: int):
+    """The step loop: (u, v, a) histories (3, nt, m), bearing records (kept, 6), counts."""
+    m = len(model.nodes)
+    histories = np.zeros((3, nt, m))
+    for i, tag in enumerate(model.nodes):
+        histories[2, 0, i] = ops.nodeAccel(tag, 1)
+    records = [model.initial]
+    counts = [0, 0]
+    message = "The integration reached the end of the record."
+    for k in range(1, nt):
+        if not _step(ops, step, 0, max_subdivisions, counts):
+            message = (f"Step {k}: OpenSees did not converge in the step to t = {k * step:.6g} s "
+                       f"after {max_subdivisions} halvings.")
+            break
+        for i, tag in enumerate(model.nodes):
+            histories[:, k, i] = (ops.nodeDisp(tag, 1), ops.nodeVel(tag, 1),
+                                  ops.nodeAccel(tag, 1))
+        records.append(model.record(ops))
+    table = np.array(records, dtype=float)
+    return histories[:, : table.shape[0]], table, counts, message
+
+
+def _dataset(native: IsolatedShearBuilding, motion: GroundMotion, ag: np.ndarray, step: float,
+             histories: np.ndarray, records: np.ndarray, method, extra: dict[str, Any]):
+    """The result in the form of :func:`structures.analysis.run`."""
+    import xarray as xr
+
+    building, n = native.building, native.building.n_storeys
+    u, v, a = histories
+    bearing = {name: records[:, i] for i, name in enumerate(BearingRecord._fields)}
+    restoring = u @ native.superstructure_stiffness.T
+    restoring[:, 0] += bearing["force"]
+    energies = energy_balance(u, v, ag, native.mass_matrix, native.damping_matrix,
+                              native.influence, restoring, bearing["friction_force"])
+    absolute = a + ag[:, None]
+    inertia = -absolute * np.diag(native.mass_matrix)
+    storey_shear = np.cumsum(inertia[:, :0:-1], axis=1)[:, ::-1]
+
+    def var(dims, data, units, long_name):
+        return dims, np.asarray(data), {"units": units, "long_name": long_name}
+
+    data = {
+        "displacement": var(("time", "floor"), u, "m", "displacement relative to the ground"),
+        "velocity": var(("time", "floor"), v, "m/s", "velocity relative to the ground"),
+        "absolute_acceleration": var(("time", "floor"), absolute, "m/s^2",
+                                     "absolute acceleration"),
+        "storey_drift": var(("time", "storey"), np.diff(u, axis=1), "m", "storey drift"),
+        "storey_shear": var(("time", "storey"), storey_shear, "N",
+                            "storey shear (inertia forces of the floors above)"),
+        "isolator_displacement": var("time", u[:, 0], "m", "isolator displacement"),
+        "isolator_force": var("time", bearing["force"], "N", "isolator force, all bearings"),
+        "base_shear": var("time", bearing["force"], "N",
+                          "base shear through the isolation level"),
+        "friction_force": var("time", bearing["friction_force"], "N",
+                              "friction part of the isolator force, all bearings"),
+        "mu": var("time", bearing["mu"], "-", "friction coefficient"),
+        "temperature": var("time", bearing["temperature"], "degC", "contact temperature"),
+        "heat_flux": var("time", bearing["heat_flux"], "W/m^2", "heat flux into the surface"),
+        "axial_load": var("time", bearing["axial_load"], "N", "normal force of one bearing"),
+        "ground_acceleration": var("time", ag, "m/s^2", "ground acceleration"),
+    }
+    for name in ("input", "kinetic", "damping", "strain", "friction", "error"):
+        data[f"energy_{name}"] = var("time", getattr(energies, name), "J", f"{name} energy")
+    attrs: dict[str, Any] = {
+        "record": motion.name,
+        "record_processing": "; ".join(motion.processing),
+        "dt": step,
+        "integrator": repr(method),
+        "friction_model": friction_name(native.bearing.friction),
+        "friction": repr(native.bearing.friction),
+        "n_bearings": native.n_bearings,
+        "axial_load_per_bearing": native.bearing.axial_load_at(0.0),
+        "effective_radius": native.bearing.effective_radius,
+        "slider_diameter": native.bearing.slider_diameter,
+        "isolated_period": native.isolated_period(),
+        "fixed_base_periods": building.fixed_base_modes().periods.tolist(),
+        "total_mass": building.total_mass,
+        "steps": int(u.shape[0] - 1),
+        "energy_balance_error": energies.relative_error,
+    } | extra
+    time = step * np.arange(u.shape[0])
+    coords = {"time": ("time", time, {"units": "s"}), "floor": np.arange(n + 1),
+              "storey": np.arange(1, n + 1)}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
