@@ -239,7 +239,11 @@ def _example_path(name: str) -> Path:
     return Path(str(files("dcfpb").joinpath("data", name)))
 
 
-COMMAND_MODULES: tuple[str, ...] = ("dcfpb.cli_spectrum",)
+COMMAND_MODULES: tuple[str, ...] = (
+    "dcfpb.cli_spectrum",
+    "dcfpb.cli_suite",
+    "dcfpb.cli_opensees",
+)
 """Modules with a ``register(subparsers)`` function adding further sub-commands."""
 
 

@@ -18,12 +18,6 @@ REPO = Path(__file__).resolve().parents[2]
 RECORD = REPO / "groundmotions" / "data" / "elcentro_1940_ns.at2"
 
 
-@pytest.fixture(autouse=True)
-def _spectrum_command(monkeypatch):
-    """Register the command as the lead will (``COMMAND_MODULES`` in ``dcfpb.cli``)."""
-    monkeypatch.setattr("dcfpb.cli.COMMAND_MODULES", ("dcfpb.cli_spectrum",))
-
-
 def _json(capsys, *extra):
     assert main(["spectrum", str(RECORD), "--json", *extra]) == 0
     return json.loads(capsys.readouterr().out)

@@ -1,0 +1,226 @@
+"""``dcfpb suite``: a building file under a suite of records, scale factors and friction models.
+
+Registered through ``dcfpb.cli.COMMAND_MODULES``. Runs go through Dask (a local cluster, or
+``--scheduler ADDRESS``); results, peaks table, per-model statistics and plots go to
+``--out``. Running the same command again finishes an interrupted suite and retries failures.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from dcfpb.units import STANDARD_GRAVITY
+
+_FACTOR_ATTRIBUTES = ("scale_factors", "factors")
+_FACTOR_COLUMNS = ("scale_factor", "factor")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add the ``suite`` sub-command to the ``dcfpb`` parser."""
+    p = sub.add_parser(
+        "suite",
+        help="run a building under a suite of records x scales x friction models (Dask)",
+        description="Run a building file under every record of a folder (*.AT2) or manifest "
+        "CSV, at each scale factor, with each friction model, through Dask. One result file "
+        "per run in OUT/runs; rerun the same command to finish an interrupted suite. Exit "
+        "status 1 when some runs failed (see OUT/failures.json).",
+    )
+    p.add_argument("building", metavar="BUILDING.toml", help="building file")
+    p.add_argument("--records", required=True, metavar="DIR_OR_MANIFEST",
+                   help="folder of .AT2 files, or a CSV whose first column holds file names "
+                   "relative to it")
+    p.add_argument("--target", metavar="SPECTRUM.csv",
+                   help="target spectrum, rows 'period,sa' in [s, g]: each record is scaled "
+                   "to it (groundmotions.scaling.scale_suite); --scales then multiplies those "
+                   "factors")
+    p.add_argument("--period-range", metavar="TMIN,TMAX",
+                   help="period range of the scaling [s] (default 0.75 and 1.25 times the "
+                   "isolated period 2 pi sqrt(R_eff / g))")
+    p.add_argument("--scales", default="1.0", metavar="S1,S2,...",
+                   help="scale factors [-] (default 1.0)")
+    p.add_argument("--models", default="precise,simplified,constant", metavar="M1,M2,...",
+                   help="friction models (default: precise,simplified,constant)")
+    p.add_argument("--modifiers", default="1.0", metavar="L1,L2,...",
+                   help="property modifiers on the friction coefficient [-], e.g. 0.8,1.0,1.3 "
+                   "(default 1.0)")
+    p.add_argument("--duration", type=float, help="keep the first DURATION s of each record")
+    p.add_argument("--dt", type=float, help="analysis time step [s] (default: the file's; a "
+                   "record with a finer step runs at its own)")
+    p.add_argument("--workers", type=int, help="local worker processes (default: CPUs)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="use a running Dask scheduler, e.g. tcp://10.0.0.5:8786")
+    p.add_argument("--out", default="dcfpb-suite", metavar="DIR",
+                   help="result folder (default ./dcfpb-suite)")
+    p.add_argument("--no-plots", action="store_true", help="do not draw the figures")
+    p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
+    p.add_argument("--json", action="store_true", help="print the outcome as JSON")
+    p.set_defaults(handler=_run)
+
+
+def _floats(text: str, option: str) -> tuple[float, ...]:
+    try:
+        values = tuple(float(x) for x in text.split(",") if x.strip())
+    except ValueError:
+        raise ValueError(f"{option} must be numbers separated by commas. Got {text!r}.") from None
+    if not values:
+        raise ValueError(f"{option} needs at least one value. Got {text!r}.")
+    return values
+
+
+def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
+    """A target spectrum from a CSV of ``period,sa`` rows: periods [s], Sa [g].
+
+    Rows that are not two numbers (a header, comments) are skipped; periods must increase.
+    """
+    rows = []
+    with open(path, newline="", encoding="utf-8") as handle:
+        for row in csv.reader(handle):
+            try:
+                rows.append((float(row[0]), float(row[1])))
+            except (ValueError, IndexError):
+                continue
+    data = np.array(rows, dtype=float).reshape(-1, 2)
+    periods, sa = data[:, 0], data[:, 1]
+    if len(rows) < 2 or np.any(np.diff(periods) <= 0) or periods[0] < 0 or np.any(sa <= 0):
+        raise ValueError(f"{path}: a target spectrum needs at least two rows 'period,sa' [s, g] "
+                         "with increasing periods >= 0 and sa > 0.")
+    return periods, sa
+
+
+def factors_from_report(report: Any, names: Sequence[str]) -> Mapping[str, float] | list[float]:
+    """Per-record scale factors out of a scaling report: a mapping by record name, a
+    sequence in record order, an object with a ``scale_factors`` or ``factors`` attribute
+    holding either, or a table with a ``scale_factor`` or ``factor`` column."""
+    for attribute in _FACTOR_ATTRIBUTES:
+        if hasattr(report, attribute) and not callable(getattr(report, attribute)):
+            return factors_from_report(getattr(report, attribute), names)
+    columns = getattr(report, "columns", ())
+    for column in _FACTOR_COLUMNS:
+        if column in columns:
+            return [float(x) for x in report[column]]
+    if isinstance(report, Mapping):
+        return {str(k): float(v) for k, v in report.items()}
+    if hasattr(report, "index") and hasattr(report, "to_numpy"):  # a pandas Series
+        return dict(zip(map(str, report.index), map(float, report.to_numpy()), strict=True))
+    values = [float(x) for x in report]
+    if len(values) != len(names):
+        raise ValueError(f"The scaling report gave {len(values)} factors for {len(names)} "
+                         "records.")
+    return values
+
+
+def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float, float]):
+    """The record-factor hook of a target spectrum, through ``groundmotions.scaling``.
+
+    ``scale_suite(motions, (periods [s], sa [m/s^2]), period_range)`` is the one call to
+    the scaling module; change it here if its signature differs.
+    """
+    try:
+        from groundmotions.scaling import scale_suite
+    except ImportError as error:
+        raise ValueError(f"--target needs groundmotions.scaling.scale_suite, which cannot be "
+                         f"imported here ({error}). Give the scale factors with --scales "
+                         "instead.") from None
+
+    def hook(motions):
+        report = scale_suite(motions, (periods, sa_g * STANDARD_GRAVITY), period_range)
+        return factors_from_report(report, [m.name for m in motions])
+
+    return hook
+
+
+def _period_range(text: str | None, config) -> tuple[float, float]:
+    if text:
+        low, high = _floats(text, "--period-range")[:2]
+        if not 0 < low < high:
+            raise ValueError(f"--period-range must be TMIN,TMAX with 0 < TMIN < TMAX. "
+                             f"Got {text!r}.")
+        return low, high
+    radius = config.bearing_geometry["effective_radius"]
+    period = 2.0 * np.pi * np.sqrt(radius / STANDARD_GRAVITY)
+    return 0.75 * period, 1.25 * period
+
+
+def _run(args: argparse.Namespace) -> int:
+    from structures.config import load_config
+    from structures.suite import Suite, record_files, run_suite
+
+    if args.period_range and not args.target:
+        raise ValueError("--period-range applies to --target only.")
+    if args.workers is not None and args.scheduler:
+        raise ValueError("give --workers (a local cluster) or --scheduler, not both.")
+    config = load_config(args.building)
+    factors, target, period_range = None, None, None
+    if args.target:
+        target = read_target(args.target)
+        period_range = _period_range(args.period_range, config)
+        factors = target_hook(*target, period_range)
+    suite = Suite(config, record_files(args.records), models=args.models.split(","),
+                  scales=_floats(args.scales, "--scales"),
+                  property_modifiers=_floats(args.modifiers, "--modifiers"),
+                  record_factors=factors, duration=args.duration, dt=args.dt)
+    try:
+        result = run_suite(suite, args.out, n_workers=args.workers,
+                           scheduler_address=args.scheduler, progress=not args.no_progress)
+    except KeyboardInterrupt:
+        print(f"interrupted: finished runs are kept in {args.out}; run the same command "
+              "again to finish the suite.")
+        return 130
+    plots = [] if args.no_plots else _plots(result, suite, target, period_range)
+    _report(result, plots, args.json)
+    return 0 if not result.failures else 1
+
+
+def _plots(result, suite, target, period_range) -> list[Path]:
+    from dcfpb.plotting_suite import plot_peak_distributions, plot_scaled_spectra
+
+    out = Path(result.out_dir) / "plots"
+    written = [plot_peak_distributions(result.peaks, out / "peak_distributions.png",
+                                       title=f"{suite.config.name}: peaks per friction model")]
+    if target is not None:
+        first = result.peaks.drop_duplicates("record_file").set_index("record_file")
+        motions, _ = suite.read()
+        scaled = []
+        for file, motion in motions.items():
+            if suite.duration is not None:  # the part of the record that was run
+                motion = motion.truncated(min(suite.duration, motion.duration))
+            scaled.append(motion.scaled(float(first.loc[Path(file).name, "record_factor"])))
+        written.append(plot_scaled_spectra(scaled, *target, out / "scaled_spectra.png",
+                                           period_range=period_range))
+    return written
+
+
+def _report(result, plots: list[Path], as_json: bool) -> None:
+    from structures.suite_summary import QUANTITIES, summary_dict
+
+    done = int((result.peaks["status"] == "done").sum())
+    summary = summary_dict(result.summary)
+    if as_json:
+        print(json.dumps({"runs": len(result.peaks), "done": done, "failed": result.failures,
+                          "wall_time": result.wall_time, "computed": result.computed,
+                          "skipped": result.skipped, "out": str(result.out_dir),
+                          "summary": summary}, indent=2))
+        return
+    print(f"{len(result.peaks)} runs: {done} done ({result.skipped} kept from before), "
+          f"{len(result.failures)} failed, {result.wall_time:.1f} s; results in "
+          f"{result.out_dir}")
+    print(f"{'group':34s} {'':6s} {'isol. disp':>10s} {'base shear':>11s} {'roof acc':>9s} "
+          f"{'drift':>7s}")
+    print(f"{'':34s} {'':6s} {'[mm]':>10s} {'[kN]':>11s} {'[m/s2]':>9s} {'[mm]':>7s}")
+    factors = (1e3, 1e-3, 1.0, 1e3)
+    for group, quantities in summary.items():
+        for stat in ("median", "p84"):
+            cells = [f * quantities[q][stat] for f, q in zip(factors, QUANTITIES, strict=True)]
+            print(f"{group:34s} {stat:6s} {cells[0]:10.1f} {cells[1]:11.0f} {cells[2]:9.2f} "
+                  f"{cells[3]:7.2f}")
+    for failure in result.failures:
+        print(f"failed: {failure['run']}: {failure['reason']}")
+    if plots:
+        print("plots: " + ", ".join(str(p) for p in plots))

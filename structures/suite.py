@@ -1,0 +1,397 @@
+"""Ground-motion suites: records x scale factors x friction models x property modifiers.
+
+A `Suite` is a set of independent runs (:class:`structures.suite_runs.RunSpec`), each with a
+stable id. :func:`run_suite` computes them with ``dask.distributed``: on a `LocalCluster` of
+this machine by default (worker processes with one thread each, loopback only, no
+dashboard), or on any running cluster given its scheduler address, with no other change.
+
+Each run's files are written atomically (:mod:`structures.suite_store`) by the worker that
+computed it, or, with ``write="client"``, by this process, so that a remote cluster needs no
+file system shared with it.
+A rerun of the same suite into the same folder skips the runs that are complete and computes
+the rest: killing a suite loses at most the runs in flight. A run that fails (unreadable
+record, a run stopping early, any exception, a worker that keeps dying) is recorded with its
+reason and the others carry on; failures are retried on the next run.
+
+Example::
+
+    suite = Suite(load_config("examples/five_storey.toml"), record_files("records/"),
+                  models=("precise", "constant"), scales=(1.0, 2.0))
+    result = run_suite(suite, "out", n_workers=2)   # or scheduler_address="tcp://host:8786"
+    result.peaks.groupby("model")["peak_isolator_displacement"].median()
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import sys
+import time
+import uuid
+from collections import Counter
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from dcfpb.validation import check_choice, check_int, check_real
+from groundmotions.records import GroundMotion
+from isolator.experiments import MODELS
+from structures.config import BuildingConfig
+from structures.suite_runs import (
+    COLUMNS,
+    RunSpec,
+    analysis_step,
+    config_fingerprint,
+    execute_run,
+    file_digest,
+    modified_bearing,
+)
+from structures.suite_store import RunStore, atomic_write
+from structures.suite_summary import summarize, write_summary
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+RecordFactors = Mapping[str, float] | Callable[[Sequence[GroundMotion]], Any]
+_MODEL_COST = {"precise": 2.0, "simplified": 1.5, "constant": 1.0}  # relative cost per step
+_MANIFEST_HEADERS = {"file", "filename", "file_name", "record", "path"}
+
+
+def record_files(source: str | Path) -> tuple[Path, ...]:
+    """The record files of a folder (``*.AT2``, any case) or of a manifest CSV.
+
+    A manifest's first column holds file names relative to the manifest's folder; a first
+    row whose first cell is ``file`` (or ``filename``, ``record``, ``path``) is a header.
+    Listed files that do not exist are kept: their runs fail with the reason.
+    """
+    path = Path(source)
+    if path.is_dir():
+        files = sorted(p for p in path.iterdir() if p.is_file() and p.suffix.lower() == ".at2")
+    elif path.is_file():
+        with open(path, newline="", encoding="utf-8") as handle:
+            rows = [row for row in csv.reader(handle) if row and row[0].strip()]
+        if rows and rows[0][0].strip().lower() in _MANIFEST_HEADERS:
+            rows = rows[1:]
+        files = [path.parent / row[0].strip() for row in rows
+                 if not row[0].lstrip().startswith("#")]
+    else:
+        raise ValueError(f"{source}: no such folder of records or manifest file.")
+    if not files:
+        raise ValueError(f"{source}: no record files (*.AT2 in a folder, or rows of a manifest).")
+    return tuple(files)
+
+
+def _lookup(factors: Mapping[str, float], path: Path, name: str) -> float | None:
+    for key in (str(path), path.name, path.stem, name):
+        if key in factors:
+            return factors[key]
+    return None
+
+
+@dataclass(frozen=True)
+class Suite:
+    """Records x scale multipliers x friction models x property modifiers on one building.
+
+    Parameters
+    ----------
+    config : BuildingConfig
+        The building file (:func:`structures.config.load_config`).
+    records : sequence of str or Path
+        Record files (:func:`record_files`).
+    models : sequence of str
+        Friction models among ``"precise"``, ``"simplified"``, ``"constant"``.
+    scales : sequence of float
+        Suite-wide multipliers of the per-record factors [-] (plain scale factors when no
+        ``record_factors`` are given).
+    property_modifiers : sequence of float
+        Factors on the reference friction coefficient [-], e.g. ``(lambda_min, 1.0,
+        lambda_max)`` (:func:`structures.suite_runs.modified_bearing`).
+    record_factors : mapping or callable, optional
+        Per-record scale factors [-]: a mapping keyed by path, file name or stem, or a hook
+        called with the readable records (in order) that returns their factors as a
+        sequence or as a mapping keyed by record name, e.g. an adapter of
+        ``groundmotions.scaling.scale_suite``. Default 1.
+    duration : float, optional
+        Keep only the first ``duration`` seconds of each record [s].
+    dt : float, optional
+        Analysis step [s]; default the building file's. A record with a finer step is run at
+        its own step (the ``dt`` column says which).
+    """
+
+    config: BuildingConfig
+    records: Sequence[str | Path]
+    models: Sequence[str] = MODELS
+    scales: Sequence[float] = (1.0,)
+    property_modifiers: Sequence[float] = (1.0,)
+    record_factors: RecordFactors | None = field(default=None, repr=False)
+    duration: float | None = None
+    dt: float | None = None
+
+    def __post_init__(self) -> None:
+        owner = "Suite"
+        records = tuple(Path(r).absolute() for r in self.records)  # workers may be elsewhere
+        if not records:
+            raise ValueError(f"The 'records' parameter of {owner} must name at least one "
+                             "record file. Got none.")
+        models = tuple(check_choice(m, "models", owner, MODELS) for m in self.models)
+        scales = tuple(check_real(s, "scales", owner, low=0.0, low_open=True)
+                       for s in self.scales)
+        modifiers = tuple(check_real(m, "property_modifiers", owner, low=0.0, low_open=True)
+                          for m in self.property_modifiers)
+        if not (models and scales and modifiers):
+            raise ValueError(f"{owner}: 'models', 'scales' and 'property_modifiers' must each "
+                             "hold at least one value.")
+        for model in models:  # a modified coefficient outside (0, 1] fails here, not later
+            for modifier in modifiers:
+                modified_bearing(self.config, model, modifier)
+        for name in ("duration", "dt"):
+            if getattr(self, name) is not None:
+                check_real(getattr(self, name), name, owner, low=0.0, low_open=True)
+        object.__setattr__(self, "records", records)
+        object.__setattr__(self, "models", models)
+        object.__setattr__(self, "scales", scales)
+        object.__setattr__(self, "property_modifiers", modifiers)
+
+    def read(self) -> tuple[dict[str, GroundMotion], dict[str, str]]:
+        """Read the records: ``({file: motion}, {file: reason it cannot be read})``."""
+        from groundmotions.readers import read_record
+
+        motions, unreadable = {}, {}
+        for path in self.records:
+            try:
+                motions[str(path)] = read_record(path)
+            except Exception as error:  # reported per run; the others go on
+                unreadable[str(path)] = f"{type(error).__name__}: {error}"
+        return motions, unreadable
+
+    def _factors(self, motions: dict[str, GroundMotion], read: bool) -> dict[str, float]:
+        given = self.record_factors
+        if given is None:
+            return {}
+        readable = [p for p in self.records if str(p) in motions or not read]
+        if callable(given):
+            answer = given([motions[str(p)] for p in readable])
+            if not isinstance(answer, Mapping):
+                values = list(answer)
+                if len(values) != len(readable):
+                    raise ValueError(f"The record-factor hook returned {len(values)} factors "
+                                     f"for {len(readable)} records.")
+                answer = {str(p): v for p, v in zip(readable, values, strict=True)}
+            given = answer
+        factors = {str(p): _lookup(given, p, motions[str(p)].name if read else p.stem)
+                   for p in readable}
+        missing = [Path(p).name for p, v in factors.items() if v is None]
+        if missing:
+            raise ValueError(f"No scale factor given for the record(s) {missing}.")
+        return {p: check_real(v, "record_factors", "Suite", low=0.0, low_open=True)
+                for p, v in factors.items()}
+
+    def plan(self, *, read: bool = True
+             ) -> tuple[list[RunSpec], dict[str, GroundMotion], dict[str, str]]:
+        """The runs, in table order (record, multiplier, model, modifier), the readable
+        records and the reasons of the unreadable ones.
+
+        With ``read=False`` the records are read only if a record-factor hook needs them;
+        otherwise both dicts are empty and each run reads its record where it runs.
+        """
+        read = read or callable(self.record_factors)
+        motions, unreadable = self.read() if read else ({}, {})
+        factors = self._factors(motions, read)
+        settings = config_fingerprint(self.config)
+        specs = [
+            RunSpec(str(path), file_digest(path), model, factors.get(str(path), 1.0),
+                    multiplier, modifier, self.duration, self.dt, settings)
+            for path in self.records for multiplier in self.scales
+            for model in self.models for modifier in self.property_modifiers
+        ]
+        twice = sorted(i for i, n in Counter(s.run_id for s in specs).items() if n > 1)
+        if twice:
+            raise ValueError(f"The suite holds the same run more than once (a record, scale or "
+                             f"modifier given twice): {twice[:3]}.")
+        return specs, motions, unreadable
+
+
+@dataclass
+class SuiteResult:
+    """What a suite produced.
+
+    Attributes
+    ----------
+    peaks : pandas.DataFrame
+        One row per run, in suite order (columns: :data:`structures.suite_runs.COLUMNS`;
+        SI units, times [s]).
+    failures : list of dict
+        ``{"run": run id, "reason": ...}`` of every failed run.
+    wall_time : float
+        Wall-clock time of this invocation [s].
+    out_dir : Path
+        The result folder.
+    computed, skipped : int
+        Runs computed now, and runs kept from an earlier invocation.
+    summary : pandas.DataFrame
+        :func:`structures.suite_summary.summarize` of the peaks.
+    """
+
+    peaks: pd.DataFrame
+    failures: list[dict[str, str]]
+    wall_time: float
+    out_dir: Path
+    computed: int
+    skipped: int
+    summary: pd.DataFrame
+
+
+def local_cluster(n_workers: int | None = None) -> Any:
+    """A ``distributed.LocalCluster`` of this machine for suites: ``n_workers`` processes
+    (default: the number of CPUs) of one thread each, every socket on the loopback
+    interface, no dashboard. (The scheduler's small HTTP server of health and metrics
+    routes cannot be turned off; it gets a free loopback port instead of 8787, so suites
+    running side by side do not compete for that port.)"""
+    from distributed import LocalCluster
+
+    workers = (os.cpu_count() or 1) if n_workers is None else n_workers
+    workers = check_int(workers, "n_workers", "local_cluster", low=1)
+    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                        host="127.0.0.1", dashboard_address=None,
+                        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
+
+
+@contextmanager
+def _client(n_workers: int | None, scheduler_address: str | None) -> Iterator[Any]:
+    from distributed import Client
+
+    if scheduler_address:
+        with Client(scheduler_address) as client:
+            yield client
+        return
+    with local_cluster(n_workers) as cluster, Client(cluster) as client:
+        yield client
+
+
+def _cost(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig) -> int:
+    """Estimated cost, steps (or, for a record not read here, file bytes) x model weight:
+    the longest runs start first, so fewer workers idle at the end of the suite."""
+    if motion is None:
+        try:
+            return int(os.path.getsize(spec.record_file) * _MODEL_COST[spec.model])
+        except OSError:
+            return 0
+    length = motion.duration if spec.duration is None else min(spec.duration, motion.duration)
+    step = analysis_step(spec.dt if spec.dt is not None else config.dt, motion.dt)
+    return int(length / step * _MODEL_COST[spec.model])
+
+
+def _compute_and_store(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig,
+                       out_dir: str) -> dict[str, Any]:
+    """The task of ``write="workers"``: compute a run and write its files where it ran."""
+    row, data = execute_run(spec, motion, config)
+    store = RunStore(out_dir)
+    return store.save_failure(row) if data is None else store.save_done(row, data)
+
+
+def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None,
+              scheduler_address: str | None = None, write: str = "workers",
+              progress: bool = True) -> SuiteResult:
+    """Compute a suite, or finish one that was interrupted.
+
+    Parameters
+    ----------
+    suite : Suite
+        The runs.
+    out_dir : str or Path
+        Result folder (:mod:`structures.suite_store` for its layout); complete runs already
+        in it are kept, not computed again.
+    n_workers : int, optional
+        Worker processes of the local cluster (default: the number of CPUs).
+    scheduler_address : str, optional
+        Address of a running scheduler, e.g. ``"tcp://10.0.0.5:8786"``; its workers must be
+        able to import this package. ``n_workers`` is then ignored.
+    write : {"workers", "client"}
+        Who writes a run's files: the worker that computed it (default; the folder must be
+        reachable under the same path by the workers, as on this machine or a cluster with a
+        shared file system), or this process, to which every result then travels (any
+        cluster, but the writing is serial).
+    progress : bool
+        Show a progress bar (runs done, failed, ETA) on stderr.
+
+    Returns
+    -------
+    SuiteResult
+        Also written: ``peaks.csv``, ``failures.json``, ``summary.csv``, ``summary.parquet``.
+    """
+    from distributed import as_completed
+    from tqdm import tqdm
+
+    check_choice(write, "write", "run_suite", ("workers", "client"))
+    start = time.perf_counter()
+    store = RunStore(out_dir)
+    store.clean_temporary()
+    ship = write == "client" or callable(suite.record_factors)  # records read here, sent
+    specs, motions, unreadable = suite.plan(read=ship)
+    rows: dict[str, dict[str, Any]] = {}
+    pending = []
+    for spec in specs:
+        row = store.completed_row(spec.run_id)
+        if row is not None:
+            rows[spec.run_id] = row
+        elif spec.record_file in unreadable:
+            rows[spec.run_id] = store.save_failure(spec.failure(unreadable[spec.record_file]))
+        else:
+            pending.append(spec)
+    skipped = sum(row["status"] == "done" for row in rows.values())
+    counts = {"done": skipped, "failed": len(rows) - skipped}
+    bar = tqdm(total=len(specs), initial=len(rows), unit="run", disable=not progress,
+               file=sys.stderr, desc="suite", postfix=counts)
+    try:
+        if pending:
+            with _client(n_workers, scheduler_address) as client:
+                needed = sorted({s.record_file for s in pending}) if ship else []
+                shared = (dict(zip(needed, client.scatter([motions[f] for f in needed],
+                                                           hash=False), strict=True))
+                          if needed else {})
+                token = uuid.uuid4().hex[:8]
+                task, extra = ((_compute_and_store, (str(store.root.resolve()),))
+                               if write == "workers" else (execute_run, ()))
+                futures = {client.submit(task, spec, shared.get(spec.record_file),
+                                         suite.config, *extra, pure=False,
+                                         key=f"dcfpb-{token}-{spec.run_id}",
+                                         priority=_cost(spec, motions.get(spec.record_file),
+                                                        suite.config)): spec
+                           for spec in pending}
+                for future in as_completed(futures):
+                    spec = futures.pop(future)
+                    try:
+                        outcome = future.result()
+                    except Exception as error:  # e.g. KilledWorker: a worker kept dying
+                        outcome = store.save_failure(
+                            spec.failure(f"{type(error).__name__}: {error}"))
+                    future.release()
+                    if isinstance(outcome, tuple):  # write="client": the result came here
+                        row, data = outcome
+                        outcome = (store.save_failure(row) if data is None
+                                   else store.save_done(row, data))
+                    row = rows[spec.run_id] = outcome
+                    counts[row["status"]] += 1
+                    bar.set_postfix(counts, refresh=False)
+                    bar.update(1)
+                bar.close()  # before the cluster shuts down (a second or two)
+    finally:
+        bar.close()
+    return _finish(specs, rows, store, len(pending), skipped, time.perf_counter() - start)
+
+
+def _finish(specs: list[RunSpec], rows: dict[str, dict[str, Any]], store: RunStore,
+            computed: int, skipped: int, wall: float) -> SuiteResult:
+    import pandas as pd
+
+    table = pd.DataFrame([rows[s.run_id] for s in specs], columns=list(COLUMNS))
+    failures = [{"run": r["run_id"], "reason": r["reason"]}
+                for r in table.to_dict("records") if r["status"] != "done"]
+    atomic_write(store.root / "peaks.csv", table.to_csv(index=False).encode())
+    atomic_write(store.root / "failures.json", json.dumps(failures, indent=1).encode())
+    summary = summarize(table)
+    write_summary(summary, store.root)
+    return SuiteResult(table, failures, wall, store.root, computed, skipped, summary)

@@ -1,0 +1,153 @@
+"""The folder of a suite's results: atomic files, a completeness test, failures and a log.
+
+Layout of ``OUT/``::
+
+    runs/<run id>.nc            the run's full result (netCDF, written first)
+    runs/<run id>.json          its peaks row, written last: the run's completion mark
+    runs/<run id>.failed.json   a failed run's row with its reason (removed when it succeeds)
+    suite.log                   one line per event: "<UTC time> <event> <run id> <details>"
+    peaks.csv, failures.json    the table of the last invocation (``structures.suite``)
+
+Every file is written to a temporary name in the same folder and renamed over its final name
+with ``os.replace`` (atomic on POSIX and Windows), so a file under its final name is always
+whole once its writer has closed it. A run is complete when its row exists, parses, names the
+run as done, and its netCDF file has the size the row records; anything else is computed
+again. Killing a suite (or a worker) therefore loses at most the runs in flight. Files are not
+fsynced: that costs as much as a short run and only guards against a power cut, after which
+a file the disk did not keep whole fails the same completeness test and is recomputed.
+
+The writers are the workers (or the client, see ``run_suite(write=...)``); the log is
+appended with one ``write`` per line, which POSIX keeps whole between processes on a local
+file system. One suite at a time per folder: stray temporary files of a killed suite are
+removed when the next one starts.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import uuid
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+_TEMPORARY = ".*.tmp"
+
+
+def atomic_write(path: Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` atomically (a temporary file, then ``os.replace``)."""
+    temporary = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+    try:
+        with open(temporary, "wb") as handle:
+            handle.write(data)
+        os.replace(temporary, path)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+
+
+def _json_safe(value: Any) -> Any:
+    """NaN and infinities become None (JSON has no such numbers); numpy scalars become
+    Python numbers."""
+    if hasattr(value, "item") and not isinstance(value, str | bytes):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def dumps(row: dict[str, Any]) -> bytes:
+    """A row as JSON (floats round-trip exactly: Python writes their shortest repr)."""
+    return json.dumps({k: _json_safe(v) for k, v in row.items()}, indent=1,
+                      allow_nan=False).encode()
+
+
+class RunStore:
+    """The result folder of a suite.
+
+    Parameters
+    ----------
+    root : str or Path
+        Output folder (created if needed); the run files go to ``root/runs``.
+    """
+
+    def __init__(self, root: str | Path) -> None:
+        self.root = Path(root)
+        self.runs = self.root / "runs"
+        self.runs.mkdir(parents=True, exist_ok=True)
+        self.log_path = self.root / "suite.log"
+
+    def result_path(self, run_id: str) -> Path:
+        """The run's netCDF file."""
+        return self.runs / f"{run_id}.nc"
+
+    def row_path(self, run_id: str) -> Path:
+        """The run's peaks row (its completion mark)."""
+        return self.runs / f"{run_id}.json"
+
+    def failure_path(self, run_id: str) -> Path:
+        """The failed run's row with its reason."""
+        return self.runs / f"{run_id}.failed.json"
+
+    def clean_temporary(self) -> int:
+        """Remove temporary files left by a killed suite; return how many there were."""
+        stray = list(self.runs.glob(_TEMPORARY)) + list(self.root.glob(_TEMPORARY))
+        for path in stray:
+            path.unlink(missing_ok=True)
+        return len(stray)
+
+    def _read(self, path: Path) -> dict[str, Any] | None:
+        try:
+            row = json.loads(path.read_text())
+        except (OSError, ValueError):
+            return None
+        return row if isinstance(row, dict) else None
+
+    def completed_row(self, run_id: str) -> dict[str, Any] | None:
+        """The row of a complete run, or None if the run must be computed (again)."""
+        row = self._read(self.row_path(run_id))
+        if row is None or row.get("run_id") != run_id or row.get("status") != "done":
+            return None
+        try:
+            size = self.result_path(run_id).stat().st_size
+        except OSError:
+            return None
+        return row if size == row.get("result_bytes") else None
+
+    def failed_row(self, run_id: str) -> dict[str, Any] | None:
+        """The row of the run's last failure, if any."""
+        return self._read(self.failure_path(run_id))
+
+    def save_done(self, row: dict[str, Any], data: bytes) -> dict[str, Any]:
+        """Store a finished run: the netCDF first, then its row; drop an older failure."""
+        run_id = row["run_id"]
+        path = self.result_path(run_id)
+        atomic_write(path, data)
+        row = row | {"result_file": f"runs/{path.name}", "result_bytes": len(data)}
+        atomic_write(self.row_path(run_id), dumps(row))
+        self.failure_path(run_id).unlink(missing_ok=True)
+        self.log("done", run_id, worker=row.get("worker"))
+        return row
+
+    def save_failure(self, row: dict[str, Any]) -> dict[str, Any]:
+        """Store a failed run's row with its reason (it is computed again on the next run)."""
+        atomic_write(self.failure_path(row["run_id"]), dumps(row))
+        self.log("failed", row["run_id"], reason=row.get("reason"))
+        return row
+
+    def log(self, event: str, run_id: str, **details: Any) -> None:
+        """Append one line to ``suite.log`` (one ``write`` of an ``O_APPEND`` file)."""
+        stamp = datetime.now(UTC).isoformat(timespec="milliseconds")
+        extra = " ".join(f"{k}={json.dumps(v)}" for k, v in details.items() if v is not None)
+        line = f"{stamp} {event} {run_id} {extra}".rstrip() + "\n"
+        with open(self.log_path, "a", encoding="utf-8") as handle:
+            handle.write(line)
+
+    def events(self) -> list[tuple[str, str]]:
+        """``(event, run id)`` of every line of the log, oldest first."""
+        if not self.log_path.exists():
+            return []
+        lines = self.log_path.read_text(encoding="utf-8").splitlines()
+        return [(parts[1], parts[2]) for parts in (line.split(" ", 3) for line in lines)
+                if len(parts) >= 3]

@@ -1,0 +1,111 @@
+"""Statistics of a suite's peaks per friction model: mean, median and 84th percentile.
+
+The groups are the friction model, the property modifier and the suite-wide scale multiplier
+(one group per model for a plain suite); only runs that finished count. The 84th percentile is
+the linear interpolation between order statistics (``numpy.percentile``'s default), the
+usual stand-in for the median plus one logarithmic standard deviation.
+"""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from structures.suite_store import atomic_write
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+QUANTITIES = {
+    "peak_isolator_displacement": "m",
+    "peak_base_shear": "N",
+    "peak_roof_acceleration": "m/s^2",
+    "peak_storey_drift": "m",
+}
+"""Peak responses summarised, with their units."""
+
+GROUP_KEYS = ("model", "modifier", "multiplier")
+SUMMARY_COLUMNS = (*GROUP_KEYS, "quantity", "units", "n", "mean", "median", "p84")
+
+
+def summarize(peaks: pd.DataFrame) -> pd.DataFrame:
+    """Mean, median and 84th percentile of the peak responses, per group of runs.
+
+    Parameters
+    ----------
+    peaks : pandas.DataFrame
+        The peaks table of a suite (``SuiteResult.peaks``), one row per run.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Tidy: one row per group and quantity, columns ``model``, ``modifier``,
+        ``multiplier``, ``quantity``, ``units``, ``n`` (finished runs) and ``mean``,
+        ``median``, ``p84`` in the quantity's SI units. Empty if no run finished.
+    """
+    import pandas as pd
+
+    done = peaks[peaks["status"] == "done"]
+    rows = []
+    for key, group in done.groupby(list(GROUP_KEYS), sort=False):
+        for quantity, units in QUANTITIES.items():
+            values = np.asarray(group[quantity], dtype=float)
+            rows.append(dict(zip(GROUP_KEYS, key, strict=True)) | {
+                "quantity": quantity, "units": units, "n": int(values.size),
+                "mean": float(np.mean(values)), "median": float(np.median(values)),
+                "p84": float(np.percentile(values, 84.0)),
+            })
+    return pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
+
+
+def group_labels(table: pd.DataFrame, separator: str = ", ") -> list[str]:
+    """A label per row of ``table`` (columns ``model``, ``modifier``, ``multiplier``): the
+    model, followed by the modifier and the scale multiplier only if they vary in the table,
+    e.g. ``"precise"`` or ``"precise, modifier 1.2, scale x2"``."""
+    show_modifier = table["modifier"].nunique() > 1
+    show_scale = table["multiplier"].nunique() > 1
+    labels = []
+    for model, modifier, multiplier in zip(table["model"], table["modifier"],
+                                           table["multiplier"], strict=True):
+        parts = [str(model)]
+        if show_modifier:
+            parts.append(f"modifier {modifier:.4g}")
+        if show_scale:
+            parts.append(f"scale x{multiplier:.4g}")
+        labels.append(separator.join(parts))
+    return labels
+
+
+def summary_dict(summary: pd.DataFrame) -> dict[str, Any]:
+    """The summary as nested JSON-ready dicts: ``{group: {quantity: {n, mean, median, p84,
+    units}}}``; the group is labelled by :func:`group_labels`."""
+    out: dict[str, Any] = {}
+    for label, row in zip(group_labels(summary), summary.itertuples(index=False), strict=True):
+        out.setdefault(label, {})[row.quantity] = {
+            "n": int(row.n), "mean": row.mean, "median": row.median, "p84": row.p84,
+            "units": row.units}
+    return out
+
+
+def write_summary(summary: pd.DataFrame, out_dir: str | Path) -> list[Path]:
+    """Write ``summary.csv`` and ``summary.parquet`` (atomically) to ``out_dir``.
+
+    Parquet needs pyarrow (the ``suite`` extra); without it only the CSV is written and a
+    ``UserWarning`` says so.
+    """
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    written = [out / "summary.csv"]
+    atomic_write(written[0], summary.to_csv(index=False).encode())
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError:
+        warnings.warn("pyarrow is not installed: summary.parquet not written (install the "
+                      "'suite' extra: pip install 'dcfpb[suite]').", UserWarning, stacklevel=2)
+        return written
+    written.append(out / "summary.parquet")
+    atomic_write(written[1], summary.to_parquet(index=False, engine="pyarrow"))
+    return written
