@@ -243,6 +243,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "dcfpb.cli_spectrum",
     "dcfpb.cli_suite",
     "dcfpb.cli_opensees",
+    "dcfpb.cli_diagnose",
 )
 """Modules with a ``register(subparsers)`` function adding further sub-commands."""
 

@@ -1,0 +1,100 @@
+"""``dcfpb diagnose``: the sim-to-real gap of a friction model on measured bearing tests.
+
+    dcfpb diagnose FILE [FILE ...] --model BASELINE --effective-radius R --slider-diameter D
+                   [--axial-load N] [--without EFFECT ...] [--json] [--report DIR]
+
+Each FILE is one test of a campaign, in the order run (CSV with ``time``, ``displacement``,
+``force`` and optionally ``axial_force``, ``velocity``, ``temperature``; SI units). The
+command calibrates the baseline, says where the held-out gap lies, which candidate effect
+closes it and how far it shrinks (see :mod:`isolator.diagnosis`). ``--json`` prints the
+summary (keys ``baseline``, ``gap``, ``where``, ``effects``, ``verdict``, ...); ``--report``
+writes ``summary.md``, ``diagnosis.json`` and plots to a folder.
+
+The module registers itself through :data:`dcfpb.cli.COMMAND_MODULES` (``register``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``diagnose`` sub-command to the ``dcfpb`` parser."""
+    from isolator.diagnosis import BASELINE_MODELS, EFFECT_NAMES, REMOVABLE_EFFECTS
+
+    p = subparsers.add_parser(
+        "diagnose",
+        help="where a friction model misses measured bearing tests, and which effect explains it",
+        description="Calibrate a baseline friction model on measured bearing tests, locate "
+        "its held-out force error, test a library of candidate effects on held-out data and "
+        "report the verdict and how far the gap shrinks. All values in SI units.",
+    )
+    p.add_argument("files", nargs="+", metavar="FILE",
+                   help="CSV test files of one campaign, in the order run")
+    p.add_argument("--model", required=True, choices=BASELINE_MODELS,
+                   help="baseline friction model")
+    p.add_argument("--effective-radius", required=True, type=float, metavar="R",
+                   help="effective radius [m]; 'inf' for a flat slider or a friction damper")
+    p.add_argument("--slider-diameter", required=True, type=float, metavar="D",
+                   help="slider diameter [m]")
+    p.add_argument("--axial-load", type=float, metavar="N",
+                   help="constant axial load [N] for files without an axial_force column")
+    p.add_argument("--without", nargs="+", action="extend", default=[], metavar="EFFECT",
+                   choices=REMOVABLE_EFFECTS,
+                   help="effects of the simplified or precise model to switch off")
+    p.add_argument("--exclude", nargs="+", action="extend", default=[], metavar="EFFECT",
+                   choices=EFFECT_NAMES, help="candidate effects to withhold from the library")
+    p.add_argument("--yield-displacement", type=float, metavar="UY",
+                   help="yield displacement of the return map [m] (default: calibrated)")
+    p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.add_argument("--report", metavar="DIR", help="write summary.md, JSON and plots here")
+    p.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the diagnosis for parsed arguments; returns the exit status."""
+    from isolator.diagnosis import BaselineSpec, diagnose, load_campaign
+
+    spec = BaselineSpec(args.model, tuple(args.without), args.yield_displacement)
+    campaign = load_campaign(args.files, effective_radius=args.effective_radius,
+                             slider_diameter=args.slider_diameter, axial_load=args.axial_load)
+    diagnosis = diagnose(campaign, spec, exclude=tuple(args.exclude))
+    summary = diagnosis.to_json()
+    if args.report:
+        from isolator.diagnosis.report import write_report
+
+        written = write_report(diagnosis, args.report)
+        summary["report"] = [str(p) for p in written]
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        _print(summary)
+    return 0
+
+
+def _print(summary: dict) -> None:
+    gap = summary["gap"]
+    print(f"baseline: {summary['baseline']['model']}  ("
+          + ", ".join(f"{k} = {v:.4g}" for k, v in summary["baseline"]["parameters"].items())
+          + ")")
+    print(f"held-out force NRMSE: {gap['value']:.4f}   noise: {gap['noise']:.4f}   "
+          f"({gap['holdout']})")
+    print(f"where: {summary['where']['statement']}")
+    print(f"{'effect':11s} {'NRMSE':>8s} {'shrink':>7s} {'z':>6s}  role")
+    for e in summary["effects"]:
+        if "gap_after" in e:
+            print(f"{e['name']:11s} {e['gap_after']:8.4f} {100 * e['shrink']:6.0f}% "
+                  f"{e['held_out_z']:6.1f}  {e['role']}")
+        else:
+            print(f"{e['name']:11s} {'-':>8s} {'-':>7s} {'-':>6s}  {e['role']}")
+    print(f"verdict: {', '.join(summary['verdict'])}")
+    chosen = summary["chosen"]
+    if chosen is not None and summary["verdict"] != ["unexplained"]:
+        print(f"gap with {' + '.join(chosen['names'])}: {chosen['gap_before']:.4f} -> "
+              f"{chosen['gap_after']:.4f} (shrink {100 * chosen['shrink']:.0f} %)")
+    if summary["unexplained"]:
+        for text in summary["unexplained"]["looks_like"]:
+            print(f"unexplained: looks like {text}")
+    for path in summary.get("report", []):
+        print(f"wrote {path}")

@@ -1,0 +1,250 @@
+"""The baseline model to diagnose, calibrated on the data first.
+
+A baseline is one of the paper's friction models, ``constant`` (Eq. 8), ``simplified`` or
+``precise`` (Eq. 7), possibly without some of its effects (``precise --without heating``).
+Calibration fits the baseline's own parameters so that the gap left is what its *form* cannot
+explain: the friction coefficient mu of the constant model or mu_t0 of the others, and the
+yield displacement u_y of the return map (unless given).
+
+For an imposed displacement history z(t) depends on u(t) and u_y only, so
+F = N u / R_eff + mu(t) N z(t). The constant model's mu is then a linear least-squares fit for
+each u_y; u_y is found on a logarithmic grid refined by a bounded scalar search. A
+pressure-velocity-temperature model is run through the virtual test machine
+(:func:`isolator.testrig.run_test`) with the measured displacement, velocity and axial load;
+its mu(t) is proportional to mu_t0 but for the heating, so mu_t0 is rescaled by the fitted
+factor and the run repeated until the factor is 1 to 1e-3.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from dcfpb.validation import check_choice, check_real
+from isolator.bearing import AxialLoadHistory, DCFPBearing
+from isolator.diagnosis.data import Campaign
+from isolator.diagnosis.features import (
+    Features,
+    measured_temperature_rise,
+    pendulum_force,
+    return_map,
+    with_baseline,
+)
+from isolator.friction import DEPENDENCIES, PTVFriction
+from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
+from isolator.testrig import run_test
+
+BASELINE_MODELS = ("constant", "simplified", "precise")
+REMOVABLE_EFFECTS = ("heating", "velocity", "pressure")
+DEFAULT_MU_T0 = 0.075  # the paper's mu_t0, the start of the calibration
+SIMPLIFIED_REFINEMENT = 0.5  # the paper's lambda
+_YIELD_GRID = np.geomspace(1.0e-5, 0.05, 32)  # [m] candidate yield displacements
+_MAX_ITERATIONS = 6
+_SCALE_TOLERANCE = 1.0e-3
+
+
+@dataclass(frozen=True)
+class BaselineSpec:
+    """Which baseline to diagnose.
+
+    Parameters
+    ----------
+    model : {"constant", "simplified", "precise"}
+        The paper's friction model.
+    without : tuple of str
+        Effects of a ``simplified`` or ``precise`` model switched off: ``"heating"``,
+        ``"velocity"``, ``"pressure"``.
+    yield_displacement : float or None
+        Yield displacement u_y of the return map [m]; None calibrates it.
+    """
+
+    model: str
+    without: tuple[str, ...] = ()
+    yield_displacement: float | None = None
+
+    def __post_init__(self) -> None:
+        owner = type(self).__name__
+        check_choice(self.model, "model", owner, BASELINE_MODELS)
+        without = tuple(dict.fromkeys(self.without))
+        for name in without:
+            check_choice(name, "without", owner, REMOVABLE_EFFECTS)
+        if self.model == "constant" and without:
+            raise ValueError(f"The 'without' parameter of {owner} must be empty for the "
+                             f"constant model, which has no effects to remove. Got {without!r}.")
+        object.__setattr__(self, "without", without)
+        if self.yield_displacement is not None:
+            check_real(self.yield_displacement, "yield_displacement", owner, low=0.0,
+                       low_open=True, high=0.1)
+
+    @property
+    def label(self) -> str:
+        """The baseline as a user writes it, e.g. ``"precise --without heating"``."""
+        return " ".join([self.model, *(f"--without {w}" for w in self.without)])
+
+    @property
+    def heats(self) -> bool:
+        """Whether the baseline tracks a contact temperature."""
+        return self.model != "constant" and "heating" not in self.without
+
+    def layout(self) -> MonitorLine | CentrePoint:
+        """Monitor points of the baseline's heating (the precise model's line by default)."""
+        if self.model == "simplified":
+            return CentrePoint(refinement=SIMPLIFIED_REFINEMENT)
+        return MonitorLine()
+
+    def friction(self, mu_t0: float, initial_temperature: float) -> PTVFriction:
+        """The PTV friction model of a ``simplified`` or ``precise`` baseline."""
+        if self.model == "constant":
+            raise ValueError("The constant baseline has no PTV friction model.")
+        dependencies = tuple(d for d in DEPENDENCIES
+                             if not (d == "temperature" and "heating" in self.without)
+                             and d not in self.without)
+        return PTVFriction(mu_t0=mu_t0, heating=self.layout() if self.heats else None,
+                           dependencies=dependencies,
+                           thermal=ThermalProperties(initial_temperature=initial_temperature))
+
+
+@dataclass(frozen=True)
+class BaselineFit:
+    """A calibrated baseline.
+
+    Attributes
+    ----------
+    spec : BaselineSpec
+        The baseline.
+    parameters : dict
+        ``mu`` (constant) or ``mu_t0`` (others) [-] and ``yield_displacement`` [m].
+    features : Features
+        The campaign's features with z, the pendulum force, the baseline's mu(t) and the
+        temperature rise filled in.
+    iterations : int
+        Runs of the virtual test machine (0 for the constant model).
+    """
+
+    spec: BaselineSpec
+    parameters: dict[str, float]
+    features: Features
+    iterations: int
+
+
+def calibrate(campaign: Campaign, features: Features, spec: BaselineSpec) -> BaselineFit:
+    """Fit the baseline's own parameters to the whole campaign (see the module docstring)."""
+    pendulum = pendulum_force(features, campaign.effective_radius)
+    target = features.force - pendulum
+    t0 = _initial_temperature(campaign)
+    iterations = 0
+    if spec.model == "constant":
+        shape = np.ones(len(features))
+        mu_t0 = 1.0
+    else:
+        mu_t0 = DEFAULT_MU_T0
+        shape = _run_baseline(campaign, features, spec, mu_t0, t0, spec.yield_displacement
+                              or 5.0e-4)
+        iterations = 1
+    while True:
+        u_y, scale = _fit_yield_and_scale(features, target, shape, spec.yield_displacement)
+        if spec.model == "constant" or not spec.heats or abs(scale - 1.0) <= _SCALE_TOLERANCE:
+            break
+        if iterations >= _MAX_ITERATIONS:
+            break
+        mu_t0 *= scale
+        shape = _run_baseline(campaign, features, spec, mu_t0, t0, u_y)
+        iterations += 1
+    mu_t0 *= scale
+    mu_base = shape * scale
+    z = return_map(features, u_y)
+    name = "mu" if spec.model == "constant" else "mu_t0"
+    thermal = ThermalProperties(initial_temperature=t0)
+    done = with_baseline(features, z=z, pendulum=pendulum, mu_base=mu_base)
+    line = measured_temperature_rise(done, campaign, MonitorLine(), thermal)
+    centre = measured_temperature_rise(done, campaign, CentrePoint(SIMPLIFIED_REFINEMENT),
+                                       thermal)
+    return BaselineFit(spec, {name: float(mu_t0), "yield_displacement": float(u_y)},
+                       with_baseline(done, temperature_rise=line, centre_rise=centre),
+                       iterations)
+
+
+def _initial_temperature(campaign: Campaign) -> float:
+    first = campaign.tests[0].temperature
+    return 20.0 if first is None else float(first[0])
+
+
+def _scale_fit(target: np.ndarray, regressor: np.ndarray) -> tuple[float, float]:
+    """(least-squares factor, sum of squared residuals) of target ~ factor * regressor."""
+    denominator = float(np.dot(regressor, regressor))
+    if denominator == 0.0:
+        return 0.0, float(np.dot(target, target))
+    factor = float(np.dot(regressor, target)) / denominator
+    residual = target - factor * regressor
+    return factor, float(np.dot(residual, residual))
+
+
+def _fit_yield_and_scale(
+    features: Features, target: np.ndarray, shape: np.ndarray, fixed: float | None
+) -> tuple[float, float]:
+    regressor = shape * features.axial_force
+
+    def sse(log_uy: float) -> float:
+        return _scale_fit(target, regressor * return_map(features, 10.0**log_uy))[1]
+
+    if fixed is not None:
+        u_y = float(fixed)
+    else:
+        stroke = float(np.percentile(np.abs(features.displacement), 99))
+        grid = _YIELD_GRID[max(0.25 * stroke, _YIELD_GRID[1]) >= _YIELD_GRID]
+        logs = np.log10(grid)
+        costs = [sse(x) for x in logs]
+        i = int(np.argmin(costs))
+        lo, hi = logs[max(i - 1, 0)], logs[min(i + 1, logs.size - 1)]
+        if hi > lo:
+            best = minimize_scalar(sse, bounds=(lo, hi), method="bounded",
+                                   options={"xatol": 1e-3})
+            u_y = float(10.0 ** best.x) if best.fun <= costs[i] else float(grid[i])
+        else:
+            u_y = float(grid[i])
+    scale, _ = _scale_fit(target, regressor * return_map(features, u_y))
+    if not scale > 0.0:
+        raise ValueError("The baseline's friction coefficient came out non-positive: the "
+                         "force does not oppose the motion. Check the sign convention of "
+                         "'force' (it must resist the imposed displacement).")
+    return u_y, scale
+
+
+def _run_baseline(
+    campaign: Campaign, features: Features, spec: BaselineSpec, mu_t0: float, t0: float,
+    yield_displacement: float,
+) -> np.ndarray:
+    """mu(t) of a PTV baseline run through the virtual test machine on every test."""
+    friction = spec.friction(mu_t0, t0)
+    mu = np.empty(len(features))
+    for k, rec in enumerate(campaign.tests):
+        idx = features.test == k
+        time = rec.time - rec.time[0]
+        load = (float(rec.axial_force[0]) if rec.constant_axial_force
+                else AxialLoadHistory(time, rec.axial_force))
+        capacity = max(1.05 * float(np.max(np.abs(rec.displacement))), 0.01)
+        radius = campaign.effective_radius
+        bearing = DCFPBearing(radius, campaign.slider_diameter, load, friction,
+                              yield_displacement=min(yield_displacement, 0.1),
+                              displacement_capacity=capacity)
+        result = run_test(bearing, time, rec.displacement, rec.velocity, name=rec.name)
+        mu[idx] = result.mu
+    if not np.all(np.isfinite(mu)):
+        raise ValueError(f"The {spec.label} baseline gave a non-finite friction coefficient.")
+    return mu
+
+
+def refit_scale(features: Features, index: np.ndarray | None = None) -> float:
+    """Least-squares factor on the baseline's mu(t) over the samples ``index`` [-]."""
+    f = features if index is None else features.take(index)
+    return _scale_fit(f.force - f.pendulum, f.mu_base * f.axial_force * f.z)[0]
+
+
+def describe(fit: BaselineFit) -> str:
+    """One line: the baseline and its calibrated parameters."""
+    parts = [f"{k} = {v:.4g}" + (" m" if k == "yield_displacement" else "")
+             for k, v in fit.parameters.items()]
+    return f"{fit.spec.label} ({', '.join(parts)})"
+

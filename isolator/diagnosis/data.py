@@ -1,0 +1,293 @@
+"""Measured bearing histories for the diagnosis: one record per test, checked on the way in.
+
+A test is a CSV file with a header line and the columns ``time`` [s], ``displacement`` [m]
+(relative displacement of the plates), ``force`` [N] (horizontal), and optionally
+``axial_force`` [N], ``velocity`` [m/s] and ``temperature`` [degC]; other columns are ignored.
+Gzipped files (``.csv.gz``) are read as they are. Every problem is reported with the file, the
+column and the row (the first data row is row 2, after the header), before any fitting starts:
+missing columns, non-numeric values, NaNs, columns of different lengths, time that does not
+increase, a non-positive axial force, a displacement that looks like millimetres.
+
+A :class:`Campaign` is the tests of one bearing in the order they were run (wear accumulates
+across them), with the bearing's effective radius (``inf`` for a flat slider or a friction
+damper) and slider diameter.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from dcfpb.validation import check_real
+
+REQUIRED_COLUMNS = ("time", "displacement", "force")
+OPTIONAL_COLUMNS = ("axial_force", "velocity", "temperature")
+UNITS = {"time": "s", "displacement": "m", "force": "N", "axial_force": "N",
+         "velocity": "m/s", "temperature": "degC"}
+MIN_SAMPLES = 20
+MAX_DISPLACEMENT = 5.0  # [m] a larger relative displacement is taken for a unit mistake
+_DERIVATIVE_WINDOW = 0.04  # [s] span of the smoothing derivative for a missing velocity
+
+
+class DataError(ValueError):
+    """A test file or array that cannot be diagnosed, with the place and the reason named."""
+
+
+@dataclass(frozen=True, eq=False)
+class BearingRecord:
+    """Histories of one bearing test (SI units, read-only arrays of equal length).
+
+    Parameters
+    ----------
+    name : str
+        Name of the test (the file name for a CSV).
+    time : array_like
+        Strictly increasing sample times [s].
+    displacement : array_like
+        Relative displacement of the plates [m].
+    force : array_like
+        Horizontal force [N].
+    axial_force : array_like
+        Compressive axial load [N], positive.
+    velocity : array_like or None
+        Relative velocity [m/s]; None derives it from the displacement (a local quadratic
+        least-squares derivative over about 40 ms, or ``numpy.gradient`` for uneven steps).
+    temperature : array_like or None
+        Measured temperature [degC], if any.
+    """
+
+    name: str
+    time: np.ndarray
+    displacement: np.ndarray
+    force: np.ndarray
+    axial_force: np.ndarray
+    velocity: np.ndarray | None = None
+    temperature: np.ndarray | None = None
+    velocity_measured: bool = field(init=False, default=True)
+
+    def __post_init__(self) -> None:
+        where = f"test {self.name!r}"
+        arrays = {"time": self.time, "displacement": self.displacement, "force": self.force,
+                  "axial_force": self.axial_force, "velocity": self.velocity,
+                  "temperature": self.temperature}
+        checked = {}
+        for column, values in arrays.items():
+            if values is None:
+                continue
+            arr = np.array(values, dtype=float)
+            if arr.ndim != 1:
+                raise DataError(f"{where}: column {column!r} must be 1-d. Got shape {arr.shape}.")
+            checked[column] = arr
+        n = checked["time"].size
+        for column, arr in checked.items():
+            if arr.size != n:
+                raise DataError(f"{where}: column {column!r} has {arr.size} values but 'time' "
+                                f"has {n}; all columns must have the same length.")
+            _check_finite(arr, column, where, first_row=0)
+        if n < MIN_SAMPLES:
+            raise DataError(f"{where}: needs at least {MIN_SAMPLES} samples. Got {n}.")
+        _check_increasing(checked["time"], where, first_row=0)
+        _check_values(checked, where, first_row=0)
+        if "velocity" not in checked:
+            checked["velocity"] = derived_velocity(checked["time"], checked["displacement"])
+            object.__setattr__(self, "velocity_measured", False)
+        for column, arr in checked.items():
+            arr.setflags(write=False)
+            object.__setattr__(self, column, arr)
+
+    def __len__(self) -> int:
+        return int(self.time.size)
+
+    @property
+    def constant_axial_force(self) -> bool:
+        """Whether the axial force is the same at every sample."""
+        return bool(np.ptp(self.axial_force) == 0.0)
+
+
+@dataclass(frozen=True, eq=False)
+class Campaign:
+    """The tests of one bearing, in the order they were run, with its geometry.
+
+    Parameters
+    ----------
+    tests : sequence of BearingRecord
+        At least one test.
+    effective_radius : float
+        Effective radius R_eff [m]; ``inf`` for a flat slider or a friction damper.
+    slider_diameter : float
+        Slider diameter [m]; the contact radius is half of it.
+    """
+
+    tests: tuple[BearingRecord, ...]
+    effective_radius: float
+    slider_diameter: float
+
+    def __post_init__(self) -> None:
+        owner = type(self).__name__
+        tests = tuple(self.tests)
+        if not tests or not all(isinstance(t, BearingRecord) for t in tests):
+            raise TypeError(f"The 'tests' parameter of {owner} must be one or more "
+                            f"BearingRecord objects. Got {self.tests!r} instead.")
+        object.__setattr__(self, "tests", tests)
+        check_real(self.effective_radius, "effective_radius", owner, low=0.0, low_open=True,
+                   allow_inf=True)
+        check_real(self.slider_diameter, "slider_diameter", owner, low=0.0, low_open=True,
+                   high=10.0)
+
+    @property
+    def contact_radius(self) -> float:
+        """Contact radius r = half the slider diameter [m]."""
+        return 0.5 * self.slider_diameter
+
+    @property
+    def contact_area(self) -> float:
+        """Contact area pi r^2 [m^2]."""
+        return math.pi * self.contact_radius**2
+
+
+def derived_velocity(time: np.ndarray, displacement: np.ndarray) -> np.ndarray:
+    """Velocity [m/s] from a displacement history [m] sampled at ``time`` [s].
+
+    Uniform steps: the first derivative of a local quadratic least-squares fit over about
+    40 ms (Savitzky-Golay), which keeps displacement noise from dominating slow motion;
+    uneven steps: ``numpy.gradient``.
+    """
+    steps = np.diff(time)
+    if np.ptp(steps) > 1e-6 * steps.mean() or time.size < 7:
+        return np.gradient(displacement, time)
+    from scipy.signal import savgol_filter
+
+    window = max(5, 2 * round(0.5 * _DERIVATIVE_WINDOW / steps.mean()) + 1)
+    window = min(window, time.size - (1 - time.size % 2))
+    return savgol_filter(displacement, window, 2, deriv=1, delta=float(steps.mean()),
+                         mode="interp")
+
+
+def read_record(path: str | Path, *, axial_load: float | None = None) -> BearingRecord:
+    """Read one test from a CSV file (see the module docstring for the columns).
+
+    Parameters
+    ----------
+    path : str or Path
+        CSV file, optionally gzipped.
+    axial_load : float, optional
+        Constant axial load [N] for a file without an ``axial_force`` column. With such a
+        column the column is used and ``axial_load`` must not be given.
+
+    Raises
+    ------
+    DataError
+        Naming the file, the column and the row of the first problem.
+    """
+    import pandas as pd
+
+    path = Path(path)
+    if not path.is_file():
+        raise DataError(f"{path}: no such file.")
+    try:
+        frame = pd.read_csv(path, dtype=str, keep_default_na=False, skipinitialspace=True)
+    except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as error:
+        raise DataError(f"{path}: not a readable CSV file with a header line ({error}).") \
+            from error
+    frame.columns = [str(c).strip() for c in frame.columns]
+    missing = [c for c in REQUIRED_COLUMNS if c not in frame.columns]
+    if missing:
+        raise DataError(
+            f"{path}: missing column(s) {missing}; found {list(frame.columns)}. A test needs "
+            "time [s], displacement [m] and force [N], and optionally axial_force [N], "
+            "velocity [m/s], temperature [degC]."
+        )
+    if "axial_force" in frame.columns and axial_load is not None:
+        raise DataError(f"{path}: has an 'axial_force' column and an axial load "
+                        f"{axial_load!r} N was given as well; give one of the two.")
+    if "axial_force" not in frame.columns and axial_load is None:
+        raise DataError(f"{path}: no 'axial_force' column; give the constant axial load "
+                        "[N] (--axial-load).")
+    columns = {}
+    for column in (*REQUIRED_COLUMNS, *OPTIONAL_COLUMNS):
+        if column in frame.columns:
+            columns[column] = _numeric_column(frame[column].to_numpy(), column, path)
+    n = len(frame)
+    for column, arr in columns.items():
+        _check_finite(arr, column, str(path), first_row=2, total=n)
+    if n < MIN_SAMPLES:
+        raise DataError(f"{path}: needs at least {MIN_SAMPLES} data rows. Got {n}.")
+    _check_increasing(columns["time"], str(path), first_row=2)
+    if "axial_force" not in columns:
+        check_real(axial_load, "axial_load", "read_record", low=0.0, low_open=True)
+        columns["axial_force"] = np.full(n, float(axial_load))
+    _check_values(columns, str(path), first_row=2)
+    return BearingRecord(path.name.removesuffix(".gz").removesuffix(".csv"), **columns)
+
+
+def load_campaign(
+    paths: Sequence[str | Path],
+    *,
+    effective_radius: float,
+    slider_diameter: float,
+    axial_load: float | None = None,
+) -> Campaign:
+    """Read the tests of a campaign, in the order given (the order they were run).
+
+    See :func:`read_record` for ``axial_load`` and the errors.
+    """
+    if isinstance(paths, str | Path) or not paths:
+        raise DataError("load_campaign needs a list of one or more CSV files.")
+    tests = tuple(read_record(p, axial_load=axial_load) for p in paths)
+    return Campaign(tests, effective_radius, slider_diameter)
+
+
+def _numeric_column(values: np.ndarray, column: str, path: Path) -> np.ndarray:
+    out = np.empty(values.size)
+    for i, text in enumerate(values):
+        text = text.strip()
+        if text == "" or text.lower() == "nan":
+            out[i] = np.nan
+            continue
+        try:
+            out[i] = float(text)
+        except ValueError:
+            raise DataError(f"{path}: column {column!r} has a non-numeric value {text!r} at "
+                            f"row {i + 2}.") from None
+    return out
+
+
+def _check_finite(arr: np.ndarray, column: str, where: str, *, first_row: int,
+                  total: int | None = None) -> None:
+    bad = ~np.isfinite(arr)
+    if not bad.any():
+        return
+    first = int(np.argmax(bad))
+    if total is not None and np.all(bad[first:]) and first > 0:
+        raise DataError(f"{where}: column {column!r} has {first} values but the file has "
+                        f"{total} rows; all columns must have the same length (row "
+                        f"{first + first_row} onwards is empty).")
+    kind = "NaN or empty" if np.isnan(arr[first]) else "infinite"
+    raise DataError(f"{where}: column {column!r} has {int(bad.sum())} {kind} value(s), the "
+                    f"first at row {first + first_row}.")
+
+
+def _check_increasing(time: np.ndarray, where: str, *, first_row: int) -> None:
+    steps = np.diff(time)
+    if np.any(steps <= 0.0):
+        i = int(np.argmax(steps <= 0.0)) + 1
+        raise DataError(f"{where}: 'time' must be strictly increasing; row {i + first_row} has "
+                        f"{time[i]!r} s after {time[i - 1]!r} s.")
+
+
+def _check_values(columns: dict[str, np.ndarray], where: str, *, first_row: int) -> None:
+    axial = columns.get("axial_force")
+    if axial is not None and np.any(axial <= 0.0):
+        i = int(np.argmax(axial <= 0.0))
+        raise DataError(f"{where}: 'axial_force' must be positive (compression) [N]; row "
+                        f"{i + first_row} has {axial[i]!r}.")
+    peak = float(np.max(np.abs(columns["displacement"])))
+    if peak > MAX_DISPLACEMENT:
+        raise DataError(f"{where}: 'displacement' reaches {peak:g}; it must be in metres "
+                        f"(at most {MAX_DISPLACEMENT:g} m). Was it written in millimetres?")
+    if np.ptp(columns["displacement"]) == 0.0:
+        raise DataError(f"{where}: 'displacement' never changes; there is nothing to diagnose.")

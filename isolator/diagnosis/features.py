@@ -1,0 +1,272 @@
+"""Sample-by-sample covariates of a campaign, concatenated over its tests.
+
+:class:`Features` holds what the baseline and the candidate effects need at every sample:
+the measured force, displacement, velocity and axial load, the return-map variable z, the
+pendulum force N u / R_eff, the baseline's friction coefficient, the contact-temperature rise
+from the measured friction power, the travel since the last reversal, the accumulated travel
+(within the test and over the campaign), the cycle of each sample and the noise variance and
+weight each sample is judged with. Everything but z, the pendulum force, mu, the temperature
+rises and the noise comes from the kinematics alone (:func:`kinematic_features`); the
+baseline calibration and the noise model fill in the rest (:func:`with_baseline`).
+
+The displacement used is the measured one through a short cubic smoothing filter
+(:func:`smoothed_displacement`); reversals are found with a noise threshold, so sensor noise
+neither makes reversals nor accumulates as travel.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+
+import numpy as np
+
+from isolator.diagnosis.data import Campaign
+from isolator.diagnosis.kinematics import (
+    hysteretic_variable,
+    noise_std,
+    reversal_travel,
+    turning_points,
+)
+from isolator.heating import (
+    CentrePoint,
+    MonitorLine,
+    SurfaceHeating,
+    ThermalProperties,
+    sum_of_exponentials,
+)
+
+SURFACES = 2  # a DCFPB: the slider travels u / 2 over each plate and each takes half the heat
+_REVERSAL_NOISE_MULTIPLE = 6.0  # a reversal must come back by 6 sigma of displacement noise
+_REVERSAL_STROKE_FRACTION = 0.005  # ... and by 0.5 % of the stroke
+SMOOTHING_WINDOW = 7  # samples of the cubic Savitzky-Golay filter on the displacement
+
+
+@dataclass(frozen=True, eq=False)
+class Features:
+    """Covariates per sample (all tests one after the other); see the module docstring.
+
+    Attributes
+    ----------
+    test : ndarray of int
+        Index of the test of each sample.
+    time, displacement, velocity, speed, force, axial_force, pressure : ndarray
+        [s], [m], [m/s], [m/s] (|v|), [N], [N], [Pa] (N / contact area).
+    since_reversal, travel, campaign_travel : ndarray
+        Travel since the last reversal, from the start of the test, and from the start of
+        the campaign (tests in the order run) [m].
+    cycle : ndarray of int
+        Cycle of the sample within its test, from 1 (two reversals make a cycle).
+    block : ndarray of int
+        A number unique to each (test, half cycle): the unit of the block statistics.
+    z, pendulum, mu_base : ndarray
+        Return-map variable [-], N u / R_eff [N], the calibrated baseline's friction
+        coefficient [-].
+    temperature_rise, centre_rise : ndarray
+        Contact-temperature rise from the measured friction power [degC], averaged over the
+        contact on the precise model's monitor line, and at the plate centre (the simplified
+        model's point, lambda = 0.5).
+    noise_variance : ndarray
+        Variance of the force error measurement noise alone leaves [N^2]
+        (:mod:`isolator.diagnosis.noise`).
+    weight : ndarray
+        Weight of each sample in the fits and the selection, 1 / (noise variance + the
+        baseline's excess variance) [1/N^2] (:mod:`isolator.diagnosis.selection`).
+    """
+
+    test: np.ndarray
+    time: np.ndarray
+    displacement: np.ndarray
+    velocity: np.ndarray
+    speed: np.ndarray
+    force: np.ndarray
+    axial_force: np.ndarray
+    pressure: np.ndarray
+    since_reversal: np.ndarray
+    travel: np.ndarray
+    campaign_travel: np.ndarray
+    cycle: np.ndarray
+    block: np.ndarray
+    z: np.ndarray
+    pendulum: np.ndarray
+    mu_base: np.ndarray
+    temperature_rise: np.ndarray
+    centre_rise: np.ndarray
+    noise_variance: np.ndarray
+    weight: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.force.size)
+
+    def take(self, index: np.ndarray) -> Features:
+        """The features of the samples ``index`` only."""
+        return Features(**{f.name: getattr(self, f.name)[index] for f in fields(self)})
+
+    @property
+    def friction_force(self) -> np.ndarray:
+        """Measured force less the pendulum force [N]."""
+        return self.force - self.pendulum
+
+    @property
+    def baseline_force(self) -> np.ndarray:
+        """Force of the calibrated baseline, N u / R + mu N z [N]."""
+        return self.pendulum + self.mu_base * self.axial_force * self.z
+
+
+@dataclass(frozen=True)
+class KinematicInfo:
+    """Per-test scalars found with the features.
+
+    Attributes
+    ----------
+    force_noise, displacement_noise, axial_noise : ndarray
+        White-noise standard deviation of each test's force [N], displacement [m] and axial
+        force [N] (zero for a constant axial force).
+    turns : tuple of ndarray
+        Reversal indices of each test (within the test).
+    """
+
+    force_noise: np.ndarray
+    displacement_noise: np.ndarray
+    axial_noise: np.ndarray
+    turns: tuple[np.ndarray, ...]
+
+
+def kinematic_features(campaign: Campaign) -> tuple[Features, KinematicInfo]:
+    """Features that follow from the measured histories alone (z etc. left at zero)."""
+    parts: dict[str, list[np.ndarray]] = {f.name: [] for f in fields(Features)}
+    force_noise, disp_noise, axial_noise, all_turns = [], [], [], []
+    campaign_offset, block_offset = 0.0, 0
+    for k, rec in enumerate(campaign.tests):
+        n = len(rec)
+        sigma_u = noise_std(rec.displacement, order=4)
+        u = smoothed_displacement(rec.time, rec.displacement)
+        threshold = max(_REVERSAL_NOISE_MULTIPLE * sigma_u,
+                        _REVERSAL_STROKE_FRACTION * float(np.ptp(u)))
+        turns = turning_points(u, threshold)
+        since, travel, half = reversal_travel(u, turns)
+        cycle = half // 2 + 1
+        values = {
+            "test": np.full(n, k, dtype=np.int64), "time": rec.time,
+            "displacement": u, "velocity": rec.velocity,
+            "speed": np.abs(rec.velocity), "force": rec.force, "axial_force": rec.axial_force,
+            "pressure": rec.axial_force / campaign.contact_area, "since_reversal": since,
+            "travel": travel, "campaign_travel": campaign_offset + travel, "cycle": cycle,
+            "block": block_offset + half,
+        }
+        for name in ("z", "pendulum", "mu_base", "temperature_rise", "centre_rise",
+                     "noise_variance", "weight"):
+            values[name] = np.zeros(n)
+        for name, value in values.items():
+            parts[name].append(np.asarray(value))
+        campaign_offset += float(travel[-1])
+        block_offset += int(half.max()) + 1
+        force_noise.append(noise_std(rec.force, order=3))
+        disp_noise.append(sigma_u)
+        axial_noise.append(0.0 if rec.constant_axial_force else noise_std(rec.axial_force))
+        all_turns.append(turns)
+    features = Features(**{name: np.concatenate(p) for name, p in parts.items()})
+    return features, KinematicInfo(np.array(force_noise), np.array(disp_noise),
+                                   np.array(axial_noise), tuple(all_turns))
+
+
+def smoothed_displacement(time: np.ndarray, displacement: np.ndarray) -> np.ndarray:
+    """The displacement through a cubic Savitzky-Golay filter of ``SMOOTHING_WINDOW`` samples.
+
+    A displacement-driven history is smooth in time, so the filter hardly biases it (the
+    error is of the order of its fourth derivative times the window to the fourth), while it
+    cuts the sensor noise that the stiff elastic branch of the return map (d z / d u = 1/u_y)
+    would turn into force noise at every reversal. Uneven steps are left as they are.
+    """
+    steps = np.diff(time)
+    if displacement.size < 2 * SMOOTHING_WINDOW or np.ptp(steps) > 1e-6 * steps.mean():
+        return np.asarray(displacement, dtype=float)
+    from scipy.signal import savgol_filter
+
+    return savgol_filter(displacement, SMOOTHING_WINDOW, 3, mode="interp")
+
+
+def pendulum_force(features: Features, effective_radius: float) -> np.ndarray:
+    """N u / R_eff [N] (zero for a flat slider, R_eff = inf)."""
+    if math.isinf(effective_radius):
+        return np.zeros(len(features))
+    return features.axial_force * features.displacement / effective_radius
+
+
+def return_map(features: Features, yield_displacement: float) -> np.ndarray:
+    """z of every test (each starting at z = 0) for the yield displacement [m] given."""
+    z = np.empty(len(features))
+    for k in np.unique(features.test):
+        idx = features.test == k
+        z[idx] = hysteretic_variable(np.ascontiguousarray(features.displacement[idx]),
+                                     float(yield_displacement))
+    return z
+
+
+def contact_temperature_rise(
+    time: np.ndarray,
+    position: np.ndarray,
+    flux: np.ndarray,
+    layout: MonitorLine | CentrePoint,
+    contact_radius: float,
+    thermal: ThermalProperties,
+) -> np.ndarray:
+    """Rise of the contact temperature under a given heat flux history (Eq. 4-6) [degC].
+
+    Parameters
+    ----------
+    time : ndarray
+        Sample times [s].
+    position : ndarray
+        Slider centre on the plate, from the plate centre [m].
+    flux : ndarray
+        Heat flux into the surface over the step ending at each sample [W/m^2], >= 0.
+    layout : MonitorLine or CentrePoint
+        The monitor points (precise or simplified model).
+    contact_radius : float
+        Slider radius [m].
+    thermal : ThermalProperties
+        Conductivity and diffusivity of the plate.
+    """
+    travel = float(np.max(np.abs(position))) + 1e-3
+    heating = SurfaceHeating(layout, contact_radius, travel, thermal,
+                             sum_of_exponentials(1.0e-6, 1.0e4, 1.0e-7))
+    rise = np.zeros(time.size)
+    for k in range(1, time.size):
+        dt = float(time[k] - time[k - 1])
+        base, newest, heated = heating.trial(float(position[k]), dt)
+        rise[k] = base + newest * flux[k] - thermal.initial_temperature
+        heating.commit(dt, heated, float(flux[k]))
+    return rise
+
+
+def measured_temperature_rise(
+    features: Features,
+    campaign: Campaign,
+    layout: MonitorLine | CentrePoint,
+    thermal: ThermalProperties,
+) -> np.ndarray:
+    """Contact-temperature rise of every test from its measured friction power [degC].
+
+    The heat flux into each of the two sliding surfaces is the measured friction force (the
+    force less the pendulum force) times the velocity, over the contact area, halved; only
+    dissipated power heats (negative power is set to zero). Each test starts cold: the plates
+    are taken to cool to the initial temperature between tests. A test with a measured
+    ``temperature`` that changes by more than 1 degC uses that rise instead.
+    """
+    rise = np.zeros(len(features))
+    power = np.maximum((features.force - features.pendulum) * features.velocity, 0.0)
+    flux = power / (campaign.contact_area * SURFACES)
+    for k, rec in enumerate(campaign.tests):
+        idx = features.test == k
+        if rec.temperature is not None and np.ptp(rec.temperature) > 1.0:
+            rise[idx] = rec.temperature - rec.temperature[0]
+            continue
+        rise[idx] = contact_temperature_rise(rec.time, rec.displacement / SURFACES, flux[idx],
+                                             layout, campaign.contact_radius, thermal)
+    return rise
+
+
+def with_baseline(features: Features, **values: np.ndarray) -> Features:
+    """A copy with the baseline's arrays (z, pendulum, mu_base, the rises) set."""
+    return replace(features, **values)

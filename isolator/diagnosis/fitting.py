@@ -1,0 +1,242 @@
+"""Fitting a baseline extended by candidate effects, on training data, judged on held-out data.
+
+A :class:`Model` is the calibrated baseline with a set of effects; its parameter vector is the
+baseline's scale c followed by each effect's parameters. :func:`fit` is a bounded
+Levenberg-Marquardt fit (:mod:`isolator.diagnosis.solver`) of the force residual, each sample
+weighted by
+``Features.weight`` (noise and model error, :mod:`isolator.diagnosis.selection`: the samples
+right after a reversal carry the displacement noise through the return map and count less
+while the model is nearly right).
+:class:`HoldOut` holds the folds: leave-one-test-out when the campaign has at least three
+tests (in at most six groups of tests), else alternate cycles (odd cycles against even cycles
+of every test). :meth:`HoldOut.predict` gives every sample's force as predicted by the fit
+that did not see it, so errors of any kind (RMS, per cycle) are measured on held-out data
+only.
+
+Standard errors come from the Jacobian at the fit on all data, (J^T J)^-1 s^2, inflated for
+the serial correlation of the residual by sqrt((1 + rho) / (1 - rho)), rho its lag-one
+autocorrelation (an AR(1) residual carries fewer independent samples than it has).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from isolator.diagnosis.effects import Context, Effect
+from isolator.diagnosis.features import Features
+from isolator.diagnosis.solver import levenberg_marquardt
+
+SCALE_BOUNDS = (0.02, 50.0)  # the baseline's scale c may change mu by this much at most
+_MIN_TESTS_FOR_TEST_HOLDOUT = 3
+MAX_FOLDS = 6  # more tests than this are held out in groups (test k in fold k mod 6)
+MAX_FIT_SAMPLES = 20000  # longer training sets are thinned to every k-th sample for the fit
+
+
+@dataclass(frozen=True)
+class Model:
+    """The calibrated baseline times the factors of ``effects`` plus their extra forces."""
+
+    effects: tuple[Effect, ...] = ()
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Names of the effects."""
+        return tuple(e.name for e in self.effects)
+
+    @property
+    def label(self) -> str:
+        """``"baseline"`` or the effects joined with ``+``."""
+        return "+".join(self.names) or "baseline"
+
+    @property
+    def size(self) -> int:
+        """Number of fitted parameters, the baseline's scale included."""
+        return 1 + sum(len(e.parameters) for e in self.effects)
+
+    def slices(self) -> list[slice]:
+        """Where each effect's parameters sit in the parameter vector."""
+        out, start = [], 1
+        for e in self.effects:
+            out.append(slice(start, start + len(e.parameters)))
+            start += len(e.parameters)
+        return out
+
+    def initial(self) -> np.ndarray:
+        """Start values."""
+        return np.array([1.0, *(p.initial for e in self.effects for p in e.parameters)])
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Lower and upper bounds."""
+        low = [SCALE_BOUNDS[0], *(p.low for e in self.effects for p in e.parameters)]
+        high = [SCALE_BOUNDS[1], *(p.high for e in self.effects for p in e.parameters)]
+        return np.array(low), np.array(high)
+
+    def force(self, theta: np.ndarray, f: Features, context: Context) -> np.ndarray:
+        """Predicted force at every sample of ``f`` [N]."""
+        mu = theta[0] * f.mu_base
+        extra = 0.0
+        for effect, part in zip(self.effects, self.slices(), strict=True):
+            if effect.factor is not None:
+                mu = mu * effect.factor(theta[part], f, context)
+            if effect.extra is not None:
+                extra = extra + effect.extra(theta[part], f, context)
+        return f.pendulum + mu * f.axial_force * f.z + extra
+
+
+@dataclass(frozen=True)
+class Fit:
+    """A least-squares fit.
+
+    Attributes
+    ----------
+    theta : ndarray
+        Parameters on their fitting scale.
+    stderr : ndarray
+        Their standard errors (see the module docstring); NaN where not identifiable.
+    sse : float
+        Weighted sum of squared force residuals on the training samples [-].
+    samples : int
+        Training samples.
+    """
+
+    theta: np.ndarray
+    stderr: np.ndarray
+    sse: float
+    samples: int
+
+
+def _clip_start(theta: np.ndarray, model: Model) -> np.ndarray:
+    low, high = model.bounds()
+    span = high - low
+    return np.clip(theta, low + 1e-6 * span, high - 1e-6 * span)
+
+
+def fit(
+    model: Model,
+    f: Features,
+    context: Context,
+    starts: Sequence[np.ndarray] | None = None,
+    *,
+    uncertainty: bool = False,
+) -> Fit:
+    """Least-squares fit of ``model`` to the samples ``f`` (best of the ``starts``).
+
+    A training set longer than ``MAX_FIT_SAMPLES`` is thinned to every k-th sample (a
+    campaign sampled at hundreds of hertz has far more samples per cycle than its few
+    parameters need); predictions and errors always use every sample.
+    """
+    stride = -(-len(f) // MAX_FIT_SAMPLES)
+    if stride > 1:
+        f = f.take(np.arange(0, len(f), stride))
+    weight = np.sqrt(f.weight)
+    low, high = model.bounds()
+
+    def residual(theta: np.ndarray) -> np.ndarray:
+        return (model.force(theta, f, context) - f.force) * weight
+
+    best = None
+    for start in starts or [model.initial()]:
+        result = levenberg_marquardt(residual, _clip_start(np.asarray(start, float), model),
+                                     low, high)
+        if best is None or result.cost < best.cost:
+            best = result
+    stderr = np.full(model.size, np.nan)
+    if uncertainty:
+        stderr = _standard_errors(best.jacobian, best.residual, f)
+    return Fit(best.x, stderr, best.cost, len(f))
+
+
+def _standard_errors(jac: np.ndarray, res: np.ndarray, f: Features) -> np.ndarray:
+    n, p = jac.shape
+    if n <= p:
+        return np.full(p, np.nan)
+    variance = float(np.einsum("i,i->", res, res)) / (n - p)
+    covariance = np.linalg.pinv(np.einsum("ij,ik->jk", jac, jac)) * variance
+    same_test = f.test[1:] == f.test[:-1]
+    a, b = res[1:][same_test], res[:-1][same_test]
+    if a.size > 2:
+        rho = float(np.einsum("i,i->", a, b)
+                    / np.sqrt(np.einsum("i,i->", a, a) * np.einsum("i,i->", b, b)))
+    else:
+        rho = 0.0
+    rho = min(max(rho, 0.0), 0.99)
+    inflation = np.sqrt((1.0 + rho) / (1.0 - rho))
+    return np.sqrt(np.maximum(np.diag(covariance), 0.0)) * inflation
+
+
+def multistart(model: Model) -> list[np.ndarray]:
+    """Start values: the initial guess and, for each log parameter, both ends of its range."""
+    starts = [model.initial()]
+    position = 1
+    for effect in model.effects:
+        for parameter in effect.parameters:
+            if parameter.log:
+                for frac in (0.2, 0.8):
+                    start = model.initial()
+                    start[position] = parameter.low + frac * (parameter.high - parameter.low)
+                    starts.append(start)
+            position += 1
+    return starts
+
+
+@dataclass(frozen=True)
+class HoldOut:
+    """The folds of a campaign and their features.
+
+    Attributes
+    ----------
+    scheme : str
+        ``"leave-one-test-out"``, ``"tests held out in N groups"`` or
+        ``"alternate cycles"``.
+    folds : tuple of (ndarray, ndarray)
+        (training indices, held-out indices) of each fold.
+    training : tuple of Features
+        The training features of each fold.
+    held_out : tuple of Features
+        The held-out features of each fold.
+    """
+
+    scheme: str
+    folds: tuple[tuple[np.ndarray, np.ndarray], ...]
+    training: tuple[Features, ...]
+    held_out: tuple[Features, ...]
+
+    @classmethod
+    def of(cls, features: Features) -> HoldOut:
+        """Leave-one-test-out with three or more tests, else alternate cycles.
+
+        With more than ``MAX_FOLDS`` tests, the tests are held out in ``MAX_FOLDS`` groups
+        (test k, in the order run, in group k mod ``MAX_FOLDS``): still whole tests held out,
+        at a bounded cost.
+        """
+        tests = np.unique(features.test)
+        if tests.size >= _MIN_TESTS_FOR_TEST_HOLDOUT:
+            groups = min(tests.size, MAX_FOLDS)
+            scheme = ("leave-one-test-out" if groups == tests.size
+                      else f"tests held out in {groups} groups")
+            masks = [features.test % groups == g for g in range(groups)]
+        else:
+            scheme = "alternate cycles"
+            masks = [features.cycle % 2 == parity for parity in (1, 0)]
+        if any(not m.any() or m.all() for m in masks):
+            raise ValueError("The campaign needs at least two cycles (or three tests) so that "
+                             "part of it can be held out.")
+        folds = tuple((np.flatnonzero(~m), np.flatnonzero(m)) for m in masks)
+        return cls(scheme, folds, tuple(features.take(tr) for tr, _ in folds),
+                   tuple(features.take(te) for _, te in folds))
+
+    def predict(self, model: Model, context: Context,
+                start: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
+        """Held-out force of every sample [N] and the parameters of each fold."""
+        n = sum(te.size for _, te in self.folds)
+        prediction = np.empty(n)
+        thetas = []
+        for (_, te), train, held in zip(self.folds, self.training, self.held_out, strict=True):
+            starts = [start] if start is not None else multistart(model)
+            result = fit(model, train, context, starts)
+            prediction[te] = model.force(result.theta, held, context)
+            thetas.append(result.theta)
+        return prediction, thetas

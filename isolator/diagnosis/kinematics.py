@@ -1,0 +1,138 @@
+"""What an imposed displacement history alone decides: return-map variable, reversals, travel.
+
+For a displacement-driven bearing the hysteretic variable z of the elastic-plastic return map
+depends only on u(t) and the yield displacement u_y (never on mu), so the force of any friction
+model is F = N u / R_eff + mu(t) N z(t) and a friction model is a modulation of mu(t). This
+module computes z, the reversals (turning points, found with a noise threshold so that sensor
+noise does not make reversals), the travel since the last reversal, the accumulated travel,
+and the noise level of a signal, all as pure functions on arrays.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from isolator.kernels import jit
+
+_MAD_TO_STD = 1.4826  # standard deviation of a normal variable over its median |deviation|
+_DIFFERENCE_VARIANCE = {1: 2.0, 2: 6.0, 3: 20.0, 4: 70.0}  # var(k-th difference) / var(noise)
+
+
+@jit
+def hysteretic_variable(displacement, yield_displacement):
+    """z of the return map, z_i = clip(z_(i-1) + (u_i - u_(i-1)) / u_y, -1, 1), z_0 = 0 [-].
+
+    The same update as :class:`isolator.bearing.BearingElement` (which starts at u = 0).
+    """
+    n = displacement.size
+    z = np.empty(n)
+    zi = 0.0
+    z[0] = 0.0
+    for i in range(1, n):
+        zi += (displacement[i] - displacement[i - 1]) / yield_displacement
+        if zi > 1.0:
+            zi = 1.0
+        elif zi < -1.0:
+            zi = -1.0
+        z[i] = zi
+    return z
+
+
+@jit
+def _turning_points(u, threshold):
+    n = u.size
+    turns = np.empty(n, dtype=np.int64)
+    turns[0] = 0
+    count = 1
+    hi = 0
+    lo = 0
+    direction = 0
+    for i in range(1, n):
+        if u[i] > u[hi]:
+            hi = i
+        if u[i] < u[lo]:
+            lo = i
+        if direction == 0:
+            if u[i] - u[0] > threshold:
+                direction = 1
+                lo = i
+            elif u[0] - u[i] > threshold:
+                direction = -1
+                hi = i
+        elif direction == 1:
+            if u[hi] - u[i] > threshold:
+                turns[count] = hi
+                count += 1
+                direction = -1
+                lo = hi
+                for j in range(hi, i + 1):
+                    if u[j] < u[lo]:
+                        lo = j
+                hi = i
+        else:
+            if u[i] - u[lo] > threshold:
+                turns[count] = lo
+                count += 1
+                direction = 1
+                hi = lo
+                for j in range(lo, i + 1):
+                    if u[j] > u[hi]:
+                        hi = j
+                lo = i
+    return turns[:count]
+
+
+def turning_points(displacement: np.ndarray, threshold: float) -> np.ndarray:
+    """Indices where the motion reverses, the start (index 0) included.
+
+    A reversal is confirmed once the displacement has come back by more than ``threshold``
+    [m] from its extreme since the last reversal; the reversal lies at that extreme.
+
+    Parameters
+    ----------
+    displacement : ndarray
+        Displacement history [m].
+    threshold : float
+        Smallest return that makes a reversal [m], > 0: a few times the displacement noise.
+    """
+    return _turning_points(np.ascontiguousarray(displacement, dtype=float), float(threshold))
+
+
+def reversal_travel(
+    displacement: np.ndarray, turns: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Travel since the last reversal, accumulated travel and half-cycle number per sample.
+
+    Travel is measured between turning points, so sensor noise does not accumulate.
+
+    Returns
+    -------
+    since_reversal : ndarray
+        |u - u(last reversal)| [m]; the start counts as a reversal (motion from rest).
+    accumulated : ndarray
+        Total travel from the start [m].
+    half_cycle : ndarray of int
+        Number of reversals before the sample (0 before the first one).
+    """
+    u = np.asarray(displacement, dtype=float)
+    segment = np.searchsorted(turns, np.arange(u.size), side="right") - 1
+    anchor = u[turns][segment]
+    since = np.abs(u - anchor)
+    legs = np.abs(np.diff(u[turns]))
+    before = np.concatenate([[0.0], np.cumsum(legs)])
+    return since, before[segment] + since, segment.astype(np.int64)
+
+
+def noise_std(signal: np.ndarray, order: int = 3) -> float:
+    """Standard deviation of white noise on a smooth signal [units of the signal].
+
+    From the median absolute ``order``-th difference: a smooth signal hardly contributes to
+    a high-order difference, white noise contributes C(2k, k) times its variance, and the
+    median ignores the few kinks (reversals) of a hysteresis loop.
+    """
+    x = np.asarray(signal, dtype=float)
+    if x.size <= order + 2:
+        return 0.0
+    d = np.diff(x, n=order)
+    mad = float(np.median(np.abs(d - np.median(d))))
+    return _MAD_TO_STD * mad / float(np.sqrt(_DIFFERENCE_VARIANCE[order]))

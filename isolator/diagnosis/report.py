@@ -1,0 +1,250 @@
+"""A readable report of a diagnosis: a markdown summary, the JSON summary and plots.
+
+:func:`write_report` writes to a folder:
+
+``summary.md``
+    the data, the calibrated baseline, the gap and where it lies, every candidate with its
+    held-out gap, shrink and role, the verdict, the gap before and after (force NRMSE and
+    per-cycle EDC and Keff errors) with the fitted parameters and their standard errors, and
+    what is left unexplained;
+``diagnosis.json``
+    the summary of :meth:`isolator.diagnosis.Diagnosis.to_json`;
+``loops.png``, ``residual_breakdown.png``, ``candidates.png``, ``cycle_errors.png``,
+``residual_history.png``
+    measured against held-out predicted loops, the residual by band, the candidates' held-out
+    gaps, the per-cycle errors and the residual over time.
+
+matplotlib is imported inside the plotting functions only.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from isolator.diagnosis.summary import effect_parameters
+from isolator.diagnosis.where import DIMENSIONS
+
+if TYPE_CHECKING:
+    from isolator.diagnosis.pipeline import Diagnosis
+
+_MAX_LOOPS = 9
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def write_report(diagnosis: Diagnosis, folder: str | Path) -> list[Path]:
+    """Write the summary, the JSON and the plots of ``diagnosis`` to ``folder``.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    summary = diagnosis.to_json()
+    written = [folder / "diagnosis.json"]
+    written[0].write_text(json.dumps(summary, indent=2))
+    written += [_loops(diagnosis, folder / "loops.png"),
+                _breakdown(diagnosis, folder / "residual_breakdown.png"),
+                _candidates(diagnosis, summary, folder / "candidates.png"),
+                _cycle_errors(diagnosis, folder / "cycle_errors.png"),
+                _history(diagnosis, folder / "residual_history.png")]
+    md = folder / "summary.md"
+    md.write_text(markdown(diagnosis, summary, [p.name for p in written[1:]]))
+    return [md, *written]
+
+
+def _predictions(d: Diagnosis) -> dict[str, np.ndarray]:
+    out = {f"baseline ({d.baseline.spec.label})": d.selection.baseline.prediction}
+    if d.selection.chosen is not None:
+        out["with " + " + ".join(d.selection.chosen.model.names)] = d.selection.chosen.prediction
+    return out
+
+
+def _loops(d: Diagnosis, path: Path) -> Path:
+    plt = _pyplot()
+    f = d.work.features
+    tests = d.campaign.tests[:_MAX_LOOPS]
+    cols = min(3, len(tests))
+    rows = -(-len(tests) // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(4.6 * cols, 3.6 * rows), squeeze=False,
+                             constrained_layout=True)
+    for k, (ax, rec) in enumerate(zip(axes.flat, tests, strict=False)):
+        idx = f.test == k
+        ax.plot(1e3 * f.displacement[idx], 1e-3 * f.force[idx], lw=0.6, color="black",
+                label="measured")
+        for (label, pred), colour in zip(_predictions(d).items(), ("tab:blue", "tab:red"),
+                                         strict=False):
+            ax.plot(1e3 * f.displacement[idx], 1e-3 * pred[idx], lw=0.7, color=colour,
+                    label=label + " (held out)")
+        ax.set_title(rec.name, fontsize=8)
+        ax.set_xlabel("displacement [mm]")
+        ax.set_ylabel("force [kN]")
+        ax.grid(alpha=0.3)
+    for ax in axes.flat[len(tests):]:
+        ax.set_visible(False)
+    axes.flat[0].legend(fontsize=7)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _breakdown(d: Diagnosis, path: Path) -> Path:
+    plt = _pyplot()
+    dims = [dim for dim in DIMENSIONS if len(d.where.breakdowns.get(dim, [])) > 1]
+    fig, axes = plt.subplots(len(dims), 1, figsize=(9, 2.2 * len(dims)), squeeze=False,
+                             constrained_layout=True)
+    for ax, dim in zip(axes[:, 0], dims, strict=True):
+        bands = d.where.breakdowns[dim]
+        x = np.arange(len(bands))
+        ax.bar(x - 0.2, [100 * b.energy_share for b in bands], 0.4, label="residual energy")
+        ax.bar(x + 0.2, [100 * b.sample_share for b in bands], 0.4, label="samples",
+               color="tab:gray")
+        ax.set_xticks(x, [b.label for b in bands], fontsize=7, rotation=15)
+        ax.set_ylabel(f"by {dim} [%]", fontsize=8)
+        ax.grid(alpha=0.3, axis="y")
+    axes[0, 0].legend(fontsize=7)
+    axes[0, 0].set_title(d.where.statement, fontsize=8)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _candidates(d: Diagnosis, summary: dict, path: Path) -> Path:
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(8, 3.6), constrained_layout=True)
+    rows = [e for e in summary["effects"] if "gap_after" in e]
+    names = [e["name"] for e in rows]
+    colours = ["tab:red" if e["role"].startswith("selected") else
+               "tab:orange" if e.get("earns_keep") else "tab:gray" for e in rows]
+    ax.bar(names, [e["gap_after"] for e in rows], color=colours)
+    ax.axhline(summary["gap"]["value"], color="tab:blue", lw=1.2, label="baseline")
+    ax.axhline(summary["gap"]["noise"], color="black", ls="--", lw=1.0, label="noise")
+    if summary["chosen"]:
+        ax.axhline(summary["chosen"]["gap_after"], color="tab:red", ls=":", lw=1.2,
+                   label="chosen: " + " + ".join(summary["chosen"]["names"]))
+    ax.set_ylabel("held-out force NRMSE [-]")
+    ax.set_title("verdict: " + ", ".join(summary["verdict"]), fontsize=9)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3, axis="y")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _cycle_errors(d: Diagnosis, path: Path) -> Path:
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.4), constrained_layout=True)
+    sets = [("baseline", d.cycles_before)]
+    if d.cycles_after is not None:
+        sets.append(("with " + " + ".join(d.selection.chosen.model.names), d.cycles_after))
+    for ax, quantity in zip(axes, ("EDC", "Keff"), strict=True):
+        for label, errors in sets:
+            values = [100 * r[f"{quantity}_error"] for r in errors.rows]
+            ax.plot(np.arange(1, len(values) + 1), values, "o-", ms=3, lw=0.8, label=label)
+        ax.axhline(0.0, color="black", lw=0.6)
+        ax.set_xlabel("cycle (all tests in order)")
+        ax.set_ylabel(f"{quantity} error, held out [%]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _history(d: Diagnosis, path: Path) -> Path:
+    plt = _pyplot()
+    f = d.work.features
+    fig, ax = plt.subplots(figsize=(11, 3.4), constrained_layout=True)
+    sample = np.arange(len(f))
+    for label, pred in _predictions(d).items():
+        ax.plot(sample, 1e-3 * (f.force - pred), lw=0.4, label=label)
+    for k in range(1, len(d.campaign.tests)):
+        ax.axvline(int(np.argmax(f.test == k)), color="gray", lw=0.5)
+    ax.set_xlabel("sample (tests one after the other)")
+    ax.set_ylabel("measured - predicted [kN]")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _value(value: float, stderr: float | None, unit: str) -> str:
+    unit = "" if unit == "-" else f" {unit}"
+    if stderr is None or not np.isfinite(stderr) or stderr == 0.0:
+        return f"{value:.4g}{unit}"
+    return f"{value:.4g} ± {stderr:.2g}{unit}"
+
+
+def markdown(d: Diagnosis, summary: dict, figures: list[str]) -> str:
+    """The markdown summary (see the module docstring)."""
+    gap = summary["gap"]
+    lines = [
+        "# Sim-to-real gap diagnosis", "",
+        f"**Verdict: {', '.join(summary['verdict'])}**", "",
+        "## Data and baseline", "",
+        f"- {summary['tests']} test(s), {summary['samples']} samples; effective radius "
+        f"{d.campaign.effective_radius:g} m, slider diameter {d.campaign.slider_diameter:g} m.",
+        f"- Baseline: `{summary['baseline']['model']}`, calibrated on all data: "
+        + ", ".join(f"{k} = {v:.4g}" for k, v in summary["baseline"]["parameters"].items())
+        + ".",
+        f"- Held out: {gap['holdout']}. Every error below is on held-out data.", "",
+        "## The gap and where it lies", "",
+        f"- Force NRMSE of the calibrated baseline: **{gap['value']:.4f}** "
+        f"(measurement noise alone: {gap['noise']:.4f}).",
+    ]
+    cycles = gap.get("cycles") or {}
+    if cycles.get("cycles"):
+        lines.append("- Per-cycle RMS relative errors over " f"{cycles['cycles']} cycles: "
+                     + ", ".join(f"{q} {100 * cycles[f'{q}_rms_error']:.1f} %"
+                                 for q in ("EDC", "Keff", "beta_eff", "Fmax", "Fmin")
+                                 if cycles.get(f"{q}_rms_error") is not None) + ".")
+    lines += [f"- {summary['where']['statement']}", "", "## Candidate effects (best first)", "",
+              "| effect | held-out NRMSE | shrink | z | closes | role | parameters |",
+              "| --- | --- | --- | --- | --- | --- | --- |"]
+    for e in summary["effects"]:
+        if "gap_after" not in e:
+            lines.append(f"| {e['name']} | - | - | - | - | {e['role']} | |")
+            continue
+        params = "; ".join(f"{k} = {_value(v, e['stderr'][k], e['units'][k])}"
+                           for k, v in e["parameters"].items())
+        lines.append(f"| {e['name']} | {e['gap_after']:.4f} | {100 * e['shrink']:.0f} % | "
+                     f"{e['held_out_z']:.1f} | {100 * e['explained_excess']:.0f} % | "
+                     f"{e['role']} | {params} |")
+    chosen = summary["chosen"]
+    if chosen is not None and summary["verdict"] != ["unexplained"]:
+        lines += ["", "## How far it shrinks", "",
+                  f"With {' + '.join(chosen['names'])}: force NRMSE {chosen['gap_before']:.4f}"
+                  f" -> **{chosen['gap_after']:.4f}** (shrink {100 * chosen['shrink']:.0f} %);"
+                  f" it closes {100 * chosen['explained_excess']:.0f} % of the gap above the "
+                  "noise."]
+        for q in ("EDC", "Keff"):
+            a, b = chosen[f"{q}_rms_error_before"], chosen[f"{q}_rms_error_after"]
+            if a is not None and b is not None:
+                lines.append(f"- {q} per-cycle RMS error: {100 * a:.1f} % -> {100 * b:.1f} %.")
+        lines += ["", "Fitted parameters (standard errors from the Jacobian, inflated for "
+                  "serial correlation):", ""]
+        for effect, params in effect_parameters(d, d.selection.chosen).items():
+            lines.append(f"- {effect}: " + "; ".join(
+                f"{k} = {_value(*v)}" for k, v in params.items()))
+    if summary["unexplained"]:
+        lines += ["", "## What remains unexplained", "",
+                  f"- {summary['unexplained']['statement']}"]
+        lines += [f"- It looks like {text}." for text in summary["unexplained"]["looks_like"]]
+    if summary["excluded"]:
+        lines += ["", f"Effects withheld from the library: {', '.join(summary['excluded'])}."]
+    lines += ["", "## Figures", ""] + [f"![{name}]({name})" for name in figures]
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,134 @@
+"""The diagnosis as plain JSON types: the documented summary of ``dcfpb diagnose --json``.
+
+Keys: ``baseline`` (model and calibrated parameters), ``gap`` (``metric`` = "force_nrmse",
+``value`` on held-out data, the noise on the same scale, the hold-out scheme and the per-cycle
+characteristic errors), ``where`` (the statement and the breakdowns), ``effects`` (every
+candidate, best first, with ``gap_after``, ``shrink`` = 1 - after / before, ``parameters``,
+their ``stderr`` and ``units``, and its ``role``), ``chosen`` (the combination named in the
+verdict, with the gap and the per-cycle EDC and Keff errors before and after), ``verdict`` and
+``unexplained`` (where a real gap remains and what it looks like).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from isolator.diagnosis.effects import physical_parameters
+from isolator.diagnosis.where import QUANTITIES, CycleErrors, Where
+
+if TYPE_CHECKING:
+    from isolator.diagnosis.pipeline import Diagnosis
+    from isolator.diagnosis.selection import Assessment
+
+
+def _number(x: float) -> float | None:
+    return None if x is None or not math.isfinite(x) else float(x)
+
+
+def _where(where: Where) -> dict:
+    return {
+        "statement": where.statement,
+        "energy_share": where.energy_share,
+        "sample_share": where.sample_share,
+        "focus": [{"by": dim, "bands": label} for dim, label in where.focus],
+        "near_reversal": where.near_reversal,
+        "breakdowns": {dim: [{"band": b.label, "energy_share": b.energy_share,
+                              "sample_share": b.sample_share, "rms": b.rms, "bias": b.bias}
+                             for b in bands] for dim, bands in where.breakdowns.items()},
+    }
+
+
+def _cycles(errors: CycleErrors | None) -> dict | None:
+    if errors is None:
+        return None
+    return {"cycles": len(errors.rows),
+            **{f"{q}_rms_error": _number(errors.rms(q)) for q in QUANTITIES}}
+
+
+def effect_parameters(d: Diagnosis, assessment: Assessment) -> dict[str, dict]:
+    """``{effect: {parameter: (value, stderr, unit)}}`` of a fitted model, the scale first."""
+    fit = assessment.fit
+    out: dict[str, dict] = {"baseline_scale": {"scale": (float(fit.theta[0]),
+                                                         float(fit.stderr[0]), "-")}}
+    for effect, part in zip(assessment.model.effects, assessment.model.slices(), strict=True):
+        out[effect.name] = physical_parameters(effect, fit.theta[part], fit.stderr[part],
+                                               d.work.context)
+    return out
+
+
+def _role(d: Diagnosis, name: str, assessment: Assessment) -> str:
+    sel = d.selection
+    if assessment.untestable is not None:
+        return f"untestable: {assessment.untestable}"
+    in_chosen = sel.chosen is not None and name in sel.chosen.model.names
+    if in_chosen and name in sel.verdict:
+        if assessment.earns_keep or len(sel.chosen.model.names) == 1:
+            return "selected"
+        others = " + ".join(n for n in sel.chosen.model.names if n != name)
+        return f"selected together with {others} (alone it does not earn its keep)"
+    if in_chosen or (assessment.earns_keep and sel.verdict == ["unexplained"]):
+        return "partial stand-in: earns a little but leaves a real gap"
+    if assessment.earns_keep:
+        return "earns its keep alone, adds too little to the chosen effects"
+    return "does not earn its keep on held-out data"
+
+
+def summary(d: Diagnosis) -> dict:
+    """The JSON summary of a diagnosis (see the module docstring)."""
+    before = d.gap_before
+    sel = d.selection
+    effects = []
+    for name in sel.ranking:
+        a = sel.candidates[name]
+        entry: dict = {"name": name, "description": a.model.effects[0].description,
+                       "role": _role(d, name, a)}
+        if a.untestable is None:
+            after = d.work.nrmse(a.prediction)
+            params = effect_parameters(d, a)[name]
+            entry.update({
+                "gap_after": after, "shrink": 1.0 - after / before if before else 0.0,
+                "parameters": {k: v[0] for k, v in params.items()},
+                "stderr": {k: _number(v[1]) for k, v in params.items()},
+                "units": {k: v[2] for k, v in params.items()},
+                "held_out_z": _number(a.z_score), "explained_excess": _number(a.explained),
+                "earns_keep": bool(a.earns_keep),
+            })
+        effects.append(entry)
+    chosen = None
+    if sel.chosen is not None:
+        after = d.gap_after
+        params = effect_parameters(d, sel.chosen)
+        chosen = {
+            "names": list(sel.chosen.model.names), "gap_before": before, "gap_after": after,
+            "shrink": 1.0 - after / before if before else 0.0,
+            "explained_excess": _number(sel.explained),
+            "EDC_rms_error_before": _number(d.cycles_before.rms("EDC")),
+            "EDC_rms_error_after": _number(d.cycles_after.rms("EDC")),
+            "Keff_rms_error_before": _number(d.cycles_before.rms("Keff")),
+            "Keff_rms_error_after": _number(d.cycles_after.rms("Keff")),
+            "parameters": {e: {k: v[0] for k, v in p.items()} for e, p in params.items()},
+            "stderr": {e: {k: _number(v[1]) for k, v in p.items()} for e, p in params.items()},
+        }
+    unexplained = None
+    if sel.real_gap_remains and d.remaining is not None:
+        unexplained = {"statement": d.remaining.statement, "looks_like": d.looks_like}
+    f = d.work.features
+    return {
+        "baseline": {"model": d.baseline.spec.label, "parameters": d.baseline.parameters,
+                     "runs": d.baseline.iterations},
+        "gap": {"metric": "force_nrmse", "value": before, "noise": d.noise_nrmse,
+                "holdout": d.work.holdout.scheme, "cycles": _cycles(d.cycles_before)},
+        "where": _where(d.where),
+        "effects": effects,
+        "chosen": chosen,
+        "verdict": list(sel.verdict),
+        "unexplained": unexplained,
+        "excluded": list(d.excluded),
+        "tests": len(d.campaign.tests),
+        "samples": int(f.force.size),
+        "force_rms": float(np.sqrt(np.mean(f.force**2))),
+        "wall_time": d.wall_time,
+    }

@@ -1,0 +1,78 @@
+"""From a building response to the bearing-level histories the diagnosis reads.
+
+A shake-table test of an isolated building measures the isolation level: the relative
+displacement of the bearings and the force through them. :func:`bearing_records` takes the
+same from a result of :func:`structures.analysis.run` (an ``xarray.Dataset``): the isolator
+displacement and velocity, the force through one bearing (the isolation-level force over the
+number of bearings) and the bearing's axial load, so that
+:func:`isolator.diagnosis.diagnose` can treat a computed response as a measured one.
+:func:`bearing_campaign` wraps them with the bearing's geometry. ``isolator`` never imports
+this module; the arrow points from ``structures`` down.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from isolator.diagnosis import BearingRecord, Campaign
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+
+def bearing_records(result: xr.Dataset, *, name: str | None = None, per_bearing: bool = True,
+                    velocity: bool = True) -> list[BearingRecord]:
+    """The isolators' histories of a building response, one record per bearing type.
+
+    All bearings of :func:`structures.analysis.run` are identical and share the weight, so
+    one record stands for each of them.
+
+    Parameters
+    ----------
+    result : xarray.Dataset
+        Output of :func:`structures.analysis.run`.
+    name : str, optional
+        Name of the record (default: the record name of the run).
+    per_bearing : bool
+        Divide the isolation-level force by the number of bearings (default), else keep the
+        total force and multiply the axial load by it.
+    velocity : bool
+        Pass the computed isolator velocity as the measured one (default); False leaves the
+        diagnosis to derive it from the displacement.
+
+    Returns
+    -------
+    list of BearingRecord
+    """
+    count = int(result.attrs["n_bearings"])
+    share = count if per_bearing else 1
+    load = float(result.attrs["axial_load_per_bearing"]) * (1 if per_bearing else count)
+    time = np.asarray(result["time"], dtype=float)
+    displacement = np.asarray(result["isolator_displacement"], dtype=float)
+    force = np.asarray(result["isolator_force"], dtype=float) / share
+    v = np.asarray(result["velocity"].isel(floor=0), dtype=float) if velocity else None
+    label = name or str(result.attrs.get("record", "building response"))
+    return [BearingRecord(label, time, displacement, force, np.full(time.size, load), v)]
+
+
+def bearing_campaign(results: Sequence[xr.Dataset], **kwargs: object) -> Campaign:
+    """A campaign of the bearing histories of one or more building responses (in order).
+
+    The effective radius and slider diameter are read from the results' attributes, which
+    must agree. Keyword arguments go to :func:`bearing_records`.
+    """
+    results = list(results)
+    if not results:
+        raise ValueError("bearing_campaign needs at least one building response.")
+    radius = float(results[0].attrs["effective_radius"])
+    diameter = float(results[0].attrs["slider_diameter"])
+    for r in results[1:]:
+        if (float(r.attrs["effective_radius"]), float(r.attrs["slider_diameter"])) != (
+                radius, diameter):
+            raise ValueError("The building responses of one campaign must have the same "
+                             "bearing geometry (effective radius and slider diameter).")
+    records = [rec for r in results for rec in bearing_records(r, **kwargs)]
+    return Campaign(tuple(records), radius, diameter)
