@@ -223,6 +223,9 @@ class CentrePoint:
 HeatingLayout = MonitorLine | CentrePoint
 
 
+_FACTOR_CACHE_SIZE = 16  # distinct step sizes whose factors are kept
+
+
 @jit
 def step_factors(rates, weights, coefficient, dt, step, weighted_decay):
     """Fill ``step`` (2, K) with exp(-s_k dt) and (1 - exp(-s_k dt)) / s_k, and
@@ -273,26 +276,34 @@ class SurfaceHeating:
         self.states = np.zeros((self.points.size, kernel.rates.size))
         self._touched = (self.points.size, 0)  # [lo, hi) of points ever heated
         self.prepared_step = -1.0
+        self._factor_cache: dict[float, tuple[np.ndarray, np.ndarray, float]] = {}
         self._step = np.empty((2, kernel.rates.size))
         self.weighted_decay = np.empty(kernel.rates.size)
         self.newest_coefficient = 0.0
 
     def prepare(self, dt: float) -> None:
-        """Compute the step factors exp(-s_k dt) for the step ``dt`` [s], exactly.
+        """Make the step factors exp(-s_k dt) for the step ``dt`` [s] current, exactly.
 
-        They are recomputed whenever dt changes at all (a compiled kernel, well under a
-        microsecond), so a trial is a pure function of its own dt: steps that differ only by
-        the rounding of t_n - t_(n-1) get their own exact factors.
+        They are computed for each distinct dt (a compiled kernel) and kept for the last
+        few distinct values: a uniform history has only a handful, since t_n - t_(n-1) takes a
+        few rounded values. A trial is thus a pure function of its own dt.
         """
         self.prepared_step = dt
-        if dt < self.kernel.min_lag:
-            raise ValueError(
-                f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
-                f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag."
-            )
-        self.newest_coefficient = step_factors(self.kernel.rates, self.kernel.weights,
-                                               self.coefficient, dt, self._step,
-                                               self.weighted_decay)
+        entry = self._factor_cache.get(dt)
+        if entry is None:
+            if dt < self.kernel.min_lag:
+                raise ValueError(
+                    f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
+                    f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag."
+                )
+            size = self.kernel.rates.size
+            step, weighted = np.empty((2, size)), np.empty(size)
+            newest = step_factors(self.kernel.rates, self.kernel.weights, self.coefficient, dt,
+                                  step, weighted)
+            if len(self._factor_cache) >= _FACTOR_CACHE_SIZE:
+                self._factor_cache.pop(next(iter(self._factor_cache)))  # the oldest entry
+            entry = self._factor_cache[dt] = (step, weighted, newest)
+        self._step, self.weighted_decay, self.newest_coefficient = entry
 
     def window(self, position: float) -> tuple[int, int]:
         """Index range ``[lo, hi)`` of the points within the flux half width of ``position``."""
