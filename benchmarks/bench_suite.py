@@ -51,7 +51,8 @@ def _measure(suite, workers: int) -> tuple[float, float, object]:
         client.run(_warm_up)
         with tempfile.TemporaryDirectory(prefix="bench-suite-") as out:
             start, cpu = time.perf_counter(), time.process_time()
-            result = run_suite(suite, out, scheduler_address=cluster.scheduler_address)
+            result = run_suite(suite, out, scheduler_address=cluster.scheduler_address,
+                               progress=False)
             wall, cpu = time.perf_counter() - start, time.process_time() - cpu
     return wall, cpu, result
 

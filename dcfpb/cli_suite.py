@@ -36,8 +36,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--records", required=True, metavar="DIR_OR_MANIFEST",
                    help="folder of .AT2 files, or a CSV whose first column holds file names "
                    "relative to it")
-    p.add_argument("--target", metavar="SPECTRUM.csv",
-                   help="target spectrum, rows 'period,sa' in [s, g]: each record is scaled "
+    p.add_argument("--target", metavar="SPECTRUM",
+                   help="target spectrum: a CSV of rows 'period,sa' in [s, g], or "
+                   "asce7:S_DS,S_D1,T_L (asce7-mce:... for MCE_R); each record is scaled "
                    "to it (groundmotions.scaling.scale_suite); --scales then multiplies those "
                    "factors")
     p.add_argument("--period-range", metavar="TMIN,TMAX",
@@ -75,10 +76,29 @@ def _floats(text: str, option: str) -> tuple[float, ...]:
 
 
 def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
-    """A target spectrum from a CSV of ``period,sa`` rows: periods [s], Sa [g].
+    """A target spectrum: periods [s], Sa [g].
 
-    Rows that are not two numbers (a header, comments) are skipped; periods must increase.
+    Either a CSV of ``period,sa`` rows (rows that are not two numbers, such as a header or
+    comments, are skipped; periods must increase), or ``asce7:S_DS,S_D1,T_L`` for the ASCE 7-16
+    design spectrum (``asce7-mce:...`` for the MCE_R spectrum, 1.5 times it), S_DS and S_D1 in
+    g and T_L in s.
     """
+    text = str(path)
+    if text.lower().startswith(("asce7:", "asce7-mce:")):
+        from dcfpb.units import STANDARD_GRAVITY
+        from groundmotions.scaling import asce7_design_spectrum
+
+        kind, _, values = text.partition(":")
+        try:
+            s_ds, s_d1, t_l = (float(v) for v in values.split(","))
+        except ValueError as error:
+            raise ValueError(f"--target {text!r}: write asce7:S_DS,S_D1,T_L, e.g. "
+                             "asce7:1.0,0.6,8 (S_DS and S_D1 in g, T_L in s).") from error
+        level = "mce" if kind.lower() == "asce7-mce" else "design"
+        spectrum = asce7_design_spectrum(s_ds, s_d1, t_l, level=level)
+        periods = np.asarray(spectrum.periods, dtype=float)
+        keep = periods > 0
+        return periods[keep], np.asarray(spectrum.sa, dtype=float)[keep] / STANDARD_GRAVITY
     rows = []
     with open(path, newline="", encoding="utf-8") as handle:
         for row in csv.reader(handle):

@@ -148,6 +148,8 @@ def run(
     drift = np.diff(u, axis=1)
     n = building.n_storeys
     time_attrs = {"units": "s"}
+    capacity = bearing.displacement_capacity
+    beyond = np.abs(u[:, 0]) > capacity  # every friction model is held to the capacity
 
     def var(dims, data, units, long_name):
         return dims, np.asarray(data), {"units": units, "long_name": long_name}
@@ -188,8 +190,13 @@ def run(
         "isolated_period": model.isolated_period(),
         "fixed_base_periods": building.fixed_base_modes().periods.tolist(),
         "total_mass": building.total_mass,
-        "success": int(result.success),
-        "message": result.message,
+        "success": int(result.success and not beyond.any()),
+        "message": result.message if not beyond.any() else (
+            f"The isolator displacement reached {np.abs(u[:, 0]).max():.4g} m at t = "
+            f"{result.time[np.argmax(beyond)]:.4g} s, beyond the bearing's displacement_capacity "
+            f"{capacity:g} m: the bearing would hit its restrainer, so the response from then "
+            "on is not physical."),
+        "displacement_capacity": capacity,
         "steps": int(kept - 1),
         "newton_iterations": int(result.iterations.sum()),
         "subdivisions": int(result.subdivisions.sum()),

@@ -77,3 +77,16 @@ def test_isolators_reduce_the_base_shear_against_the_fixed_base_building(config,
     isolated = run(config.building, config.bearing("precise"), motion,
                    n_bearings=config.n_bearings, dt=0.005)
     assert float(np.abs(isolated["base_shear"]).max()) < 0.5 * fixed_shear
+
+
+@pytest.mark.parametrize("model", ["constant", "simplified"])
+def test_displacement_beyond_capacity_is_a_failed_run(config, motion, model):
+    """Every friction model is held to the bearing's displacement capacity (the precise
+    model's monitor line ends there and raises; the others finish but are flagged)."""
+    from dataclasses import replace
+
+    bearing = replace(config.bearing(model), displacement_capacity=0.05)
+    result = run(config.building, bearing, motion, n_bearings=config.n_bearings, dt=0.01)
+    assert result.attrs["success"] == 0
+    assert "displacement_capacity" in result.attrs["message"]
+    assert float(np.abs(result["isolator_displacement"]).max()) > 0.05
