@@ -96,6 +96,10 @@ def summary(d: Diagnosis) -> dict:
                 "held_out_z": _number(a.z_score), "explained_excess": _number(a.explained),
                 "earns_keep": bool(a.earns_keep),
             })
+        else:  # untestable on these data: the same keys, with nothing measured
+            entry.update({"gap_after": None, "shrink": None, "parameters": {}, "stderr": {},
+                          "units": {}, "held_out_z": None, "explained_excess": None,
+                          "earns_keep": False})
         effects.append(entry)
     chosen = None
     if sel.chosen is not None:
