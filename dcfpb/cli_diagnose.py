@@ -83,7 +83,7 @@ def _print(summary: dict) -> None:
     print(f"where: {summary['where']['statement']}")
     print(f"{'effect':11s} {'NRMSE':>8s} {'shrink':>7s} {'z':>6s}  role")
     for e in summary["effects"]:
-        if "gap_after" in e:
+        if e.get("gap_after") is not None:
             print(f"{e['name']:11s} {e['gap_after']:8.4f} {100 * e['shrink']:6.0f}% "
                   f"{e['held_out_z']:6.1f}  {e['role']}")
         else:

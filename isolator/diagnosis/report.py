@@ -125,7 +125,7 @@ def _breakdown(d: Diagnosis, path: Path) -> Path:
 def _candidates(d: Diagnosis, summary: dict, path: Path) -> Path:
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(8, 3.6), constrained_layout=True)
-    rows = [e for e in summary["effects"] if "gap_after" in e]
+    rows = [e for e in summary["effects"] if e.get("gap_after") is not None]
     names = [e["name"] for e in rows]
     colours = ["tab:red" if e["role"].startswith("selected") else
                "tab:orange" if e.get("earns_keep") else "tab:gray" for e in rows]
@@ -216,7 +216,7 @@ def markdown(d: Diagnosis, summary: dict, figures: list[str]) -> str:
               "| effect | held-out NRMSE | shrink | z | closes | role | parameters |",
               "| --- | --- | --- | --- | --- | --- | --- |"]
     for e in summary["effects"]:
-        if "gap_after" not in e:
+        if e.get("gap_after") is None:
             lines.append(f"| {e['name']} | - | - | - | - | {e['role']} | |")
             continue
         params = "; ".join(f"{k} = {_value(v, e['stderr'][k], e['units'][k])}"

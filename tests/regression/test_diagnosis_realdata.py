@@ -44,7 +44,7 @@ def test_a_real_gap_that_no_candidate_closes(summary):
     assert summary["verdict"] == ["unexplained"]
     assert summary["gap"]["value"] > 20.0 * summary["gap"]["noise"]
     for effect in summary["effects"]:
-        if "shrink" in effect:
+        if effect["shrink"] is not None:  # None: untestable on these data
             assert effect["shrink"] < 0.3, effect  # partial stand-ins at best
             assert effect["role"] != "selected"
 
