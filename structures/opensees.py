@@ -257,6 +257,7 @@ def _dataset(native: IsolatedShearBuilding, motion: GroundMotion, ag: np.ndarray
         "axial_load_per_bearing": native.bearing.axial_load_at(0.0),
         "effective_radius": native.bearing.effective_radius,
         "slider_diameter": native.bearing.slider_diameter,
+        "displacement_capacity": native.bearing.displacement_capacity,
         "isolated_period": native.isolated_period(),
         "fixed_base_periods": building.fixed_base_modes().periods.tolist(),
         "total_mass": building.total_mass,
