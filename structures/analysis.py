@@ -13,28 +13,17 @@ hundred times faster), which ``run`` uses whenever it can.
 from __future__ import annotations
 
 import time as _time
-from typing import Any
 
 import numpy as np
 
 from dcfpb.validation import check_real
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
-from isolator.friction import ConstantFriction, PTVFriction
-from structures.energy import energy_balance
 from structures.engine import BEARING_FIELDS, EngineHistory, compiled_history, select_engine
 from structures.integrators import HHT, Newmark, as_method, integrate
 from structures.isolated_building import IsolatedShearBuilding
+from structures.results import response_dataset
 from structures.shear_building import ShearBuilding
-
-
-def friction_name(friction: ConstantFriction | PTVFriction) -> str:
-    """``"constant"``, ``"precise"``, ``"simplified"`` or ``"ptv-no-heating"``."""
-    if isinstance(friction, ConstantFriction):
-        return "constant"
-    if friction.heating is None:
-        return "ptv-no-heating"
-    return "precise" if type(friction.heating).__name__ == "MonitorLine" else "simplified"
 
 
 def _resampled(motion: GroundMotion, dt: float | None) -> tuple[np.ndarray, float]:
@@ -124,7 +113,6 @@ def run(
         ``energy_friction``, ``energy_error`` (time). Attributes describe the model and the
         run, including ``success``, ``message``, ``energy_balance_error`` and ``engine``.
     """
-    import xarray as xr
 
     model = IsolatedShearBuilding(building, bearing, n_bearings)
     acceleration, step = _resampled(motion, dt)
@@ -135,78 +123,21 @@ def run(
     else:
         history = reference_history(model, acceleration, step, method, tolerance=tolerance,
                                     max_subdivisions=max_subdivisions)
-    result, record, restoring = history.result, history.bearing, history.restoring
+    result, record = history.result, history.bearing
     kept = result.time.size
-    ag = acceleration[:kept]
-    u, v = result.displacement, result.velocity
-    energies = energy_balance(u, v, ag, model.mass_matrix, model.damping_matrix,
-                              model.influence, restoring,
-                              model.n_bearings * record["friction_force"])
-    masses = np.diag(model.mass_matrix)
-    inertia = -result.absolute_acceleration * masses  # [N] per floor
-    storey_shear = np.cumsum(inertia[:, :0:-1], axis=1)[:, ::-1]  # sum of floors above
-    drift = np.diff(u, axis=1)
-    n = building.n_storeys
-    time_attrs = {"units": "s"}
-    capacity = bearing.displacement_capacity
-    beyond = np.abs(u[:, 0]) > capacity  # every friction model is held to the capacity
-
-    def var(dims, data, units, long_name):
-        return dims, np.asarray(data), {"units": units, "long_name": long_name}
-
-    data = {
-        "displacement": var(("time", "floor"), u, "m", "displacement relative to the ground"),
-        "velocity": var(("time", "floor"), v, "m/s", "velocity relative to the ground"),
-        "absolute_acceleration": var(("time", "floor"), result.absolute_acceleration, "m/s^2",
-                                     "absolute acceleration"),
-        "storey_drift": var(("time", "storey"), drift, "m", "storey drift"),
-        "storey_shear": var(("time", "storey"), storey_shear, "N",
-                            "storey shear (inertia forces of the floors above)"),
-        "isolator_displacement": var("time", u[:, 0], "m", "isolator displacement"),
-        "isolator_force": var("time", model.n_bearings * record["force"], "N",
-                              "isolator force, all bearings"),
-        "base_shear": var("time", model.n_bearings * record["force"], "N",
-                          "base shear through the isolation level"),
-        "friction_force": var("time", model.n_bearings * record["friction_force"], "N",
-                              "friction part of the isolator force, all bearings"),
-        "mu": var("time", record["mu"], "-", "friction coefficient"),
-        "temperature": var("time", record["temperature"], "degC", "contact temperature"),
-        "heat_flux": var("time", record["heat_flux"], "W/m^2", "heat flux into each surface"),
-        "ground_acceleration": var("time", ag, "m/s^2", "ground acceleration"),
-    }
-    for name in ("input", "kinetic", "damping", "strain", "friction", "error"):
-        data[f"energy_{name}"] = var("time", getattr(energies, name), "J", f"{name} energy")
-    attrs: dict[str, Any] = {
-        "record": motion.name,
-        "record_processing": "; ".join(motion.processing),
-        "dt": step,
-        "integrator": repr(result.method),
-        "friction_model": friction_name(bearing.friction),
-        "friction": repr(bearing.friction),
-        "n_bearings": model.n_bearings,
-        "axial_load_per_bearing": model.bearing.axial_load_at(0.0),
-        "effective_radius": bearing.effective_radius,
-        "slider_diameter": bearing.slider_diameter,
-        "isolated_period": model.isolated_period(),
-        "fixed_base_periods": building.fixed_base_modes().periods.tolist(),
-        "total_mass": building.total_mass,
-        "success": int(result.success and not beyond.any()),
-        "message": result.message if not beyond.any() else (
-            f"The isolator displacement reached {np.abs(u[:, 0]).max():.4g} m at t = "
-            f"{result.time[np.argmax(beyond)]:.4g} s, beyond the bearing's displacement_capacity "
-            f"{capacity:g} m: the bearing would hit its restrainer, so the response from then "
-            "on is not physical."),
-        "displacement_capacity": capacity,
-        "steps": int(kept - 1),
-        "newton_iterations": int(result.iterations.sum()),
-        "subdivisions": int(result.subdivisions.sum()),
-        "wall_time": history.wall_time,
-        "engine": history.engine,
-        "energy_balance_error": energies.relative_error,
-    }
-    coords = {"time": ("time", result.time, time_attrs), "floor": np.arange(n + 1),
-              "storey": np.arange(1, n + 1)}
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    n = model.n_bearings
+    isolator = {"force": n * record["force"], "friction_force": n * record["friction_force"],
+                "mu": record["mu"], "temperature": record["temperature"],
+                "heat_flux": record["heat_flux"]}
+    return response_dataset(
+        model, motion, step, acceleration[:kept], result.displacement, result.velocity,
+        result.absolute_acceleration, isolator, integrator=repr(result.method),
+        success=result.success, message=result.message,
+        attrs={"newton_iterations": int(result.iterations.sum()),
+               "subdivisions": int(result.subdivisions.sum()),
+               "wall_time": history.wall_time, "engine": history.engine},
+        restoring=history.restoring,
+    )
 
 
 def peaks(result) -> dict[str, float]:

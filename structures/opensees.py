@@ -32,19 +32,18 @@ bearing state of :class:`~structures.opensees_model.BearingRecord`).
 from __future__ import annotations
 
 import time as _time
-from typing import Any
 
 import numpy as np
 
 from dcfpb.validation import check_int, check_real
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
-from structures.analysis import _resampled, friction_name
-from structures.energy import energy_balance
+from structures.analysis import _resampled
 from structures.integrators import HHT, METHODS, Newmark
 from structures.isolated_building import IsolatedShearBuilding
 from structures.opensees_model import BearingRecord, build_model, element_kind
 from structures.opensees_runtime import import_opensees
+from structures.results import response_dataset
 from structures.shear_building import ShearBuilding
 
 __all__ = ["opensees_integrator", "run_opensees"]
@@ -171,16 +170,16 @@ def run_opensees(
     finally:
         ops.wipe()
     kept = records.shape[0]
-    return _dataset(native, motion, acceleration[:kept], step, histories, records, method, {
-        "program": f"OpenSees {version} (openseespy)",
-        "element": model.element,
-        "pendulum": pendulum if "FPBearingPTV" not in model.element else "spherical",
-        "success": int(kept == acceleration.size),
-        "message": message,
-        "newton_iterations": counts[0],
-        "subdivisions": counts[1],
-        "wall_time": wall,
-    })
+    u, v, a = histories
+    ag = acceleration[:kept]
+    bearing = {name: records[:, i] for i, name in enumerate(BearingRecord._fields)}
+    return response_dataset(
+        native, motion, step, ag, u, v, a + ag[:, None], bearing, integrator=repr(method),
+        success=kept == acceleration.size, message=message,
+        attrs={"program": f"OpenSees {version} (openseespy)", "element": model.element,
+               "pendulum": pendulum if "FPBearingPTV" not in model.element else "spherical",
+               "newton_iterations": counts[0], "subdivisions": counts[1], "wall_time": wall},
+    )
 
 
 def _integrate(ops, model, step: float, nt: int, max_subdivisions: int):
@@ -203,68 +202,3 @@ def _integrate(ops, model, step: float, nt: int, max_subdivisions: int):
         records.append(model.record(ops))
     table = np.array(records, dtype=float)
     return histories[:, : table.shape[0]], table, counts, message
-
-
-def _dataset(native: IsolatedShearBuilding, motion: GroundMotion, ag: np.ndarray, step: float,
-             histories: np.ndarray, records: np.ndarray, method, extra: dict[str, Any]):
-    """The result in the form of :func:`structures.analysis.run`."""
-    import xarray as xr
-
-    building, n = native.building, native.building.n_storeys
-    u, v, a = histories
-    bearing = {name: records[:, i] for i, name in enumerate(BearingRecord._fields)}
-    restoring = u @ native.superstructure_stiffness.T
-    restoring[:, 0] += bearing["force"]
-    energies = energy_balance(u, v, ag, native.mass_matrix, native.damping_matrix,
-                              native.influence, restoring, bearing["friction_force"])
-    absolute = a + ag[:, None]
-    inertia = -absolute * np.diag(native.mass_matrix)
-    storey_shear = np.cumsum(inertia[:, :0:-1], axis=1)[:, ::-1]
-
-    def var(dims, data, units, long_name):
-        return dims, np.asarray(data), {"units": units, "long_name": long_name}
-
-    data = {
-        "displacement": var(("time", "floor"), u, "m", "displacement relative to the ground"),
-        "velocity": var(("time", "floor"), v, "m/s", "velocity relative to the ground"),
-        "absolute_acceleration": var(("time", "floor"), absolute, "m/s^2",
-                                     "absolute acceleration"),
-        "storey_drift": var(("time", "storey"), np.diff(u, axis=1), "m", "storey drift"),
-        "storey_shear": var(("time", "storey"), storey_shear, "N",
-                            "storey shear (inertia forces of the floors above)"),
-        "isolator_displacement": var("time", u[:, 0], "m", "isolator displacement"),
-        "isolator_force": var("time", bearing["force"], "N", "isolator force, all bearings"),
-        "base_shear": var("time", bearing["force"], "N",
-                          "base shear through the isolation level"),
-        "friction_force": var("time", bearing["friction_force"], "N",
-                              "friction part of the isolator force, all bearings"),
-        "mu": var("time", bearing["mu"], "-", "friction coefficient"),
-        "temperature": var("time", bearing["temperature"], "degC", "contact temperature"),
-        "heat_flux": var("time", bearing["heat_flux"], "W/m^2", "heat flux into the surface"),
-        "axial_load": var("time", bearing["axial_load"], "N", "normal force of one bearing"),
-        "ground_acceleration": var("time", ag, "m/s^2", "ground acceleration"),
-    }
-    for name in ("input", "kinetic", "damping", "strain", "friction", "error"):
-        data[f"energy_{name}"] = var("time", getattr(energies, name), "J", f"{name} energy")
-    attrs: dict[str, Any] = {
-        "record": motion.name,
-        "record_processing": "; ".join(motion.processing),
-        "dt": step,
-        "integrator": repr(method),
-        "friction_model": friction_name(native.bearing.friction),
-        "friction": repr(native.bearing.friction),
-        "n_bearings": native.n_bearings,
-        "axial_load_per_bearing": native.bearing.axial_load_at(0.0),
-        "effective_radius": native.bearing.effective_radius,
-        "slider_diameter": native.bearing.slider_diameter,
-        "displacement_capacity": native.bearing.displacement_capacity,
-        "isolated_period": native.isolated_period(),
-        "fixed_base_periods": building.fixed_base_modes().periods.tolist(),
-        "total_mass": building.total_mass,
-        "steps": int(u.shape[0] - 1),
-        "energy_balance_error": energies.relative_error,
-    } | extra
-    time = step * np.arange(u.shape[0])
-    coords = {"time": ("time", time, {"units": "s"}), "floor": np.arange(n + 1),
-              "storey": np.arange(1, n + 1)}
-    return xr.Dataset(data, coords=coords, attrs=attrs)
