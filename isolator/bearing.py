@@ -199,7 +199,11 @@ class BearingElement:
         t0 = bearing.friction.thermal.initial_temperature if isinstance(
             bearing.friction, PTVFriction) else bearing.friction.initial_temperature
         n0 = bearing.axial_load_at(0.0)
-        self._committed = BearingState(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, t0, 0.0, n0)
+        # at rest: mu at zero speed and the initial temperature (a trial of zero length adds
+        # no heat and leaves nothing to commit)
+        mu0 = self._friction.trial(0.0, 0.0, n0 / bearing.contact_area, 0.0).mu if n0 > 0 else 0.0
+        self._friction.revert()
+        self._committed = BearingState(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, mu0, t0, 0.0, n0)
         self._trial = self._committed
 
     @property

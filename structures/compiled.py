@@ -46,7 +46,9 @@ from isolator.kernels import jit
 from structures.compiled_bearing import (
     BEARING_FIELDS,
     FORCE,
+    INITIAL_MU,
     INITIAL_TEMPERATURE,
+    MU,
     N_BEARINGS,
     NOT_CONVERGED,
     PENDING,
@@ -234,6 +236,7 @@ def integrate_building(mass, damping, stiffness, influence, ground, time, method
     heating = new_heating(rates, weights, states)
     committed = np.zeros(STATE_SIZE)
     committed[TEMPERATURE] = bearing[INITIAL_TEMPERATURE]
+    committed[MU] = bearing[INITIAL_MU]
     trial = committed.copy()
     inverses = np.zeros((max_subdivisions + 1, n, n))
     inverse_steps = np.full(max_subdivisions + 1, -1.0)

@@ -42,7 +42,8 @@ else:  # pragma: no cover
 # Layout of the ``bearing`` parameter array (all floats).
 N_BEARINGS, YIELD_DISPLACEMENT, RESTORING_LAW, EFFECTIVE_RADIUS, AXIAL_LOAD, PRESSURE = range(6)
 FRICTION_MODEL, CONSTANT_MU, INITIAL_TEMPERATURE, SURFACES, MIN_LAG, FLUX_COEFFICIENT = range(6, 12)
-BEARING_PARAMETERS = 12
+INITIAL_MU = 12  # friction coefficient of the element at rest, before the first step
+BEARING_PARAMETERS = 13
 
 # Codes of RESTORING_LAW and FRICTION_MODEL.
 LINEAR, SPHERICAL, FLAT = 0, 1, 2

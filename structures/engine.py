@@ -119,6 +119,7 @@ def _bearing_arrays(model: IsolatedShearBuilding):
     load = bearing.axial_load_at(0.0)
     packed[cb.AXIAL_LOAD] = load
     packed[cb.PRESSURE] = load / bearing.contact_area
+    packed[cb.INITIAL_MU] = model.element.committed.mu  # as the reference element at rest
     ptv = np.zeros(len(PTV_PARAMETERS))
     rates, weights, states, heating = np.ones(1), np.zeros(1), np.zeros((1, 1)), None
     if isinstance(friction, ConstantFriction):
