@@ -84,6 +84,31 @@ class BearingTestResult:
                           attrs={"history": self.name})
 
 
+def imposed_history(
+    time: np.ndarray, displacement: np.ndarray, velocity: np.ndarray | None, owner: str
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Check an imposed history and return it as float arrays ``(t [s], u [m], v [m/s])``.
+
+    Times must be strictly increasing and the arrays of one length; without a velocity, the
+    central-difference derivative of the displacement (``numpy.gradient``) is used. Errors
+    name ``owner``.
+    """
+    t = check_array(time, "time", owner, min_length=2)
+    u = check_array(displacement, "displacement", owner, min_length=2)
+    if u.shape != t.shape:
+        raise ValueError(f"The 'displacement' parameter of {owner} must have the length of "
+                         f"'time' ({t.size}). Got {u.size} instead.")
+    if np.any(np.diff(t) <= 0.0):
+        raise ValueError(f"The 'time' parameter of {owner} must be strictly increasing.")
+    if velocity is None:
+        return t, u, np.gradient(u, t)
+    v = check_array(velocity, "velocity", owner, min_length=2)
+    if v.shape != t.shape:
+        raise ValueError(f"The 'velocity' parameter of {owner} must have the length of "
+                         f"'time' ({t.size}). Got {v.size} instead.")
+    return t, u, v
+
+
 def run_test(
     bearing: DCFPBearing,
     time: np.ndarray,
@@ -113,20 +138,7 @@ def run_test(
     BearingTestResult
     """
     owner = "run_test"
-    t = check_array(time, "time", owner, min_length=2)
-    u = check_array(displacement, "displacement", owner, min_length=2)
-    if u.shape != t.shape:
-        raise ValueError(f"The 'displacement' parameter of {owner} must have the length of "
-                         f"'time' ({t.size}). Got {u.size} instead.")
-    if np.any(np.diff(t) <= 0.0):
-        raise ValueError(f"The 'time' parameter of {owner} must be strictly increasing.")
-    if velocity is None:
-        v = np.gradient(u, t)
-    else:
-        v = check_array(velocity, "velocity", owner, min_length=2)
-        if v.shape != t.shape:
-            raise ValueError(f"The 'velocity' parameter of {owner} must have the length of "
-                             f"'time' ({t.size}). Got {v.size} instead.")
+    t, u, v = imposed_history(time, displacement, velocity, owner)
     capacity = bearing.displacement_capacity
     if np.max(np.abs(u)) > capacity:
         raise ValueError(

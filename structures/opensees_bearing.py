@@ -62,12 +62,12 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.validation import check_array, check_choice
+from dcfpb.validation import check_choice
 from isolator.bearing import AxialLoadHistory, DCFPBearing
 from isolator.factors import KumarFactors
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import CentrePoint
-from isolator.testrig import HISTORY_FIELDS, BearingTestResult, run_test
+from isolator.testrig import HISTORY_FIELDS, BearingTestResult, imposed_history, run_test
 from structures.opensees_runtime import import_opensees
 
 __all__ = [
@@ -320,23 +320,10 @@ def run_opensees_test(
 
 
 def _history(time, displacement, velocity, owner):
-    t = check_array(time, "time", owner, min_length=2)
-    u = check_array(displacement, "displacement", owner, min_length=2)
-    if u.shape != t.shape:
-        raise ValueError(f"The 'displacement' parameter of {owner} must have the length of "
-                         f"'time' ({t.size}). Got {u.size} instead.")
-    if np.any(np.diff(t) <= 0.0):
-        raise ValueError(f"The 'time' parameter of {owner} must be strictly increasing.")
+    t, u, v = imposed_history(time, displacement, velocity, owner)
     if u[0] != 0.0:
         raise ValueError(f"The 'displacement' parameter of {owner} must start at 0 (the "
                          f"element starts at rest). Got {u[0]!r} instead.")
-    if velocity is None:
-        v = np.gradient(u, t)
-    else:
-        v = check_array(velocity, "velocity", owner, min_length=2)
-        if v.shape != t.shape:
-            raise ValueError(f"The 'velocity' parameter of {owner} must have the length of "
-                             f"'time' ({t.size}). Got {v.size} instead.")
     return t, u, v
 
 
