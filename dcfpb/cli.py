@@ -134,7 +134,8 @@ def _run_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(handler=_run_building)
 
 
-def _integrator(config, kind: str | None, alpha: float | None):
+def integrator_from_args(config, kind: str | None, alpha: float | None):
+    """The building file's integrator, or the one ``--integrator``/``--alpha`` ask for."""
     from structures.integrators import HHT, Newmark
 
     if kind is None and alpha is None:
@@ -146,18 +147,35 @@ def _integrator(config, kind: str | None, alpha: float | None):
     return HHT(alpha=-0.05 if alpha is None else alpha)
 
 
-def _run_building(args: argparse.Namespace) -> int:
+def building_run_inputs(args: argparse.Namespace, command: str):
+    """The building file, the integrator and the (scaled) record of a building command.
+
+    Reads ``args.building``, ``args.integrator``, ``args.alpha``, ``args.record`` and
+    ``args.scale``; every value is checked before any work starts.
+
+    Returns
+    -------
+    config : BuildingConfig
+    integrator : Newmark or HHT
+    motion : GroundMotion
+    """
     from dcfpb.validation import check_real
     from groundmotions.readers import read_record
-    from structures.analysis import peaks, run
     from structures.config import load_config
 
-    check_real(args.scale, "scale", "dcfpb run", low=0.0, low_open=True)
+    check_real(args.scale, "scale", command, low=0.0, low_open=True)
     config = load_config(args.building)
-    integrator = _integrator(config, args.integrator, args.alpha)
+    integrator = integrator_from_args(config, args.integrator, args.alpha)
     motion = read_record(args.record)
     if args.scale != 1.0:
         motion = motion.scaled(args.scale)
+    return config, integrator, motion
+
+
+def _run_building(args: argparse.Namespace) -> int:
+    from structures.analysis import peaks, run
+
+    config, integrator, motion = building_run_inputs(args, "dcfpb run")
     model = args.model or config.friction["model"]
     result = run(config.building, config.bearing(model), motion, integrator,
                  n_bearings=config.n_bearings, dt=args.dt or config.dt)
@@ -177,14 +195,15 @@ def _run_building(args: argparse.Namespace) -> int:
             "success": bool(result.attrs["success"]), "message": result.attrs["message"]},
             indent=2))
     else:
-        _print_peaks({model: summary}, f"{config.name} under {motion.name} "
+        print_peaks({model: summary}, f"{config.name} under {motion.name} "
                      f"(scale {args.scale:g}, {integrator!r})")
         if not result.attrs["success"]:
             print(f"warning: the run stopped early: {result.attrs['message']}")
     return 0 if result.attrs["success"] else 1
 
 
-def _print_peaks(rows: dict[str, dict], heading: str) -> None:
+def print_peaks(rows: dict[str, dict], heading: str) -> None:
+    """Print a peaks table, one row per run, under ``heading``."""
     print(heading)
     print(f"{'model':12s} {'isol. disp':>10s} {'base shear':>11s} {'roof acc':>9s} "
           f"{'drift':>7s} {'T max':>7s} {'energy err':>10s} {'wall':>6s}")
@@ -223,7 +242,7 @@ def _run_demo(args: argparse.Namespace) -> int:
         results[model] = run(config.building, config.bearing(model), motion, config.integrator,
                              n_bearings=config.n_bearings, dt=config.dt)
         rows[model] = peaks(results[model])
-    _print_peaks(rows, f"{config.name} under {motion.name} (PGA {motion.pga / 9.80665:.2f} g), "
+    print_peaks(rows, f"{config.name} under {motion.name} (PGA {motion.pga / 9.80665:.2f} g), "
                  f"{config.n_bearings} bearings, R_eff = "
                  f"{config.bearing_geometry['effective_radius']} m, dt = {config.dt} s")
     written = plot_runs(results, args.plot, title=f"{config.name}: {motion.name}")

@@ -86,18 +86,10 @@ def _import_error(command: str, error: ImportError) -> int:
 
 def run_building(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb compare-opensees``; returns the exit status."""
-    from dcfpb.cli import _integrator, _print_peaks
-    from dcfpb.validation import check_real
-    from groundmotions.readers import read_record
-    from structures.config import load_config
+    from dcfpb.cli import building_run_inputs, print_peaks
     from structures.opensees_comparison import comparison_bearing, run_comparison
 
-    check_real(args.scale, "scale", "dcfpb compare-opensees", low=0.0, low_open=True)
-    config = load_config(args.building)
-    integrator = _integrator(config, args.integrator, args.alpha)
-    motion = read_record(args.record)
-    if args.scale != 1.0:
-        motion = motion.scaled(args.scale)
+    config, integrator, motion = building_run_inputs(args, "dcfpb compare-opensees")
     if args.duration is not None:
         motion = motion.truncated(args.duration)
     bearing = comparison_bearing(config, args.model)
@@ -116,7 +108,7 @@ def run_building(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
-        _print_peaks({"ours": summary["ours"], "opensees": summary["opensees"]},
+        print_peaks({"ours": summary["ours"], "opensees": summary["opensees"]},
                      f"{config.name} under {motion.name} (scale {args.scale:g}, "
                      f"{integrator!r}), {args.model} model; OpenSees: "
                      f"{summary['opensees']['element']}")
