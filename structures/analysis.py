@@ -26,7 +26,7 @@ from structures.results import response_dataset
 from structures.shear_building import ShearBuilding
 
 
-def _resampled(motion: GroundMotion, dt: float | None) -> tuple[np.ndarray, float]:
+def resampled_record(motion: GroundMotion, dt: float | None) -> tuple[np.ndarray, float]:
     """The record on the analysis step: the record's own, or a finer one by linear
     interpolation (exact for the piecewise-linear record the integrators assume)."""
     if dt is None or abs(dt - motion.dt) <= 1e-12 * motion.dt:
@@ -115,7 +115,7 @@ def run(
     """
 
     model = IsolatedShearBuilding(building, bearing, n_bearings)
-    acceleration, step = _resampled(motion, dt)
+    acceleration, step = resampled_record(motion, dt)
     method = as_method(integrator)
     if select_engine(engine, model, method) == "compiled":
         history = compiled_history(model, acceleration, step, method, tolerance=tolerance,

@@ -38,7 +38,7 @@ import numpy as np
 from dcfpb.validation import check_int, check_real
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
-from structures.analysis import _resampled
+from structures.analysis import resampled_record
 from structures.integrators import HHT, METHODS, Newmark
 from structures.isolated_building import IsolatedShearBuilding
 from structures.opensees_model import BearingRecord, build_model, element_kind
@@ -151,7 +151,7 @@ def run_opensees(
             "OpenSees's HHT moves it to t + alpha dt within each step, so the history gets "
             f"two uneven entries per step. Got {integrator!r} instead."
         )
-    acceleration, step = _resampled(motion, dt)
+    acceleration, step = resampled_record(motion, dt)
     ops = import_opensees()
     ops.wipe()
     start = _time.perf_counter()
