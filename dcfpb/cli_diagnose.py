@@ -2,9 +2,12 @@
 
     dcfpb diagnose FILE [FILE ...] --model BASELINE --effective-radius R --slider-diameter D
                    [--axial-load N] [--without EFFECT ...] [--json] [--report DIR]
+    dcfpb diagnose --manifest CAMPAIGN.csv|.toml --model BASELINE [...]
 
 Each FILE is one test of a campaign, in the order run (CSV with ``time``, ``displacement``,
-``force`` and optionally ``axial_force``, ``velocity``, ``temperature``; SI units). The
+``force`` and optionally ``axial_force``, ``velocity``, ``temperature``; SI units); a
+manifest lists them instead, with each test's axial load, initial temperature and rest before
+it (:mod:`isolator.diagnosis.manifest`). The
 command calibrates the baseline, says where the held-out gap lies, which candidate effect
 closes it and how far it shrinks (see :mod:`isolator.diagnosis`). ``--json`` prints the
 summary (keys ``baseline``, ``gap``, ``where``, ``effects``, ``verdict``, ...); ``--report``
@@ -30,14 +33,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "its held-out force error, test a library of candidate effects on held-out data and "
         "report the verdict and how far the gap shrinks. All values in SI units.",
     )
-    p.add_argument("files", nargs="+", metavar="FILE",
+    p.add_argument("files", nargs="*", metavar="FILE",
                    help="CSV test files of one campaign, in the order run")
+    p.add_argument("--manifest", metavar="FILE",
+                   help="campaign manifest (CSV or TOML): the files in run order with each "
+                   "test's axial_load [N], initial_temperature [degC], rest_before [s]")
     p.add_argument("--model", required=True, choices=BASELINE_MODELS,
                    help="baseline friction model")
-    p.add_argument("--effective-radius", required=True, type=float, metavar="R",
-                   help="effective radius [m]; 'inf' for a flat slider or a friction damper")
-    p.add_argument("--slider-diameter", required=True, type=float, metavar="D",
-                   help="slider diameter [m]")
+    p.add_argument("--effective-radius", type=float, metavar="R",
+                   help="effective radius [m]; 'inf' for a flat slider or a friction damper "
+                   "(required unless a TOML manifest gives it)")
+    p.add_argument("--slider-diameter", type=float, metavar="D",
+                   help="slider diameter [m] (required unless a TOML manifest gives it)")
     p.add_argument("--axial-load", type=float, metavar="N",
                    help="constant axial load [N] for files without an axial_force column")
     p.add_argument("--without", nargs="+", action="extend", default=[], metavar="EFFECT",
@@ -54,11 +61,26 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the diagnosis for parsed arguments; returns the exit status."""
-    from isolator.diagnosis import BaselineSpec, diagnose, load_campaign
+    from isolator.diagnosis import BaselineSpec, DataError, diagnose, load_campaign
+    from isolator.diagnosis.manifest import load_manifest
 
     spec = BaselineSpec(args.model, tuple(args.without), args.yield_displacement)
-    campaign = load_campaign(args.files, effective_radius=args.effective_radius,
-                             slider_diameter=args.slider_diameter, axial_load=args.axial_load)
+    if args.manifest and args.files:
+        raise DataError("give the test files or --manifest, not both.")
+    if args.manifest:
+        campaign = load_manifest(args.manifest, effective_radius=args.effective_radius,
+                                 slider_diameter=args.slider_diameter,
+                                 axial_load=args.axial_load)
+    else:
+        if not args.files:
+            raise DataError("give one or more test files, or --manifest.")
+        for name, value in (("--effective-radius", args.effective_radius),
+                            ("--slider-diameter", args.slider_diameter)):
+            if value is None:
+                raise DataError(f"{name} is required (or a TOML --manifest that gives it).")
+        campaign = load_campaign(args.files, effective_radius=args.effective_radius,
+                                 slider_diameter=args.slider_diameter,
+                                 axial_load=args.axial_load)
     diagnosis = diagnose(campaign, spec, exclude=tuple(args.exclude))
     summary = diagnosis.to_json()
     if args.report:
@@ -81,6 +103,12 @@ def _print(summary: dict) -> None:
     print(f"held-out force NRMSE: {gap['value']:.4f}   noise: {gap['noise']:.4f}   "
           f"({gap['holdout']})")
     print(f"where: {summary['where']['statement']}")
+    if summary.get("transition"):
+        print(f"transition: {summary['transition']['statement']}")
+    lag = summary.get("lag")
+    if lag:
+        print(f"channel lag: {1e3 * lag['seconds']:.3g} ms ({lag['samples']:.2f} samples)"
+              + (" - named" if lag["named"] else " - calibrated in the baseline"))
     print(f"{'effect':11s} {'NRMSE':>8s} {'shrink':>7s} {'z':>6s}  role")
     for e in summary["effects"]:
         if e.get("gap_after") is not None:
@@ -93,6 +121,9 @@ def _print(summary: dict) -> None:
     if chosen is not None and summary["verdict"] != ["unexplained"]:
         print(f"gap with {' + '.join(chosen['names'])}: {chosen['gap_before']:.4f} -> "
               f"{chosen['gap_after']:.4f} (shrink {100 * chosen['shrink']:.0f} %)")
+        for name, value in chosen.get("confidence", {}).items():
+            if value is not None:
+                print(f"confidence in {name}: {100 * value:.0f} % of block resamples")
     if summary["unexplained"]:
         for text in summary["unexplained"]["looks_like"]:
             print(f"unexplained: looks like {text}")

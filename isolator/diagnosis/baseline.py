@@ -17,7 +17,7 @@ factor and the run repeated until the factor is 1 to 1e-3.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.optimize import minimize_scalar
@@ -32,6 +32,8 @@ from isolator.diagnosis.features import (
     return_map,
     with_baseline,
 )
+from isolator.diagnosis.kinematics import shifted
+from isolator.diagnosis.transition import NUISANCE_LAG_SAMPLES
 from isolator.friction import DEPENDENCIES, PTVFriction
 from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
 from isolator.testrig import run_test
@@ -40,7 +42,10 @@ BASELINE_MODELS = ("constant", "simplified", "precise")
 REMOVABLE_EFFECTS = ("heating", "velocity", "pressure")
 DEFAULT_MU_T0 = 0.075  # the paper's mu_t0, the start of the calibration
 SIMPLIFIED_REFINEMENT = 0.5  # the paper's lambda
-_YIELD_GRID = np.geomspace(1.0e-5, 0.05, 32)  # [m] candidate yield displacements
+YIELD_DISPLACEMENT_MAX = 2.5e-3  # [m] the largest pre-sliding transition calibrated
+_YIELD_GRID = np.geomspace(1.0e-5, YIELD_DISPLACEMENT_MAX, 26)  # [m] candidates; 10 um is
+# the rigid-plastic limit: the force reverses within a sample of the displacement peak
+_LAG_GRID = np.arange(-NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES + 0.25, 0.5)
 _MAX_ITERATIONS = 6
 _SCALE_TOLERANCE = 1.0e-3
 
@@ -121,18 +126,26 @@ class BaselineFit:
         temperature rise filled in.
     iterations : int
         Runs of the virtual test machine (0 for the constant model).
+    lag : float
+        Time offset of the force channel behind the displacement channel [s], within
+        ``NUISANCE_LAG_SAMPLES`` samples; the features' displacement has it applied.
+    sample_interval : float
+        Median sampling interval [s].
     """
 
     spec: BaselineSpec
     parameters: dict[str, float]
     features: Features
     iterations: int
+    lag: float = 0.0
+    sample_interval: float = 0.01
 
 
 def calibrate(campaign: Campaign, features: Features, spec: BaselineSpec) -> BaselineFit:
-    """Fit the baseline's own parameters to the whole campaign (see the module docstring)."""
-    pendulum = pendulum_force(features, campaign.effective_radius)
-    target = features.force - pendulum
+    """Fit the baseline's own parameters to the whole campaign (see the module docstring):
+    mu (or mu_t0), the pre-sliding transition u_y (down to the rigid-plastic limit) and the
+    time offset between the force and displacement channels (to a fraction of a sample)."""
+    dt = float(np.median(np.diff(features.time)[np.diff(features.test) == 0]))
     t0 = _initial_temperature(campaign)
     iterations = 0
     if spec.model == "constant":
@@ -144,7 +157,11 @@ def calibrate(campaign: Campaign, features: Features, spec: BaselineSpec) -> Bas
                               or 5.0e-4)
         iterations = 1
     while True:
-        u_y, scale = _fit_yield_and_scale(features, target, shape, spec.yield_displacement)
+        lag = _fit_lag(campaign, features, shape, spec.yield_displacement, dt)
+        moved = _shifted_features(features, lag)
+        pendulum = pendulum_force(moved, campaign.effective_radius)
+        target = moved.force - pendulum
+        u_y, scale, _ = _fit_yield_and_scale(moved, target, shape, spec.yield_displacement)
         if spec.model == "constant" or not spec.heats or abs(scale - 1.0) <= _SCALE_TOLERANCE:
             break
         if iterations >= _MAX_ITERATIONS:
@@ -154,21 +171,57 @@ def calibrate(campaign: Campaign, features: Features, spec: BaselineSpec) -> Bas
         iterations += 1
     mu_t0 *= scale
     mu_base = shape * scale
-    z = return_map(features, u_y)
+    z = return_map(moved, u_y)
     name = "mu" if spec.model == "constant" else "mu_t0"
     thermal = ThermalProperties(initial_temperature=t0)
-    done = with_baseline(features, z=z, pendulum=pendulum, mu_base=mu_base)
+    done = with_baseline(moved, z=z, pendulum=pendulum, mu_base=mu_base)
     line = measured_temperature_rise(done, campaign, MonitorLine(), thermal)
     centre = measured_temperature_rise(done, campaign, CentrePoint(SIMPLIFIED_REFINEMENT),
                                        thermal)
     return BaselineFit(spec, {name: float(mu_t0), "yield_displacement": float(u_y)},
                        with_baseline(done, temperature_rise=line, centre_rise=centre),
-                       iterations)
+                       iterations, lag, dt)
 
 
-def _initial_temperature(campaign: Campaign) -> float:
-    first = campaign.tests[0].temperature
-    return 20.0 if first is None else float(first[0])
+def _shifted_features(features: Features, lag: float) -> Features:
+    """The features with the displacement a force lagging by ``lag`` [s] belongs to.
+
+    The velocity is left as measured: the lag is calibrated before any effect is known, and
+    an unmodelled effect at low speed (near the reversals, where the lag is seen) can bias it
+    by a sample or two; the speed an effect on mu reads is then still the right one, and the
+    sliding phase refits the offset of the pendulum force with every model
+    (:data:`isolator.diagnosis.transition.TIMING`)."""
+    if lag == 0.0:
+        return features
+    u = np.empty(len(features))
+    for k in np.unique(features.test):
+        idx = features.test == k
+        u[idx] = shifted(features.time[idx], features.displacement[idx], lag)
+    return replace(features, displacement=u)
+
+
+def _fit_lag(campaign: Campaign, features: Features, shape: np.ndarray,
+             fixed_yield: float | None, dt: float) -> float:
+    """The channel offset [s] within ``NUISANCE_LAG_SAMPLES`` that fits the baseline best."""
+    def sse(samples: float) -> float:
+        moved = _shifted_features(features, samples * dt)
+        target = moved.force - pendulum_force(moved, campaign.effective_radius)
+        return _fit_yield_and_scale(moved, target, shape, fixed_yield)[2]
+
+    costs = [sse(x) for x in _LAG_GRID]
+    i = int(np.argmin(costs))
+    lo = _LAG_GRID[max(i - 1, 0)]
+    hi = _LAG_GRID[min(i + 1, _LAG_GRID.size - 1)]
+    best = minimize_scalar(sse, bounds=(lo, hi), method="bounded", options={"xatol": 0.02})
+    samples = float(best.x) if best.fun <= costs[i] else float(_LAG_GRID[i])
+    return samples * dt
+
+
+def _initial_temperature(campaign: Campaign, test: int = 0) -> float:
+    rec = campaign.tests[test]
+    if rec.initial_temperature is not None:
+        return float(rec.initial_temperature)
+    return 20.0 if rec.temperature is None else float(rec.temperature[0])
 
 
 def _scale_fit(target: np.ndarray, regressor: np.ndarray) -> tuple[float, float]:
@@ -183,7 +236,8 @@ def _scale_fit(target: np.ndarray, regressor: np.ndarray) -> tuple[float, float]
 
 def _fit_yield_and_scale(
     features: Features, target: np.ndarray, shape: np.ndarray, fixed: float | None
-) -> tuple[float, float]:
+) -> tuple[float, float, float]:
+    """(u_y [m], the scale of mu [-], the sum of squared residuals [N^2])."""
     regressor = shape * features.axial_force
 
     def sse(log_uy: float) -> float:
@@ -204,12 +258,12 @@ def _fit_yield_and_scale(
             u_y = float(10.0 ** best.x) if best.fun <= costs[i] else float(grid[i])
         else:
             u_y = float(grid[i])
-    scale, _ = _scale_fit(target, regressor * return_map(features, u_y))
+    scale, cost = _scale_fit(target, regressor * return_map(features, u_y))
     if not scale > 0.0:
         raise ValueError("The baseline's friction coefficient came out non-positive: the "
                          "force does not oppose the motion. Check the sign convention of "
                          "'force' (it must resist the imposed displacement).")
-    return u_y, scale
+    return u_y, scale, cost
 
 
 def _run_baseline(
@@ -217,10 +271,11 @@ def _run_baseline(
     yield_displacement: float,
 ) -> np.ndarray:
     """mu(t) of a PTV baseline run through the virtual test machine on every test."""
-    friction = spec.friction(mu_t0, t0)
     mu = np.empty(len(features))
     for k, rec in enumerate(campaign.tests):
         idx = features.test == k
+        start = rec.initial_temperature
+        friction = spec.friction(mu_t0, t0 if start is None else float(start))
         time = rec.time - rec.time[0]
         load = (float(rec.axial_force[0]) if rec.constant_axial_force
                 else AxialLoadHistory(time, rec.axial_force))

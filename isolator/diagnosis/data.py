@@ -58,6 +58,12 @@ class BearingRecord:
         least-squares derivative over about 40 ms, or ``numpy.gradient`` for uneven steps).
     temperature : array_like or None
         Measured temperature [degC], if any.
+    initial_temperature : float or None
+        Temperature of the plates at the start of the test [degC] (a campaign manifest's);
+        None: the measured temperature's first value, else 20 degC.
+    rest_before : float or None
+        Rest before the test since the end of the previous one [s]; None: long enough for
+        the plates to cool (the heat of earlier tests is forgotten).
     """
 
     name: str
@@ -67,6 +73,8 @@ class BearingRecord:
     axial_force: np.ndarray
     velocity: np.ndarray | None = None
     temperature: np.ndarray | None = None
+    initial_temperature: float | None = None
+    rest_before: float | None = None
     velocity_measured: bool = field(init=False, default=True)
 
     def __post_init__(self) -> None:
@@ -98,6 +106,11 @@ class BearingRecord:
         for column, arr in checked.items():
             arr.setflags(write=False)
             object.__setattr__(self, column, arr)
+        if self.initial_temperature is not None:
+            check_real(self.initial_temperature, "initial_temperature", where, low=-50.0,
+                       high=300.0)
+        if self.rest_before is not None:
+            check_real(self.rest_before, "rest_before", where, low=0.0)
 
     def __len__(self) -> int:
         return int(self.time.size)
@@ -167,7 +180,9 @@ def derived_velocity(time: np.ndarray, displacement: np.ndarray) -> np.ndarray:
                          mode="interp")
 
 
-def read_record(path: str | Path, *, axial_load: float | None = None) -> BearingRecord:
+def read_record(path: str | Path, *, axial_load: float | None = None,
+                initial_temperature: float | None = None,
+                rest_before: float | None = None) -> BearingRecord:
     """Read one test from a CSV file (see the module docstring for the columns).
 
     Parameters
@@ -177,6 +192,8 @@ def read_record(path: str | Path, *, axial_load: float | None = None) -> Bearing
     axial_load : float, optional
         Constant axial load [N] for a file without an ``axial_force`` column. With such a
         column the column is used and ``axial_load`` must not be given.
+    initial_temperature, rest_before : float, optional
+        See :class:`BearingRecord` (a campaign manifest gives them).
 
     Raises
     ------
@@ -221,7 +238,8 @@ def read_record(path: str | Path, *, axial_load: float | None = None) -> Bearing
         check_real(axial_load, "axial_load", "read_record", low=0.0, low_open=True)
         columns["axial_force"] = np.full(n, float(axial_load))
     _check_values(columns, str(path), first_row=2)
-    return BearingRecord(path.name.removesuffix(".gz").removesuffix(".csv"), **columns)
+    return BearingRecord(path.name.removesuffix(".gz").removesuffix(".csv"), **columns,
+                         initial_temperature=initial_temperature, rest_before=rest_before)
 
 
 def load_campaign(
@@ -238,7 +256,35 @@ def load_campaign(
     if isinstance(paths, str | Path) or not paths:
         raise DataError("load_campaign needs a list of one or more CSV files.")
     tests = tuple(read_record(p, axial_load=axial_load) for p in paths)
+    check_consistent_units(tests)
     return Campaign(tests, effective_radius, slider_diameter)
+
+
+UNIT_RATIO = 30.0  # tests of one campaign whose scales differ more than this mix units
+
+
+def check_consistent_units(tests: Sequence[BearingRecord]) -> None:
+    """Refuse a campaign whose tests look written in different units.
+
+    The sampling interval, the peak displacement and the peak force of every test are
+    compared with the campaign's medians; a factor above ``UNIT_RATIO`` (ms against s, mm
+    against m, kN against N are factors of 1000) is an error naming the test.
+    """
+    if len(tests) < 2:
+        return
+    scales = {
+        "time step": ([float(np.median(np.diff(t.time))) for t in tests], "s"),
+        "peak displacement": ([float(np.max(np.abs(t.displacement))) for t in tests], "m"),
+        "peak force": ([float(np.max(np.abs(t.force))) for t in tests], "N"),
+    }
+    for what, (values, unit) in scales.items():
+        middle = float(np.median(values))
+        for test, value in zip(tests, values, strict=True):
+            if middle > 0.0 and value > 0.0 and max(value / middle, middle / value) > UNIT_RATIO:
+                raise DataError(f"test {test.name!r}: its {what} is {value:.4g} {unit} against "
+                                f"{middle:.4g} {unit} for the campaign's median test, a factor "
+                                f"of {max(value / middle, middle / value):.0f}; the campaign "
+                                "mixes units (every file must be in s, m and N).")
 
 
 def _numeric_column(values: np.ndarray, column: str, path: Path) -> np.ndarray:

@@ -48,6 +48,8 @@ class Features:
 
     Attributes
     ----------
+    sample : ndarray of int
+        Index of the sample in the whole campaign (kept by :meth:`take`).
     test : ndarray of int
         Index of the test of each sample.
     time, displacement, velocity, speed, force, axial_force, pressure : ndarray
@@ -55,6 +57,8 @@ class Features:
     since_reversal, travel, campaign_travel : ndarray
         Travel since the last reversal, from the start of the test, and from the start of
         the campaign (tests in the order run) [m].
+    steps_since_reversal : ndarray of int
+        Samples since the last reversal (0 at the reversal).
     cycle : ndarray of int
         Cycle of the sample within its test, from 1 (two reversals make a cycle).
     block : ndarray of int
@@ -74,6 +78,7 @@ class Features:
         baseline's excess variance) [1/N^2] (:mod:`isolator.diagnosis.selection`).
     """
 
+    sample: np.ndarray
     test: np.ndarray
     time: np.ndarray
     displacement: np.ndarray
@@ -85,6 +90,7 @@ class Features:
     since_reversal: np.ndarray
     travel: np.ndarray
     campaign_travel: np.ndarray
+    steps_since_reversal: np.ndarray
     cycle: np.ndarray
     block: np.ndarray
     z: np.ndarray
@@ -147,11 +153,13 @@ def kinematic_features(campaign: Campaign) -> tuple[Features, KinematicInfo]:
         since, travel, half = reversal_travel(u, turns)
         cycle = half // 2 + 1
         values = {
+            "sample": np.arange(n, dtype=np.int64) + sum(len(t) for t in campaign.tests[:k]),
             "test": np.full(n, k, dtype=np.int64), "time": rec.time,
             "displacement": u, "velocity": rec.velocity,
             "speed": np.abs(rec.velocity), "force": rec.force, "axial_force": rec.axial_force,
             "pressure": rec.axial_force / campaign.contact_area, "since_reversal": since,
-            "travel": travel, "campaign_travel": campaign_offset + travel, "cycle": cycle,
+            "travel": travel, "campaign_travel": campaign_offset + travel,
+            "steps_since_reversal": np.arange(n) - turns[half], "cycle": cycle,
             "block": block_offset + half,
         }
         for name in ("z", "pendulum", "mu_base", "temperature_rise", "centre_rise",
@@ -210,6 +218,8 @@ def contact_temperature_rise(
     layout: MonitorLine | CentrePoint,
     contact_radius: float,
     thermal: ThermalProperties,
+    *,
+    heating: SurfaceHeating | None = None,
 ) -> np.ndarray:
     """Rise of the contact temperature under a given heat flux history (Eq. 4-6) [degC].
 
@@ -227,17 +237,30 @@ def contact_temperature_rise(
         Slider radius [m].
     thermal : ThermalProperties
         Conductivity and diffusivity of the plate.
+    heating : SurfaceHeating, optional
+        A heating history to continue (the plate of an earlier test, after a rest); it is
+        updated in place. By default a fresh one.
     """
-    travel = float(np.max(np.abs(position))) + 1e-3
-    heating = SurfaceHeating(layout, contact_radius, travel, thermal,
-                             sum_of_exponentials(1.0e-6, 1.0e4, 1.0e-7))
+    if heating is None:
+        heating = new_heating(position, layout, contact_radius, thermal)
     rise = np.zeros(time.size)
+    if time.size:
+        base, _, _ = heating.trial(float(position[0]), 1e-6)
+        rise[0] = base - thermal.initial_temperature  # what is left of earlier tests
     for k in range(1, time.size):
         dt = float(time[k] - time[k - 1])
         base, newest, heated = heating.trial(float(position[k]), dt)
         rise[k] = base + newest * flux[k] - thermal.initial_temperature
         heating.commit(dt, heated, float(flux[k]))
     return rise
+
+
+def new_heating(position: np.ndarray, layout: MonitorLine | CentrePoint, contact_radius: float,
+                thermal: ThermalProperties) -> SurfaceHeating:
+    """A fresh plate for slider positions up to ``max |position|`` [m]."""
+    travel = float(np.max(np.abs(position))) + 1e-3
+    return SurfaceHeating(layout, contact_radius, travel, thermal,
+                          sum_of_exponentials(1.0e-6, 1.0e4, 1.0e-7))
 
 
 def measured_temperature_rise(
@@ -250,20 +273,37 @@ def measured_temperature_rise(
 
     The heat flux into each of the two sliding surfaces is the measured friction force (the
     force less the pendulum force) times the velocity, over the contact area, halved; only
-    dissipated power heats (negative power is set to zero). Each test starts cold: the plates
-    are taken to cool to the initial temperature between tests. A test with a measured
-    ``temperature`` that changes by more than 1 degC uses that rise instead.
+    dissipated power heats (negative power is set to zero). A test whose ``rest_before`` is
+    given (a campaign manifest) continues the plate of the test before it after that rest
+    (up to 10^4 s); otherwise it starts cold. A test's ``initial_temperature`` above the first
+    test's counts as a rise. A test with a measured ``temperature`` that changes by more than
+    1 degC uses that rise instead.
     """
     rise = np.zeros(len(features))
     power = np.maximum((features.force - features.pendulum) * features.velocity, 0.0)
     flux = power / (campaign.contact_area * SURFACES)
+    reach = np.abs(features.displacement).max() / SURFACES
+    first = campaign.tests[0].initial_temperature
+    heating = None
     for k, rec in enumerate(campaign.tests):
         idx = features.test == k
         if rec.temperature is not None and np.ptp(rec.temperature) > 1.0:
             rise[idx] = rec.temperature - rec.temperature[0]
+            heating = None
             continue
-        rise[idx] = contact_temperature_rise(rec.time, rec.displacement / SURFACES, flux[idx],
-                                             layout, campaign.contact_radius, thermal)
+        rest = rec.rest_before
+        if heating is None or rest is None or rest > 1.0e4:
+            heating = new_heating(np.array([reach]), layout, campaign.contact_radius, thermal)
+        else:
+            position = float(rec.displacement[0]) / SURFACES
+            _, _, heated = heating.trial(position, max(rest, 1e-6))
+            heating.commit(max(rest, 1e-6), heated, 0.0)
+        offset = 0.0
+        if rec.initial_temperature is not None and first is not None:
+            offset = rec.initial_temperature - first
+        rise[idx] = offset + contact_temperature_rise(
+            rec.time, rec.displacement / SURFACES, flux[idx], layout, campaign.contact_radius,
+            thermal, heating=heating)
     return rise
 
 

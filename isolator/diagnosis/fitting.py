@@ -20,19 +20,86 @@ autocorrelation (an AR(1) residual carries fewer independent samples than it has
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from isolator.diagnosis.effects import Context, Effect
 from isolator.diagnosis.features import Features
+from isolator.diagnosis.kinematics import hysteretic_variable, play_return_map, shifted
 from isolator.diagnosis.solver import levenberg_marquardt
 
 SCALE_BOUNDS = (0.02, 50.0)  # the baseline's scale c may change mu by this much at most
 _MIN_TESTS_FOR_TEST_HOLDOUT = 3
 MAX_FOLDS = 6  # more tests than this are held out in groups (test k in fold k mod 6)
 MAX_FIT_SAMPLES = 20000  # longer training sets are thinned to every k-th sample for the fit
+
+
+@dataclass(frozen=True, eq=False)
+class Kinematics:
+    """The campaign's contiguous histories, for effects that act on the kinematics.
+
+    Attributes
+    ----------
+    time, displacement, axial_force : tuple of ndarray
+        Per test: sample times [s], the displacement as measured (smoothed, no channel lag
+        applied) [m] and the axial force [N].
+    yield_displacement : float
+        The baseline's u_y [m].
+    effective_radius : float
+        R_eff [m].
+    nominal_mu : float
+        Mean friction coefficient of the baseline [-] (where a play re-engages).
+    """
+
+    time: tuple[np.ndarray, ...]
+    displacement: tuple[np.ndarray, ...]
+    axial_force: tuple[np.ndarray, ...]
+    yield_displacement: float
+    effective_radius: float
+    nominal_mu: float
+    _memo: dict = field(default_factory=dict, compare=False, repr=False)
+
+    def recompute(self, shift: float = 0.0, half_width: float = 0.0,
+                  yield_displacement: float | None = None,
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(displacement of the bearing [m], z [-], engaged [-]) over the whole campaign for a
+        further channel lag ``shift`` [s], a play of half width ``half_width`` [m] and a yield
+        displacement (default: the baseline's) [m]."""
+        u_y = self.yield_displacement if yield_displacement is None else yield_displacement
+        key = (float(shift), float(half_width), float(u_y))
+        if key in self._memo:
+            return self._memo[key]
+        inverse = 0.0 if math.isinf(self.effective_radius) else 1.0 / self.effective_radius
+        parts = []
+        for t, u in zip(self.time, self.displacement, strict=True):
+            u = np.ascontiguousarray(shifted(t, u, shift)) if shift else u
+            if half_width > 0.0:
+                parts.append(play_return_map(u, float(half_width), u_y, inverse,
+                                             max(self.nominal_mu, 1e-3)))
+            else:
+                parts.append((u, hysteretic_variable(u, u_y),
+                              np.ones(u.size)))
+        out = tuple(np.concatenate([p[i] for p in parts]) for i in range(3))
+        if len(self._memo) > 8:
+            self._memo.clear()
+        self._memo[key] = out
+        return out
+
+
+def kinematic_change(parts, theta: np.ndarray, context: Context) -> dict[str, float]:
+    """The summed changes of the kinematic effects among ``parts`` ((effect, slice) pairs)."""
+    shift = half = 0.0
+    u_y = None
+    for effect, part in parts:
+        if effect.kinematic is not None:
+            change = effect.kinematic(theta[part], context)
+            shift += change.get("shift", 0.0)
+            half += change.get("half_width", 0.0)
+            u_y = change.get("yield_displacement", u_y)
+    return {"shift": shift, "half_width": half, "yield_displacement": u_y}
 
 
 @dataclass(frozen=True)
@@ -68,6 +135,11 @@ class Model:
         """Start values."""
         return np.array([1.0, *(p.initial for e in self.effects for p in e.parameters)])
 
+    @property
+    def acts_on_kinematics(self) -> bool:
+        """Whether an effect of the model changes the kinematics."""
+        return any(e.acts_on == "kinematics" for e in self.effects)
+
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Lower and upper bounds."""
         low = [SCALE_BOUNDS[0], *(p.low for e in self.effects for p in e.parameters)]
@@ -76,14 +148,29 @@ class Model:
 
     def force(self, theta: np.ndarray, f: Features, context: Context) -> np.ndarray:
         """Predicted force at every sample of ``f`` [N]."""
+        parts = list(zip(self.effects, self.slices(), strict=True))
+        engaged = None
+        if self.acts_on_kinematics:
+            u, z, engaged = context.kinematics.recompute(**kinematic_change(parts, theta,
+                                                                            context))
+            u, z, engaged = u[f.sample], z[f.sample], engaged[f.sample]
+            radius = context.effective_radius
+            pendulum = np.zeros(u.size) if math.isinf(radius) else f.axial_force * u / radius
+            f = replace(f, displacement=u, z=z, pendulum=pendulum)
         mu = theta[0] * f.mu_base
         extra = 0.0
-        for effect, part in zip(self.effects, self.slices(), strict=True):
+        for effect, part in parts:
             if effect.factor is not None:
                 mu = mu * effect.factor(theta[part], f, context)
             if effect.extra is not None:
                 extra = extra + effect.extra(theta[part], f, context)
-        return f.pendulum + mu * f.axial_force * f.z + extra
+        friction = mu * f.axial_force * f.z
+        force = f.pendulum + friction
+        for effect, part in parts:
+            if effect.transform is not None:
+                force = effect.transform(theta[part], f, context, f.pendulum, friction)
+        force = force + extra
+        return force if engaged is None else force * engaged
 
 
 @dataclass(frozen=True)
@@ -157,11 +244,8 @@ def _standard_errors(jac: np.ndarray, res: np.ndarray, f: Features) -> np.ndarra
     covariance = np.linalg.pinv(np.einsum("ij,ik->jk", jac, jac)) * variance
     same_test = f.test[1:] == f.test[:-1]
     a, b = res[1:][same_test], res[:-1][same_test]
-    if a.size > 2:
-        rho = float(np.einsum("i,i->", a, b)
-                    / np.sqrt(np.einsum("i,i->", a, a) * np.einsum("i,i->", b, b)))
-    else:
-        rho = 0.0
+    norm = float(np.sqrt(np.einsum("i,i->", a, a) * np.einsum("i,i->", b, b)))
+    rho = float(np.einsum("i,i->", a, b)) / norm if a.size > 2 and norm > 0.0 else 0.0
     rho = min(max(rho, 0.0), 0.99)
     inflation = np.sqrt((1.0 + rho) / (1.0 - rho))
     return np.sqrt(np.maximum(np.diag(covariance), 0.0)) * inflation
@@ -173,11 +257,14 @@ def multistart(model: Model) -> list[np.ndarray]:
     position = 1
     for effect in model.effects:
         for parameter in effect.parameters:
-            if parameter.log:
-                for frac in (0.2, 0.8):
-                    start = model.initial()
-                    start[position] = parameter.low + frac * (parameter.high - parameter.low)
-                    starts.append(start)
+            values = list(parameter.starts)
+            if parameter.log and not values:
+                values = [parameter.low + frac * (parameter.high - parameter.low)
+                          for frac in (0.2, 0.8)]
+            for value in values:
+                start = model.initial()
+                start[position] = value
+                starts.append(start)
             position += 1
     return starts
 

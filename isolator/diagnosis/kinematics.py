@@ -136,3 +136,72 @@ def noise_std(signal: np.ndarray, order: int = 3) -> float:
     d = np.diff(x, n=order)
     mad = float(np.median(np.abs(d - np.median(d))))
     return _MAD_TO_STD * mad / float(np.sqrt(_DIFFERENCE_VARIANCE[order]))
+
+
+@jit
+def play_return_map(displacement, half_width, yield_displacement, inverse_radius, nominal_mu):
+    """An elastic-plastic bearing behind a play of half width h: (u_b, z, engaged) per sample.
+
+    The load path is a gap of width 2 h in series with the pre-sliding spring of the return
+    map. A displacement increment against the current force first unloads the spring
+    (z towards 0 over u_y of travel), then crosses the gap with no force transmitted
+    (``engaged`` = 0, the bearing standing still), then loads the spring the other way
+    (z towards the new sliding level). The bearing's displacement u_b is the actuator's less
+    the position in the gap. The start is in the middle of the gap with no force.
+    ``inverse_radius`` and ``nominal_mu`` are kept for the call signature of the kinematic
+    effects (a pendulum's force is taken as transmitted only with the gap closed).
+    """
+    n = displacement.size
+    ub = np.empty(n)
+    z = np.empty(n)
+    engaged = np.empty(n)
+    zi = 0.0
+    p = 0.0
+    ub[0] = displacement[0]
+    z[0] = 0.0
+    engaged[0] = 1.0
+    for i in range(1, n):
+        r = displacement[i] - displacement[i - 1]
+        if zi * r < 0.0:  # unload the spring towards zero force
+            dz = r / yield_displacement
+            if abs(dz) <= abs(zi):
+                zi += dz
+                r = 0.0
+            else:
+                r += zi * yield_displacement
+                zi = 0.0
+        crossing = False
+        if r != 0.0 and zi == 0.0:  # cross the gap
+            target = half_width if r > 0.0 else -half_width
+            distance = target - p
+            if abs(r) < abs(distance):
+                p += r
+                r = 0.0
+                crossing = True
+            else:
+                p = target
+                r -= distance
+        if r != 0.0:  # load the spring the other way, sliding at |z| = 1
+            zi += r / yield_displacement
+            if zi > 1.0:
+                zi = 1.0
+            elif zi < -1.0:
+                zi = -1.0
+        ub[i] = displacement[i] - p
+        z[i] = zi
+        engaged[i] = 0.0 if crossing else 1.0
+    return ub, z, engaged
+
+
+def shifted(time: np.ndarray, values: np.ndarray, shift: float) -> np.ndarray:
+    """``values`` at ``time - shift`` by cubic interpolation, held at the ends [units].
+
+    A force channel that lags the displacement channel by ``shift`` [s] belongs to the
+    displacement ``shifted(time, u, shift)``.
+    """
+    if shift == 0.0:
+        return np.asarray(values, dtype=float)
+    from scipy.interpolate import CubicSpline
+
+    target = np.clip(time - shift, time[0], time[-1])
+    return CubicSpline(time, values)(target)

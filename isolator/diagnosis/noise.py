@@ -22,7 +22,7 @@ import numpy as np
 
 from isolator.diagnosis.data import Campaign
 from isolator.diagnosis.features import Features, smoothed_displacement
-from isolator.diagnosis.kinematics import hysteretic_variable
+from isolator.diagnosis.kinematics import hysteretic_variable, shifted
 
 REPLICATES = 12
 
@@ -37,6 +37,7 @@ def sample_noise_variance(
     *,
     replicates: int = REPLICATES,
     seed: int = 0,
+    lag: float = 0.0,
 ) -> np.ndarray:
     """Variance of the force error that measurement noise leaves at each sample [N^2].
 
@@ -55,6 +56,9 @@ def sample_noise_variance(
         Monte Carlo replicates.
     seed : int
         Seed of the perturbations (the diagnosis is deterministic).
+    lag : float
+        The baseline's channel lag [s], applied to the perturbed displacement as to the
+        features'.
     """
     rng = np.random.default_rng(seed)
     variance = np.empty(len(features))
@@ -70,8 +74,8 @@ def sample_noise_variance(
         spread = np.zeros(len(rec))
         for _ in range(replicates):
             noisy = rec.displacement + rng.normal(0.0, displacement_noise[k], len(rec))
-            u = smoothed_displacement(rec.time, noisy)
-            z = hysteretic_variable(u, float(yield_displacement))
+            u = shifted(rec.time, smoothed_displacement(rec.time, noisy), lag)
+            z = hysteretic_variable(np.ascontiguousarray(u), float(yield_displacement))
             spread += (n * (mu * z + u / radius) - base) ** 2
         variance[idx] += spread / replicates
     floor = 1e-12 * float(np.mean(features.force**2)) + 1e-300

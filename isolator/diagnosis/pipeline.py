@@ -21,21 +21,18 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from isolator.diagnosis.baseline import BaselineFit, BaselineSpec, calibrate
+from isolator.diagnosis.baseline import _YIELD_GRID, BaselineFit, BaselineSpec, calibrate
 from isolator.diagnosis.data import Campaign
+from isolator.diagnosis.decision import Problem, Selection
 from isolator.diagnosis.effects import EFFECT_NAMES, Context, effects_named
 from isolator.diagnosis.features import kinematic_features, with_baseline
-from isolator.diagnosis.fitting import HoldOut, Model
+from isolator.diagnosis.fitting import Kinematics
 from isolator.diagnosis.noise import sample_noise_variance
-from isolator.diagnosis.selection import (
-    Assessment,
-    Selection,
-    Workspace,
-    assess,
-    select,
-    untestable,
-)
+from isolator.diagnosis.selection import Workspace
 from isolator.diagnosis.signatures import signature
+from isolator.diagnosis.thresholds import Thresholds
+from isolator.diagnosis.transition import TransitionFinding, in_transition, transition_finding
+from isolator.diagnosis.uncertainty import confidence, intervals
 from isolator.diagnosis.where import (
     CycleErrors,
     Where,
@@ -55,8 +52,8 @@ class Diagnosis:
         The data.
     baseline : BaselineFit
         The calibrated baseline.
-    work : Workspace
-        Features, folds, constants and noise shared by every fit.
+    problem : Problem
+        Features, folds, constants, noise and the candidates' fits, shared by every decision.
     selection : Selection
         Candidates, chosen effects and verdict.
     where : Where
@@ -69,11 +66,21 @@ class Diagnosis:
         What the remaining gap looks like, when a real gap remains.
     wall_time : float
         Seconds the diagnosis took.
+    excluded : tuple of str
+        Effects withheld from the library.
+    transition : TransitionFinding or None
+        What the baseline leaves inside the transition window after each reversal.
+    confidence : dict
+        ``{effect: share}``: how often a named effect still earns its place over block
+        resamples (:mod:`isolator.diagnosis.uncertainty`).
+    intervals : dict
+        ``{effect: {parameter: [low, high]}}``: 5-95 % bootstrap intervals of the named
+        effects' parameters.
     """
 
     campaign: Campaign
     baseline: BaselineFit
-    work: Workspace
+    problem: Problem
     selection: Selection
     where: Where
     cycles_before: CycleErrors
@@ -82,6 +89,14 @@ class Diagnosis:
     looks_like: list[str]
     wall_time: float = 0.0
     excluded: tuple[str, ...] = field(default=())
+    transition: TransitionFinding | None = None
+    confidence: dict[str, float] = field(default_factory=dict)
+    intervals: dict[str, dict] = field(default_factory=dict)
+
+    @property
+    def work(self) -> Workspace:
+        """The samples the verdict was decided on (the sliding phase) and their fits."""
+        return self.selection.stage.work
 
     @property
     def verdict(self) -> list[str]:
@@ -117,6 +132,7 @@ def diagnose(
     *,
     candidates: Sequence[str] = EFFECT_NAMES,
     exclude: Sequence[str] = (),
+    thresholds: Thresholds | None = None,
 ) -> Diagnosis:
     """Diagnose the gap between ``campaign`` and the ``baseline`` model.
 
@@ -130,61 +146,116 @@ def diagnose(
         Names of the library's effects to try.
     exclude : sequence of str
         Effects withheld from the library.
+    thresholds : Thresholds, optional
+        The decision thresholds (default: :func:`isolator.diagnosis.thresholds.current`).
 
     Returns
     -------
     Diagnosis
     """
     start = _time.perf_counter()
+    th = thresholds or Thresholds.load()
     spec = baseline if isinstance(baseline, BaselineSpec) else BaselineSpec(baseline)
     effects = effects_named([c for c in candidates if c not in exclude])
     features, info = kinematic_features(campaign)
     fitted = calibrate(campaign, features, spec)
+    u_y = fitted.parameters["yield_displacement"]
     noise = sample_noise_variance(fitted.features, campaign, info.force_noise,
-                                  info.displacement_noise, info.axial_noise,
-                                  fitted.parameters["yield_displacement"])
+                                  info.displacement_noise, info.axial_noise, u_y,
+                                  lag=fitted.lag)
     residual = fitted.features.force - fitted.features.baseline_force
     excess = max(float(np.mean(residual**2) - np.mean(noise)), 0.0)
     f = with_baseline(fitted.features, noise_variance=noise, weight=1.0 / (noise + excess))
     fitted = replace(fitted, features=f)
-    context = Context.of(f, campaign.effective_radius)
-    work = Workspace(f, HoldOut.of(f), context)
-    base = assess(work, Model(), None, [np.array([1.0])])
-    singles: dict[str, Assessment] = {}
-    for effect in effects:
-        model = Model((effect,))
-        reason = effect.untestable(context)
-        singles[effect.name] = (untestable(model, reason) if reason is not None
-                                else assess(work, model, base))
-    selection = select(work, base, singles)
-    return _finish(campaign, fitted, work, selection, tuple(exclude), start)
+    # effects on the kinematics replace the baseline's transition and lag with their own,
+    # so they start from the displacement as measured (smoothed), not shifted
+    kinematics = Kinematics(
+        tuple(f.time[f.test == k] for k in range(len(campaign.tests))),
+        tuple(np.ascontiguousarray(features.displacement[features.test == k])
+              for k in range(len(campaign.tests))),
+        tuple(f.axial_force[f.test == k] for k in range(len(campaign.tests))),
+        u_y, campaign.effective_radius, float(np.mean(f.mu_base)))
+    context = Context.of(f, campaign.effective_radius, sample_interval=fitted.sample_interval,
+                         yield_displacement=u_y, nominal_mu=float(np.mean(f.mu_base)),
+                         tests=len(campaign.tests), channel_lag=fitted.lag,
+                         kinematics=kinematics)
+    problem = Problem(f, context, effects, th)
+    selection = problem.select(tuple(exclude), th)
+    return _finish(campaign, fitted, problem, selection, tuple(exclude), start,
+                   uncertainty=True)
 
 
-def reselect(diagnosis: Diagnosis, exclude: Sequence[str]) -> Diagnosis:
-    """The same diagnosis with the effects ``exclude`` withheld from the library."""
+def reselect(diagnosis: Diagnosis, exclude: Sequence[str] = (),
+             thresholds: Thresholds | None = None, *, uncertainty: bool = False) -> Diagnosis:
+    """The same diagnosis with the effects ``exclude`` withheld from the library, or under
+    other ``thresholds``, without refitting what was fitted (the confidence and intervals
+    only with ``uncertainty``, which refits)."""
     start = _time.perf_counter()
-    sel = diagnosis.selection
-    selection = select(diagnosis.work, sel.baseline, sel.candidates, tuple(exclude))
     excluded = tuple(dict.fromkeys((*diagnosis.excluded, *exclude)))
-    return _finish(diagnosis.campaign, diagnosis.baseline, diagnosis.work, selection, excluded,
-                   start)
+    selection = diagnosis.problem.select(excluded, thresholds or diagnosis.selection.thresholds)
+    return _finish(diagnosis.campaign, diagnosis.baseline, diagnosis.problem, selection,
+                   excluded, start, uncertainty=uncertainty)
 
 
-def _finish(campaign: Campaign, fitted: BaselineFit, work: Workspace, selection: Selection,
-            excluded: tuple[str, ...], start: float) -> Diagnosis:
-    f = work.features
+def _finish(campaign: Campaign, fitted: BaselineFit, problem: Problem, selection: Selection,
+            excluded: tuple[str, ...], start: float, *, uncertainty: bool) -> Diagnosis:
+    everything = problem.features
+    u_y = fitted.parameters["yield_displacement"]
+    window = in_transition(everything, u_y)
+    transition = transition_finding(everything, problem.all_baseline.prediction, window, u_y,
+                                    float(_YIELD_GRID[0]))
+    f = selection.stage.work.features
     before = selection.baseline.prediction
-    near = near_reversal_distance(f, fitted.parameters["yield_displacement"])
+    near = near_reversal_distance(f, u_y)
     where = locate(f, before, campaign, near)
-    cycles_before = cycle_errors(campaign, f, before)
+    cycles_before = cycle_errors(campaign, everything, problem.all_baseline.prediction)
     chosen = selection.chosen
-    after = None if chosen is None else chosen.prediction
-    cycles_after = None if after is None else cycle_errors(campaign, f, after)
+    cycles_after = None
+    if chosen is not None:
+        full = _full_prediction(problem, chosen)
+        cycles_after = cycle_errors(campaign, everything, full)
     remaining, looks = None, []
     if selection.real_gap_remains:
-        final = before if after is None or selection.verdict == ["unexplained"] else after
+        final = (before if chosen is None or selection.verdict == ["unexplained"]
+                 else chosen.prediction)
         remaining = locate(f, final, campaign, near)
-        looks = signature(f, final, campaign, near)
-    diagnosis = Diagnosis(campaign, fitted, work, selection, where, cycles_before, cycles_after,
-                          remaining, looks, excluded=excluded)
+        looks = signature(everything, problem.all_baseline.prediction, campaign, near)
+    certainty, ranges = _uncertainty(problem, selection) if uncertainty else ({}, {})
+    diagnosis = Diagnosis(campaign, fitted, problem, selection, where, cycles_before,
+                          cycles_after, remaining, looks, excluded=excluded,
+                          transition=transition, confidence=certainty, intervals=ranges)
     return replace(diagnosis, wall_time=_time.perf_counter() - start)
+
+
+def _uncertainty(problem: Problem, selection: Selection) -> tuple[dict, dict]:
+    """Confidence of each named effect and intervals of their parameters."""
+    th = selection.thresholds
+    certainty: dict[str, float] = {}
+    ranges: dict[str, dict] = {}
+    kinematic = selection.kinematic
+    if kinematic is not None:
+        for name in kinematic.model.names:
+            certainty[name] = confidence(problem.all, problem.all_baseline, kinematic,
+                                         th.kinematic_explained)
+        ranges.update(intervals(problem.all, kinematic))
+    stage, chosen = selection.stage, selection.chosen
+    frozen = len(stage.baseline.model.effects)
+    own = [] if chosen is None else list(chosen.model.names[frozen:])
+    if own and [n for n in selection.verdict if n not in ("unexplained",)]:
+        for name in own:
+            others = [n for n in own if n != name]
+            if not others:
+                reference = stage.baseline
+            elif len(others) == 1 and others[0] in stage.singles:
+                reference = stage.singles[others[0]]
+            else:
+                continue
+            certainty[name] = confidence(stage.work, reference, chosen,
+                                         th.second_explained if others else th.explained_min)
+        ranges.update({k: v for k, v in intervals(stage.work, chosen).items() if k in own})
+    return certainty, ranges
+
+
+def _full_prediction(problem: Problem, chosen) -> np.ndarray:
+    """The chosen model's force at every sample, from its fit on the sliding phase [N]."""
+    return chosen.model.force(chosen.fit.theta, problem.features, problem.context)

@@ -16,7 +16,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from isolator.diagnosis.effects import physical_parameters
 from isolator.diagnosis.where import QUANTITIES, CycleErrors, Where
 
 if TYPE_CHECKING:
@@ -49,13 +48,24 @@ def _cycles(errors: CycleErrors | None) -> dict | None:
 
 
 def effect_parameters(d: Diagnosis, assessment: Assessment) -> dict[str, dict]:
-    """``{effect: {parameter: (value, stderr, unit)}}`` of a fitted model, the scale first."""
+    """``{effect: {parameter: (value, stderr, unit)}}`` of a fitted model, the scale first.
+
+    Effects whose parameters were held fixed (a play or a lag named on every sample, carried
+    into the sliding phase) are read from their own fit."""
     fit = assessment.fit
     out: dict[str, dict] = {"baseline_scale": {"scale": (float(fit.theta[0]),
                                                          float(fit.stderr[0]), "-")}}
+    kinematic = d.selection.kinematic
     for effect, part in zip(assessment.model.effects, assessment.model.slices(), strict=True):
-        out[effect.name] = physical_parameters(effect, fit.theta[part], fit.stderr[part],
-                                               d.work.context)
+        if not effect.parameters and kinematic is not None:
+            own = dict(zip(kinematic.model.names, kinematic.model.slices(), strict=True))
+            k_effect = kinematic.model.effects[kinematic.model.names.index(effect.name)]
+            sl = own[effect.name]
+            out[effect.name] = k_effect.physical_parameters(
+                kinematic.fit.theta[sl], kinematic.fit.stderr[sl], d.problem.context)
+            continue
+        out[effect.name] = effect.physical_parameters(fit.theta[part], fit.stderr[part],
+                                                      d.problem.context)
     return out
 
 
@@ -65,9 +75,10 @@ def _role(d: Diagnosis, name: str, assessment: Assessment) -> str:
         return f"untestable: {assessment.untestable}"
     in_chosen = sel.chosen is not None and name in sel.chosen.model.names
     if in_chosen and name in sel.verdict:
-        if assessment.earns_keep or len(sel.chosen.model.names) == 1:
+        named = [n for n in sel.verdict if n != "unexplained"]
+        if assessment.earns_keep or len(named) == 1:
             return "selected"
-        others = " + ".join(n for n in sel.chosen.model.names if n != name)
+        others = " + ".join(n for n in named if n != name)
         return f"selected together with {others} (alone it does not earn its keep)"
     if in_chosen or (assessment.earns_keep and sel.verdict == ["unexplained"]):
         return "partial stand-in: earns a little but leaves a real gap"
@@ -76,14 +87,47 @@ def _role(d: Diagnosis, name: str, assessment: Assessment) -> str:
     return "does not earn its keep on held-out data"
 
 
+def _transition(d: Diagnosis) -> dict | None:
+    t = d.transition
+    if t is None:
+        return None
+    return {"statement": t.statement(), "yield_displacement": t.yield_displacement,
+            "rigid_plastic": t.rigid_plastic, "window_travel": t.window_travel,
+            "window_samples": t.window_samples, "sample_share": t.sample_share,
+            "energy_share": t.energy_share, "rms": t.rms, "relative_rms": t.relative_rms,
+            "sliding_rms": t.sliding_rms}
+
+
+def _lag(d: Diagnosis) -> dict:
+    dt = d.baseline.sample_interval
+    total = d.baseline.lag
+    named = d.selection.kinematic is not None and "lag" in d.selection.kinematic.model.names
+    correction = 0.0
+    if named:
+        params = effect_parameters(d, d.selection.kinematic)["lag"]
+        total = params["lag"][0]
+    else:
+        final = d.selection.chosen or d.selection.stage.baseline
+        if "timing" in final.model.names:
+            i = final.model.names.index("timing")
+            correction = float(final.fit.theta[final.model.slices()[i]][0]) * dt
+            total += correction
+    return {"seconds": float(total), "samples": float(total / dt), "sample_interval": dt,
+            "calibrated_in_baseline": float(d.baseline.lag),
+            "refitted_while_sliding": correction, "named": bool(named)}
+
+
 def summary(d: Diagnosis) -> dict:
     """The JSON summary of a diagnosis (see the module docstring)."""
     before = d.gap_before
     sel = d.selection
+    candidates = sel.candidates
     effects = []
     for name in sel.ranking:
-        a = sel.candidates[name]
-        entry: dict = {"name": name, "description": a.model.effects[0].description,
+        a = candidates[name]
+        effect = a.model.effects[-1]
+        entry: dict = {"name": name, "description": effect.description,
+                       "acts_on": effect.acts_on, "physical_reading": effect.physical_reading,
                        "role": _role(d, name, a)}
         if a.untestable is None:
             after = d.work.nrmse(a.prediction)
@@ -95,11 +139,13 @@ def summary(d: Diagnosis) -> dict:
                 "units": {k: v[2] for k, v in params.items()},
                 "held_out_z": _number(a.z_score), "explained_excess": _number(a.explained),
                 "earns_keep": bool(a.earns_keep),
+                "confidence": _number(d.confidence.get(name, float("nan"))),
+                "intervals": d.intervals.get(name, {}),
             })
         else:  # untestable on these data: the same keys, with nothing measured
             entry.update({"gap_after": None, "shrink": None, "parameters": {}, "stderr": {},
                           "units": {}, "held_out_z": None, "explained_excess": None,
-                          "earns_keep": False})
+                          "earns_keep": False, "confidence": None, "intervals": {}})
         effects.append(entry)
     chosen = None
     if sel.chosen is not None:
@@ -115,6 +161,9 @@ def summary(d: Diagnosis) -> dict:
             "Keff_rms_error_after": _number(d.cycles_after.rms("Keff")),
             "parameters": {e: {k: v[0] for k, v in p.items()} for e, p in params.items()},
             "stderr": {e: {k: _number(v[1]) for k, v in p.items()} for e, p in params.items()},
+            "form": dict(sel.form),
+            "confidence": {k: _number(v) for k, v in d.confidence.items()},
+            "intervals": d.intervals,
         }
     unexplained = None
     if sel.real_gap_remains and d.remaining is not None:
@@ -124,7 +173,12 @@ def summary(d: Diagnosis) -> dict:
         "baseline": {"model": d.baseline.spec.label, "parameters": d.baseline.parameters,
                      "runs": d.baseline.iterations},
         "gap": {"metric": "force_nrmse", "value": before, "noise": d.noise_nrmse,
-                "holdout": d.work.holdout.scheme, "cycles": _cycles(d.cycles_before)},
+                "holdout": d.work.holdout.scheme, "cycles": _cycles(d.cycles_before),
+                "phase": "sliding (outside the transition window after each reversal)",
+                "samples": int(f.force.size),
+                "all_samples": d.problem.all.nrmse(d.problem.all_baseline.prediction)},
+        "transition": _transition(d),
+        "lag": _lag(d),
         "where": _where(d.where),
         "effects": effects,
         "chosen": chosen,

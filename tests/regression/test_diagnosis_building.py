@@ -7,12 +7,11 @@ precise model (pressure, velocity and temperature dependence; the contact heats 
 one bearing, through :mod:`structures.diagnosis_adapter`, with white noise of 0.5 % of the
 peak force and 0.02 mm on the displacement. The diagnosis is told the constant model.
 
-Measured: one test, so held out by alternate cycles; constant-model force NRMSE 0.215 (noise
-0.027); verdict velocity and heating; thermal sensitivity 0.0072 1/degC (Eq. 3: 0.007),
-low-speed drop 0.54 (Eq. 2: 0.55), transition velocity 59 mm/s (Eq. 2: 53 mm/s); held-out gap
-0.215 -> 0.057 (shrink 73 %), per-cycle EDC error 14 % -> 0.5 %, Keff 18 % -> 0.5 %. The
-pressure dependence cannot show: the axial load of a bearing is constant in this model.
-About 4 s.
+Measured: one test, so held out by alternate cycles; constant-model force NRMSE on the
+sliding phase 0.208 (noise 0.009); verdict velocity, heating, unexplained (an excess of 1.7 %
+of the RMS force is left, twice the noise); thermal sensitivity 0.0070 1/degC (Eq. 3: 0.007),
+low-speed drop 0.55 (Eq. 2: 0.55). The pressure dependence cannot show: the axial load of a
+bearing is constant in this model. About 6 s.
 """
 
 from __future__ import annotations
@@ -64,8 +63,8 @@ def test_adapter_takes_one_bearing(response):
 
 def test_diagnosis_names_heating_and_the_gap_shrinks(diagnosis):
     summary = diagnosis.to_json()
-    assert "heating" in summary["verdict"], summary["verdict"]
-    assert "none" not in summary["verdict"] and "unexplained" not in summary["verdict"]
+    named = [v for v in summary["verdict"] if v != "unexplained"]
+    assert set(named) == {"velocity", "heating"}, summary["verdict"]
     chosen = summary["chosen"]
     assert chosen["shrink"] >= 0.6, chosen
     assert chosen["EDC_rms_error_after"] < 0.25 * chosen["EDC_rms_error_before"]

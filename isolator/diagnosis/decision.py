@@ -1,0 +1,406 @@
+"""The two-stage decision of the diagnosis: kinematics on every sample, then the friction law
+on the sliding phase (see :mod:`isolator.diagnosis.selection` for the criteria).
+
+:class:`Problem` holds what every decision on one campaign shares (features, folds, context,
+the candidates' fits, cached) so that :meth:`Problem.select` can be repeated cheaply with
+other thresholds or with effects withheld (a leave-one-effect-out check, the tuning of the
+thresholds on the validation panel).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from itertools import combinations
+
+import numpy as np
+
+from isolator.diagnosis.effects import Context, Effect
+from isolator.diagnosis.features import Features
+from isolator.diagnosis.fitting import Fit, HoldOut, Model, fit, kinematic_change
+from isolator.diagnosis.flexible import direction, flexible
+from isolator.diagnosis.selection import (
+    MAX_EFFECTS,
+    MAX_KINEMATIC,
+    SCREENED,
+    Assessment,
+    Workspace,
+    assess,
+    qualifies,
+    untestable,
+)
+from isolator.diagnosis.thresholds import Thresholds
+from isolator.diagnosis.transition import TIMING, in_transition
+
+
+@dataclass(frozen=True)
+class Stage:
+    """The sliding-phase stage for one set of kinematic effects.
+
+    Attributes
+    ----------
+    work : Workspace
+        The sliding samples, with the kinematics applied.
+    baseline : Assessment
+        The baseline (with the kinematics) on them.
+    plain : np.ndarray
+        The plain baseline's held-out prediction on the same samples [N].
+    singles : dict
+        Each effect on mu or the force alone, by name.
+    """
+
+    work: Workspace
+    baseline: Assessment
+    plain: np.ndarray
+    singles: dict[str, Assessment]
+
+
+@dataclass(frozen=True)
+class Selection:
+    """The result of one decision.
+
+    Attributes
+    ----------
+    stage : Stage
+        The sliding-phase stage the verdict was decided on (its samples define the gap).
+    kinematic : Assessment or None
+        The named effects on the kinematics (judged on every sample).
+    kinematic_candidates : dict
+        Each kinematic effect alone, judged on every sample.
+    chosen : Assessment or None
+        The final model on the stage's samples (kinematics and friction-law effects).
+    verdict : list of str
+        See :mod:`isolator.diagnosis.selection`.
+    explained : float
+        Share of the sliding-phase excess closed by ``chosen`` [-].
+    real_gap_remains : bool
+        Whether a real gap is left.
+    ranking : list of str
+        Effect names, best first: the named ones, then the others by held-out error, then the
+        untestable ones.
+    form : dict
+        ``{effect: "paper" | "flexible"}``: the form of each named effect on mu reported.
+    thresholds : Thresholds
+        The thresholds used.
+    """
+
+    stage: Stage
+    kinematic: Assessment | None
+    kinematic_candidates: dict[str, Assessment]
+    chosen: Assessment | None
+    verdict: list[str]
+    explained: float
+    real_gap_remains: bool
+    ranking: list[str]
+    form: dict[str, str]
+    thresholds: Thresholds
+
+    @property
+    def baseline(self) -> Assessment:
+        """The plain baseline on the stage's samples (prediction: held out)."""
+        b = self.stage.baseline
+        return replace(b, prediction=self.stage.plain)
+
+    @property
+    def candidates(self) -> dict[str, Assessment]:
+        """Every candidate, kinematic ones first (predictions on the stage's samples)."""
+        idx = self.stage.work.features.sample
+        out = {}
+        for name, a in self.kinematic_candidates.items():
+            out[name] = a if a.prediction is None else replace(
+                a, prediction=_on(a.prediction, self._all_samples, idx))
+        out.update(self.stage.singles)
+        return out
+
+    @property
+    def _all_samples(self) -> np.ndarray:
+        return self._all
+
+    _all: np.ndarray = field(default=None, repr=False)
+
+
+def _on(prediction: np.ndarray, samples: np.ndarray, wanted: np.ndarray) -> np.ndarray:
+    """The values of ``prediction`` (given at ``samples``) at the samples ``wanted``."""
+    position = np.searchsorted(samples, wanted)
+    return prediction[position]
+
+
+class Problem:
+    """Everything one campaign's decisions share; see the module docstring.
+
+    Parameters
+    ----------
+    features : Features
+        The calibrated baseline's features (weights set).
+    context : Context
+        The campaign's constants (with its :class:`~isolator.diagnosis.fitting.Kinematics`).
+    effects : tuple of Effect
+        The candidates.
+    thresholds : Thresholds
+        Used for the candidates' own ``earns_keep`` flags (the decisions take their own).
+    """
+
+    def __init__(self, features: Features, context: Context, effects: tuple[Effect, ...],
+                 thresholds: Thresholds) -> None:
+        self.features = features
+        self.context = context
+        self.effects = effects
+        self.thresholds = thresholds
+        self.all = Workspace(features, HoldOut.of(features), context)
+        self.all_baseline = assess(self.all, Model(), None, [np.array([1.0])])
+        self.kinematic = {e.name: self._assess_kinematic(e) for e in effects
+                          if e.acts_on == "kinematics"}
+        self._stages: dict[tuple[str, ...], Stage] = {}
+
+    # -- stage 1 -----------------------------------------------------------------------------
+
+    def _assess_kinematic(self, effect: Effect) -> Assessment:
+        model = Model((effect,))
+        reason = effect.untestable(self.context)
+        if reason is not None:
+            return untestable(model, reason)
+        return assess(self.all, model, self.all_baseline, thresholds=self.thresholds)
+
+    def _kinematic_size_ok(self, a: Assessment, th: Thresholds) -> bool:
+        for effect, part in zip(a.model.effects, a.model.slices(), strict=True):
+            values = effect.physical_parameters(a.fit.theta[part], a.fit.stderr[part],
+                                                self.context)
+            if effect.name == "lag" and abs(values["lag_samples"][0]) < th.lag_min_samples:
+                return False
+            if effect.name == "backlash" and values["width"][0] < th.backlash_min:
+                return False
+        return True
+
+    def _stage_one(self, exclude: tuple[str, ...], th: Thresholds) -> Assessment | None:
+        pool = [a for n, a in self.kinematic.items()
+                if n not in exclude and a.untestable is None]
+        current = self.all_baseline
+        while len(current.model.effects) < MAX_KINEMATIC:
+            options = []
+            for a in pool:
+                if a.model.names[0] in current.model.names:
+                    continue
+                judged = (a if not current.model.effects
+                          else self._extended(self.all, current, (a,)))
+                if (qualifies(self.all, current, judged, th.kinematic_z,
+                              th.kinematic_explained, th.kinematic_practical)
+                        and self._kinematic_size_ok(judged, th)):
+                    options.append(judged)
+            if not options:
+                break
+            current = min(options, key=lambda a: a.weighted)
+        return current if current.model.effects else None
+
+    # -- stage 2 -----------------------------------------------------------------------------
+
+    def stage(self, kinematic: Assessment | None) -> Stage:
+        """The sliding-phase stage with the kinematic effects of ``kinematic`` applied."""
+        key = () if kinematic is None else kinematic.model.names
+        if key in self._stages:
+            return self._stages[key]
+        f = self.features
+        plain_window = in_transition(f, self.context.yield_displacement)
+        keep = ~plain_window
+        base_model = Model()
+        start = [np.array([1.0])]
+        if kinematic is not None:
+            base_model = kinematic.model
+            start = [kinematic.fit.theta]
+            change = kinematic_change(zip(base_model.effects, base_model.slices(), strict=True),
+                                      kinematic.fit.theta, self.context)
+            _, _, engaged = self.context.kinematics.recompute(**change)
+            u_y = change["yield_displacement"] or self.context.yield_displacement
+            keep &= ~in_transition(f, max(u_y, self.context.yield_displacement),
+                                   change["half_width"])
+            keep &= engaged[f.sample] > 0.5
+        sliding = f.take(np.flatnonzero(keep))
+        work = Workspace(sliding, HoldOut.of(sliding), self.context)
+        # the kinematic effects' parameters stay at their fit on every sample; the channel
+        # timing is refitted with every model (a nuisance, never named)
+        frozen = _frozen(base_model, start[0]) if kinematic is not None else base_model
+        if not math.isinf(self.context.effective_radius):
+            frozen = Model((*frozen.effects, TIMING))
+        baseline = assess(work, frozen, None, [frozen.initial()])
+        plain = _on(self.all_baseline.prediction, f.sample, sliding.sample)
+        singles: dict[str, Assessment] = {}
+        for effect in self.effects:
+            if effect.acts_on == "kinematics":
+                continue
+            model = Model((*frozen.effects, effect))
+            reason = effect.untestable(self.context)
+            singles[effect.name] = (
+                untestable(model, reason) if reason is not None
+                else assess(work, model, baseline, thresholds=self.thresholds))
+        stage = Stage(work, baseline, plain, singles)
+        self._stages[key] = stage
+        return stage
+
+    def select(self, exclude: tuple[str, ...] = (),
+               thresholds: Thresholds | None = None) -> Selection:
+        """The decision with ``exclude`` withheld, under ``thresholds`` (default: the
+        problem's)."""
+        th = thresholds or self.thresholds
+        kinematic = self._stage_one(tuple(exclude), th)
+        stage = self.stage(kinematic)
+        work, base = stage.work, stage.baseline
+        pool = {n: a for n, a in stage.singles.items() if n not in exclude}
+        testable = sorted((a for a in pool.values() if a.untestable is None),
+                          key=lambda a: a.weighted)
+        noise_like = (base.score - 1.0 <= th.none_margin
+                      or work.excess_rms(base.prediction) < th.practical_none)
+        current, named, form = base, [], {}
+        if not noise_like:
+            current, named, form = self._forward(stage, testable, th)
+        excess = base.weighted - work.weighted_noise
+        explained = (base.weighted - current.weighted) / excess if excess > 0.0 else 0.0
+        left = work.excess_rms(current.prediction)
+        real_gap = current.score - 1.0 > th.none_margin and left >= th.practical_remain
+        kin_names = [] if kinematic is None else list(kinematic.model.names)
+        if named and explained < th.name_min:
+            named, real_gap = [], True
+        if not named and not kin_names:
+            verdict = ["unexplained"] if (real_gap and not noise_like) else ["none"]
+            real_gap = verdict == ["unexplained"]
+        else:
+            verdict = kin_names + named + (["unexplained"] if real_gap else [])
+        chosen = current if (named or kin_names) else None
+        order = [n for n in verdict if n not in ("unexplained", "none")]
+        rest = sorted((a for a in [*self.kinematic.values(), *testable]
+                       if a.untestable is None and a.model.names[-1] not in order),
+                      key=lambda a: work.nrmse(_prediction_on(a, self.features, work)))
+        order += [a.model.names[-1] for a in rest if a.model.names[-1] not in exclude]
+        order += [n for n, a in {**self.kinematic, **stage.singles}.items()
+                  if a.untestable is not None and n not in exclude and n not in order]
+        return Selection(stage, kinematic, {n: a for n, a in self.kinematic.items()
+                                            if n not in exclude},
+                         chosen, verdict, explained, real_gap, order, form, th,
+                         _all=self.features.sample)
+
+    def _forward(self, stage: Stage, testable: list[Assessment],
+                 th: Thresholds) -> tuple[Assessment, list[str], dict[str, str]]:
+        """Forward selection on the sliding phase (see the module docstring)."""
+        work, current = stage.work, stage.baseline
+        frozen = len(current.model.effects)
+        named: list[str] = []
+        while len(named) < MAX_EFFECTS:
+            free = [a for a in testable if a.model.names[-1] not in named]
+            if not named:
+                step = self._best(work, current, [(a,) for a in free], th.z_min,
+                                  th.explained_min, th.practical_gain)
+                if step is None:
+                    step = self._best(work, current, list(combinations(free, 2)), th.z_min,
+                                      th.explained_min, th.practical_gain)
+            else:
+                reference = self._flexible_reference(work, current, frozen)
+                step = self._best(work, reference, [(a,) for a in free], th.second_z,
+                                  th.second_explained, th.practical_gain)
+            if step is None:
+                break
+            current = step
+            named = list(current.model.names[frozen:])
+        form = {}
+        if named:
+            current, form = self._reported_form(work, current, frozen, th)
+        return current, named, form
+
+    def _flexible_reference(self, work: Workspace, current: Assessment,
+                            frozen: int) -> Assessment:
+        """``current`` with its friction-law effects on mu in flexible form, if that is
+        better on held-out data."""
+        effects = list(current.model.effects)
+        theta = current.fit.theta
+        changed = False
+        for i, (effect, part) in enumerate(zip(effects, current.model.slices(), strict=True)):
+            if i < frozen or effect.acts_on != "mu" or effect.variable is None:
+                continue
+            if effect.name == "asymmetry":
+                continue
+            up = direction(effect, theta[part], work.features, work.context)
+            effects[i] = flexible(effect, self.features, self.context, up)
+            changed = True
+        if not changed:
+            return current
+        model = Model(tuple(effects))
+        key = ("flexible", *model.names)
+        if key not in work.cache:
+            work.cache[key] = assess(work, model, None)
+        candidate = work.cache[key]
+        return candidate if candidate.weighted < current.weighted else current
+
+    def _reported_form(self, work: Workspace, current: Assessment, frozen: int,
+                       th: Thresholds) -> tuple[Assessment, dict[str, str]]:
+        flex = self._flexible_reference(work, current, frozen)
+        form = {e.name: "paper" for e in current.model.effects[frozen:] if e.acts_on == "mu"}
+        if flex is current:
+            return current, form
+        excess = current.weighted - work.weighted_noise
+        if excess > 0.0 and (current.weighted - flex.weighted) / excess >= th.flexible_margin:
+            for e in flex.model.effects[frozen:]:
+                if e.acts_on == "mu" and e.name != "asymmetry":
+                    form[e.name] = "flexible"
+            return flex, form
+        return current, form
+
+    def _best(self, work: Workspace, current: Assessment,
+              additions: list[tuple[Assessment, ...]], z_min: float, explained_min: float,
+              practical: float) -> Assessment | None:
+        """The best qualifying extension of ``current`` (screened in-sample)."""
+        fitted = [self._extended_fit(work, current, add) for add in additions]
+        fitted.sort(key=lambda item: item[1].sse)
+        options = []
+        for model, full in fitted[:SCREENED]:
+            judged = self._judged(work, model, full)
+            if qualifies(work, current, judged, z_min, explained_min, practical):
+                options.append(judged)
+        return min(options, key=lambda a: a.weighted) if options else None
+
+    def _extended(self, work: Workspace, current: Assessment,
+                  additions: tuple[Assessment, ...]) -> Assessment:
+        model, full = self._extended_fit(work, current, additions)
+        return self._judged(work, model, full)
+
+    def _extended_fit(self, work: Workspace, current: Assessment,
+                      additions: tuple[Assessment, ...]) -> tuple[Model, Fit]:
+        """``current`` extended by the last effect of each of ``additions``, fitted on all
+        data."""
+        own = [a.model.effects[-1] for a in additions]
+        if len(own) == 1 and additions[0].model.effects[:-1] == current.model.effects:
+            return additions[0].model, additions[0].fit
+        model = Model(current.model.effects + tuple(own))
+        key = ("fit", *model.names, *(e.description for e in model.effects))
+        if key not in work.cache:
+            own_theta = [a.fit.theta[a.model.slices()[-1]] for a in additions]
+            scales = [current.fit.theta[0], *(a.fit.theta[0] for a in additions)]
+            starts = [np.concatenate([[scale], current.fit.theta[1:], *own_theta])
+                      for scale in scales]
+            work.cache[key] = fit(model, work.features, work.context, starts, uncertainty=True)
+        return model, work.cache[key]
+
+    def _judged(self, work: Workspace, model: Model, full: Fit) -> Assessment:
+        key = ("judged", *model.names, *(e.description for e in model.effects))
+        if key not in work.cache:
+            prediction, _ = work.holdout.predict(model, work.context, start=full.theta)
+            work.cache[key] = work.judge(model, full, prediction)
+        return work.cache[key]
+
+
+def _prediction_on(a: Assessment, features: Features, work: Workspace) -> np.ndarray:
+    if a.prediction.size == len(work.features):
+        return a.prediction
+    return _on(a.prediction, features.sample, work.features.sample)
+
+
+def _frozen(model: Model, theta: np.ndarray) -> Model:
+    """``model`` with its effects' parameters held at ``theta`` (only the scale is free)."""
+    effects = []
+    for effect, part in zip(model.effects, model.slices(), strict=True):
+        fixed = np.array(theta[part], dtype=float)
+        effects.append(replace(
+            effect, parameters=(),
+            kinematic=(None if effect.kinematic is None
+                       else (lambda _t, c, e=effect, v=fixed: e.kinematic(v, c))),
+            factor=(None if effect.factor is None
+                    else (lambda _t, f, c, e=effect, v=fixed: e.factor(v, f, c))),
+            extra=(None if effect.extra is None
+                   else (lambda _t, f, c, e=effect, v=fixed: e.extra(v, f, c)))))
+    return Model(tuple(effects))

@@ -1,0 +1,200 @@
+"""What an effect of the diagnosis is: its parameters, where it acts, its physical reading.
+
+An :class:`Effect` is one candidate explanation of a gap between a calibrated baseline and
+measured bearing tests. It acts where the physics acts:
+
+- on the **kinematics** before the return map (``kinematic``): the displacement the bearing
+  really undergoes differs from the one measured (a play in the load train, a time offset
+  between the channels); the model's z, pendulum force and load path are recomputed from it;
+- on the **friction coefficient** (``factor``): mu(t) = c mu_base(t) m(t), m a function of the
+  effect's own variable (temperature rise, speed, pressure, travel);
+- on the **force** (``extra`` adds a force, ``transform`` maps the force parts): a restoring
+  stiffness other than N / R_eff, the spherical surface's geometry.
+
+Parameters are fitted on a scale where they are of order one; scale parameters as their
+base-10 logarithm. ``reading`` turns a fit into the values engineers read, with units.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+ACTS_ON = ("kinematics", "mu", "force")
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A fitted parameter of an effect, on its fitting scale.
+
+    Attributes
+    ----------
+    name : str
+        Name on the fitting scale.
+    initial, low, high : float
+        Start value and bounds (of log10 of the value when ``log``).
+    log : bool
+        Whether the parameter is fitted as log10 of its value.
+    starts : tuple of float
+        Further start values of a multistart fit (on the fitting scale).
+    """
+
+    name: str
+    initial: float
+    low: float
+    high: float
+    log: bool = False
+    starts: tuple[float, ...] = ()
+
+
+@dataclass(frozen=True)
+class Context:
+    """Campaign-wide constants the effects scale their parameters with.
+
+    Attributes
+    ----------
+    reference_pressure : float
+        Median contact pressure [Pa].
+    pressure_spread : float
+        Ratio of the 95th to the 5th percentile of the pressure, less one [-].
+    reference_displacement : float
+        99th percentile of |u| [m].
+    campaign_travel : float
+        Total travel of the campaign [m].
+    effective_radius : float
+        R_eff the user gave [m] (inf for a flat slider).
+    largest_rise : float
+        Largest contact-temperature rise from the measured friction power [degC].
+    sample_interval : float
+        Median sampling interval [s].
+    yield_displacement : float
+        The baseline's calibrated u_y [m].
+    nominal_mu : float
+        Mean friction coefficient of the calibrated baseline [-].
+    tests : int
+        Number of tests of the campaign.
+    channel_lag : float
+        Time offset of the force channel behind the displacement channel that the baseline
+        calibrated [s].
+    kinematics : object or None
+        The full, contiguous histories kinematic effects recompute the return map on
+        (:class:`isolator.diagnosis.fitting.Kinematics`).
+    """
+
+    reference_pressure: float
+    pressure_spread: float
+    reference_displacement: float
+    campaign_travel: float
+    effective_radius: float
+    largest_rise: float
+    sample_interval: float = 0.01
+    yield_displacement: float = 5.0e-4
+    nominal_mu: float = 0.05
+    tests: int = 1
+    channel_lag: float = 0.0
+    kinematics: object | None = field(default=None, compare=False, repr=False)
+
+    @classmethod
+    def of(cls, features, effective_radius: float, **known) -> Context:
+        """The constants of a whole campaign (``features``: a
+        :class:`~isolator.diagnosis.features.Features`); ``known`` sets the others."""
+        p5, p50, p95 = np.percentile(features.pressure, [5, 50, 95])
+        return cls(float(p50), float(p95 / p5 - 1.0),
+                   float(np.percentile(np.abs(features.displacement), 99)),
+                   float(features.campaign_travel.max()), float(effective_radius),
+                   float(features.temperature_rise.max()), **known)
+
+
+Modulation = Callable[[np.ndarray, object, Context], np.ndarray]
+Requirement = Callable[[Context], "str | None"]
+Reading = Callable[[np.ndarray, np.ndarray, Context], dict[str, tuple[float, float, str]]]
+
+
+@dataclass(frozen=True)
+class Effect:
+    """One candidate: its parameters, where it acts, and how it reads.
+
+    Attributes
+    ----------
+    name : str
+        Name used in the verdict.
+    description : str
+        One line for reports.
+    physical_reading : str
+        What the effect is physically, for the documentation and reports.
+    parameters : tuple of Parameter
+        Its own parameters (the baseline's scale is added by the fit).
+    acts_on : {"kinematics", "mu", "force"}
+        Where it acts.
+    factor : callable or None
+        ``factor(theta, features, context) -> m`` [-], on mu.
+    extra : callable or None
+        ``extra(theta, features, context) -> e`` [N], added to the force.
+    transform : callable or None
+        ``transform(theta, features, context, pendulum, friction) -> force`` [N]: the force
+        from its parts (pendulum force and friction force mu N z).
+    kinematic : callable or None
+        ``kinematic(theta, context) -> {"shift": s, "half_width": h}``: a time offset of the
+        force channel behind the displacement channel [s] and/or the half width of a dead
+        band in the load path [m]; the return map, the pendulum force and the load path are
+        recomputed from the displacement so changed
+        (:class:`isolator.diagnosis.fitting.Kinematics`).
+    variable : callable or None
+        ``variable(features, context) -> x``: the effect's own variable, for its flexible
+        monotone form (:mod:`isolator.diagnosis.flexible`).
+    requires : callable or None
+        ``requires(context) -> reason or None``: why the campaign cannot show the effect.
+    reading : callable or None
+        ``reading(theta, stderr, context) -> {name: (value, stderr, unit)}``.
+    order : int
+        Position in the library's listing.
+    """
+
+    name: str
+    description: str
+    physical_reading: str
+    parameters: tuple[Parameter, ...]
+    acts_on: str
+    factor: Modulation | None = None
+    extra: Modulation | None = None
+    transform: Callable | None = None
+    kinematic: Callable | None = None
+    variable: Callable | None = None
+    requires: Requirement | None = None
+    reading: Reading | None = None
+    order: int = 100
+
+    def __post_init__(self) -> None:
+        if self.acts_on not in ACTS_ON:
+            raise ValueError(f"The 'acts_on' parameter of Effect {self.name!r} must be one of "
+                             f"{ACTS_ON}. Got {self.acts_on!r} instead.")
+        hooks = {"kinematics": (self.kinematic,), "mu": (self.factor,),
+                 "force": (self.extra, self.transform)}[self.acts_on]
+        if all(h is None for h in hooks):
+            raise ValueError(f"Effect {self.name!r} acts on {self.acts_on} but defines none of "
+                             "the hooks that act there.")
+
+    def untestable(self, context: Context) -> str | None:
+        """Why the data cannot show this effect, or None when it can."""
+        return None if self.requires is None else self.requires(context)
+
+    def physical_parameters(self, theta: np.ndarray, stderr: np.ndarray,
+                            context: Context) -> dict[str, tuple[float, float, str]]:
+        """``{name: (value, standard error, unit)}`` in engineering terms."""
+        if self.reading is not None:
+            return self.reading(theta, stderr, context)
+        return {p.name: (float(theta[i]), float(stderr[i]), "-")
+                for i, p in enumerate(self.parameters)}
+
+
+def linear(theta: np.ndarray, stderr: np.ndarray, i: int) -> tuple[float, float]:
+    """(value, standard error) of a linear parameter."""
+    return float(theta[i]), float(stderr[i])
+
+
+def exp10(theta: np.ndarray, stderr: np.ndarray, i: int) -> tuple[float, float]:
+    """(value, standard error) of a log10 parameter (delta method)."""
+    value = 10.0 ** float(theta[i])
+    return value, value * float(np.log(10.0)) * float(stderr[i])

@@ -1,0 +1,163 @@
+"""A campaign manifest: the tests of one bearing in run order, with their conditions.
+
+A CSV manifest has a header line and one row per test, in the order the tests were run:
+
+``file``
+    The test's CSV file, relative to the manifest (required).
+``axial_load``
+    Constant axial load of that test [N], for a file without an ``axial_force`` column (a
+    file with the column uses it; a manifest value that disagrees with it by more than 2 %
+    is an error).
+``initial_temperature``
+    Temperature of the plates at the start of the test [degC].
+``rest_before``
+    Rest since the end of the previous test [s]; empty: long enough to cool down.
+
+A TOML manifest says the same with a ``[[test]]`` table per test (same keys) and may give the
+bearing (``effective_radius`` [m], ``slider_diameter`` [m]) at the top. So pressure can be
+tested across tests at a constant load each, heating restarts cool after a long rest, and
+wear follows the real order.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from isolator.diagnosis.data import (
+    Campaign,
+    DataError,
+    check_consistent_units,
+    read_record,
+)
+
+COLUMNS = ("file", "axial_load", "initial_temperature", "rest_before")
+_AXIAL_TOLERANCE = 0.02
+
+
+def read_manifest(path: str | Path) -> tuple[list[dict], dict]:
+    """The rows of a manifest (one dict per test) and its top-level bearing values."""
+    path = Path(path)
+    if not path.is_file():
+        raise DataError(f"{path}: no such manifest file.")
+    if path.suffix.lower() == ".toml":
+        import tomllib
+
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
+            raise DataError(f"{path}: not a readable TOML manifest ({error}).") from error
+        rows = data.pop("test", None)
+        if not isinstance(rows, list) or not rows:
+            raise DataError(f"{path}: a TOML manifest needs one [[test]] table per test.")
+        top = {k: data[k] for k in ("effective_radius", "slider_diameter") if k in data}
+        unknown = sorted(set(data) - set(top))
+        if unknown:
+            raise DataError(f"{path}: unknown key(s) {unknown}; allowed: effective_radius, "
+                            "slider_diameter and [[test]] tables.")
+    else:
+        import csv
+
+        try:
+            with path.open(newline="", encoding="utf-8") as handle:
+                rows = list(csv.DictReader(handle))
+        except UnicodeDecodeError as error:
+            raise DataError(f"{path}: not a UTF-8 CSV manifest ({error}).") from error
+        top = {}
+        if not rows or "file" not in rows[0]:
+            raise DataError(f"{path}: a CSV manifest needs a header with a 'file' column and "
+                            "one row per test.")
+    out = []
+    for number, row in enumerate(rows, start=1):
+        where = f"{path}: test {number}"
+        if not isinstance(row, dict):
+            raise DataError(f"{where}: must be a table of {COLUMNS}.")
+        unknown = sorted(set(row) - set(COLUMNS))
+        if unknown:
+            raise DataError(f"{where}: unknown column(s) {unknown}; allowed: {list(COLUMNS)}.")
+        entry = {"file": str(row.get("file") or "").strip()}
+        if not entry["file"]:
+            raise DataError(f"{where}: 'file' is empty.")
+        for key in COLUMNS[1:]:
+            entry[key] = _number(row.get(key), key, where)
+        out.append(entry)
+    return out, top
+
+
+def _number(value, key: str, where: str) -> float | None:
+    if value is None or (isinstance(value, str) and not value.strip()):
+        return None
+    if isinstance(value, bool):
+        raise DataError(f"{where}: '{key}' must be a number. Got {value!r}.")
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise DataError(f"{where}: '{key}' must be a number. Got {value!r}.") from None
+    if not math.isfinite(number):
+        raise DataError(f"{where}: '{key}' must be finite. Got {value!r}.")
+    return number
+
+
+def load_manifest(
+    path: str | Path,
+    *,
+    effective_radius: float | None = None,
+    slider_diameter: float | None = None,
+    axial_load: float | None = None,
+) -> Campaign:
+    """The campaign a manifest lists (see the module docstring).
+
+    ``effective_radius`` and ``slider_diameter`` are taken from the arguments, else from a
+    TOML manifest; ``axial_load`` [N] applies to the tests whose row gives none and whose file
+    has no ``axial_force`` column.
+
+    Raises
+    ------
+    DataError
+        Naming the manifest, the test and the problem: a missing file, a load that disagrees
+        with the file's column, a campaign that mixes units.
+    """
+    path = Path(path)
+    rows, top = read_manifest(path)
+    radius = effective_radius if effective_radius is not None else top.get("effective_radius")
+    diameter = slider_diameter if slider_diameter is not None else top.get("slider_diameter")
+    if radius is None or diameter is None:
+        raise DataError(f"{path}: give the effective radius and the slider diameter (on the "
+                        "command line, or in a TOML manifest).")
+    tests = []
+    for number, row in enumerate(rows, start=1):
+        file = (path.parent / row["file"]).resolve()
+        where = f"{path}: test {number} ({row['file']})"
+        if not file.is_file():
+            raise DataError(f"{where}: the file does not exist ({file}).")
+        load = row["axial_load"] if row["axial_load"] is not None else axial_load
+        has_column = _has_axial_column(file)
+        if has_column and row["axial_load"] is not None:
+            record = read_record(file, initial_temperature=row["initial_temperature"],
+                                 rest_before=row["rest_before"])
+            mean = float(np.mean(record.axial_force))
+            if abs(mean - row["axial_load"]) > _AXIAL_TOLERANCE * abs(mean):
+                raise DataError(f"{where}: the manifest's axial_load {row['axial_load']:.6g} N "
+                                f"disagrees with the file's axial_force column (mean "
+                                f"{mean:.6g} N); give one of the two.")
+        else:
+            if not has_column and load is None:
+                raise DataError(f"{where}: no axial_force column and no axial_load in the "
+                                "manifest or on the command line.")
+            record = read_record(file, axial_load=None if has_column else load,
+                                 initial_temperature=row["initial_temperature"],
+                                 rest_before=row["rest_before"])
+        tests.append(record)
+    check_consistent_units(tests)
+    return Campaign(tuple(tests), float(radius), float(diameter))
+
+
+def _has_axial_column(file: Path) -> bool:
+    import gzip
+
+    opener = gzip.open if file.suffix == ".gz" else open
+    with opener(file, "rt", encoding="utf-8", errors="replace") as handle:
+        header = handle.readline()
+    return "axial_force" in [c.strip() for c in header.split(",")]

@@ -1,0 +1,124 @@
+"""The pre-sliding transition after each reversal: its window and what is left in it.
+
+Right after a reversal the force swings from one sliding level to the other. How it swings
+depends on details that do not belong to the friction law: the pre-sliding stiffness (an
+elastic-plastic return map with yield displacement u_y, a rigid-plastic switch at the
+displacement peak, a smooth Bouc-Wen curve), a channel lag of a sample or two, the sampling.
+The baseline calibrates u_y (down to the rigid-plastic limit) and the lag; the residual left
+inside the *transition window* (within ``WINDOW_YIELDS`` u_y of travel or
+``WINDOW_SAMPLES`` samples of a reversal) is reported as a finding of its own, and the
+friction-law verdict is decided on the sliding phase outside it, so a transition mismatch can
+neither mask an effect nor turn ``none`` into ``unexplained``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from isolator.diagnosis.effects import Effect, Parameter
+from isolator.diagnosis.features import Features
+
+WINDOW_YIELDS = 3.0  # the window: within 3 u_y of travel after a reversal ...
+WINDOW_SAMPLES = 3  # ... or within 3 samples of it
+MIN_WINDOW = 2.0e-4  # [m] the travel window is at least 0.2 mm
+NUISANCE_LAG_SAMPLES = 2.0  # the channel offset the baseline calibrates, in samples
+
+
+def window_travel(yield_displacement: float, half_width: float = 0.0) -> float:
+    """Travel after a reversal inside the transition window [m] (a play adds its width)."""
+    return max(WINDOW_YIELDS * yield_displacement, MIN_WINDOW) + 2.0 * half_width
+
+
+def in_transition(features: Features, yield_displacement: float,
+                  half_width: float = 0.0) -> np.ndarray:
+    """Whether each sample lies in the transition window after a reversal."""
+    travel = window_travel(yield_displacement, half_width)
+    return (features.since_reversal < travel) | (features.steps_since_reversal < WINDOW_SAMPLES)
+
+
+@dataclass(frozen=True)
+class TransitionFinding:
+    """What the baseline leaves inside the transition window.
+
+    Attributes
+    ----------
+    yield_displacement : float
+        The calibrated u_y [m]; ``rigid_plastic`` when it is at the grid's lower end.
+    rigid_plastic : bool
+        Whether the calibrated transition is the rigid-plastic limit.
+    window_travel : float
+        Travel after a reversal counted in the window [m].
+    window_samples : int
+        Samples after a reversal counted in the window.
+    sample_share : float
+        Share of the samples in the window [-].
+    energy_share : float
+        Share of the held-out residual energy in the window [-].
+    rms : float
+        RMS residual in the window [N].
+    relative_rms : float
+        ``rms`` over the RMS force [-].
+    sliding_rms : float
+        RMS residual outside the window [N].
+    """
+
+    yield_displacement: float
+    rigid_plastic: bool
+    window_travel: float
+    window_samples: int
+    sample_share: float
+    energy_share: float
+    rms: float
+    relative_rms: float
+    sliding_rms: float
+
+    def statement(self) -> str:
+        """One sentence on the transition."""
+        kind = ("rigid-plastic (the force reverses at the displacement peak)"
+                if self.rigid_plastic else
+                f"elastic-plastic with u_y = {1e3 * self.yield_displacement:.3g} mm")
+        return (f"Pre-sliding transition calibrated as {kind}; inside the window "
+                f"({1e3 * self.window_travel:.3g} mm or {self.window_samples} samples after "
+                f"each reversal, {100 * self.sample_share:.0f} % of the samples) the residual "
+                f"is {self.rms:.4g} N RMS ({100 * self.relative_rms:.2f} % of the RMS force, "
+                f"{100 * self.energy_share:.0f} % of the residual energy) against "
+                f"{self.sliding_rms:.4g} N while sliding.")
+
+
+def transition_finding(features: Features, prediction: np.ndarray, window: np.ndarray,
+                       yield_displacement: float, rigid_limit: float,
+                       half_width: float = 0.0) -> TransitionFinding:
+    """The residual ``force - prediction`` inside and outside the ``window`` mask."""
+    residual = features.force - prediction
+    energy = residual**2
+    total = float(energy.sum()) or 1.0
+    force_rms = float(np.sqrt(np.mean(features.force**2))) or 1.0
+    inside = float(np.sqrt(np.mean(energy[window]))) if window.any() else 0.0
+    outside = float(np.sqrt(np.mean(energy[~window]))) if (~window).any() else 0.0
+    return TransitionFinding(float(yield_displacement),
+                             bool(yield_displacement <= 1.5 * rigid_limit),
+                             window_travel(yield_displacement, half_width), WINDOW_SAMPLES,
+                             float(window.mean()), float(energy[window].sum()) / total,
+                             inside, inside / force_rms, outside)
+
+
+def _timing_extra(theta, f, c):
+    # N u(t - tau) / R = N u / R - tau N v / R to first order: a further lag tau
+    return -theta[0] * c.sample_interval * f.axial_force * f.velocity / c.effective_radius
+
+
+TIMING = Effect(
+    "timing", "the channel offset, refitted with every model of the sliding phase",
+    "a time offset between the force and displacement channels shifts the pendulum force "
+    "by N v tau / R_eff while sliding (the friction force is unchanged away from reversals)",
+    (Parameter("samples", 0.0, -NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES),), "force",
+    extra=_timing_extra,
+    reading=lambda theta, stderr, c: {
+        "lag_correction": (float(theta[0]) * c.sample_interval,
+                           float(stderr[0]) * c.sample_interval, "s")})
+"""A nuisance term of every sliding-phase model (never named): the first-order change of the
+pendulum force N u / R_eff with a further channel offset of up to ``NUISANCE_LAG_SAMPLES``
+samples, so the baseline's lag, calibrated where effects near the reversals can bias it, is
+refitted with each candidate."""
