@@ -113,7 +113,7 @@ def test_a_large_lag_is_named_with_its_size():
 
 def test_backlash_is_named_with_its_width():
     def played(h):
-        ub, z, engaged = play_return_map(h.displacement, 1.5e-3, 2e-4, 0.0, MU)
+        _, z, _ = play_return_map(h.displacement, 1.5e-3, 2e-4, 0.0, MU)
         return MU * N * z
 
     tests = tuple(_test(played, amplitude=a, seed=k) for k, a in enumerate((0.05, 0.1)))
