@@ -182,7 +182,9 @@ def _history(d: Diagnosis, path: Path) -> Path:
     return path
 
 
-def _value(value: float, stderr: float | None, unit: str) -> str:
+def _value(value, stderr: float | None, unit: str) -> str:
+    if isinstance(value, list | tuple):  # a flexible form's curve
+        return "[" + ", ".join(f"{x:.3g}" for x in value) + "]"
     unit = "" if unit == "-" else f" {unit}"
     if stderr is None or not np.isfinite(stderr) or stderr == 0.0:
         return f"{value:.4g}{unit}"
@@ -212,6 +214,14 @@ def markdown(d: Diagnosis, summary: dict, figures: list[str]) -> str:
                      + ", ".join(f"{q} {100 * cycles[f'{q}_rms_error']:.1f} %"
                                  for q in ("EDC", "Keff", "beta_eff", "Fmax", "Fmin")
                                  if cycles.get(f"{q}_rms_error") is not None) + ".")
+    lines.append(f"- Judged on the {gap['phase']}; over all samples the baseline's NRMSE is "
+                 f"{gap['all_samples']:.4f}.")
+    if summary.get("transition"):
+        lines.append(f"- {summary['transition']['statement']}")
+    lag = summary["lag"]
+    lines.append(f"- Channel lag (force behind displacement): {1e3 * lag['seconds']:.3g} ms "
+                 f"({lag['samples']:.2f} samples){' - named as an effect' if lag['named'] else ''}"
+                 ".")
     lines += [f"- {summary['where']['statement']}", "", "## Candidate effects (best first)", "",
               "| effect | held-out NRMSE | shrink | z | closes | role | parameters |",
               "| --- | --- | --- | --- | --- | --- | --- |"]
@@ -240,6 +250,19 @@ def markdown(d: Diagnosis, summary: dict, figures: list[str]) -> str:
         for effect, params in effect_parameters(d, d.selection.chosen).items():
             lines.append(f"- {effect}: " + "; ".join(
                 f"{k} = {_value(*v)}" for k, v in params.items()))
+        if chosen.get("form"):
+            flexible = [k for k, v in chosen["form"].items() if v == "flexible"]
+            lines.append("- Form reported: " + ", ".join(
+                f"{k} {v}" for k, v in chosen["form"].items()) + "." + (
+                f" For {', '.join(flexible)} the paper's form does not fit; the fitted monotone "
+                "curve is given instead." if flexible else ""))
+        for effect, value in chosen.get("confidence", {}).items():
+            if value is not None:
+                lines.append(f"- Confidence in {effect}: {100 * value:.0f} % of block "
+                             "resamples keep it.")
+        for effect, ranges in chosen.get("intervals", {}).items():
+            lines.append(f"- {effect}, 5-95 % bootstrap intervals: " + "; ".join(
+                f"{k} in [{lo:.4g}, {hi:.4g}]" for k, (lo, hi) in ranges.items()))
     if summary["unexplained"]:
         lines += ["", "## What remains unexplained", "",
                   f"- {summary['unexplained']['statement']}"]

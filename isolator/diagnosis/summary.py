@@ -152,7 +152,8 @@ def summary(d: Diagnosis) -> dict:
         after = d.gap_after
         params = effect_parameters(d, sel.chosen)
         chosen = {
-            "names": list(sel.chosen.model.names), "gap_before": before, "gap_after": after,
+            "names": [n for n in sel.verdict if n != "unexplained"],
+            "gap_before": before, "gap_after": after,
             "shrink": 1.0 - after / before if before else 0.0,
             "explained_excess": _number(sel.explained),
             "EDC_rms_error_before": _number(d.cycles_before.rms("EDC")),
@@ -174,7 +175,7 @@ def summary(d: Diagnosis) -> dict:
                      "runs": d.baseline.iterations},
         "gap": {"metric": "force_nrmse", "value": before, "noise": d.noise_nrmse,
                 "holdout": d.work.holdout.scheme, "cycles": _cycles(d.cycles_before),
-                "phase": "sliding (outside the transition window after each reversal)",
+                "phase": "sliding phase (outside the transition window after each reversal)",
                 "samples": int(f.force.size),
                 "all_samples": d.problem.all.nrmse(d.problem.all_baseline.prediction)},
         "transition": _transition(d),
