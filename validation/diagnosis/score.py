@@ -1,0 +1,178 @@
+"""Score the diagnosis on a validation panel: diagnose from the data alone, then read labels.
+
+A panel folder (written by :mod:`validation.diagnosis.cases`) holds one folder per case with
+the test files, ``manifest.csv`` (the tests in run order) and ``bearing.json`` (what a user
+tells the diagnosis), and ``labels.json`` apart. :func:`diagnose_cases` runs the diagnosis on
+the cases of one half from their files only; :func:`score` then reads the labels and judges
+each verdict; :func:`summarize` gives the figures the issue asks for.
+
+A verdict is *exactly right* when the effects it names are the truth's set (``unexplained``
+may follow them) or, for a case with no effect, when it is ``["none"]``. A *false name* is a
+named effect the truth does not have. Leave-one-effect-out: each true effect of a labelled
+case is withheld from the library in turn; the run is right when its verdict says
+``unexplained`` and names no effect the truth does not have.
+
+    python -m validation.diagnosis.score PANEL [--half test] [--markdown FILE]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from isolator.diagnosis import BaselineSpec, Diagnosis, diagnose, load_campaign, reselect
+from isolator.diagnosis.manifest import load_manifest
+from isolator.diagnosis.thresholds import Thresholds
+
+HALVES = ("tune", "test")
+
+
+def load_case(folder: str | Path):
+    """(campaign, baseline spec) of one case folder, from its data, manifest and
+    bearing.json only."""
+    folder = Path(folder)
+    info = json.loads((folder / "bearing.json").read_text())
+    manifest = folder / "manifest.csv"
+    if manifest.is_file():
+        campaign = load_manifest(manifest, effective_radius=info["effective_radius"],
+                                 slider_diameter=info["slider_diameter"],
+                                 axial_load=info.get("axial_load"))
+    else:
+        campaign = load_campaign(sorted(folder.glob("test_*.csv")),
+                                 effective_radius=info["effective_radius"],
+                                 slider_diameter=info["slider_diameter"],
+                                 axial_load=info.get("axial_load"))
+    return campaign, BaselineSpec(info["baseline"], tuple(info.get("without", ())))
+
+
+def case_names(folder: str | Path, half: str | None) -> list[str]:
+    """The cases of one half (all with None); the halves are kept with the labels, so this
+    is the one place besides :func:`score` that opens the labels file, for the halves only."""
+    labels = json.loads((Path(folder) / "labels.json").read_text())
+    return sorted(n for n, v in labels.items() if half is None or v["half"] == half)
+
+
+def diagnose_cases(folder: str | Path, names: list[str],
+                   thresholds: Thresholds | None = None,
+                   progress: bool = False) -> dict[str, tuple[Diagnosis, float]]:
+    """``{case: (diagnosis, seconds)}`` from each case's files alone."""
+    out = {}
+    for name in names:
+        start = time.perf_counter()
+        campaign, spec = load_case(Path(folder) / name)
+        out[name] = (diagnose(campaign, spec, thresholds=thresholds),
+                     time.perf_counter() - start)
+        if progress:
+            print(f"  {name}: {out[name][0].verdict} ({out[name][1]:.1f} s)", flush=True)
+    return out
+
+
+def named(verdict: list[str]) -> set[str]:
+    """The effects a verdict names."""
+    return {v for v in verdict if v not in ("none", "unexplained")}
+
+
+def exactly_right(verdict: list[str], truth: list[str]) -> bool:
+    """Whether ``verdict`` is exactly right for the true effects ``truth``."""
+    if not truth:
+        return verdict == ["none"]
+    return named(verdict) == set(truth)
+
+
+def score(diagnoses: dict[str, tuple[Diagnosis, float]], labels: dict,
+          thresholds: Thresholds | None = None) -> list[dict]:
+    """One row per case: verdict, truth, right or not, false names, shrink, leave-one-out."""
+    rows = []
+    for name, (d, seconds) in diagnoses.items():
+        truth = list(labels[name]["effects"])
+        if thresholds is not None:
+            d = reselect(d, (), thresholds)
+        summary = d.to_json()
+        chosen = summary["chosen"]
+        row = {"case": name, "truth": labels[name]["truth"], "effects": truth,
+               "source": labels[name].get("source"), "verdict": list(d.verdict),
+               "right": exactly_right(d.verdict, truth),
+               "false_names": sorted(named(d.verdict) - set(truth)),
+               "gap_before": d.gap_before, "gap_after": d.gap_after, "noise": d.noise_nrmse,
+               "shrink": chosen["shrink"] if chosen else 0.0, "seconds": seconds, "loo": []}
+        for effect in truth:
+            loo = reselect(d, (effect,), thresholds)
+            row["loo"].append({"withheld": effect, "verdict": list(loo.verdict),
+                               "right": ("unexplained" in loo.verdict
+                                         and named(loo.verdict) <= set(truth) - {effect})})
+        rows.append(row)
+    return rows
+
+
+def summarize(rows: list[dict]) -> dict:
+    """The panel's figures: share exactly right, false names, leave-one-out, shrink."""
+    labelled = [r for r in rows if r["effects"]]
+    nothing = [r for r in rows if not r["effects"]]
+    loo = [x for r in rows for x in r["loo"]]
+    return {
+        "cases": len(rows),
+        "exactly_right": float(np.mean([r["right"] for r in rows])) if rows else float("nan"),
+        "right_count": int(sum(r["right"] for r in rows)),
+        "cases_with_false_names": int(sum(bool(r["false_names"]) for r in rows)),
+        "false_name_rate": (float(np.mean([bool(r["false_names"]) for r in rows]))
+                            if rows else float("nan")),
+        "false_names_in_no_effect_cases": int(sum(bool(r["false_names"]) for r in nothing)),
+        "no_effect_cases": len(nothing),
+        "loo_runs": len(loo),
+        "loo_unexplained": float(np.mean([x["right"] for x in loo])) if loo else float("nan"),
+        "median_shrink": (float(np.median([r["shrink"] for r in labelled]))
+                          if labelled else float("nan")),
+    }
+
+
+def markdown(rows: list[dict], figures: dict, half: str) -> str:
+    """A table of the rows and the figures, for the issue note."""
+    lines = [f"Held-out half: `{half}`, {figures['cases']} cases.", "",
+             f"- exactly right: {figures['right_count']}/{figures['cases']} "
+             f"({100 * figures['exactly_right']:.0f} %)",
+             f"- cases with a false name: {figures['cases_with_false_names']} "
+             f"(rate {100 * figures['false_name_rate']:.1f} %); in no-effect cases: "
+             f"{figures['false_names_in_no_effect_cases']} of {figures['no_effect_cases']}",
+             f"- leave-one-effect-out runs saying unexplained (and no false name): "
+             f"{100 * figures['loo_unexplained']:.0f} % of {figures['loo_runs']}",
+             f"- median held-out shrink of the labelled cases: "
+             f"{100 * figures['median_shrink']:.0f} %", "",
+             "| case | source | truth | verdict | right | shrink | leave-one-out |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        loo = "; ".join(f"-{x['withheld']}: {', '.join(x['verdict'])}"
+                        + ("" if x["right"] else " (wrong)") for x in r["loo"])
+        lines.append(f"| {r['case']} | {r['source']} | {', '.join(r['effects']) or 'none'} | "
+                     f"{', '.join(r['verdict'])} | {'yes' if r['right'] else 'NO'} | "
+                     f"{100 * r['shrink']:.0f} % | {loo} |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("panel", help="panel folder (validation.diagnosis.cases.write_panel)")
+    parser.add_argument("--half", default="test", choices=[*HALVES, "all"])
+    parser.add_argument("--markdown", help="write the table here")
+    parser.add_argument("--json", help="write the rows and figures here")
+    args = parser.parse_args(argv)
+    half = None if args.half == "all" else args.half
+    names = case_names(args.panel, half)
+    diagnoses = diagnose_cases(args.panel, names, progress=True)
+    labels = json.loads((Path(args.panel) / "labels.json").read_text())  # after diagnosing
+    rows = score(diagnoses, labels)
+    figures = summarize(rows)
+    text = markdown(rows, figures, args.half)
+    print(text)
+    if args.markdown:
+        Path(args.markdown).write_text(text)
+    if args.json:
+        Path(args.json).write_text(json.dumps({"figures": figures, "rows": rows}, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
