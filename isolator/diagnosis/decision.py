@@ -171,11 +171,20 @@ class Problem:
                 return False
         return True
 
-    def _stage_one(self, exclude: tuple[str, ...], th: Thresholds) -> Assessment | None:
+    def _stage_one(self, exclude: tuple[str, ...], th: Thresholds,
+                   law: tuple[Effect, ...] = ()) -> Assessment | None:
+        """The kinematic effects that earn their keep on every sample, over the baseline
+        extended by the friction-law effects ``law`` (named in a first pass of stage 2)."""
         pool = [a for n, a in self.kinematic.items()
                 if n not in exclude and a.untestable is None]
         current = self.all_baseline
-        while len(current.model.effects) < MAX_KINEMATIC:
+        if law:
+            key = ("law", *(e.name for e in law))
+            if key not in self.all.cache:
+                self.all.cache[key] = assess(self.all, Model(law), None)
+            current = self.all.cache[key]
+        first = len(law)
+        while len(current.model.effects) - first < MAX_KINEMATIC:
             options = []
             for a in pool:
                 if a.model.names[0] in current.model.names:
@@ -184,12 +193,24 @@ class Problem:
                           else self._extended(self.all, current, (a,)))
                 if (qualifies(self.all, current, judged, th.kinematic_z,
                               th.kinematic_explained, th.kinematic_practical)
-                        and self._kinematic_size_ok(judged, th)):
+                        and self._kinematic_size_ok(judged, th)
+                        and plausible(judged, len(current.model.effects))):
                     options.append(judged)
             if not options:
                 break
             current = min(options, key=lambda a: a.weighted)
-        return current if current.model.effects else None
+        if len(current.model.effects) == first:
+            return None
+        if first:  # the kinematic effects alone, fitted on every sample
+            kinematic = tuple(e for e in current.model.effects[first:])
+            names = tuple(e.name for e in kinematic)
+            if len(names) == 1:
+                return self.kinematic[names[0]]
+            key = ("kinematic", *names)
+            if key not in self.all.cache:
+                self.all.cache[key] = assess(self.all, Model(kinematic), None)
+            return self.all.cache[key]
+        return current
 
     # -- stage 2 -----------------------------------------------------------------------------
 
@@ -241,16 +262,25 @@ class Problem:
         problem's)."""
         th = thresholds or self.thresholds
         kinematic = self._stage_one(tuple(exclude), th)
-        stage = self.stage(kinematic)
-        work, base = stage.work, stage.baseline
-        pool = {n: a for n, a in stage.singles.items() if n not in exclude}
-        testable = sorted((a for a in pool.values() if a.untestable is None),
-                          key=lambda a: a.weighted)
-        noise_like = (base.score - 1.0 <= th.none_margin
-                      or work.excess_rms(base.prediction) < th.practical_none)
-        current, named, form = base, [], {}
-        if not noise_like:
-            current, named, form = self._forward(stage, testable, th)
+        for _ in range(2):  # a second pass when the friction law hid a kinematic effect
+            stage = self.stage(kinematic)
+            work, base = stage.work, stage.baseline
+            pool = {n: a for n, a in stage.singles.items() if n not in exclude}
+            testable = sorted((a for a in pool.values() if a.untestable is None),
+                              key=lambda a: a.weighted)
+            noise_like = (base.score - 1.0 <= th.none_margin
+                          or work.excess_rms(base.prediction) < th.practical_none)
+            current, named, form = base, [], {}
+            if not noise_like:
+                current, named, form = self._forward(stage, testable, th)
+            if kinematic is not None or not named:
+                break
+            law = tuple(e for e in current.model.effects
+                        if e.name in named and e.acts_on != "kinematics")
+            again = self._stage_one(tuple(exclude), th, _own_forms(law, stage.singles))
+            if again is None:
+                break
+            kinematic = again
         excess = base.weighted - work.weighted_noise
         explained = (base.weighted - current.weighted) / excess if excess > 0.0 else 0.0
         left = work.excess_rms(current.prediction)
@@ -350,7 +380,8 @@ class Problem:
         options = []
         for model, full in fitted[:SCREENED]:
             judged = self._judged(work, model, full)
-            if qualifies(work, current, judged, z_min, explained_min, practical):
+            if (qualifies(work, current, judged, z_min, explained_min, practical)
+                    and plausible(judged, len(current.model.effects))):
                 options.append(judged)
         return min(options, key=lambda a: a.weighted) if options else None
 
@@ -382,6 +413,21 @@ class Problem:
             prediction, _ = work.holdout.predict(model, work.context, start=full.theta)
             work.cache[key] = work.judge(model, full, prediction)
         return work.cache[key]
+
+
+def _own_forms(law: tuple[Effect, ...], singles: dict[str, Assessment]) -> tuple[Effect, ...]:
+    """The library's own (paper) form of each effect of ``law``."""
+    return tuple(singles[e.name].model.effects[-1] if e.name in singles else e for e in law)
+
+
+def plausible(a: Assessment, first: int = 0) -> bool:
+    """Whether none of the effects from position ``first`` on sits at a bound of a parameter
+    (see :class:`isolator.diagnosis.effects.Parameter`)."""
+    for effect, part in list(zip(a.model.effects, a.model.slices(), strict=True))[first:]:
+        for parameter, value in zip(effect.parameters, a.fit.theta[part], strict=True):
+            if parameter.at_bound(float(value)):
+                return False
+    return True
 
 
 def _prediction_on(a: Assessment, features: Features, work: Workspace) -> np.ndarray:

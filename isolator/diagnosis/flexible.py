@@ -77,7 +77,8 @@ def flexible(effect: Effect, features, context: Context, increasing: bool) -> Ef
     def factor(theta, f, c):
         return np.exp(ramps(variable(f, c), positions) @ theta)
 
-    parameters = tuple(Parameter(f"c{k + 1}", start, low, high) for k in range(count))
+    parameters = tuple(Parameter(f"c{k + 1}", start, low, high, edge_ok=True)
+                       for k in range(count))
     return replace(effect, description=f"{effect.description} (flexible monotone form)",
                    parameters=parameters, factor=factor, reading=_curve_reading(positions))
 

@@ -113,7 +113,8 @@ TIMING = Effect(
     "timing", "the channel offset, refitted with every model of the sliding phase",
     "a time offset between the force and displacement channels shifts the pendulum force "
     "by N v tau / R_eff while sliding (the friction force is unchanged away from reversals)",
-    (Parameter("samples", 0.0, -NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES),), "force",
+    (Parameter("samples", 0.0, -NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES, edge_ok=True),),
+    "force",
     extra=_timing_extra,
     reading=lambda theta, stderr, c: {
         "lag_correction": (float(theta[0]) * c.sample_interval,

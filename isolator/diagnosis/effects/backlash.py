@@ -28,5 +28,6 @@ EFFECT = Effect(
     "a play in the load train: after each reversal the actuator travels the width of the "
     "gap before it pushes the bearing again, and no force is transmitted meanwhile",
     (Parameter("log_b", -2.6, -3.7, -1.5, log=True, starts=(-3.2, -2.2)),
-     Parameter("log_uy", -3.7, -5.0, -2.6, log=True, starts=(-4.5, -3.0))), "kinematics",
+     Parameter("log_uy", -3.7, -5.0, -2.6, log=True, starts=(-4.5, -3.0), edge_ok=True)),
+    "kinematics",
     kinematic=_kinematic, reading=_reading, order=80)

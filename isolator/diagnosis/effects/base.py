@@ -39,6 +39,11 @@ class Parameter:
         Whether the parameter is fitted as log10 of its value.
     starts : tuple of float
         Further start values of a multistart fit (on the fitting scale).
+    edge_ok : bool
+        Whether a fit at a bound is still a physical reading (a weight at 0 or 1, a
+        transition at its rigid-plastic limit, a drift that is linear). Otherwise an effect
+        fitted at a bound of this parameter is not named: the data ask for more than the
+        physics of that effect gives.
     """
 
     name: str
@@ -47,6 +52,12 @@ class Parameter:
     high: float
     log: bool = False
     starts: tuple[float, ...] = ()
+    edge_ok: bool = False
+
+    def at_bound(self, value: float) -> bool:
+        """Whether ``value`` (fitting scale) sits at a bound (within 0.5 % of the range)."""
+        margin = 0.005 * (self.high - self.low)
+        return not self.edge_ok and (value <= self.low + margin or value >= self.high - margin)
 
 
 @dataclass(frozen=True)

@@ -1,8 +1,12 @@
 """``breakaway``: a static friction peak at each reversal (and at the start of motion).
 
-m = 1 + b exp(-s / d), s the travel since the last reversal: a peak b that fades over a
-length d. The length is bounded below by 1 mm so that the peak is not mistaken for the
-pre-sliding transition, which the baseline calibrates. Flexible form: monotone in s.
+m = 1 + b exp(-s / d), s the travel since the last reversal: a peak b >= 0 that fades over a
+length d (static friction is higher than kinetic friction; a dip after each reversal is some
+other effect, a play or a lag, and a fit that wants b = 0 is not named). The length is
+bounded below by 1 mm so that the peak is not mistaken for the pre-sliding transition, which
+the baseline calibrates, and above by 50 mm: static friction fades over millimetres to
+centimetres of travel, and a "peak" that needs more is some other drift. Flexible form:
+monotone in s.
 """
 
 from __future__ import annotations
@@ -25,5 +29,5 @@ EFFECT = Effect(
     "breakaway", "a static friction peak at each reversal",
     "static friction above kinetic friction: a peak each time sliding starts again, fading "
     "over a length of travel",
-    (Parameter("b", 0.3, -0.9, 5.0), Parameter("log_d", -2.3, -3.0, -0.7, log=True)), "mu",
+    (Parameter("b", 0.3, 0.0, 5.0), Parameter("log_d", -2.3, -3.0, -1.3, log=True)), "mu",
     factor=_factor, variable=lambda f, c: f.since_reversal, reading=_reading, order=40)

@@ -43,6 +43,6 @@ EFFECT = Effect(
     "heating", "friction falls as the contact heats (thermal sensitivity)",
     "the sliding surface heats under the friction power (Eq. 4-6) and its friction "
     "coefficient falls with the contact temperature (Eq. 3)",
-    (Parameter("a", 0.5, -3.0, 5.0), Parameter("w", 0.2, 0.0, 1.0)), "mu",
+    (Parameter("a", 0.5, -3.0, 5.0), Parameter("w", 0.2, 0.0, 1.0, edge_ok=True)), "mu",
     factor=_factor, variable=lambda f, c: f.temperature_rise, requires=_requires,
     reading=_reading, order=10)

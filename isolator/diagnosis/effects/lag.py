@@ -32,5 +32,5 @@ EFFECT = Effect(
     "anti-alias filter or a separate acquisition on one of them)",
     (Parameter("samples", 0.0, -MAX_SAMPLES, MAX_SAMPLES,
                starts=(-3.0, 3.0, -6.0, 6.0, -12.0, 12.0)),
-     Parameter("log_uy", -3.3, -5.0, -2.6, log=True, starts=())), "kinematics",
+     Parameter("log_uy", -3.3, -5.0, -2.6, log=True, starts=(), edge_ok=True)), "kinematics",
     kinematic=_kinematic, reading=_reading, order=90)

@@ -34,5 +34,6 @@ EFFECT = Effect(
     "wear", "friction drifts with the travel accumulated over the campaign",
     "the sliding surface changes with use (run-in, wear of the liner, loss of lubricant): "
     "friction drifts with the travel accumulated over the tests in the order run",
-    (Parameter("a", -0.1, -0.9, 3.0), Parameter("log_tau", 0.0, -1.3, 1.3, log=True)), "mu",
+    (Parameter("a", -0.1, -0.9, 3.0),
+     Parameter("log_tau", 0.0, -1.3, 1.3, log=True, edge_ok=True)), "mu",
     factor=_factor, variable=lambda f, c: f.campaign_travel, reading=_reading, order=50)
