@@ -9,12 +9,14 @@ normal load: the axial load is a nominal 100 kN (mu is friction force over 100 k
 Files in name order (the run order is not known).
 
 Measured (dataset-2, all 14 tests, held out in 6 groups of tests): constant-model force
-NRMSE 0.40 against a noise level of 0.007; verdict ``unexplained``. No candidate closes more
-than a quarter of the gap: breakaway with a *negative* peak (friction lower right after a
-reversal) and direction-dependent friction (mu(+) / mu(-) = 0.64, the band brake's
-self-energising direction) each shrink the held-out gap by 14 %. What is left: after each
-reversal the measured force dwells near zero for about 4.9 mm (the calibrated model 1.4 mm),
-the backlash of the device; a force offset / asymmetry; an oscillation of the rig. About 4 s.
+NRMSE 0.43 over all samples against a noise level of 0.006. The verdict names ``backlash``:
+a play of 4.7 mm (the dead band the earlier residual report measured: about 4.9 mm) with a
+pre-sliding stiffness of its own (u_y 2.2 mm), judged on every sample (z 10.7, 65 % of the
+excess closed), followed by ``unexplained``: direction-dependent friction
+(mu(+) / mu(-) = 0.74, the band brake's self-energising direction) closes about half of what
+is left on the sliding phase but not enough to be named, and an oscillation of the rig
+remains. On the sliding phase the held-out gap shrinks from 0.27 to 0.19 with the play.
+About 15 s.
 """
 
 from __future__ import annotations
@@ -40,18 +42,15 @@ def summary(shared_dir):
     return diagnose(campaign, "constant").to_json()
 
 
-def test_a_real_gap_that_no_candidate_closes(summary):
-    assert summary["verdict"] == ["unexplained"]
+def test_the_play_is_named_with_its_width(summary):
+    assert summary["verdict"][0] == "backlash", summary["verdict"]
+    assert summary["verdict"][-1] == "unexplained"  # more is going on than a play
+    backlash = next(e for e in summary["effects"] if e["name"] == "backlash")
+    assert backlash["role"] == "selected"
+    assert backlash["parameters"]["width"] == pytest.approx(4.9e-3, abs=1.0e-3)
+    chosen = summary["chosen"]
+    assert chosen["shrink"] > 0.2 and chosen["gap_after"] < chosen["gap_before"]
     assert summary["gap"]["value"] > 20.0 * summary["gap"]["noise"]
-    for effect in summary["effects"]:
-        if effect["shrink"] is not None:  # None: untestable on these data
-            assert effect["shrink"] < 0.3, effect  # partial stand-ins at best
-            assert effect["role"] != "selected"
-
-
-def test_the_dead_band_of_the_backlash_is_described(summary):
-    looks = summary["unexplained"]["looks_like"]
-    assert any("dead band" in text for text in looks), looks
 
 
 def test_friction_differs_with_direction(summary):

@@ -64,6 +64,7 @@ from pathlib import Path
 import numpy as np
 
 from validation.diagnosis import independent_truths as ind
+from validation.diagnosis.cases import opensees_available
 
 SLIDER = 0.3  # [m]
 RADIUS = 4.5  # [m]
@@ -643,13 +644,6 @@ def measured(case: Case, clean: dict, rng: np.random.Generator) -> dict[str, np.
     if case.axial_column:
         out["axial_force"] = clean["axial_force"] * (1.0 + rng.normal(0.0, AXIAL_NOISE, n))
     return out
-
-
-def opensees_available() -> bool:
-    """Whether openseespy can be imported (its cases are left out otherwise)."""
-    from structures.diagnosis_panel import opensees_available as available
-
-    return available()
 
 
 def _design(case: Case, shares: dict) -> dict:
