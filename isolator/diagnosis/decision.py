@@ -10,7 +10,7 @@ thresholds on the validation panel).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from itertools import combinations
 
 import numpy as np
@@ -24,105 +24,16 @@ from isolator.diagnosis.selection import (
     MAX_KINEMATIC,
     SCREENED,
     Assessment,
+    Selection,
+    Stage,
     Workspace,
     assess,
+    on_samples,
     qualifies,
     untestable,
 )
 from isolator.diagnosis.thresholds import Thresholds
 from isolator.diagnosis.transition import TIMING, in_transition
-
-
-@dataclass(frozen=True)
-class Stage:
-    """The sliding-phase stage for one set of kinematic effects.
-
-    Attributes
-    ----------
-    work : Workspace
-        The sliding samples, with the kinematics applied.
-    baseline : Assessment
-        The baseline (with the kinematics) on them.
-    plain : np.ndarray
-        The plain baseline's held-out prediction on the same samples [N].
-    singles : dict
-        Each effect on mu or the force alone, by name.
-    """
-
-    work: Workspace
-    baseline: Assessment
-    plain: np.ndarray
-    singles: dict[str, Assessment]
-
-
-@dataclass(frozen=True)
-class Selection:
-    """The result of one decision.
-
-    Attributes
-    ----------
-    stage : Stage
-        The sliding-phase stage the verdict was decided on (its samples define the gap).
-    kinematic : Assessment or None
-        The named effects on the kinematics (judged on every sample).
-    kinematic_candidates : dict
-        Each kinematic effect alone, judged on every sample.
-    chosen : Assessment or None
-        The final model on the stage's samples (kinematics and friction-law effects).
-    verdict : list of str
-        See :mod:`isolator.diagnosis.selection`.
-    explained : float
-        Share of the sliding-phase excess closed by ``chosen`` [-].
-    real_gap_remains : bool
-        Whether a real gap is left.
-    ranking : list of str
-        Effect names, best first: the named ones, then the others by held-out error, then the
-        untestable ones.
-    form : dict
-        ``{effect: "paper" | "flexible"}``: the form of each named effect on mu reported.
-    thresholds : Thresholds
-        The thresholds used.
-    """
-
-    stage: Stage
-    kinematic: Assessment | None
-    kinematic_candidates: dict[str, Assessment]
-    chosen: Assessment | None
-    verdict: list[str]
-    explained: float
-    real_gap_remains: bool
-    ranking: list[str]
-    form: dict[str, str]
-    thresholds: Thresholds
-
-    @property
-    def baseline(self) -> Assessment:
-        """The plain baseline on the stage's samples (prediction: held out)."""
-        b = self.stage.baseline
-        return replace(b, prediction=self.stage.plain)
-
-    @property
-    def candidates(self) -> dict[str, Assessment]:
-        """Every candidate, kinematic ones first (predictions on the stage's samples)."""
-        idx = self.stage.work.features.sample
-        out = {}
-        for name, a in self.kinematic_candidates.items():
-            out[name] = a if a.prediction is None else replace(
-                a, prediction=_on(a.prediction, self._all_samples, idx))
-        out.update(self.stage.singles)
-        return out
-
-    @property
-    def _all_samples(self) -> np.ndarray:
-        return self._all
-
-    _all: np.ndarray = field(default=None, repr=False)
-
-
-def _on(prediction: np.ndarray, samples: np.ndarray, wanted: np.ndarray) -> np.ndarray:
-    """The values of ``prediction`` (given at ``samples``) at the samples ``wanted``."""
-    position = np.searchsorted(samples, wanted)
-    return prediction[position]
 
 
 class Problem:
@@ -242,7 +153,7 @@ class Problem:
         if not math.isinf(self.context.effective_radius):
             frozen = Model((*frozen.effects, TIMING))
         baseline = assess(work, frozen, None, [frozen.initial()])
-        plain = _on(self.all_baseline.prediction, f.sample, sliding.sample)
+        plain = on_samples(self.all_baseline.prediction, f.sample, sliding.sample)
         singles: dict[str, Assessment] = {}
         for effect in self.effects:
             if effect.acts_on == "kinematics":
@@ -297,7 +208,7 @@ class Problem:
         order = [n for n in verdict if n not in ("unexplained", "none")]
         rest = sorted((a for a in [*self.kinematic.values(), *testable]
                        if a.untestable is None and a.model.names[-1] not in order),
-                      key=lambda a: work.nrmse(_prediction_on(a, self.features, work)))
+                      key=lambda a: work.nrmse(_predictionon_samples(a, self.features, work)))
         order += [a.model.names[-1] for a in rest if a.model.names[-1] not in exclude]
         order += [n for n, a in {**self.kinematic, **stage.singles}.items()
                   if a.untestable is not None and n not in exclude and n not in order]
@@ -430,10 +341,10 @@ def plausible(a: Assessment, first: int = 0) -> bool:
     return True
 
 
-def _prediction_on(a: Assessment, features: Features, work: Workspace) -> np.ndarray:
+def _predictionon_samples(a: Assessment, features: Features, work: Workspace) -> np.ndarray:
     if a.prediction.size == len(work.features):
         return a.prediction
-    return _on(a.prediction, features.sample, work.features.sample)
+    return on_samples(a.prediction, features.sample, work.features.sample)
 
 
 def _frozen(model: Model, theta: np.ndarray) -> Model:

@@ -23,12 +23,12 @@ import numpy as np
 
 from isolator.diagnosis.baseline import _YIELD_GRID, BaselineFit, BaselineSpec, calibrate
 from isolator.diagnosis.data import Campaign
-from isolator.diagnosis.decision import Problem, Selection
+from isolator.diagnosis.decision import Problem
 from isolator.diagnosis.effects import EFFECT_NAMES, Context, effects_named
 from isolator.diagnosis.features import kinematic_features, with_baseline
 from isolator.diagnosis.fitting import Kinematics
 from isolator.diagnosis.noise import sample_noise_variance
-from isolator.diagnosis.selection import Workspace
+from isolator.diagnosis.selection import Selection, Workspace
 from isolator.diagnosis.signatures import signature
 from isolator.diagnosis.thresholds import Thresholds
 from isolator.diagnosis.transition import TransitionFinding, in_transition, transition_finding

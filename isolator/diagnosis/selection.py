@@ -204,3 +204,95 @@ def qualifies(work: Workspace, current: Assessment, extended: Assessment, z_min:
 def untestable(model: Model, reason: str) -> Assessment:
     """An assessment for an effect the data cannot show."""
     return Assessment(model, None, None, np.inf, np.inf, untestable=reason)
+
+
+@dataclass(frozen=True)
+class Stage:
+    """The sliding-phase stage for one set of kinematic effects.
+
+    Attributes
+    ----------
+    work : Workspace
+        The sliding samples, with the kinematics applied.
+    baseline : Assessment
+        The baseline (with the kinematics) on them.
+    plain : np.ndarray
+        The plain baseline's held-out prediction on the same samples [N].
+    singles : dict
+        Each effect on mu or the force alone, by name.
+    """
+
+    work: Workspace
+    baseline: Assessment
+    plain: np.ndarray
+    singles: dict[str, Assessment]
+
+
+@dataclass(frozen=True)
+class Selection:
+    """The result of one decision.
+
+    Attributes
+    ----------
+    stage : Stage
+        The sliding-phase stage the verdict was decided on (its samples define the gap).
+    kinematic : Assessment or None
+        The named effects on the kinematics (judged on every sample).
+    kinematic_candidates : dict
+        Each kinematic effect alone, judged on every sample.
+    chosen : Assessment or None
+        The final model on the stage's samples (kinematics and friction-law effects).
+    verdict : list of str
+        See :mod:`isolator.diagnosis.selection`.
+    explained : float
+        Share of the sliding-phase excess closed by ``chosen`` [-].
+    real_gap_remains : bool
+        Whether a real gap is left.
+    ranking : list of str
+        Effect names, best first: the named ones, then the others by held-out error, then the
+        untestable ones.
+    form : dict
+        ``{effect: "paper" | "flexible"}``: the form of each named effect on mu reported.
+    thresholds : Thresholds
+        The thresholds used.
+    """
+
+    stage: Stage
+    kinematic: Assessment | None
+    kinematic_candidates: dict[str, Assessment]
+    chosen: Assessment | None
+    verdict: list[str]
+    explained: float
+    real_gap_remains: bool
+    ranking: list[str]
+    form: dict[str, str]
+    thresholds: Thresholds
+
+    @property
+    def baseline(self) -> Assessment:
+        """The plain baseline on the stage's samples (prediction: held out)."""
+        b = self.stage.baseline
+        return replace(b, prediction=self.stage.plain)
+
+    @property
+    def candidates(self) -> dict[str, Assessment]:
+        """Every candidate, kinematic ones first (predictions on the stage's samples)."""
+        idx = self.stage.work.features.sample
+        out = {}
+        for name, a in self.kinematic_candidates.items():
+            out[name] = a if a.prediction is None else replace(
+                a, prediction=on_samples(a.prediction, self._all_samples, idx))
+        out.update(self.stage.singles)
+        return out
+
+    @property
+    def _all_samples(self) -> np.ndarray:
+        return self._all
+
+    _all: np.ndarray = field(default=None, repr=False)
+
+
+def on_samples(prediction: np.ndarray, samples: np.ndarray, wanted: np.ndarray) -> np.ndarray:
+    """The values of ``prediction`` (given at ``samples``) at the samples ``wanted``."""
+    position = np.searchsorted(samples, wanted)
+    return prediction[position]
