@@ -31,8 +31,9 @@ try:  # pragma: no cover - exercised by whichever environment runs the tests
     COMPILED = True
 
     def jit(function):
-        """Compile ``function`` with numba (cached on disk)."""
-        return numba.njit(cache=True, nogil=True)(function)
+        """Compile ``function`` with numba (cached on disk), without the C-callable wrapper
+        (nothing here is used as a ``cfunc``; the wrapper was compile time for nothing)."""
+        return numba.njit(cache=True, nogil=True, no_cfunc_wrapper=True)(function)
 
 except ImportError:  # pragma: no cover
     COMPILED = False

@@ -29,6 +29,14 @@ Two things are done differently, both exact rearrangements:
   every point ever heated (``advance_states``, O(points x K)) and re-summing the window for
   every trial (``contact_history``, O(window x K)).
 
+What it costs to compile on a cold cache (``benchmarks/COLD_START.md``) is kept down by
+writing the loop in plain scalar arithmetic: the work arrays come from Python
+(:func:`new_workspace`), the two dense solves are direct LAPACK calls
+(:mod:`structures.compiled_lapack`), and nothing is allocated, broadcast or multiplied as a
+matrix inside, since numba compiles each such numpy construct as a function of its own. The
+helpers are ordinary compiled functions, which LLVM inlines; numba's own IR inlining
+(``inline="always"``) cost more compile time than it saved.
+
 Without numba, or with ``DCFPB_DISABLE_NUMBA=1``, the same source runs as plain Python (slow,
 meant for tests); ``integrate_building.py_func`` is the Python original of the top level.
 The bearing, its friction and heat history in array form are
@@ -59,13 +67,12 @@ from structures.compiled_bearing import (
     TEMPERATURE,
     bearing_commit,
     bearing_trial,
-    inline,
-    new_heating,
     record_state,
 )
 from structures.compiled_bearing import DISPLACEMENT as BEARING_DISPLACEMENT
+from structures.compiled_lapack import invert, solve
 
-__all__ = ["BEARING_FIELDS", "integrate_building"]
+__all__ = ["BEARING_FIELDS", "integrate_building", "new_workspace"]
 
 # Layout of the ``method`` array.
 GAMMA, BETA, ALPHA, TOLERANCE, MAX_ITERATIONS, MAX_SUBDIVISIONS = range(6)
@@ -79,17 +86,48 @@ STATUS, LAST_STEP, FAIL_TIME, FAIL_SUBSTEP, FAIL_DEPTH, FAIL_ITERATIONS, FAIL_RE
 FAIL_REFERENCE, FAIL_VALUE = 7, 8
 INFO_SIZE = 9
 
+# The work arrays of ``workspace`` (see :func:`new_workspace`), in this order.
+COMMITTED, TRIAL, INVERSES, INVERSE_STEPS, STACK_START, STACK_END, STACK_DEPTH = range(7)
+DOFS, MATRIX, LAPACK_WORK, PIVOTS, MASS_INFLUENCE = range(7, 12)
 
 
-@inline
-def _effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse):
-    """inverse <- (c0 M + (1 + alpha)(c1 C + K))^-1 for a step ``h`` [s]."""
+def new_workspace(n: int, max_subdivisions: int) -> tuple[np.ndarray, ...]:
+    """The engine's work arrays for ``n`` DOFs and ``max_subdivisions`` halvings.
+
+    Allocated here, in Python, so that the compiled loop allocates nothing (each array
+    constructor it used was one more function for numba to compile on a cold cache).
+
+    Returns
+    -------
+    tuple of ndarray
+        Indexed by ``COMMITTED`` ... ``MASS_INFLUENCE``: the committed and trial bearing
+        states (``STATE_SIZE``), ``A^-1`` per halving depth (depth + 1, n, n) and the step it
+        was formed for (-1: none yet), the halving stack (start, end, depth), the ``dofs`` rows
+        (``DOF_ROWS``, n), the effective matrix (n, n), LAPACK's work (n, n) and pivots
+        (int32), and ``M r`` (n,).
+    """
+    depths = max_subdivisions + 1
+    return (np.zeros(STATE_SIZE), np.zeros(STATE_SIZE), np.zeros((depths, n, n)),
+            np.full(depths, -1.0), np.zeros(depths + 1), np.zeros(depths + 1),
+            np.zeros(depths + 1, dtype=np.int64), np.zeros((DOF_ROWS, n)), np.zeros((n, n)),
+            np.zeros((n, n)), np.zeros(n, dtype=np.int32), np.zeros(n))
+
+
+@jit
+def _effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse, matrix, work,
+                       pivots):
+    """inverse <- (c0 M + (1 + alpha)(c1 C + K))^-1 for a step ``h`` [s]; ``matrix``,
+    ``work`` and ``pivots`` are work arrays (n, n), (n, n) and int32 (n,)."""
     c0, c1 = 1.0 / (beta * h * h), gamma / (beta * h)
-    matrix = c0 * mass + (1.0 + alpha) * (c1 * damping + stiffness)
-    inverse[:, :] = np.linalg.inv(matrix)
+    n = mass.shape[0]
+    for i in range(n):  # element by element, as numpy's expression would
+        for j in range(n):
+            matrix[i, j] = c0 * mass[i, j] + (1.0 + alpha) * (c1 * damping[i, j]
+                                                                + stiffness[i, j])
+    invert(matrix, inverse, work, pivots)
 
 
-@inline
+@jit
 def _newton(h, time, ground, mass, damping, stiffness, mass_influence, inverses, depth, method,
             bearing, ptv, dofs, committed, trial, heating):
     """NewmarkStepper._solve: one Newton attempt on a (sub-)step of ``h`` [s] to ``time``.
@@ -191,7 +229,7 @@ def _newton(h, time, ground, mass, damping, stiffness, mass_influence, inverses,
 
 @jit
 def integrate_building(mass, damping, stiffness, influence, ground, time, method, bearing, ptv,
-                       rates, weights, states, displacement, velocity, acceleration, record,
+                       heating, workspace, displacement, velocity, acceleration, record,
                        restoring, iterations, subdivisions, info):
     """Integrate the isolated building through a ground motion, from rest; fill the outputs.
 
@@ -213,10 +251,11 @@ def integrate_building(mass, damping, stiffness, influence, ground, time, method
     ptv : ndarray, shape (15,)
         The constants of :func:`isolator.kernels.ptv_trial` (``PTV_PARAMETERS``); also read
         by the friction model without heating.
-    rates, weights : ndarray, shape (K,)
-        Sum-of-exponentials heating kernel: decay rates [1/s] and weights [s^-0.5].
-    states : ndarray, shape (points, K)
-        Heat history of the monitor points, zero at the start; advanced in place.
+    heating : tuple of ndarray
+        The heat history (:func:`structures.compiled_bearing.new_heating`), from zero;
+        advanced in place.
+    workspace : tuple of ndarray
+        Work arrays (:func:`new_workspace`), zero at the start.
     displacement, velocity, acceleration : ndarray, shape (nt, n)
         Output: relative response [m], [m/s], [m/s^2].
     record : ndarray, shape (7, nt)
@@ -232,25 +271,31 @@ def integrate_building(mass, damping, stiffness, influence, ground, time, method
     nt = ground.shape[0]
     max_subdivisions = int(method[MAX_SUBDIVISIONS])
     n_bearings = bearing[N_BEARINGS]
-    mass_influence = mass @ influence
-    heating = new_heating(rates, weights, states)
-    committed = np.zeros(STATE_SIZE)
+    committed, trial = workspace[COMMITTED], workspace[TRIAL]
+    inverses, inverse_steps = workspace[INVERSES], workspace[INVERSE_STEPS]
+    stack_start, stack_end = workspace[STACK_START], workspace[STACK_END]
+    stack_depth, dofs, matrix = workspace[STACK_DEPTH], workspace[DOFS], workspace[MATRIX]
+    work, pivots = workspace[LAPACK_WORK], workspace[PIVOTS]
+    mass_influence = workspace[MASS_INFLUENCE]
+    for i in range(n):  # M r
+        total = 0.0
+        for j in range(n):
+            total += mass[i, j] * influence[j]
+        mass_influence[i] = total
     committed[TEMPERATURE] = bearing[INITIAL_TEMPERATURE]
     committed[MU] = bearing[INITIAL_MU]
-    trial = committed.copy()
-    inverses = np.zeros((max_subdivisions + 1, n, n))
-    inverse_steps = np.full(max_subdivisions + 1, -1.0)
-    stack_start = np.zeros(max_subdivisions + 2)
-    stack_end = np.zeros(max_subdivisions + 2)
-    stack_depth = np.zeros(max_subdivisions + 2, dtype=np.int64)
+    for i in range(STATE_SIZE):
+        trial[i] = committed[i]
 
-    dofs = np.zeros((DOF_ROWS, n))  # from rest: u = v = 0, so f = 0 and q = 0
+    # from rest: u = v = 0, so f = 0 and q = 0; the load row holds p - q for the solve
     for i in range(n):
         dofs[P_C, i] = -mass_influence[i] * ground[0]
-    dofs[A_C] = np.linalg.solve(mass, dofs[P_C] - dofs[Q_C])
-    displacement[0], velocity[0], acceleration[0] = dofs[U_C], dofs[V_C], dofs[A_C]
-    record_state(record, 0, committed)
-    restoring[0] = 0.0
+        dofs[LOAD, i] = dofs[P_C, i] - dofs[Q_C, i]
+    solve(mass, dofs[LOAD], dofs[A_C], work, pivots)
+    for i in range(n):
+        displacement[0, i], velocity[0, i] = dofs[U_C, i], dofs[V_C, i]
+        acceleration[0, i], restoring[0, i] = dofs[A_C, i], 0.0
+    record_state(record[:, 0], committed)
     info[STATUS], info[LAST_STEP] = SUCCESS, nt - 1
 
     t_committed = time[0]
@@ -274,7 +319,7 @@ def integrate_building(mass, damping, stiffness, influence, ground, time, method
             h = (s1 - s0) * span
             if abs(h - inverse_steps[depth]) > 1e-9 * h:
                 _effective_inverse(h, mass, damping, stiffness, method[GAMMA], method[BETA],
-                                   method[ALPHA], inverses[depth])
+                                   method[ALPHA], inverses[depth], matrix, work, pivots)
                 inverse_steps[depth] = h
             converged, spent, r_norm, reference, status = _newton(
                 h, t_end, ground_now, mass, damping, stiffness, mass_influence, inverses, depth,
@@ -312,4 +357,4 @@ def integrate_building(mass, damping, stiffness, influence, ground, time, method
                 total += stiffness[i, j] * dofs[U_C, j]
             restoring[k, i] = total
         restoring[k, 0] += n_bearings * committed[FORCE]
-        record_state(record, k, committed)
+        record_state(record[:, k], committed)

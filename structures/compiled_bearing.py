@@ -20,7 +20,6 @@ import math
 
 import numpy as np
 
-from isolator import kernels
 from isolator.contact_window import (
     advance_window,
     move_window,
@@ -29,15 +28,6 @@ from isolator.contact_window import (
 )
 from isolator.heating import step_factors
 from isolator.kernels import cold_friction, heated_window, jit, ptv_friction, solve_friction
-
-if kernels.COMPILED:  # pragma: no cover - depends on the environment
-    import numba
-
-    def inline(function):
-        """Compile a helper of the loop inlined into its caller (cached on disk)."""
-        return numba.njit(cache=True, nogil=True, inline="always")(function)
-else:  # pragma: no cover
-    inline = jit
 
 # Layout of the ``bearing`` parameter array (all floats).
 N_BEARINGS, YIELD_DISPLACEMENT, RESTORING_LAW, EFFECTIVE_RADIUS, AXIAL_LOAD, PRESSURE = range(6)
@@ -78,12 +68,12 @@ BEARING_FIELDS = ("displacement", "velocity", "force", "friction_force", "mu", "
 SUCCESS, NOT_CONVERGED, LEFT_MONITOR_LINE, STEP_BELOW_MIN_LAG, BEYOND_RADIUS = range(5)
 
 
-@inline
 def new_heating(rates, weights, states):
     """The heat history's arrays, as one tuple indexed by ``RATES`` ... ``RANGES``.
 
     ``rates``, ``weights`` [1/s], [s^-0.5]: the kernel's exponentials (K,); ``states`` (points,
     K): the monitor points, zero (they hold B_j or C_j of :mod:`isolator.contact_window`).
+    Made in Python and handed to the engine, which allocates nothing.
     """
     n_terms = rates.shape[0]
     ranges = np.zeros(RANGES_SIZE, dtype=np.int64)
@@ -94,7 +84,7 @@ def new_heating(rates, weights, states):
             np.array([-1.0, 0.0, 0.0, 0.0, 0.0]), ranges)
 
 
-@inline
+@jit
 def _prepare_heating(dt, coefficient, min_lag, heating):
     """SurfaceHeating.prepare: select the step factors of ``dt`` [s], computing them if new.
 
@@ -120,7 +110,7 @@ def _prepare_heating(dt, coefficient, min_lag, heating):
     return True
 
 
-@inline
+@jit
 def _move_window(heating, lo, hi, time):
     """Hold the points ``[lo, hi)`` as the window from ``time`` [s] (the last commit)."""
     ranges = heating[RANGES]
@@ -132,7 +122,7 @@ def _move_window(heating, lo, hi, time):
     heating[HEAT][RISE_VALID] = 0.0
 
 
-@inline
+@jit
 def bearing_trial(displacement, velocity, time, bearing, ptv, committed, trial, heating):
     """BearingElement.set_trial of one bearing: fills ``trial``.
 
@@ -212,7 +202,7 @@ def bearing_trial(displacement, velocity, time, bearing, ptv, committed, trial, 
     return force, stiffness + mu * n * dz_du, n * z * dmu_dvelocity, SUCCESS
 
 
-@inline
+@jit
 def bearing_commit(bearing, committed, trial, heating):
     """BearingElement.commit: the trial becomes the committed state, its heat is added."""
     if trial[PENDING] != 0.0:
@@ -238,9 +228,10 @@ def bearing_commit(bearing, committed, trial, heating):
         committed[i] = trial[i]
 
 
-@inline
-def record_state(record, k, state):
-    """Row ``k`` of the record: the bearing ``state`` in the order of ``BEARING_FIELDS``."""
-    record[0, k], record[1, k] = state[DISPLACEMENT], state[VELOCITY]
-    record[2, k], record[3, k] = state[FORCE], state[FRICTION_FORCE]
-    record[4, k], record[5, k], record[6, k] = state[MU], state[TEMPERATURE], state[HEAT_FLUX]
+@jit
+def record_state(column, state):
+    """A column of the record (one step): the bearing ``state`` in the order of
+    ``BEARING_FIELDS``."""
+    column[0], column[1] = state[DISPLACEMENT], state[VELOCITY]
+    column[2], column[3] = state[FORCE], state[FRICTION_FORCE]
+    column[4], column[5], column[6] = state[MU], state[TEMPERATURE], state[HEAT_FLUX]

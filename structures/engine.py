@@ -250,8 +250,10 @@ def compiled_history(
         model.mass_matrix, model.damping_matrix, model.superstructure_stiffness,
         model.influence)]
     start = _time.perf_counter()
-    function(*matrices, acceleration, time, method_array, bearing, ptv, rates, weights, states,
-             u, v, a, record, restoring, iterations, subdivisions, info)
+    heating_arrays = cb.new_heating(rates, weights, states)
+    workspace = compiled.new_workspace(n, max_subdivisions)
+    function(*matrices, acceleration, time, method_array, bearing, ptv, heating_arrays,
+             workspace, u, v, a, record, restoring, iterations, subdivisions, info)
     wall = _time.perf_counter() - start
     status = int(info[compiled.STATUS])
     if status not in (cb.SUCCESS, cb.NOT_CONVERGED):
