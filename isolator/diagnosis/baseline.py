@@ -43,8 +43,8 @@ REMOVABLE_EFFECTS = ("heating", "velocity", "pressure")
 DEFAULT_MU_T0 = 0.075  # the paper's mu_t0, the start of the calibration
 SIMPLIFIED_REFINEMENT = 0.5  # the paper's lambda
 YIELD_DISPLACEMENT_MAX = 2.5e-3  # [m] the largest pre-sliding transition calibrated
-_YIELD_GRID = np.geomspace(1.0e-5, YIELD_DISPLACEMENT_MAX, 26)  # [m] candidates; 10 um is
-# the rigid-plastic limit: the force reverses within a sample of the displacement peak
+RIGID_PLASTIC_LIMIT = 1.0e-5  # [m] the smallest: the force reverses at the displacement peak
+_YIELD_GRID = np.geomspace(RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_MAX, 26)  # [m] candidates
 _LAG_GRID = np.arange(-NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES + 0.25, 0.5)
 _MAX_ITERATIONS = 6
 _SCALE_TOLERANCE = 1.0e-3

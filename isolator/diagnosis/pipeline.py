@@ -21,7 +21,12 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from isolator.diagnosis.baseline import _YIELD_GRID, BaselineFit, BaselineSpec, calibrate
+from isolator.diagnosis.baseline import (
+    RIGID_PLASTIC_LIMIT,
+    BaselineFit,
+    BaselineSpec,
+    calibrate,
+)
 from isolator.diagnosis.data import Campaign
 from isolator.diagnosis.decision import Problem
 from isolator.diagnosis.effects import EFFECT_NAMES, Context, effects_named
@@ -203,7 +208,7 @@ def _finish(campaign: Campaign, fitted: BaselineFit, problem: Problem, selection
     u_y = fitted.parameters["yield_displacement"]
     window = in_transition(everything, u_y)
     transition = transition_finding(everything, problem.all_baseline.prediction, window, u_y,
-                                    float(_YIELD_GRID[0]))
+                                    RIGID_PLASTIC_LIMIT)
     f = selection.stage.work.features
     before = selection.baseline.prediction
     near = near_reversal_distance(f, u_y)
