@@ -33,6 +33,7 @@ __all__ = [
     "Spectrum",
     "nigam_jennings_coefficients",
     "peak_ground_values",
+    "response_spectra",
     "response_spectrum",
     "sdof_response",
     "spectrum",
@@ -73,8 +74,17 @@ def _check_periods(periods: object, owner: str, *, allow_zero: bool) -> np.ndarr
     return check_array(values, "periods", owner, low=0.0, low_open=not allow_zero)
 
 
-def _check_damping(damping: object, owner: str) -> float:
-    return check_real(damping, "damping", owner, low=0.0, high=1.0, high_open=True)
+def _check_damping(damping: object, owner: str, size: int | None = None) -> float | np.ndarray:
+    """One damping ratio in [0, 1), or (where ``size`` is given) one per oscillator."""
+    if size is None or np.ndim(damping) == 0:
+        return check_real(damping, "damping", owner, low=0.0, high=1.0, high_open=True)
+    ratios = check_array(damping, "damping", owner, low=0.0)
+    if ratios.shape != (size,) or (ratios >= 1.0).any():
+        raise ValueError(
+            f"The 'damping' parameter of {owner} must be a float in [0, 1) or {size} such "
+            f"floats, one per period. Got {damping!r} instead."
+        )
+    return ratios
 
 
 def nigam_jennings_coefficients(omega: np.ndarray, damping: float, dt: float) -> np.ndarray:
@@ -84,8 +94,8 @@ def nigam_jennings_coefficients(omega: np.ndarray, damping: float, dt: float) ->
     ----------
     omega : numpy.ndarray
         Circular frequencies, > 0 [rad/s].
-    damping : float
-        Damping ratio in [0, 1) [-].
+    damping : float or numpy.ndarray
+        Damping ratio in [0, 1) [-], or one per frequency.
     dt : float
         Time step [s].
 
@@ -104,7 +114,7 @@ def nigam_jennings_coefficients(omega: np.ndarray, damping: float, dt: float) ->
     """
     owner = "nigam_jennings_coefficients"
     w = check_array(np.atleast_1d(omega), "omega", owner, low=0.0, low_open=True)
-    z = _check_damping(damping, owner)
+    z = _check_damping(damping, owner, w.size)
     dt = check_real(dt, "dt", owner, low=0.0, low_open=True)
     root = np.sqrt(1.0 - z * z)
     wd = w * root  # damped circular frequency [rad/s]
@@ -135,14 +145,19 @@ def _recurrence(
     """Run the recurrence from rest over the record, all oscillators at once.
 
     Returns max |u| per oscillator [m]; if ``out = (u, v)`` arrays of shape (npts, n) are
-    given, the histories are written into them as well.
+    given, the histories are written into them as well. A record of shape (npts, m) (m
+    records side by side) drives every oscillator with each of them and returns shape
+    (m, n): element by element the arithmetic is that of the single record.
     """
     (a, b, c, d), (a1, b1, c1, d1) = nigam_jennings_coefficients(omega, damping, dt)
     p = -acceleration
-    u = np.zeros_like(omega)
-    v = np.zeros_like(omega)
-    peak = np.zeros_like(omega)
-    for i in range(p.size - 1):
+    if p.ndim == 2:
+        p = p[:, :, None]  # (npts, m, 1) against the (n,) oscillators
+    shape = np.broadcast_shapes(p.shape[1:], omega.shape)
+    u = np.zeros(shape)
+    v = np.zeros(shape)
+    peak = np.zeros(shape)
+    for i in range(p.shape[0] - 1):
         p0, p1 = p[i], p[i + 1]
         u, v = a * u + b * v + (c * p0 + d * p1), a1 * u + b1 * v + (c1 * p0 + d1 * p1)
         np.maximum(peak, np.abs(u), out=peak)
@@ -152,7 +167,8 @@ def _recurrence(
 
 
 def sdof_response(
-    acceleration: np.ndarray, dt: float, periods: np.ndarray, damping: float = 0.05
+    acceleration: np.ndarray, dt: float, periods: np.ndarray,
+    damping: float | np.ndarray = 0.05,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Relative displacement and velocity histories of linear oscillators starting from rest.
 
@@ -164,8 +180,8 @@ def sdof_response(
         Time step [s].
     periods : array_like
         Oscillator periods, > 0 [s].
-    damping : float
-        Damping ratio in [0, 1) [-].
+    damping : float or array_like
+        Damping ratio in [0, 1) [-], or one per period (e.g. the modes of a building).
 
     Returns
     -------
@@ -175,7 +191,7 @@ def sdof_response(
     owner = "sdof_response"
     acc, step = _check_record(acceleration, dt, owner)
     t = _check_periods(periods, owner, allow_zero=False)
-    zeta = _check_damping(damping, owner)
+    zeta = _check_damping(damping, owner, t.size)
     u = np.zeros((acc.size, t.size))
     v = np.zeros((acc.size, t.size))
     _recurrence(acc, step, 2 * np.pi / t, zeta, out=(u, v))
@@ -222,6 +238,48 @@ def response_spectrum(
         sd[~rigid] = _recurrence(acc, step, omega, zeta)
         sv[~rigid] = omega * sd[~rigid]
         sa[~rigid] = omega**2 * sd[~rigid]
+    return Spectrum(t, sd, sv, sa, zeta)
+
+
+def response_spectra(
+    accelerations: np.ndarray, dt: float, periods: np.ndarray, damping: float = 0.05
+) -> Spectrum:
+    """`response_spectrum` of several records sampled alike, in one pass over the samples.
+
+    Used for floor response spectra (every floor of a run at once). Each row of the result is
+    what :func:`response_spectrum` gives for that record, to the last digit: the recurrence does
+    the same arithmetic, only on more oscillators at a time.
+
+    Parameters
+    ----------
+    accelerations : array_like, shape (npts, m)
+        ``m`` acceleration histories side by side [m/s^2], linear between samples.
+    dt : float
+        Time step [s].
+    periods : array_like
+        Oscillator periods, >= 0 [s] (0: the peak absolute acceleration).
+    damping : float
+        Damping ratio in [0, 1) [-].
+
+    Returns
+    -------
+    Spectrum
+        ``sd`` [m], ``sv`` [m/s], ``sa`` [m/s^2], each of shape (m, len(periods)).
+    """
+    owner = "response_spectra"
+    acc = check_array(accelerations, "accelerations", owner, ndim=2, min_length=2)
+    step = check_real(dt, "dt", owner, low=0.0, low_open=True)
+    t = _check_periods(periods, owner, allow_zero=True)
+    zeta = _check_damping(damping, owner)
+    shape = (acc.shape[1], t.size)
+    sd, sv, sa = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+    rigid = t == 0.0
+    sa[:, rigid] = np.max(np.abs(acc), axis=0)[:, None]
+    if (~rigid).any():
+        omega = 2 * np.pi / t[~rigid]
+        sd[:, ~rigid] = _recurrence(acc, step, omega, zeta)
+        sv[:, ~rigid] = omega * sd[:, ~rigid]
+        sa[:, ~rigid] = omega**2 * sd[:, ~rigid]
     return Spectrum(t, sd, sv, sa, zeta)
 
 

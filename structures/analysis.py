@@ -76,6 +76,7 @@ def run(
     tolerance: float = 1e-8,
     max_subdivisions: int = 6,
     engine: str = "auto",
+    floor_spectra: bool = False,
 ):
     """Run a time-history analysis.
 
@@ -100,6 +101,10 @@ def run(
         specification); ``"compiled"``: the same algorithm as one numba function
         (:mod:`structures.compiled`); ``"auto"`` (default): the compiled engine whenever numba
         is available and it supports the configuration. Both give the same Dataset.
+    floor_spectra : bool
+        Add the 5 %-damped floor response spectra and the record's spectrum
+        (:func:`structures.floor_spectra.with_floor_spectra`: ``floor_spectrum``,
+        ``ground_spectrum``, coordinate ``period``).
 
     Returns
     -------
@@ -129,7 +134,7 @@ def run(
     isolator = {"force": n * record["force"], "friction_force": n * record["friction_force"],
                 "mu": record["mu"], "temperature": record["temperature"],
                 "heat_flux": record["heat_flux"]}
-    return response_dataset(
+    dataset = response_dataset(
         model, motion, step, acceleration[:kept], result.displacement, result.velocity,
         result.absolute_acceleration, isolator, integrator=repr(result.method),
         success=result.success, message=result.message,
@@ -138,6 +143,11 @@ def run(
                "wall_time": history.wall_time, "engine": history.engine},
         restoring=history.restoring,
     )
+    if floor_spectra:
+        from structures.floor_spectra import with_floor_spectra
+
+        dataset = with_floor_spectra(dataset, motion)
+    return dataset
 
 
 def peaks(result) -> dict[str, float]:

@@ -1,0 +1,134 @@
+"""Floor response spectra: what the contents of each floor feel, beside what the ground does.
+
+Equipment and non-structural parts are designed from the 5 %-damped pseudo-acceleration
+spectrum of the floor they stand on. :func:`with_floor_spectra` adds to the Dataset of a run
+(:func:`structures.analysis.run`, or :func:`structures.fixed_base.run_fixed_base`)
+
+``floor_spectrum`` (floor, period) [m/s^2]
+    Sa of each floor's absolute acceleration history, on the run's time step;
+``ground_spectrum`` (period) [m/s^2]
+    Sa of the record as read, on its own time step: exactly what ``dcfpb spectrum`` gives.
+
+Both come from the exact recurrence of :mod:`groundmotions.spectra` (the project's spectrum
+code, all floors in one pass). At period 0 the spectrum is the peak absolute acceleration: the
+peak floor acceleration, or the PGA. Peaks are taken at the samples, so for periods below a few
+time steps (the record's step for the ground) a spectrum can miss a peak between them; with the
+bundled record, the ground's step (0.02 s) is coarser than a run's (0.005 s).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from groundmotions.records import GroundMotion
+from groundmotions.spectra import response_spectra, spectrum
+
+__all__ = ["FLOOR_SPECTRUM_DAMPING", "FLOOR_SPECTRUM_PERIODS", "floor_spectra",
+           "with_floor_spectra", "with_floor_spectra_all"]
+
+FLOOR_SPECTRUM_PERIODS = np.concatenate(([0.0], np.geomspace(0.02, 5.0, 64)))
+"""Default periods of the floor spectra [s]: 0 (peak acceleration), then 0.02 to 5 s."""
+
+FLOOR_SPECTRUM_DAMPING = 0.05
+"""Damping ratio of the floor spectra [-] (the usual 5 %)."""
+
+
+def floor_spectra(result, periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
+                  damping: float = FLOOR_SPECTRUM_DAMPING) -> np.ndarray:
+    """Pseudo-acceleration spectra of every floor's absolute acceleration.
+
+    Parameters
+    ----------
+    result : xarray.Dataset
+        A run with ``absolute_acceleration`` (time, floor) and the attribute ``dt`` [s].
+    periods : array_like
+        Oscillator periods, >= 0 [s].
+    damping : float
+        Damping ratio in [0, 1) [-].
+
+    Returns
+    -------
+    numpy.ndarray, shape (floors, len(periods))
+        Sa [m/s^2], floor 0 (the base slab, or the ground level of a fixed base) first.
+    """
+    acceleration = np.asarray(result["absolute_acceleration"].transpose("time", "floor"))
+    return response_spectra(acceleration, float(result.attrs["dt"]), periods, damping).sa
+
+
+def with_floor_spectra(result, motion: GroundMotion | None = None, *,
+                       periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
+                       damping: float = FLOOR_SPECTRUM_DAMPING):
+    """The run's Dataset with its floor spectra and the ground's spectrum added.
+
+    Parameters
+    ----------
+    result : xarray.Dataset
+        A run (``absolute_acceleration``, ``ground_acceleration``, attribute ``dt``).
+    motion : GroundMotion, optional
+        The record the run was driven by (scaled as it was). Its spectrum, on its own step,
+        is ``ground_spectrum``; without it, the run's ``ground_acceleration`` (on the run's
+        step) is used instead.
+    periods : array_like
+        Periods of the spectra, >= 0 [s].
+    damping : float
+        Damping ratio in [0, 1) [-].
+
+    Returns
+    -------
+    xarray.Dataset
+        A new Dataset with the coordinate ``period`` [s] and the variables ``floor_spectrum``
+        (floor, period) and ``ground_spectrum`` (period) [m/s^2]; attribute
+        ``spectrum_damping``.
+    """
+    return with_floor_spectra_all({"run": result}, motion, periods=periods,
+                                  damping=damping)["run"]
+
+
+def with_floor_spectra_all(results: dict, motion: GroundMotion | None = None, *,
+                           periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
+                           damping: float = FLOOR_SPECTRUM_DAMPING) -> dict:
+    """:func:`with_floor_spectra` of several runs of one record, keyed alike.
+
+    Runs that share a time step and a length go through the spectrum code in one pass (the
+    same numbers as one at a time, in a fraction of the time).
+    """
+    periods = np.atleast_1d(np.asarray(periods, dtype=float))
+    groups: dict[tuple[float, int], list] = {}
+    for key, result in results.items():
+        groups.setdefault((float(result.attrs["dt"]), result.sizes["time"]), []).append(key)
+    floors = {}
+    for (step, _), keys in groups.items():
+        stacked = np.hstack([np.asarray(results[k]["absolute_acceleration"]
+                                        .transpose("time", "floor")) for k in keys])
+        sa = response_spectra(stacked, step, periods, damping).sa
+        starts = np.cumsum([0] + [results[k].sizes["floor"] for k in keys])
+        floors.update({k: sa[starts[i]:starts[i + 1]] for i, k in enumerate(keys)})
+    ground_cache: dict[tuple[float, int], np.ndarray] = {}
+    return {key: _with(result, floors[key], motion, periods, damping, ground_cache)
+            for key, result in results.items()}
+
+
+def _with(result, floors: np.ndarray, motion: GroundMotion | None, periods: np.ndarray,
+          damping: float, ground_cache: dict):
+    """``result`` with its floor spectra ``floors`` and the ground's spectrum added."""
+    if motion is not None:
+        if "record" not in ground_cache:
+            ground_cache["record"] = spectrum(motion, periods, damping).sa
+        ground = ground_cache["record"]
+        source = f"the record {motion.name} as read (dt = {motion.dt:g} s)"
+    else:
+        ground = response_spectra(np.asarray(result["ground_acceleration"])[:, None],
+                                  float(result.attrs["dt"]), periods, damping).sa[0]
+        source = "the run's ground acceleration"
+    percent = f"{100 * damping:g} %"
+    added = result.assign_coords(period=("period", periods, {"units": "s"})).assign(
+        floor_spectrum=(("floor", "period"), floors, {
+            "units": "m/s^2",
+            "long_name": f"{percent}-damped pseudo-spectral acceleration of the floor's "
+                         "absolute acceleration (period 0: peak floor acceleration)"}),
+        ground_spectrum=("period", ground, {
+            "units": "m/s^2",
+            "long_name": f"{percent}-damped pseudo-spectral acceleration of {source}"}),
+    )
+    added.attrs["spectrum_damping"] = float(damping)
+    return added
