@@ -25,7 +25,6 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
-from scipy.optimize import nnls
 
 from dcfpb.validation import check_real
 from isolator.kernels import advance_states, contact_history, heated_window, jit
@@ -122,6 +121,8 @@ def sum_of_exponentials(
     ValueError
         For a bad range or tolerance, or when no fit with at most 200 terms reaches it.
     """
+    from scipy.optimize import nnls  # here: a process that only compiles never pays for it
+
     owner = "sum_of_exponentials"
     check_real(min_lag, "min_lag", owner, low=1e-12, high=1.0)
     check_real(max_lag, "max_lag", owner, low=10.0 * min_lag, high=1e12)
