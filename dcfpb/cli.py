@@ -9,7 +9,12 @@ run
     A building file (TOML) under a recorded ground motion; peaks, netCDF, plots.
 demo
     The main job on bundled data: the five-storey example under El Centro 1940 with the three
-    friction models side by side.
+    friction models side by side and the same superstructure on a fixed base
+    (:mod:`dcfpb.cli_demo`).
+
+A command of this module builds a parser of this module's commands only, so that it does not
+import the others' modules (``dcfpb diagnose`` alone costs about 2 s of imports); ``dcfpb
+--help`` and the other commands see them all.
 """
 
 from __future__ import annotations
@@ -173,13 +178,19 @@ def building_run_inputs(args: argparse.Namespace, command: str):
 
 
 def _run_building(args: argparse.Namespace) -> int:
-    from structures.analysis import peaks, run
+    from structures.compile_ahead import compile_ahead
 
-    config, integrator, motion = building_run_inputs(args, "dcfpb run")
-    model = args.model or config.friction["model"]
-    result = run(config.building, config.bearing(model), motion, integrator,
-                 n_bearings=config.n_bearings, dt=args.dt or config.dt)
+    with compile_ahead() as ahead:  # the engine compiles while the inputs are read
+        from structures.analysis import peaks, run
+        from structures.floor_spectra import with_floor_spectra
+
+        config, integrator, motion = building_run_inputs(args, "dcfpb run")
+        model = args.model or config.friction["model"]
+        ahead.wait()
+        result = run(config.building, config.bearing(model), motion, integrator,
+                     n_bearings=config.n_bearings, dt=args.dt or config.dt)
     summary = peaks(result)
+    result = with_floor_spectra(result, motion)
     if args.output:
         result.to_netcdf(args.output)
     if args.plot:
@@ -202,8 +213,12 @@ def _run_building(args: argparse.Namespace) -> int:
     return 0 if result.attrs["success"] else 1
 
 
-def print_peaks(rows: dict[str, dict], heading: str) -> None:
-    """Print a peaks table, one row per run, under ``heading``."""
+def print_peaks(rows: dict[str, dict], heading: str, *, fixed_base=None) -> None:
+    """Print a peaks table, one row per run, under ``heading``.
+
+    ``fixed_base`` (a :func:`structures.fixed_base.run_fixed_base` Dataset) adds its row: the
+    first-storey shear in the base-shear column, no isolator, temperature or energy.
+    """
     print(heading)
     print(f"{'model':12s} {'isol. disp':>10s} {'base shear':>11s} {'roof acc':>9s} "
           f"{'drift':>7s} {'T max':>7s} {'energy err':>10s} {'wall':>6s}")
@@ -214,15 +229,24 @@ def print_peaks(rows: dict[str, dict], heading: str) -> None:
               f"{p['peak_base_shear'] / 1e3:11.0f} {p['peak_roof_acceleration']:9.2f} "
               f"{1e3 * p['peak_storey_drift']:7.2f} {p['max_temperature']:7.1f} "
               f"{p['energy_balance_error']:10.1e} {p['wall_time']:6.2f}")
+    if fixed_base is not None:
+        from structures.fixed_base import superstructure_peaks
+
+        p = superstructure_peaks(fixed_base)
+        print(f"{'fixed base':12s} {'-':>10s} {p['peak_base_shear'] / 1e3:11.0f} "
+              f"{p['peak_roof_acceleration']:9.2f} {1e3 * p['peak_storey_drift']:7.2f} "
+              f"{'-':>7s} {'-':>10s} {fixed_base.attrs['wall_time']:6.2f}")
 
 
 def _demo_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "demo",
-        help="the five-storey example under El Centro 1940, three friction models",
+        help="the five-storey example under El Centro 1940, three friction models and the "
+        "fixed base",
         description="Runs the bundled five-storey isolated building under the bundled El Centro "
-        "1940 N-S record with the precise, simplified and constant friction models, prints a "
-        "peaks table and writes plots.",
+        "1940 N-S record with the precise, simplified and constant friction models, and the "
+        "same superstructure on a fixed base; prints a peaks table and the isolated peaks as "
+        "ratios to the fixed base, and writes plots (floor response spectra among them).",
     )
     p.add_argument("--plot", metavar="DIR", default="dcfpb-demo",
                    help="folder for the plots (default: ./dcfpb-demo)")
@@ -230,25 +254,9 @@ def _demo_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_demo(args: argparse.Namespace) -> int:
-    from dcfpb.plotting import plot_runs
-    from groundmotions.records import load_bundled
-    from structures.analysis import peaks, run
-    from structures.config import load_config
+    from dcfpb.cli_demo import run
 
-    config = load_config(_example_path("five_storey.toml"))
-    motion = load_bundled("elcentro")
-    results, rows = {}, {}
-    for model in ("precise", "simplified", "constant"):
-        results[model] = run(config.building, config.bearing(model), motion, config.integrator,
-                             n_bearings=config.n_bearings, dt=config.dt)
-        rows[model] = peaks(results[model])
-    print_peaks(rows, f"{config.name} under {motion.name} (PGA {motion.pga / 9.80665:.2f} g), "
-                 f"{config.n_bearings} bearings, R_eff = "
-                 f"{config.bearing_geometry['effective_radius']} m, dt = {config.dt} s")
-    written = plot_runs(results, args.plot, title=f"{config.name}: {motion.name}")
-    print(f"plots written to {Path(args.plot).resolve()}/: "
-          + ", ".join(p.name for p in written))
-    return 0
+    return run(args)
 
 
 def _example_path(name: str) -> Path:
@@ -257,6 +265,9 @@ def _example_path(name: str) -> Path:
 
     return Path(str(files("dcfpb").joinpath("data", name)))
 
+
+OWN_COMMANDS = ("protocol", "run", "demo")
+"""The sub-commands this module defines itself."""
 
 COMMAND_MODULES: tuple[str, ...] = (
     "dcfpb.cli_spectrum",
@@ -267,8 +278,12 @@ COMMAND_MODULES: tuple[str, ...] = (
 """Modules with a ``register(subparsers)`` function adding further sub-commands."""
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of the ``dcfpb`` command."""
+def build_parser(*, modules: bool = True) -> argparse.ArgumentParser:
+    """The argument parser of the ``dcfpb`` command.
+
+    ``modules=False`` leaves out the sub-commands of :data:`COMMAND_MODULES` (and their
+    imports): enough to parse one of :data:`OWN_COMMANDS`.
+    """
     parser = argparse.ArgumentParser(
         prog="dcfpb",
         description="Time-history analysis of buildings on double concave friction pendulum "
@@ -279,14 +294,17 @@ def build_parser() -> argparse.ArgumentParser:
     _protocol_parser(sub)
     _run_parser(sub)
     _demo_parser(sub)
-    for module in COMMAND_MODULES:  # sub-commands that keep their code in a module of their own
+    for module in COMMAND_MODULES if modules else ():  # sub-commands in modules of their own
         importlib.import_module(module).register(sub)
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``dcfpb`` console script; returns the exit status."""
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    command = next((a for a in argv if not a.startswith("-")), None)
+    own = command in OWN_COMMANDS and argv.index(command) == 0
+    parser = build_parser(modules=not own)
     args = parser.parse_args(argv)
     try:
         return args.handler(args)

@@ -73,4 +73,51 @@ def test_demo_runs_and_writes_its_plots(tmp_path, capsys):
     out = capsys.readouterr().out
     for model in ("precise", "simplified", "constant"):
         assert model in out
-    assert len(list((tmp_path / "demo").glob("*.png"))) == 5
+    # the five plots of the three models, then the floor spectra and the fixed-base ratios
+    assert {p.name for p in (tmp_path / "demo").glob("*.png")} == {
+        "isolator_hysteresis.png", "temperature.png", "roof_acceleration.png",
+        "storey_drift.png", "response_histories.png", "floor_spectra.png",
+        "isolation_effect.png"}
+
+
+def test_demo_table_has_the_fixed_base_and_the_ratios(tmp_path, capsys):
+    assert main(["demo", "--plot", str(tmp_path / "demo")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    fixed = next(line for line in lines if line.startswith("fixed base"))
+    assert float(fixed.split()[4]) > 10.0  # roof acceleration [m/s2]: about 4.5 x the PGA
+    header = lines.index("isolated / fixed base (below 1: the isolation reduces it)")
+    assert lines[header + 1].split() == ["model", "drift", "storey", "shear", "roof", "acc",
+                                         "base", "shear"]
+    for model, line in zip(("precise", "simplified", "constant"), lines[header + 2:header + 5],
+                           strict=True):
+        name, *ratios = line.split()
+        assert name == model and len(ratios) == 4
+        assert all(0.0 < float(r) < 0.5 for r in ratios)
+
+
+def test_run_output_carries_the_floor_spectra(tmp_path, capsys):
+    nc = tmp_path / "run.nc"
+    assert main(["run", str(EXAMPLE), "--record", str(RECORD), "--model", "constant",
+                 "--output", str(nc)]) == 0
+    import xarray as xr
+
+    with xr.open_dataset(nc) as ds:
+        assert ds["floor_spectrum"].dims == ("floor", "period")
+        assert ds["ground_spectrum"].dims == ("period",)
+        assert ds["period"].values[0] == 0.0 and ds.attrs["spectrum_damping"] == 0.05
+
+
+def test_own_commands_do_not_import_the_others(monkeypatch):
+    """``dcfpb run`` and ``demo`` parse without importing the other commands' modules."""
+    import sys
+
+    from dcfpb.cli import COMMAND_MODULES, build_parser
+
+    parser = build_parser(modules=False)
+    choices = parser._subparsers._group_actions[0].choices
+    assert set(choices) == {"protocol", "run", "demo"}
+    assert set(build_parser()._subparsers._group_actions[0].choices) > set(choices)
+    monkeypatch.setitem(sys.modules, "dcfpb.cli_diagnose", None)  # importing it would fail
+    args = ["run", str(EXAMPLE), "--record", "missing.at2"]
+    assert main(args) == 2  # parsed and run (the record is missing), diagnose never imported
+    assert COMMAND_MODULES[-1] == "dcfpb.cli_diagnose"
