@@ -197,8 +197,8 @@ class Problem:
         left = work.excess_rms(current.prediction)
         real_gap = current.score - 1.0 > th.none_margin and left >= th.practical_remain
         kin_names = [] if kinematic is None else list(kinematic.model.names)
-        if named and explained < th.name_min:
-            named, real_gap = [], True
+        if named and explained < th.name_min:  # stand-ins, not named: the model is the base
+            named, real_gap, current, form, explained = [], True, base, {}, 0.0
         if not named and not kin_names:
             verdict = ["unexplained"] if (real_gap and not noise_like) else ["none"]
             real_gap = verdict == ["unexplained"]

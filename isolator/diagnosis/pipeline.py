@@ -224,7 +224,9 @@ def _finish(campaign: Campaign, fitted: BaselineFit, problem: Problem, selection
         final = (before if chosen is None or selection.verdict == ["unexplained"]
                  else chosen.prediction)
         remaining = locate(f, final, campaign, near)
-        looks = signature(everything, problem.all_baseline.prediction, campaign, near)
+        left = (problem.all_baseline.prediction if chosen is None
+                else _full_prediction(problem, chosen))
+        looks = signature(everything, left, campaign, near)
     certainty, ranges = _uncertainty(problem, selection) if uncertainty else ({}, {})
     diagnosis = Diagnosis(campaign, fitted, problem, selection, where, cycles_before,
                           cycles_after, remaining, looks, excluded=excluded,

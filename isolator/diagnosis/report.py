@@ -67,15 +67,21 @@ def write_report(diagnosis: Diagnosis, folder: str | Path) -> list[Path]:
 
 
 def _predictions(d: Diagnosis) -> dict[str, np.ndarray]:
-    out = {f"baseline ({d.baseline.spec.label})": d.selection.baseline.prediction}
-    if d.selection.chosen is not None:
-        out["with " + " + ".join(d.selection.chosen.model.names)] = d.selection.chosen.prediction
+    """Force at every sample: the baseline held out, and the chosen model as fitted."""
+    from isolator.diagnosis.pipeline import _full_prediction
+
+    out = {f"baseline ({d.baseline.spec.label}, held out)":
+           d.problem.all_baseline.prediction}
+    chosen = d.selection.chosen
+    if chosen is not None:
+        names = [n for n in d.verdict if n != "unexplained"] or ["the effects tried"]
+        out["with " + " + ".join(names) + " (fitted)"] = _full_prediction(d.problem, chosen)
     return out
 
 
 def _loops(d: Diagnosis, path: Path) -> Path:
     plt = _pyplot()
-    f = d.work.features
+    f = d.problem.features
     tests = d.campaign.tests[:_MAX_LOOPS]
     cols = min(3, len(tests))
     rows = -(-len(tests) // cols)
@@ -88,7 +94,7 @@ def _loops(d: Diagnosis, path: Path) -> Path:
         for (label, pred), colour in zip(_predictions(d).items(), ("tab:blue", "tab:red"),
                                          strict=False):
             ax.plot(1e3 * f.displacement[idx], 1e-3 * pred[idx], lw=0.7, color=colour,
-                    label=label + " (held out)")
+                    label=label)
         ax.set_title(rec.name, fontsize=8)
         ax.set_xlabel("displacement [mm]")
         ax.set_ylabel("force [kN]")
@@ -149,7 +155,8 @@ def _cycle_errors(d: Diagnosis, path: Path) -> Path:
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.4), constrained_layout=True)
     sets = [("baseline", d.cycles_before)]
     if d.cycles_after is not None:
-        sets.append(("with " + " + ".join(d.selection.chosen.model.names), d.cycles_after))
+        names = [n for n in d.verdict if n != "unexplained"] or ["the effects tried"]
+        sets.append(("with " + " + ".join(names), d.cycles_after))
     for ax, quantity in zip(axes, ("EDC", "Keff"), strict=True):
         for label, errors in sets:
             values = [100 * r[f"{quantity}_error"] for r in errors.rows]
@@ -166,7 +173,7 @@ def _cycle_errors(d: Diagnosis, path: Path) -> Path:
 
 def _history(d: Diagnosis, path: Path) -> Path:
     plt = _pyplot()
-    f = d.work.features
+    f = d.problem.features
     fig, ax = plt.subplots(figsize=(11, 3.4), constrained_layout=True)
     sample = np.arange(len(f))
     for label, pred in _predictions(d).items():
