@@ -68,11 +68,18 @@ class CompileAhead:
     def wait(self) -> bool:
         """Block until the engine is compiled; return whether the process succeeded.
 
-        Returns True at once when no process was started.
+        While it waits, this process compiles what the engine needs last (the bearing's
+        commit, :func:`structures.engine.warm_up_commit`), so that the second process finds
+        it in the cache when it gets there; both write the same machine code. Returns True at
+        once when no process was started.
         """
         if self.process is None:
             return True
         start = time.perf_counter()
+        if self.process.poll() is None:
+            from structures.engine import warm_up_commit
+
+            warm_up_commit()
         try:
             status = self.process.wait(timeout=WAIT_LIMIT)
         except subprocess.TimeoutExpired:
