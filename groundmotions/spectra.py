@@ -135,6 +135,9 @@ def nigam_jennings_coefficients(omega: np.ndarray, damping: float, dt: float) ->
     return np.array([[a, b, cc, d], [a1, b1, c1, d1]])
 
 
+_CHUNK = 256  # steps whose load terms are formed at once by the recurrence
+
+
 def _recurrence(
     acceleration: np.ndarray,
     dt: float,
@@ -151,18 +154,31 @@ def _recurrence(
     """
     (a, b, c, d), (a1, b1, c1, d1) = nigam_jennings_coefficients(omega, damping, dt)
     p = -acceleration
-    if p.ndim == 2:
-        p = p[:, :, None]  # (npts, m, 1) against the (n,) oscillators
+    p = p[:, :, None] if p.ndim == 2 else p[:, None]  # (npts, [m,] 1) against (n,) oscillators
     shape = np.broadcast_shapes(p.shape[1:], omega.shape)
-    u = np.zeros(shape)
-    v = np.zeros(shape)
-    peak = np.zeros(shape)
-    for i in range(p.shape[0] - 1):
-        p0, p1 = p[i], p[i + 1]
-        u, v = a * u + b * v + (c * p0 + d * p1), a1 * u + b1 * v + (c1 * p0 + d1 * p1)
-        np.maximum(peak, np.abs(u), out=peak)
-        if out is not None:
-            out[0][i + 1], out[1][i + 1] = u, v
+    u, v, peak = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+    u_next, v_next, work = np.empty(shape), np.empty(shape), np.empty(shape)
+    steps = p.shape[0] - 1
+    chunk = min(_CHUNK, max(steps, 1))
+    load_u, load_v = np.empty((chunk, *shape)), np.empty((chunk, *shape))
+    for first in range(0, steps, chunk):
+        last = min(first + chunk, steps)
+        p0, p1 = p[first:last], p[first + 1:last + 1]
+        f, g = load_u[:last - first], load_v[:last - first]
+        np.add(np.multiply(c, p0, out=f), d * p1, out=f)  # the load terms of a whole chunk
+        np.add(np.multiply(c1, p0, out=g), d1 * p1, out=g)
+        for j in range(last - first):
+            # u' = (a u + b v) + (c p0 + d p1), v' = (a1 u + b1 v) + (c1 p0 + d1 p1), in place
+            np.multiply(a, u, out=u_next)
+            u_next += np.multiply(b, v, out=work)
+            u_next += f[j]
+            np.multiply(a1, u, out=v_next)
+            v_next += np.multiply(b1, v, out=work)
+            v_next += g[j]
+            u, u_next, v, v_next = u_next, u, v_next, v
+            np.maximum(peak, np.abs(u, out=work), out=peak)
+            if out is not None:
+                out[0][first + j + 1], out[1][first + j + 1] = u, v
     return peak
 
 
