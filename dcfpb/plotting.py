@@ -19,6 +19,10 @@ def pyplot():
     return plt
 
 
+PNG_OPTIONS = {"pil_kwargs": {"compress_level": 1}}
+"""A fast zlib level for the PNGs: about 0.03 s less a figure than level 6, files ~25 % larger."""
+
+
 def _margins(fig, *, left: float = 0.85, right: float = 0.2, bottom: float = 0.6,
              top: float = 0.85, **spacing: float) -> None:
     """Fixed margins in inches (a constrained layout costs about 0.25 s per figure)."""
@@ -57,7 +61,7 @@ def plot_bearing_test(result: Any, path: str | Path, *, title: str = "") -> Path
     if title:
         fig.suptitle(title)
     path = Path(path)
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=120, **PNG_OPTIONS)
     plt.close(fig)
     return path
 
@@ -102,7 +106,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
         if title:
             fig.suptitle(title)
         path = directory / name
-        fig.savefig(path, dpi=120)
+        fig.savefig(path, dpi=120, **PNG_OPTIONS)
         plt.close(fig)
         written.append(path)
 
@@ -115,7 +119,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     ax.set_ylabel("isolator force, all bearings [kN]")
     ax.set_title("isolator hysteresis")
     ax.grid(alpha=0.3)
-    ax.legend()
+    ax.legend(loc="upper left")  # a fixed place: "best" searches every point of every line
     save(fig, "isolator_hysteresis.png")
 
     fig, ax = plt.subplots(figsize=(8, 4))
@@ -126,7 +130,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     ax.set_ylabel("contact temperature [degC]")
     ax.set_title("temperature of the sliding surface (contact area)")
     ax.grid(alpha=0.3)
-    ax.legend()
+    ax.legend(loc="upper right")
     save(fig, "temperature.png")
 
     first = next(iter(results.values()))
@@ -155,7 +159,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     ax.set_xlim(left=0.0)
     ax.set_title("storey drift profile")
     ax.grid(alpha=0.3)
-    ax.legend()
+    ax.legend(loc="upper right")
     save(fig, "storey_drift.png")
 
     fig, axes = plt.subplots(3, 1, figsize=(9, 7), sharex=True)
@@ -169,7 +173,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     axes[1].set_ylabel("base shear [kN]")
     axes[2].set_ylabel("friction coeff. [-]")
     axes[2].set_xlabel("time [s]")
-    axes[0].legend(ncol=3, fontsize=8)
+    axes[0].legend(ncol=3, fontsize=8, loc="upper right")
     for ax in axes:
         ax.grid(alpha=0.3)
     save(fig, "response_histories.png")

@@ -13,11 +13,24 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from dcfpb.plotting import pyplot
+from dcfpb.plotting import PNG_OPTIONS, pyplot
 from dcfpb.units import STANDARD_GRAVITY
 
 FIXED_BASE_COLOUR = "0.25"
+PERIOD_TICKS = (0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0)  # [s], labelled as plain numbers
 GROUND_STYLE = {"color": "black", "lw": 1.4, "ls": "--"}
+
+
+def _period_axis(ax) -> None:
+    """A logarithmic period axis with plain labels at ``PERIOD_TICKS`` and no minor ticks
+    (a log axis's default minor ticks and mathtext labels take most of a figure's time)."""
+    from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullLocator
+
+    ax.set_xscale("log")
+    ax.xaxis.set_major_locator(FixedLocator(PERIOD_TICKS))
+    ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+    ax.xaxis.set_minor_locator(NullLocator())
+    ax.set_xlabel("period [s]")
 
 
 def plot_floor_spectra(results: dict[str, Any], path: str | Path, *, title: str = "") -> Path:
@@ -51,10 +64,9 @@ def plot_floor_spectra(results: dict[str, Any], path: str | Path, *, title: str 
             name = "base" if floor == 0 else ("roof" if floor == floors[-1] else f"floor {floor}")
             ax.plot(period[shown], r["floor_spectrum"].sel(floor=floor).values[shown],
                     color=colour, lw=1.0, label=name)
-        ax.set_xscale("log")
-        ax.set_xlabel("period [s]")
+        _period_axis(ax)
         ax.set_title(label, fontsize=10)
-        ax.grid(alpha=0.3, which="both")
+        ax.grid(alpha=0.3)
         ax.set_ylim(bottom=0.0)
     axes[0, 0].set_ylabel("Sa [m/s$^2$]")
     axes[0, -1].legend(fontsize=7, loc="upper right")
@@ -63,7 +75,7 @@ def plot_floor_spectra(results: dict[str, Any], path: str | Path, *, title: str 
     fig.suptitle((f"{title}\n" if title else "")
                  + f"floor response spectra, {damping:g} % damping (floor 0 = base)")
     path = Path(path)
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=110, **PNG_OPTIONS)
     plt.close(fig)
     return path
 
@@ -105,7 +117,7 @@ def plot_isolation_effect(results: dict[str, Any], fixed_base: Any, path: str | 
     ax_ratio.set_xticks(np.arange(len(PEAK_NAMES)), labels)
     ax_ratio.set_ylabel("isolated peak / fixed-base peak [-]")
     ax_ratio.set_title("peaks as ratios to the fixed base")
-    ax_ratio.legend(fontsize=8)
+    ax_ratio.legend(fontsize=8, loc="upper right")
     ax_ratio.grid(alpha=0.3, axis="y")
 
     everything = {"fixed base": fixed_base, **results}
@@ -135,17 +147,16 @@ def plot_isolation_effect(results: dict[str, Any], fixed_base: Any, path: str | 
     ax_acc.set_yticks(fixed_base["floor"].values)
     ax_acc.set_xlim(left=0.0)
     ax_acc.set_title("peak floor acceleration")
-    ax_sa.set_xscale("log")
-    ax_sa.set_xlabel("period [s]")
+    _period_axis(ax_sa)
     ax_sa.set_ylabel("Sa [m/s$^2$]")
     ax_sa.set_ylim(bottom=0.0)
     ax_sa.set_title(f"roof response spectrum, {100 * fixed_base.attrs['spectrum_damping']:g} %")
-    for ax in (ax_drift, ax_acc, ax_sa):
-        ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
+    for ax, place in ((ax_drift, "upper right"), (ax_acc, "lower right"), (ax_sa, "upper right")):
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc=place)
     if title:
         fig.suptitle(title)
     path = Path(path)
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=110, **PNG_OPTIONS)
     plt.close(fig)
     return path
