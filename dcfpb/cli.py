@@ -181,6 +181,7 @@ def _run_building(args: argparse.Namespace) -> int:
     from structures.compile_ahead import compile_ahead
 
     with compile_ahead() as ahead:  # the engine compiles while the inputs are read
+        ahead.help()
         from structures.analysis import peaks, run
         from structures.floor_spectra import with_floor_spectra
 

@@ -32,6 +32,7 @@ def run(args: argparse.Namespace) -> int:
     from structures.compile_ahead import compile_ahead
 
     with compile_ahead() as ahead:
+        ahead.help()  # on a cold cache: compile a share of the engine, then do the rest
         from dcfpb.cli import _example_path as example_path
         from groundmotions.records import load_bundled
         from structures.analysis import peaks

@@ -5,10 +5,11 @@ run's time to compile, while the run itself needs a fraction of a second. The co
 pure Python work in numba, which a thread cannot overlap with the caller's own Python work
 (imports, reading the record, the fixed-base reference, spectra); a process can, on a second
 core. :func:`compile_ahead` starts ``python -m structures.compile_ahead``, which compiles the
-engine exactly as the first run would (:func:`structures.engine.warm_up`) and writes numba's disk
-cache; the caller :meth:`CompileAhead.wait`\\ s before its first engine call, which then loads
-the machine code from that cache. What is computed does not change: the cached code is the
-code the caller would have compiled itself.
+engine exactly as the first run would (:func:`structures.engine.warm_up`) and writes numba's
+disk cache. Meanwhile the caller compiles the parts that process will reach last
+(:meth:`CompileAhead.help`), does its own work, and waits (:meth:`CompileAhead.wait`) before
+its first engine call, which then loads the machine code from the cache. What is computed does
+not change: the cached code is the code the caller would have compiled itself.
 
 Nothing is started when the cache already holds the engine, without numba (or with
 ``DCFPB_DISABLE_NUMBA=1``), or with ``DCFPB_COMPILE_AHEAD=0``. If the second process fails,
@@ -65,21 +66,28 @@ class CompileAhead:
         """Whether a second process was started."""
         return self.process is not None
 
+    def help(self) -> float:
+        """Compile here, meanwhile, the parts the second process will reach last
+        (:func:`structures.engine.warm_up_late`), so that it finds them in the cache; return
+        the time spent [s] (0 when no process was started).
+
+        Call it right after :func:`compile_ahead`, before this process's own work: both then
+        compile on their own core, and the second one sooner reaches the end.
+        """
+        if self.process is None or self.process.poll() is not None:
+            return 0.0
+        from structures.engine import warm_up_late
+
+        return warm_up_late()
+
     def wait(self) -> bool:
         """Block until the engine is compiled; return whether the process succeeded.
 
-        While it waits, this process compiles what the engine needs last (the bearing's
-        commit, :func:`structures.engine.warm_up_commit`), so that the second process finds
-        it in the cache when it gets there; both write the same machine code. Returns True at
-        once when no process was started.
+        Returns True at once when no process was started.
         """
         if self.process is None:
             return True
         start = time.perf_counter()
-        if self.process.poll() is None:
-            from structures.engine import warm_up_commit
-
-            warm_up_commit()
         try:
             status = self.process.wait(timeout=WAIT_LIMIT)
         except subprocess.TimeoutExpired:

@@ -25,6 +25,7 @@ import numpy as np
 from dcfpb.validation import check_choice
 from isolator import kernels
 from isolator.bearing import AxialLoadHistory
+from isolator.contact_window import window_history
 from isolator.friction import ConstantFriction, PTVFriction, PTVFrictionState
 from isolator.heating import CentrePoint, MonitorLine
 from isolator.kernels import PTV_PARAMETERS
@@ -37,7 +38,7 @@ from structures.isolated_building import IsolatedShearBuilding
 ENGINES = ("auto", "compiled", "reference")
 
 __all__ = ["BEARING_FIELDS", "ENGINES", "EngineHistory", "compiled_history", "select_engine",
-           "unsupported", "warm_up", "warm_up_commit"]
+           "unsupported", "warm_up", "warm_up_late"]
 
 
 class EngineHistory(NamedTuple):
@@ -273,16 +274,26 @@ def compiled_history(
     return EngineHistory(result, fields, restoring[kept], wall, "compiled")
 
 
-def warm_up_commit() -> float:
-    """Compile (or load) only the bearing's commit and its heat-history kernels, for the very
-    argument types of the engine; return the time [s].
+def warm_up_late() -> float:
+    """Compile (or load) the parts of the engine its compilation reaches last, for the very
+    argument types the engine calls them with; return the time [s].
 
-    The engine needs them last (:mod:`structures.compile_ahead` has this done by the waiting
-    process while the second one works through the rest).
+    In the order :func:`warm_up` needs them: the window moves of the heat history, its sum
+    and the friction of the heated model (late in the bearing's trial), then the bearing's
+    commit (after the whole Newton step). :mod:`structures.compile_ahead` has this process
+    do them while the second one works through the rest, which then finds them in the cache.
+    Every call is made on a resting bearing and changes nothing that matters.
     """
+    from isolator.kernels import ptv_friction
+
     start = _time.perf_counter()
     workspace = compiled.new_workspace(1, 0)
     heating = cb.new_heating(np.ones(1), np.zeros(1), np.zeros((1, 1)))
+    cb._move_window(heating, 0, 1, 0.0)
+    window_history(heating[cb.ACCUMULATOR], heating[cb.OFFSETS], heating[cb.DECAYS][0], 1)
+    ptv = np.zeros(len(PTV_PARAMETERS))
+    ptv[PTV_PARAMETERS.index("surfaces")] = 2.0
+    ptv_friction(0.0, True, ptv, 0.0, 6.0e7, 0.1)
     cb.bearing_commit(np.zeros(cb.BEARING_PARAMETERS), workspace[compiled.COMMITTED],
                       workspace[compiled.TRIAL], heating)  # nothing pending: a copy
     return _time.perf_counter() - start

@@ -51,7 +51,7 @@ print(json.dumps(compiled))
 def test_nothing_starts_when_switched_off_or_without_numba(monkeypatch):
     monkeypatch.setenv("DCFPB_COMPILE_AHEAD", "0")
     with ahead.compile_ahead() as handle:
-        assert not handle.started and handle.wait()
+        assert not handle.started and handle.help() == 0.0 and handle.wait()
     monkeypatch.delenv("DCFPB_COMPILE_AHEAD")
     monkeypatch.setenv("DCFPB_DISABLE_NUMBA", "1")
     with ahead.compile_ahead() as handle:
@@ -79,6 +79,7 @@ def test_a_run_after_the_second_process_compiles_nothing_and_computes_the_same(t
     start = ("from structures.compile_ahead import compile_ahead\n"
              "handle = compile_ahead()\n"
              "assert handle.started, 'nothing was started on an empty cache'\n"
+             "assert handle.help() > 0.0, 'this process compiled nothing meanwhile'\n"
              "assert handle.wait(), 'the second process failed'\n")
     subprocess.run([sys.executable, "-c", start], env=env, check=True, timeout=900)
     out = subprocess.run([sys.executable, "-c", RUN_AFTER, str(REPO / "examples" /
