@@ -1,7 +1,7 @@
 """Run every benchmark of the project and exit non-zero when any target is missed.
 
     python benchmarks/run.py            # all targets (about 3 minutes on 2 cores)
-    python benchmarks/run.py --quick    # skip the from-scratch numba compilation timing
+    python benchmarks/run.py --quick    # skip the from-scratch numba compilation timings
 
 Each benchmark prints its own table of ratios measured side by side in one process:
 
@@ -11,7 +11,9 @@ Each benchmark prints its own table of ratios measured side by side in one proce
   constant (<= 2 x), per-step cost flat to 64,000 steps, FPBearingPTV / ours at 32,000 steps
   (>= 20 x), memory of a 64,000-step run (< 200 MB);
 * ``bench_suite.py``: the 60-record suite x 3 friction models, 2 / 1 worker speed-up (>= 1.8);
-  it needs ``../shared/groundmotions`` and is skipped (with a note) without it.
+  it needs ``../shared/groundmotions`` and is skipped (with a note) without it;
+* ``bench_cold_start.py``: a user's first ``dcfpb demo`` with an empty numba cache (< 8 s) and a
+  later one (not with ``--quick``).
 """
 
 from __future__ import annotations
@@ -28,6 +30,8 @@ def main() -> int:
     quick = "--quick" in sys.argv[1:]
     commands = [["bench_isolator.py"],
                 ["bench_building.py", "--opensees", *(["--skip-compile"] if quick else [])]]
+    if not quick:
+        commands.append(["bench_cold_start.py"])
     if SHARED.is_dir():
         commands.append(["bench_suite.py"])
     else:

@@ -1,0 +1,99 @@
+"""A user's first ``dcfpb demo``: wall time with an empty numba cache, and with a warm one.
+
+Each run is a fresh ``python -m dcfpb.cli demo`` process timed from outside (the wall time a
+user waits, imports and plots included). "Cold" gives every run its own new, empty
+``NUMBA_CACHE_DIR``; "warm" reuses one that a first run has filled. With ``--before REF`` the
+same is measured for the tree at git ``REF`` (extracted to a temporary folder and put first on
+``PYTHONPATH``), interleaved run by run with this tree, so both see the same load on a shared
+machine; the table gives medians and the ratios after / before.
+
+    python benchmarks/bench_cold_start.py                    # this tree, 3 cold + 3 warm
+    python benchmarks/bench_cold_start.py --before b0edd0c~1 --repeats 3
+
+Target (issue 14): cold below 8 s; warm no slower than before. Exit status 1 when the cold
+median misses 8 s. Results and their history: ``benchmarks/COLD_START.md``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+COLD_TARGET = 8.0  # [s]
+
+
+def demo_wall(tree: Path | None, cache: str, plots: str, extra_env: dict | None = None) -> float:
+    """Wall time [s] of one ``dcfpb demo`` in a fresh process (``tree``: a source tree first on
+    the path; None: the installed package)."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": cache, **(extra_env or {})}
+    env.pop("DCFPB_DISABLE_NUMBA", None)
+    if tree is not None:
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (str(tree), env.get("PYTHONPATH"))
+                                            if p)
+    start = time.perf_counter()
+    subprocess.run([sys.executable, "-m", "dcfpb.cli", "demo", "--plot", plots], env=env,
+                   cwd=tempfile.gettempdir(), check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    return time.perf_counter() - start
+
+
+def extract(ref: str, into: Path) -> Path:
+    """The tree of git ``ref`` written to ``into``."""
+    archive = subprocess.run(["git", "-C", str(REPO), "archive", ref], check=True,
+                             capture_output=True).stdout
+    subprocess.run(["tar", "-x", "-C", str(into)], input=archive, check=True)
+    return into
+
+
+def measure(trees: dict[str, Path | None], repeats: int, work: Path) -> dict[str, dict]:
+    """Cold and warm walls of each tree, interleaved: {label: {"cold": [...], "warm": [...]}}."""
+    times = {label: {"cold": [], "warm": []} for label in trees}
+    warm_caches = {label: str(work / f"warm-{i}") for i, label in enumerate(trees)}
+    for label, tree in trees.items():  # fill the warm caches (not timed)
+        demo_wall(tree, warm_caches[label], str(work / "plots"))
+    for _ in range(repeats):
+        for label, tree in trees.items():
+            cold = tempfile.mkdtemp(dir=work, prefix="cold-")
+            times[label]["cold"].append(demo_wall(tree, cold, str(work / "plots")))
+            times[label]["warm"].append(demo_wall(tree, warm_caches[label],
+                                                  str(work / "plots")))
+    return times
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--before", metavar="REF", help="git ref to compare with")
+    parser.add_argument("--repeats", type=int, default=3, help="runs of each kind (default 3)")
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as folder:
+        work = Path(folder)
+        trees: dict[str, Path | None] = {}
+        if args.before:
+            trees["before"] = extract(args.before, Path(tempfile.mkdtemp(dir=work)))
+        trees["after"] = REPO
+        times = measure(trees, args.repeats, work)
+    medians = {label: {kind: statistics.median(v) for kind, v in t.items()}
+               for label, t in times.items()}
+    print(f"dcfpb demo, wall time [s], median of {args.repeats} (every run listed)")
+    print(f"{'tree':8s} {'cold':>7s} {'warm':>7s}   cold runs / warm runs")
+    for label, t in times.items():
+        runs = " ".join(f"{x:.2f}" for x in t["cold"]) + " / " + " ".join(
+            f"{x:.2f}" for x in t["warm"])
+        print(f"{label:8s} {medians[label]['cold']:7.2f} {medians[label]['warm']:7.2f}   {runs}")
+    if args.before:
+        print(f"after / before: cold {medians['after']['cold'] / medians['before']['cold']:.2f}"
+              f", warm {medians['after']['warm'] / medians['before']['warm']:.2f}")
+    met = medians["after"]["cold"] < COLD_TARGET
+    print(f"target: cold below {COLD_TARGET:g} s: {'met' if met else 'MISSED'}")
+    return 0 if met else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
