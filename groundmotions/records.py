@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from dcfpb.errors import InputError
 from dcfpb.validation import check_array, check_choice, check_real
 
 __all__ = ["GroundMotion", "RecordFormatError", "bundled_names", "load_bundled"]
@@ -41,7 +42,7 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-class RecordFormatError(ValueError):
+class RecordFormatError(InputError):
     """A record file that cannot be read as written.
 
     The message reads ``"<file name>, line <n>: <what is wrong>"``; the parts are kept in the

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from dcfpb.errors import InputError
 from dcfpb.validation import check_choice, check_real
 from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS, friction_model
@@ -34,7 +35,7 @@ _KEYS = {
 }
 
 
-class ConfigError(ValueError):
+class ConfigError(InputError):
     """A building file that cannot be used, with the file and the key named."""
 
 

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from dcfpb.errors import InputError
 from dcfpb.validation import check_real
 
 REQUIRED_COLUMNS = ("time", "displacement", "force")
@@ -33,7 +34,7 @@ MAX_DISPLACEMENT = 5.0  # [m] a larger relative displacement is taken for a unit
 _DERIVATIVE_WINDOW = 0.04  # [s] span of the smoothing derivative for a missing velocity
 
 
-class DataError(ValueError):
+class DataError(InputError):
     """A test file or array that cannot be diagnosed, with the place and the reason named."""
 
 
