@@ -102,7 +102,7 @@ def _subprocess(code: str, env: dict | None = None) -> str:
 _WARM_UP = """
 import time
 start = time.perf_counter()
-from structures.engine import warm_up
+from structures.compiled.engine import warm_up
 warm_up()
 print(time.perf_counter() - start)
 """
@@ -112,7 +112,7 @@ import resource, sys, tracemalloc
 sys.path.insert(0, {bench!r})
 import bench_building as b
 from structures.analysis import run
-from structures.engine import warm_up
+from structures.compiled.engine import warm_up
 warm_up()
 record = b.repeated_record(64_000)
 frame = b.building()
@@ -145,7 +145,7 @@ def opensees_times(frame, constant, record) -> dict[str, float]:
     """
     times: dict[str, float] = {}
     try:
-        from structures.opensees import run_opensees
+        from structures.opensees.building import run_opensees
 
         wall, analysis, _ = _best(lambda: run_opensees(frame, constant, record,
                                                        n_bearings=N_BEARINGS, dt=DT), 3)
@@ -161,11 +161,11 @@ def opensees_times(frame, constant, record) -> dict[str, float]:
 
 
 def _bare_analyze(frame, constant, record) -> float:
-    """Build the model with :func:`structures.opensees_model.build_model` and time one
+    """Build the model with :func:`structures.opensees.model.build_model` and time one
     ``ops.analyze(nt - 1, dt)`` (Newton, NormDispIncr 1e-10, Newmark 1/2 1/4) [s]."""
     from structures.isolated_building import IsolatedShearBuilding
-    from structures.opensees_model import build_model
-    from structures.opensees_runtime import import_opensees
+    from structures.opensees.model import build_model
+    from structures.opensees.runtime import import_opensees
 
     ops = import_opensees()
     native = IsolatedShearBuilding(frame, constant, N_BEARINGS)
@@ -203,8 +203,8 @@ def fpbearingptv_comparison() -> list[str]:
     from isolator.friction import PTVFriction
     from isolator.heating import CentrePoint
     from isolator.testrig import run_test
-    from structures import opensees_bearing as ob
-    from structures.opensees_runtime import import_opensees
+    from structures.opensees import bearing as ob
+    from structures.opensees.runtime import import_opensees
 
     ops = import_opensees()
     ours = protocol_bearing("precise")
@@ -251,7 +251,7 @@ def main() -> int:
 
     from groundmotions.records import load_bundled
     from structures.analysis import run
-    from structures.engine import warm_up
+    from structures.compiled.engine import warm_up
 
     missed = []
     if not args.skip_compile:

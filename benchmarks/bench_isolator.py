@@ -58,7 +58,7 @@ def _time_run(bearing, history, repeats: int) -> float:
 
 
 def main() -> int:
-    from isolator import kernels
+    from isolator.compiled import kernels
     from isolator.experiments import protocol_bearing
     from isolator.heating import sum_of_exponentials
     from isolator.protocols import sine

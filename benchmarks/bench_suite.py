@@ -34,7 +34,7 @@ def _warm_up() -> None:
     """Import the analysis and run a tiny case once in a worker (kernels from the cache)."""
     from groundmotions.records import load_bundled
     from structures.config import load_config
-    from structures.suite_runs import RunSpec, execute_run
+    from structures.suites.runs import RunSpec, execute_run
 
     config = load_config(REPO / "examples" / "five_storey.toml")
     motion = load_bundled("elcentro").truncated(1.0)
@@ -45,7 +45,7 @@ def _warm_up() -> None:
 def _measure(suite, workers: int) -> tuple[float, float, object]:
     from distributed import Client
 
-    from structures.suite import local_cluster, run_suite
+    from structures.suites.suite import local_cluster, run_suite
 
     with local_cluster(workers) as cluster, Client(cluster) as client:
         client.run(_warm_up)
@@ -68,7 +68,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
 
     from structures.config import load_config
-    from structures.suite import Suite, record_files
+    from structures.suites.suite import Suite, record_files
 
     if not args.folder.is_dir():
         print(f"no records: {args.folder} is absent", file=sys.stderr)

@@ -95,7 +95,7 @@ def tables(config, motion, runs, fixed) -> str:
 
 def figure(config, motion, runs, fixed, path: Path) -> Path:
     """The study's figure: peaks against u_y, and roof spectra against u_y and damping."""
-    from dcfpb.plotting import pyplot
+    from dcfpb.plotting.base import pyplot
 
     plt = pyplot()
     fig, axes = plt.subplots(2, 2, figsize=(11, 8.4))

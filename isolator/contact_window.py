@@ -2,10 +2,11 @@
 
 :class:`~isolator.heating.SurfaceHeating` keeps a state vector G_j (K exponential terms) for
 every monitor point and, at every step, advances all the points ever heated
-(:func:`~isolator.kernels.advance_states`, O(points x K)) and averages the ones under the slider
-afresh for every trial (:func:`~isolator.kernels.contact_history`, O(window x K)). The points
-under the slider all take the same flux, so they can be carried as a group (this module), and
-the cost per step becomes O(K) plus O(K) for each point that enters or leaves the window:
+(:func:`~isolator.compiled.kernels.advance_states`, O(points x K)) and averages the ones under the
+slider afresh for every trial (:func:`~isolator.compiled.kernels.contact_history`, O(window x K)).
+The points under the slider all take the same flux, so they can be carried as a group (this
+module), and the cost per step becomes O(K) plus O(K) for each point that enters or leaves the
+window:
 
 - a point outside the window keeps ``B_j``, its G at its ``stamp`` tau_j, and only decays:
   G_j(t) = exp(-s (t - tau_j)) B_j;
@@ -23,14 +24,14 @@ rearrangements of SurfaceHeating's update: only the round-off differs (relative 
 examples), and :func:`reanchor_window` re-forms E from the points every so often so that it
 cannot drift. ``states`` is the (points, K) array holding B_j or C_j; ``touched`` is the range of
 points ever in the window (the others are zero). Every function is a compiled kernel with a
-plain-Python twin (see :mod:`isolator.kernels`).
+plain-Python twin (see :mod:`isolator.compiled.kernels`).
 """
 
 from __future__ import annotations
 
 import math
 
-from isolator.kernels import jit
+from isolator.compiled.kernels import jit
 
 
 @jit
@@ -86,8 +87,8 @@ def advance_window(accumulator, offsets, step, flux):
     """One committed step of the window: every point in it takes the flux ``q`` [W/m^2].
 
     ``step`` stacks exp(-s_k dt) and (1 - exp(-s_k dt)) / s_k, shape (2, K), as for
-    :func:`~isolator.kernels.advance_states`; points outside the window are untouched (their
-    decay is implied by their stamps).
+    :func:`~isolator.compiled.kernels.advance_states`; points outside the window are untouched
+    (their decay is implied by their stamps).
     """
     decay = step[0]
     gain = step[1]
@@ -98,7 +99,7 @@ def advance_window(accumulator, offsets, step, flux):
 
 @jit
 def window_history(accumulator, offsets, weighted_decay, points):
-    """:func:`~isolator.kernels.contact_history` of the window of ``points`` points.
+    """:func:`~isolator.compiled.kernels.contact_history` of the window of ``points`` points.
 
     sum_k w_k exp(-s_k dt) (points A_k + E_k) / points [W s^0.5 / m^2]; 0 for an empty window.
     """

@@ -28,6 +28,7 @@ from typing import NamedTuple, Protocol
 import numpy as np
 
 from dcfpb.validation import check_choice, check_int, check_real
+from isolator.compiled.kernels import PTV_PARAMETERS, cold_friction, ptv_trial, solve_friction
 from isolator.factors import KumarFactors, PaperFactors, factor_set
 from isolator.heating import (
     CentrePoint,
@@ -38,7 +39,6 @@ from isolator.heating import (
     ThermalProperties,
     sum_of_exponentials,
 )
-from isolator.kernels import PTV_PARAMETERS, cold_friction, ptv_trial, solve_friction
 
 DEPENDENCIES = ("pressure", "velocity", "temperature")
 REFERENCE_PRESSURE = 60.0e6  # [Pa] 60 N/mm^2, the paper's reference condition

@@ -27,7 +27,7 @@ from functools import lru_cache
 import numpy as np
 
 from dcfpb.validation import check_real
-from isolator.kernels import advance_states, contact_history, heated_window, jit
+from isolator.compiled.kernels import advance_states, contact_history, heated_window, jit
 
 
 @dataclass(frozen=True)

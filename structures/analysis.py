@@ -6,8 +6,8 @@ the energy balance. :func:`peaks` reduces it to the numbers engineers look at fi
 
 Two engines give the same result: :func:`reference_history`, the integrator of
 :mod:`structures.integrators` on the model objects (the readable specification), and the
-compiled engine of :mod:`structures.engine` (the same algorithm as one numba function, about a
-hundred times faster), which ``run`` uses whenever it can.
+compiled engine of :mod:`structures.compiled.engine` (the same algorithm as one numba function,
+about a hundred times faster), which ``run`` uses whenever it can.
 """
 
 from __future__ import annotations
@@ -19,7 +19,12 @@ import numpy as np
 from dcfpb.validation import check_real
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
-from structures.engine import BEARING_FIELDS, EngineHistory, compiled_history, select_engine
+from structures.compiled.engine import (
+    BEARING_FIELDS,
+    EngineHistory,
+    compiled_history,
+    select_engine,
+)
 from structures.integrators import HHT, Newmark, as_method, integrate
 from structures.isolated_building import IsolatedShearBuilding
 from structures.results import response_dataset
@@ -41,7 +46,7 @@ def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, st
                       integrator: str | Newmark | HHT, *, tolerance: float,
                       max_iterations: int = 25, max_subdivisions: int) -> EngineHistory:
     """The reference engine: :func:`integrate` on the model, recording the bearing at each
-    committed step (the arguments as :func:`structures.engine.compiled_history`)."""
+    committed step (the arguments as :func:`structures.compiled.engine.compiled_history`)."""
     nt = acceleration.size
     record = {name: np.empty(nt) for name in BEARING_FIELDS}
     restoring = np.empty((nt, model.mass_matrix.shape[0]))
@@ -99,8 +104,8 @@ def run(
     engine : {"auto", "compiled", "reference"}
         ``"reference"``: :func:`structures.integrators.integrate` on the model objects (the
         specification); ``"compiled"``: the same algorithm as one numba function
-        (:mod:`structures.compiled`); ``"auto"`` (default): the compiled engine whenever numba
-        is available and it supports the configuration. Both give the same Dataset.
+        (:mod:`structures.compiled.integrator`); ``"auto"`` (default): the compiled engine whenever
+        numba is available and it supports the configuration. Both give the same Dataset.
     floor_spectra : bool
         Add the 5 %-damped floor response spectra and the record's spectrum
         (:func:`structures.floor_spectra.with_floor_spectra`: ``floor_spectrum``,

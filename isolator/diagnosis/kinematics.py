@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from isolator.kernels import jit
+from isolator.compiled.kernels import jit
 
 _MAD_TO_STD = 1.4826  # standard deviation of a normal variable over its median |deviation|
 _DIFFERENCE_VARIANCE = {1: 2.0, 2: 6.0, 3: 20.0, 4: 70.0}  # var(k-th difference) / var(noise)

@@ -4,7 +4,7 @@ Script: the demo building (``examples/five_storey.toml``: five storeys on six DC
 R_eff = 4.5 m, 300 mm sliders) under the bundled El Centro 1940 N-S record, computed with the
 precise model (pressure, velocity and temperature dependence; the contact heats by about
 48 degC), stands in for a measured response: the isolator displacement and the force through
-one bearing, through :mod:`structures.diagnosis_adapter`, with white noise of 0.5 % of the
+one bearing, through :mod:`structures.diagnosis.adapter`, with white noise of 0.5 % of the
 peak force and 0.02 mm on the displacement. The diagnosis is told the constant model.
 
 Measured: one test, so held out by alternate cycles; constant-model force NRMSE on the
@@ -26,7 +26,7 @@ from groundmotions.records import load_bundled
 from isolator.diagnosis import BearingRecord, Campaign, diagnose
 from structures.analysis import run
 from structures.config import load_config
-from structures.diagnosis_adapter import bearing_campaign, bearing_records
+from structures.diagnosis.adapter import bearing_campaign, bearing_records
 from tests.conftest import REPO_ROOT
 
 

@@ -1,8 +1,8 @@
 """The five-storey building of ``examples/five_storey.toml`` under El Centro: ours against OpenSees.
 
 Script: this file runs both live (no stored fixture), with openseespy 3.7.1.2 (OpenSees 3.7.1)
-through :mod:`structures.opensees` and :mod:`structures.opensees_comparison`: 5 x 400 t floors,
-500 t base slab, fixed-base period 0.5 s, Rayleigh 2 % on modes 1 and 2, 6 bearings
+through :mod:`structures.opensees.building` and :mod:`structures.opensees.comparison`: 5 x 400 t
+floors, 500 t base slab, fixed-base period 0.5 s, Rayleigh 2 % on modes 1 and 2, 6 bearings
 (R_eff = 4.5 m, 300 mm slider, u_y = 0.5 mm), El Centro 1940 N-S (bundled), dt = 0.005 s,
 Newmark average acceleration unless stated. Differences are OpenSees's relative to ours
 (peak: max|x_OS| / max|x_ours| - 1; NRMSE: RMS difference / peak of ours).
@@ -50,9 +50,9 @@ from isolator.heating import exact_rise
 from isolator.testrig import run_test
 from structures.config import load_config
 from structures.integrators import HHT
-from structures.opensees import run_opensees
-from structures.opensees_comparison import compare, comparison_bearing, run_comparison
-from structures.opensees_runtime import import_opensees
+from structures.opensees.building import run_opensees
+from structures.opensees.comparison import compare, comparison_bearing, run_comparison
+from structures.opensees.runtime import import_opensees
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "five_storey.toml"
 

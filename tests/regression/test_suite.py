@@ -36,10 +36,10 @@ from dcfpb import cli
 from groundmotions.readers import read_record
 from structures.analysis import peaks, run
 from structures.config import load_config
-from structures.suite import Suite, local_cluster, record_files, run_suite
-from structures.suite_runs import PEAK_COLUMNS, RunSpec, execute_run, file_digest
-from structures.suite_store import RunStore
-from structures.suite_summary import summarize
+from structures.suites.runs import PEAK_COLUMNS, RunSpec, execute_run, file_digest
+from structures.suites.store import RunStore
+from structures.suites.suite import Suite, local_cluster, record_files, run_suite
+from structures.suites.summary import summarize
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "five_storey.toml"
@@ -125,7 +125,7 @@ def test_shared_records_suite_equals_single_runs(config, shared_dir, scheduler, 
 KILLED_SUITE = """
 import sys
 from structures.config import load_config
-from structures.suite import Suite, run_suite
+from structures.suites.suite import Suite, run_suite
 if __name__ == "__main__":
     suite = Suite(load_config(sys.argv[1]), [sys.argv[2]], models=("constant", "simplified"),
                   scales=tuple(0.5 + 0.25 * k for k in range(8)), duration=12.0, dt=0.005)

@@ -16,7 +16,7 @@ RECORD = REPO / "groundmotions" / "data" / "elcentro_1940_ns.at2"
 
 @pytest.fixture(scope="module")
 def ops():
-    from structures.opensees_runtime import import_opensees
+    from structures.opensees.runtime import import_opensees
 
     try:
         return import_opensees()
@@ -58,12 +58,12 @@ def test_compare_opensees_bearing_json(ops, capsys):
 
 
 def test_missing_openseespy_is_a_clear_error(monkeypatch, capsys):
-    import structures.opensees
+    import structures.opensees.building
 
     def unavailable():
         raise ImportError("openseespy is needed for the OpenSees comparison: pip install ...")
 
-    monkeypatch.setattr(structures.opensees, "import_opensees", unavailable)
+    monkeypatch.setattr(structures.opensees.building, "import_opensees", unavailable)
     assert main(["compare-opensees", str(EXAMPLE), "--record", str(RECORD), "--duration",
                  "1"]) == 2
     assert "openseespy is needed" in capsys.readouterr().err

@@ -81,6 +81,6 @@ def test_pure_python_fallback_gives_the_compiled_answer(capsys):
             # numba's exp and numpy's may differ in the last bit; over 400 steps that stays
             # far below 1e-10
             assert a[key] == pytest.approx(b[key], rel=1e-10)
-    check = subprocess.run([sys.executable, "-c", "import isolator.kernels as k; "
+    check = subprocess.run([sys.executable, "-c", "import isolator.compiled.kernels as k; "
                             "print(k.COMPILED)"], capture_output=True, text=True, env=env)
     assert check.stdout.strip() == "False"

@@ -117,7 +117,7 @@ def test_own_commands_do_not_import_the_others(monkeypatch):
     choices = parser._subparsers._group_actions[0].choices
     assert set(choices) == {"protocol", "run", "demo"}
     assert set(build_parser()._subparsers._group_actions[0].choices) > set(choices)
-    monkeypatch.setitem(sys.modules, "dcfpb.cli_diagnose", None)  # importing it would fail
+    monkeypatch.setitem(sys.modules, "dcfpb.cli.diagnose", None)  # importing it would fail
     args = ["run", str(EXAMPLE), "--record", "missing.at2"]
     assert main(args) == 2  # parsed and run (the record is missing), diagnose never imported
-    assert COMMAND_MODULES[-1] == "dcfpb.cli_diagnose"
+    assert COMMAND_MODULES[-1] == "dcfpb.cli.diagnose"

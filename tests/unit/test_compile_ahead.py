@@ -1,4 +1,4 @@
-"""Compiling the engine in a second process (structures.compile_ahead): when, and to what end.
+"""Compiling the engine in a second process (structures.compiled.ahead): when, and to what end.
 
 The point of the second process is the disk cache it leaves: a run that follows must find
 every function it calls compiled already, and compute the very same numbers.
@@ -15,8 +15,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from isolator.kernels import COMPILED
-from structures import compile_ahead as ahead
+from isolator.compiled.kernels import COMPILED
+from structures.compiled import ahead
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -63,7 +63,7 @@ def test_the_cache_is_looked_for_under_numba_cache_dir(tmp_path, monkeypatch):
     assert not ahead.engine_in_cache()
     folder = tmp_path / "structures_0123abcd"
     folder.mkdir()
-    (folder / "compiled.integrate_building-230.py311.nbi").write_bytes(b"")
+    (folder / "integrator.integrate_building-230.py311.nbi").write_bytes(b"")
     assert ahead.engine_in_cache()
     monkeypatch.setenv("DCFPB_COMPILE_AHEAD", "1")
     with ahead.compile_ahead() as handle:
@@ -76,7 +76,7 @@ def test_a_run_after_the_second_process_compiles_nothing_and_computes_the_same(t
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache"), "PYTHONPATH": str(REPO),
            "DCFPB_COMPILE_AHEAD": "1"}
     env.pop("DCFPB_DISABLE_NUMBA", None)
-    start = ("from structures.compile_ahead import compile_ahead\n"
+    start = ("from structures.compiled.ahead import compile_ahead\n"
              "handle = compile_ahead()\n"
              "assert handle.started, 'nothing was started on an empty cache'\n"
              "assert handle.help() > 0.0, 'this process compiled nothing meanwhile'\n"

@@ -13,9 +13,9 @@ from isolator.factors import KumarFactors
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import CentrePoint, MonitorLine
 from structures.integrators import HHT, Newmark
-from structures.opensees import opensees_integrator
-from structures.opensees_comparison import nrmse, shaped_bearing
-from structures.opensees_model import element_kind, pair_coefficients
+from structures.opensees.building import opensees_integrator
+from structures.opensees.comparison import nrmse, shaped_bearing
+from structures.opensees.model import element_kind, pair_coefficients
 from structures.shear_building import ModalDamping, RayleighDamping, ShearBuilding
 
 MASSES = np.array([4.0e5, 3.5e5, 3.0e5, 2.5e5])
@@ -101,7 +101,7 @@ def test_nrmse_definition():
 
 def test_fpbearingptv_refuses_hht():
     from groundmotions.records import GroundMotion
-    from structures.opensees import run_opensees
+    from structures.opensees.building import run_opensees
 
     building = ShearBuilding.from_period(MASSES, 0.6, base_mass=5e5)
     bearing = shaped_bearing(DCFPBearing(4.5, 0.3, 1.0, PTVFriction(0.075)), "ptv")

@@ -1,4 +1,5 @@
-"""The compiled engine reproduces the reference run (structures.compiled vs structures.integrators).
+"""The compiled engine reproduces the reference run (structures.compiled.integrator vs
+structures.integrators).
 
 The two engines do the same arithmetic in a different order (a Sherman-Morrison solve instead
 of LU, the window's heat history held as a group instead of point by point), so they agree to
@@ -18,13 +19,13 @@ import numpy as np
 import pytest
 
 from groundmotions.records import load_bundled
+from isolator.compiled.kernels import COMPILED
 from isolator.factors import KumarFactors
 from isolator.friction import PTVFriction
 from isolator.heating import CentrePoint, MonitorLine
-from isolator.kernels import COMPILED
 from structures.analysis import reference_history, run
+from structures.compiled.engine import compiled_history, select_engine, unsupported
 from structures.config import load_config
-from structures.engine import compiled_history, select_engine, unsupported
 from structures.integrators import HHT, Newmark
 from structures.isolated_building import IsolatedShearBuilding
 from structures.model import LinearModel
@@ -196,7 +197,7 @@ _FALLBACK = """
 import json, sys
 import numpy as np
 from groundmotions.records import load_bundled
-from isolator.kernels import COMPILED
+from isolator.compiled.kernels import COMPILED
 from structures.analysis import run
 from structures.config import load_config
 from structures.integrators import HHT

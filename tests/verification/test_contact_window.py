@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from isolator import contact_window as cw
+from isolator.compiled.kernels import advance_states, contact_history
 from isolator.heating import step_factors, sum_of_exponentials
-from isolator.kernels import advance_states, contact_history
 
 
 def _point_state(states, stamps, accumulator, rates, j, lo, hi, time):

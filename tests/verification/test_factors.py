@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from isolator import kernels
+from isolator.compiled import kernels
 from isolator.factors import KumarFactors, PaperFactors, factor_set
 
 

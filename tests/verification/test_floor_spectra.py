@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from dcfpb.cli import main
-from dcfpb.cli_spectrum import STANDARD_PERIODS
+from dcfpb.cli.spectrum import STANDARD_PERIODS
 from groundmotions.records import load_bundled
 from groundmotions.spectra import response_spectra, response_spectrum, sdof_response
 from structures.analysis import run

@@ -13,8 +13,8 @@ Truth sources:
 - ``independent``: :mod:`validation.diagnosis.plain_truths` (numpy only, written from
   the paper and physics; shares no code with the package);
 - ``opensees``: OpenSees singleFPBearing (Coulomb, VelDependent) and FPBearingPTV through
-  :func:`structures.opensees_bearing.run_opensees_test`;
-- ``package``: our own element (:func:`structures.diagnosis_truths.element_truth`).
+  :func:`structures.opensees.bearing.run_opensees_test`;
+- ``package``: our own element (:func:`structures.diagnosis.truths.element_truth`).
 
 Label rule: an effect is labelled when its own contribution to the clean force (the truth
 with it less the truth without it) has an RMS of at least 3 % of the RMS force; physics left
@@ -159,12 +159,12 @@ def independent(case: Case, active: set[str]) -> list[dict]:
 
 
 def package(case: Case, active: set[str]) -> list[dict]:
-    """Our element (``structures.diagnosis_truths``) with ``active`` effects."""
+    """Our element (``structures.diagnosis.truths``) with ``active`` effects."""
     from isolator.bearing import DCFPBearing
     from isolator.friction import ConstantFriction, PTVFriction
     from isolator.heating import MonitorLine
     from isolator.protocols import ImposedHistory
-    from structures.diagnosis_truths import Breakaway, Wear, element_truth
+    from structures.diagnosis.truths import Breakaway, Wear, element_truth
 
     o = case.options
     deps = tuple(d for d, e in (("pressure", "pressure"), ("velocity", "velocity"),
@@ -209,8 +209,8 @@ def opensees(case: Case, active: set[str]) -> list[dict]:
     from isolator.friction import ConstantFriction, PTVFriction
     from isolator.heating import MonitorLine
     from isolator.protocols import ImposedHistory
-    from structures.diagnosis_truths import opensees_truth
-    from structures.opensees_bearing import fpbearingptv_equivalent
+    from structures.diagnosis.truths import opensees_truth
+    from structures.opensees.bearing import fpbearingptv_equivalent
 
     o = case.options
     element = o["element"] if (active or not case.effects) else "coulomb"
@@ -403,7 +403,7 @@ def measured(case: Case, clean: dict, rng: np.random.Generator) -> dict[str, np.
 def opensees_available() -> bool:
     """Whether openseespy can be imported (its cases are left out otherwise)."""
     try:
-        from structures.opensees_runtime import import_opensees
+        from structures.opensees.runtime import import_opensees
 
         import_opensees()
     except ImportError:

@@ -18,11 +18,11 @@ Truth sources
 ``opensees``
     OpenSees ``singleFPBearing`` / ``flatSliderBearing`` (Coulomb, VelDependent) and
     ``FPBearingPTV`` through
-    :func:`structures.opensees_bearing.run_opensees_test`; instrument effects (lag, noise) are
+    :func:`structures.opensees.bearing.run_opensees_test`; instrument effects (lag, noise) are
     applied to its output.
 ``package``
     Our own element with the truths' extra physics,
-    :func:`structures.diagnosis_truths.element_truth`.
+    :func:`structures.diagnosis.truths.element_truth`.
 
 Label rule
 ----------
@@ -226,7 +226,7 @@ def independent(case: Case, active: set[str], *, cold: bool = False) -> list[dic
 
 
 def package(case: Case, active: set[str]) -> list[dict]:
-    """Our element (:func:`structures.diagnosis_truths.element_truth`).
+    """Our element (:func:`structures.diagnosis.truths.element_truth`).
 
     ``spec``: ``mu_t0`` and ``dependencies`` of a PTVFriction (paper factors, precise monitor
     line when temperature acts; none: ConstantFriction(mu0)), ``u_y``, and per effect:
@@ -238,7 +238,7 @@ def package(case: Case, active: set[str]) -> list[dict]:
     from isolator.friction import ConstantFriction, PTVFriction
     from isolator.heating import MonitorLine, ThermalProperties
     from isolator.protocols import ImposedHistory
-    from structures.diagnosis_truths import Breakaway, Wear, element_truth
+    from structures.diagnosis.truths import Breakaway, Wear, element_truth
 
     spec = case.spec
     names = {"heating": "temperature", "velocity": "velocity", "pressure": "pressure"}
@@ -274,7 +274,7 @@ def package(case: Case, active: set[str]) -> list[dict]:
 
 
 def opensees(case: Case, active: set[str]) -> list[dict]:
-    """OpenSees through :func:`structures.opensees_bearing.run_opensees_test`.
+    """OpenSees through :func:`structures.opensees.bearing.run_opensees_test`.
 
     ``spec['element']``: ``coulomb`` (singleFPBearing, mu0), ``velocity`` (singleFPBearing
     VelDependent mapped from the paper's Eq. 2 with mu_fast = mu0; without the effect:
@@ -287,7 +287,7 @@ def opensees(case: Case, active: set[str]) -> list[dict]:
     from isolator.factors import KumarFactors
     from isolator.friction import ConstantFriction, PTVFriction
     from isolator.heating import MonitorLine
-    from structures.opensees_bearing import fpbearingptv_equivalent, run_opensees_test
+    from structures.opensees.bearing import fpbearingptv_equivalent, run_opensees_test
 
     spec = case.spec
     element = spec["element"]

@@ -5,7 +5,7 @@ panel per run; :func:`plot_isolation_effect` draws the isolated peaks as ratios 
 base, the peak profiles up the height and the roof's spectrum. Both take the Datasets of
 :func:`structures.analysis.run` and :func:`structures.fixed_base.run_fixed_base` with
 :func:`structures.floor_spectra.with_floor_spectra` applied. matplotlib is imported inside each
-function (:func:`dcfpb.plotting.pyplot`, Agg backend).
+function (:func:`dcfpb.plotting.base.pyplot`, Agg backend).
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from dcfpb.plotting import PNG_OPTIONS, pyplot
+from dcfpb.plotting.base import PNG_OPTIONS, pyplot
 from dcfpb.units import STANDARD_GRAVITY
 
 FIXED_BASE_COLOUR = "0.25"

@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from isolator import kernels
-from isolator.kernels import jit
+from isolator.compiled import kernels
+from isolator.compiled.kernels import jit
 
 __all__ = ["invert", "solve"]
 

@@ -1,6 +1,6 @@
 """One run of a ground-motion suite: what it is, its stable id, the task that computes it.
 
-A suite (:mod:`structures.suite`) is a set of independent runs, each a record file at a scale
+A suite (:mod:`structures.suites.suite`) is a set of independent runs, each a record file at a scale
 factor under one friction model with one property modifier. This module holds what a single
 run needs:
 
@@ -12,8 +12,8 @@ run needs:
     (upper/lower-bound analyses, lambda_max / lambda_min);
 ``execute_run``
     the computation of a run, pure: a spec and a record in, the peaks row and the netCDF
-    bytes out; the files are written by :mod:`structures.suite_store` (on the worker or on
-    the client, see ``structures.suite.run_suite``).
+    bytes out; the files are written by :mod:`structures.suites.store` (on the worker or on
+    the client, see ``structures.suites.suite.run_suite``).
 """
 
 from __future__ import annotations

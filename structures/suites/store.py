@@ -6,7 +6,7 @@ Layout of ``OUT/``::
     runs/<run id>.json          its peaks row, written last: the run's completion mark
     runs/<run id>.failed.json   a failed run's row with its reason (removed when it succeeds)
     suite.log                   one line per event: "<UTC time> <event> <run id> <details>"
-    peaks.csv, failures.json    the table of the last invocation (``structures.suite``)
+    peaks.csv, failures.json    the table of the last invocation (``structures.suites.suite``)
 
 Every file is written to a temporary name in the same folder and renamed over its final name
 with ``os.replace`` (atomic on POSIX and Windows), so a file under its final name is always

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dcfpb.plotting import _pyplot
+from dcfpb.plotting.base import pyplot as _pyplot
 from dcfpb.units import STANDARD_GRAVITY
 
 if TYPE_CHECKING:
@@ -43,7 +43,7 @@ def plot_peak_distributions(peaks: pd.DataFrame, path: str | Path, *, title: str
         Seed of the horizontal jitter of the points (the figure is reproducible).
     """
     plt = _pyplot()
-    from structures.suite_summary import group_labels
+    from structures.suites.summary import group_labels
 
     done = peaks[peaks["status"] == "done"]
     labels = np.asarray(group_labels(done, separator="\n"), dtype=object)

@@ -1,11 +1,11 @@
 """Ground-motion suites: records x scale factors x friction models x property modifiers.
 
-A `Suite` is a set of independent runs (:class:`structures.suite_runs.RunSpec`), each with a
+A `Suite` is a set of independent runs (:class:`structures.suites.runs.RunSpec`), each with a
 stable id. :func:`run_suite` computes them with ``dask.distributed``: on a `LocalCluster` of
 this machine by default (worker processes with one thread each, loopback only, no
 dashboard), or on any running cluster given its scheduler address, with no other change.
 
-Each run's files are written atomically (:mod:`structures.suite_store`) by the worker that
+Each run's files are written atomically (:mod:`structures.suites.store`) by the worker that
 computed it, or, with ``write="client"``, by this process, so that a remote cluster needs no
 file system shared with it.
 A rerun of the same suite into the same folder skips the runs that are complete and computes
@@ -40,7 +40,7 @@ from dcfpb.validation import check_choice, check_int, check_real
 from groundmotions.records import GroundMotion
 from isolator.experiments import MODELS
 from structures.config import BuildingConfig
-from structures.suite_runs import (
+from structures.suites.runs import (
     COLUMNS,
     RunSpec,
     analysis_step,
@@ -49,8 +49,8 @@ from structures.suite_runs import (
     file_digest,
     modified_bearing,
 )
-from structures.suite_store import RunStore, atomic_write
-from structures.suite_summary import summarize, write_summary
+from structures.suites.store import RunStore, atomic_write
+from structures.suites.summary import summarize, write_summary
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -108,7 +108,7 @@ class Suite:
         ``record_factors`` are given).
     property_modifiers : sequence of float
         Factors on the reference friction coefficient [-], e.g. ``(lambda_min, 1.0,
-        lambda_max)`` (:func:`structures.suite_runs.modified_bearing`).
+        lambda_max)`` (:func:`structures.suites.runs.modified_bearing`).
     record_factors : mapping or callable, optional
         Per-record scale factors [-]: a mapping keyed by path, file name or stem, or a hook
         called with the readable records (in order) that returns their factors as a
@@ -221,7 +221,7 @@ class SuiteResult:
     Attributes
     ----------
     peaks : pandas.DataFrame
-        One row per run, in suite order (columns: :data:`structures.suite_runs.COLUMNS`;
+        One row per run, in suite order (columns: :data:`structures.suites.runs.COLUMNS`;
         SI units, times [s]).
     failures : list of dict
         ``{"run": run id, "reason": ...}`` of every failed run.
@@ -232,7 +232,7 @@ class SuiteResult:
     computed, skipped : int
         Runs computed now, and runs kept from an earlier invocation.
     summary : pandas.DataFrame
-        :func:`structures.suite_summary.summarize` of the peaks.
+        :func:`structures.suites.summary.summarize` of the peaks.
     """
 
     peaks: pd.DataFrame
@@ -332,7 +332,7 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
     suite : Suite
         The runs.
     out_dir : str or Path
-        Result folder (:mod:`structures.suite_store` for its layout); complete runs already
+        Result folder (:mod:`structures.suites.store` for its layout); complete runs already
         in it are kept, not computed again.
     n_workers : int, optional
         Worker processes of the local cluster (default: the number of CPUs).

@@ -10,7 +10,7 @@ machine would record, before measurement noise. Truths are of three kinds:
   differ from the candidate library's (so the candidates are tested on shapes they do not
   share exactly): a breakaway peak that decays to zero quadratically over a length,
   wear as a power law of the travel accumulated over the campaign;
-- OpenSees elements (:func:`structures.opensees_bearing.run_opensees_test`):
+- OpenSees elements (:func:`structures.opensees.bearing.run_opensees_test`):
   ``FPBearingPTV`` with temperature dependence and ``singleFPBearing`` with ``VelDependent``
   or ``Coulomb`` friction.
 """
@@ -131,9 +131,9 @@ def element_truth(
 
 def opensees_truth(bearing: DCFPBearing, history: ImposedHistory, element: str) -> TruthRecord:
     """An OpenSees element through ``history`` (see
-    :func:`structures.opensees_bearing.run_opensees_test`); the axial force recorded is the
+    :func:`structures.opensees.bearing.run_opensees_test`); the axial force recorded is the
     bearing's constant load (what a test machine's vertical actuator holds)."""
-    from structures.opensees_bearing import run_opensees_test
+    from structures.opensees.bearing import run_opensees_test
 
     result = run_opensees_test(bearing, history.time, history.displacement, history.velocity,
                                element=element, name=history.name)

@@ -59,7 +59,7 @@ import numpy as np
 from dcfpb.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction, PTVFriction
-from structures.opensees_bearing import fpbearingptv_equivalent, velocity_dependent_parameters
+from structures.opensees.bearing import fpbearingptv_equivalent, velocity_dependent_parameters
 from structures.shear_building import ShearBuilding
 
 __all__ = ["PENDULUMS", "BearingRecord", "OpenSeesModel", "build_model", "element_kind",
@@ -179,7 +179,7 @@ def build_model(ops, building: ShearBuilding, bearing: DCFPBearing, n_bearings: 
     Parameters
     ----------
     ops : module
-        ``openseespy.opensees`` from :func:`~structures.opensees_runtime.import_opensees`.
+        ``openseespy.opensees`` from :func:`~structures.opensees.runtime.import_opensees`.
     building : ShearBuilding
         Masses [kg], storey stiffnesses [N/m] and superstructure damping.
     bearing : DCFPBearing
@@ -193,7 +193,7 @@ def build_model(ops, building: ShearBuilding, bearing: DCFPBearing, n_bearings: 
     Raises
     ------
     ValueError
-        If the bearing cannot be represented (see :mod:`structures.opensees_bearing`).
+        If the bearing cannot be represented (see :mod:`structures.opensees.bearing`).
     """
     pendulum = check_choice(pendulum, "pendulum", "build_model", PENDULUMS)
     kind = element_kind(bearing)
@@ -317,7 +317,7 @@ def _fpbearingptv(ops, bearing: DCFPBearing, n_bearings: int, weight: float):
     friction = bearing.friction
     if fpbearingptv_equivalent(bearing) != bearing:  # also checks Kumar factors and 20 degC
         raise ValueError(f"The bearing of {owner} must be shaped as FPBearingPTV models it "
-                         "(structures.opensees_bearing.fpbearingptv_equivalent: one centre-"
+                         "(structures.opensees.bearing.fpbearingptv_equivalent: one centre-"
                          "heated surface, refinement sqrt(pi)/2, spherical law). Got "
                          f"{bearing!r} instead.")
     load, radius = weight / n_bearings, bearing.effective_radius

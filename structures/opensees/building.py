@@ -1,7 +1,7 @@
 """The native time-history analysis repeated in OpenSees, returned in the same form.
 
 :func:`run_opensees` builds the building and its isolation level in openseespy from the very
-objects :func:`structures.analysis.run` takes (:mod:`structures.opensees_model` describes the
+objects :func:`structures.analysis.run` takes (:mod:`structures.opensees.model` describes the
 model), drives it with the same ground-acceleration samples and the same integrator, and
 returns an ``xarray.Dataset`` with the variables, dimensions and attributes of
 :func:`~structures.analysis.run`, the energy balance computed from the recorded histories with
@@ -26,7 +26,7 @@ Conventions (read in ``SRC/analysis/integrator`` and ``SRC/domain/pattern`` of O
   two halves, recursively up to ``max_subdivisions`` times, as our integrator does.
 
 The run is recorded after each full step (nodal displacement, velocity and acceleration, the
-bearing state of :class:`~structures.opensees_model.BearingRecord`).
+bearing state of :class:`~structures.opensees.model.BearingRecord`).
 """
 
 from __future__ import annotations
@@ -41,8 +41,8 @@ from isolator.bearing import DCFPBearing
 from structures.analysis import resampled_record
 from structures.integrators import HHT, METHODS, Newmark
 from structures.isolated_building import IsolatedShearBuilding
-from structures.opensees_model import BearingRecord, build_model, element_kind
-from structures.opensees_runtime import import_opensees
+from structures.opensees.model import BearingRecord, build_model, element_kind
+from structures.opensees.runtime import import_opensees
 from structures.results import response_dataset
 from structures.shear_building import ShearBuilding
 
@@ -114,10 +114,10 @@ def run_opensees(
     ----------
     building, bearing, motion, integrator, n_bearings, dt
         As :func:`structures.analysis.run`. The bearing's friction model selects the element
-        (:func:`~structures.opensees_model.element_kind`).
+        (:func:`~structures.opensees.model.element_kind`).
     pendulum : {"singlefp", "spring"}
         singleFPBearing (N = W + F u / R) or flatSliderBearing plus a linear spring (N = W,
-        our law); see :mod:`structures.opensees_model`. Ignored for FPBearingPTV.
+        our law); see :mod:`structures.opensees.model`. Ignored for FPBearingPTV.
     tolerance : float
         Displacement-increment tolerance of Newton's method [m].
     max_subdivisions : int

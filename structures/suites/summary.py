@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from structures.suite_store import atomic_write
+from structures.suites.store import atomic_write
 
 if TYPE_CHECKING:
     import pandas as pd

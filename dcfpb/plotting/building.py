@@ -1,77 +1,13 @@
-"""Figures for the command line: hysteresis loops, temperature and response histories.
-
-matplotlib is imported inside each function (Agg backend) so the library runs without it.
-"""
+"""The figures of building runs: hysteresis, temperature, roof acceleration, storey drift,
+response histories, and (with floor spectra) the spectra and the effect of isolation."""
 
 from __future__ import annotations
 
 from pathlib import Path
 from typing import Any
 
-
-def pyplot():
-    """matplotlib's pyplot on the Agg backend (imported on first use: about 1 s)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-PNG_OPTIONS = {"pil_kwargs": {"compress_level": 1}}
-"""A fast zlib level for the PNGs: about 0.03 s less a figure than level 6, files ~25 % larger."""
-
-
-def _margins(fig, *, left: float = 0.85, right: float = 0.2, bottom: float = 0.6,
-             top: float = 0.85, **spacing: float) -> None:
-    """Fixed margins in inches (a constrained layout costs about 0.25 s per figure)."""
-    width, height = fig.get_size_inches()
-    fig.subplots_adjust(left=left / width, right=1.0 - right / width, bottom=bottom / height,
-                        top=1.0 - top / height, **spacing)
-
-
-def plot_bearing_test(result: Any, path: str | Path, *, title: str = "") -> Path:
-    """Hysteresis loop (force against displacement) and temperature history of a bearing test.
-
-    Parameters
-    ----------
-    result : BearingTestResult
-        Output of :func:`isolator.testrig.run_test`.
-    path : str or Path
-        PNG file to write.
-    title : str
-        Figure title.
-    """
-    plt = pyplot()
-    fig, (ax_loop, ax_temp) = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
-    ax_loop.plot(result.displacement * 1e3, result.force / 1e3, lw=0.8)
-    ax_loop.set_xlabel("displacement [mm]")
-    ax_loop.set_ylabel("horizontal force [kN]")
-    ax_loop.set_title("hysteresis loop")
-    ax_loop.grid(alpha=0.3)
-    ax_temp.plot(result.time, result.temperature, lw=0.9, color="tab:red")
-    ax_temp.set_xlabel("time [s]")
-    ax_temp.set_ylabel("contact temperature [degC]")
-    ax_temp.set_title("temperature of the contact area")
-    ax_temp.grid(alpha=0.3)
-    ax_mu = ax_temp.twinx()
-    ax_mu.plot(result.time, result.mu, lw=0.6, color="tab:gray", alpha=0.7)
-    ax_mu.set_ylabel("friction coefficient [-]", color="tab:gray")
-    if title:
-        fig.suptitle(title)
-    path = Path(path)
-    fig.savefig(path, dpi=120, **PNG_OPTIONS)
-    plt.close(fig)
-    return path
-
-
-MODEL_COLOURS = {"precise": "tab:red", "simplified": "tab:orange", "constant": "tab:blue",
-                 "ptv-no-heating": "tab:green", "opensees": "black"}
-
-
-def _colour(name: str, index: int) -> str:
-    return MODEL_COLOURS.get(name, f"C{index}")
+from dcfpb.plotting.base import PNG_OPTIONS, colour, margins, pyplot
+from dcfpb.plotting.spectra import plot_floor_spectra, plot_isolation_effect
 
 
 def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = "",
@@ -81,7 +17,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     Writes ``isolator_hysteresis.png``, ``temperature.png``, ``roof_acceleration.png``,
     ``storey_drift.png`` and ``response_histories.png`` to ``directory``; when the runs carry
     floor spectra (:func:`structures.floor_spectra.with_floor_spectra`), ``floor_spectra.png``;
-    and with a ``fixed_base`` run, ``isolation_effect.png`` (see :mod:`dcfpb.plotting_spectra`).
+    and with a ``fixed_base`` run, ``isolation_effect.png`` (see :mod:`dcfpb.plotting.spectra`).
 
     Parameters
     ----------
@@ -111,10 +47,10 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
         written.append(path)
 
     fig, ax = plt.subplots(figsize=(6.5, 5))
-    _margins(fig)
+    margins(fig)
     for i, (label, r) in enumerate(results.items()):
         ax.plot(1e3 * r["isolator_displacement"], r["isolator_force"] / 1e3, lw=0.7,
-                color=_colour(label, i), label=label)
+                color=colour(label, i), label=label)
     ax.set_xlabel("isolator displacement [mm]")
     ax.set_ylabel("isolator force, all bearings [kN]")
     ax.set_title("isolator hysteresis")
@@ -123,9 +59,9 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     save(fig, "isolator_hysteresis.png")
 
     fig, ax = plt.subplots(figsize=(8, 4))
-    _margins(fig, left=0.75)
+    margins(fig, left=0.75)
     for i, (label, r) in enumerate(results.items()):
-        ax.plot(r["time"], r["temperature"], lw=0.8, color=_colour(label, i), label=label)
+        ax.plot(r["time"], r["temperature"], lw=0.8, color=colour(label, i), label=label)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("contact temperature [degC]")
     ax.set_title("temperature of the sliding surface (contact area)")
@@ -136,11 +72,11 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     first = next(iter(results.values()))
     fig, axes = plt.subplots(len(results), 1, figsize=(9, 1.2 + 1.9 * len(results)),
                              sharex=True, sharey=True, squeeze=False)
-    _margins(fig, left=0.75, hspace=0.12)
+    margins(fig, left=0.75, hspace=0.12)
     for i, (ax, (label, r)) in enumerate(zip(axes[:, 0], results.items(), strict=True)):
         ax.plot(r["time"], r["ground_acceleration"], lw=0.5, color="0.65", label="ground")
         ax.plot(r["time"], r["absolute_acceleration"].isel(floor=-1), lw=0.6,
-                color=_colour(label, i), label=f"roof, {label}")
+                color=colour(label, i), label=f"roof, {label}")
         ax.set_ylabel("[m/s$^2$]")
         ax.grid(alpha=0.3)
         ax.legend(loc="upper right", ncol=2, fontsize=8)
@@ -149,10 +85,10 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     save(fig, "roof_acceleration.png")
 
     fig, ax = plt.subplots(figsize=(5, 5.5))
-    _margins(fig, left=0.7)
+    margins(fig, left=0.7)
     for i, (label, r) in enumerate(results.items()):
         drift = np.abs(r["storey_drift"]).max("time")
-        ax.plot(1e3 * drift, r["storey"], marker="o", color=_colour(label, i), label=label)
+        ax.plot(1e3 * drift, r["storey"], marker="o", color=colour(label, i), label=label)
     ax.set_xlabel("peak storey drift [mm]")
     ax.set_ylabel("storey")
     ax.set_yticks(first["storey"].values)
@@ -163,9 +99,9 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     save(fig, "storey_drift.png")
 
     fig, axes = plt.subplots(3, 1, figsize=(9, 7), sharex=True)
-    _margins(fig, left=0.9, top=0.6, hspace=0.1)
+    margins(fig, left=0.9, top=0.6, hspace=0.1)
     for i, (label, r) in enumerate(results.items()):
-        c = _colour(label, i)
+        c = colour(label, i)
         axes[0].plot(r["time"], 1e3 * r["isolator_displacement"], lw=0.7, color=c, label=label)
         axes[1].plot(r["time"], r["base_shear"] / 1e3, lw=0.7, color=c)
         axes[2].plot(r["time"], r["mu"], lw=0.5, color=c)
@@ -178,17 +114,12 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
         ax.grid(alpha=0.3)
     save(fig, "response_histories.png")
 
-    from dcfpb.plotting_spectra import plot_floor_spectra, plot_isolation_effect
-
     if all("floor_spectrum" in r for r in results.values()):
         panels = ({"fixed base": fixed_base} if fixed_base is not None else {}) | results
         written.append(plot_floor_spectra(panels, directory / "floor_spectra.png", title=title))
     if fixed_base is not None:
-        colours = {label: _colour(label, i) for i, label in enumerate(results)}
+        colours = {label: colour(label, i) for i, label in enumerate(results)}
         written.append(plot_isolation_effect(results, fixed_base,
                                              directory / "isolation_effect.png",
                                              colours=colours, title=title))
     return written
-
-
-_pyplot = pyplot  # the name dcfpb.plotting_suite imports

@@ -9,8 +9,8 @@ runs: among them the 5 %-damped floor response spectra (``floor_spectra.png``) a
 (``isolation_effect.png``).
 
 On a cold numba cache the engine compiles in a second process while this one reads the
-record and computes the fixed base (:mod:`structures.compile_ahead`). The parser lives in
-:mod:`dcfpb.cli` (``demo`` is one of its own commands); :func:`run` is its handler.
+record and computes the fixed base (:mod:`structures.compiled.ahead`). :func:`register` adds the
+command, :func:`run` is its handler.
 """
 
 from __future__ import annotations
@@ -27,13 +27,29 @@ FIXED_BASE = "fixed base"
 """The label of the fixed-base building in tables and plots."""
 
 
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add ``dcfpb demo`` to the sub-commands."""
+    p = sub.add_parser(
+        "demo",
+        help="the five-storey example under El Centro 1940, three friction models and the "
+        "fixed base",
+        description="Runs the bundled five-storey isolated building under the bundled El Centro "
+        "1940 N-S record with the precise, simplified and constant friction models, and the "
+        "same superstructure on a fixed base; prints a peaks table and the isolated peaks as "
+        "ratios to the fixed base, and writes plots (floor response spectra among them).",
+    )
+    p.add_argument("--plot", metavar="DIR", default="dcfpb-demo",
+                   help="folder for the plots (default: ./dcfpb-demo)")
+    p.set_defaults(handler=run)
+
+
 def run(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb demo``; returns the exit status."""
-    from structures.compile_ahead import compile_ahead
+    from structures.compiled.ahead import compile_ahead
 
     with compile_ahead() as ahead:
         ahead.help()  # on a cold cache: compile a share of the engine, then do the rest
-        from dcfpb.cli import _example_path as example_path
+        from dcfpb.cli.run import example_path
         from groundmotions.records import load_bundled
         from structures.analysis import peaks
         from structures.analysis import run as run_building
@@ -45,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
         motion = load_bundled("elcentro")
         fixed = run_fixed_base(config.building, motion, dt=config.dt)  # no compiled code
         if ahead.started:  # idle until the engine is compiled: spectra and matplotlib now
-            from dcfpb.plotting import pyplot
+            from dcfpb.plotting.base import pyplot
 
             fixed = with_floor_spectra(fixed, motion)
             pyplot()
@@ -61,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
     heading = (f"{config.name} under {motion.name} (PGA {motion.pga / STANDARD_GRAVITY:.2f} g), "
                f"{config.n_bearings} bearings, R_eff = "
                f"{config.bearing_geometry['effective_radius']} m, dt = {config.dt} s")
-    from dcfpb.cli import print_peaks
+    from dcfpb.cli.run import print_peaks
 
     print_peaks(rows, heading, fixed_base=fixed)
     ratios = {model: ratios_to_fixed_base(result, fixed) for model, result in results.items()}

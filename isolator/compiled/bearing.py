@@ -11,7 +11,8 @@ and ``contact_history`` that costs O(K) per step instead of O(points x K). A tri
 the history; its heat waits (``PENDING``) for the commit, as in the reference. Errors the
 element would raise come back as status codes (``LEFT_MONITOR_LINE`` ...).
 
-The loop that calls them is :mod:`structures.compiled`; without numba all of it is Python.
+The loop that calls them is :mod:`structures.compiled.integrator`; without numba all of it is
+Python.
 """
 
 from __future__ import annotations
@@ -20,6 +21,13 @@ import math
 
 import numpy as np
 
+from isolator.compiled.kernels import (
+    cold_friction,
+    heated_window,
+    jit,
+    ptv_friction,
+    solve_friction,
+)
 from isolator.contact_window import (
     advance_window,
     move_window,
@@ -27,7 +35,6 @@ from isolator.contact_window import (
     window_history,
 )
 from isolator.heating import step_factors
-from isolator.kernels import cold_friction, heated_window, jit, ptv_friction, solve_friction
 
 # Layout of the ``bearing`` parameter array (all floats).
 N_BEARINGS, YIELD_DISPLACEMENT, RESTORING_LAW, EFFECTIVE_RADIUS, AXIAL_LOAD, PRESSURE = range(6)

@@ -1,12 +1,12 @@
 """Compile the engine in a second process while the first one gets on with the rest.
 
-On a cold numba cache the compiled engine (:mod:`structures.compiled`) takes most of a first
-run's time to compile, while the run itself needs a fraction of a second. The compilation is
+On a cold numba cache the compiled engine (:mod:`structures.compiled.integrator`) takes most of a
+first run's time to compile, while the run itself needs a fraction of a second. The compilation is
 pure Python work in numba, which a thread cannot overlap with the caller's own Python work
 (imports, reading the record, the fixed-base reference, spectra); a process can, on a second
-core. :func:`compile_ahead` starts ``python -m structures.compile_ahead``, which compiles the
-engine exactly as the first run would (:func:`structures.engine.warm_up`) and writes numba's
-disk cache. Meanwhile the caller compiles the parts that process will reach last
+core. :func:`compile_ahead` starts ``python -m structures.compiled.ahead``, which compiles the
+engine exactly as the first run would (:func:`structures.compiled.engine.warm_up`) and writes
+numba's disk cache. Meanwhile the caller compiles the parts that process will reach last
 (:meth:`CompileAhead.help`), does its own work, and waits (:meth:`CompileAhead.wait`) before
 its first engine call, which then loads the machine code from the cache. What is computed does
 not change: the cached code is the code the caller would have compiled itself.
@@ -30,8 +30,8 @@ __all__ = ["CompileAhead", "compile_ahead", "engine_in_cache"]
 WAIT_LIMIT = 600.0
 """Longest wait for the second process [s]; past it, it is stopped and the caller compiles."""
 
-_PACKAGE_ROOT = Path(__file__).resolve().parent.parent
-_ENGINE_INDEX = "compiled.integrate_building-*.nbi"  # numba's index file of the engine
+_PACKAGE_ROOT = Path(__file__).resolve().parents[2]
+_ENGINE_INDEX = "integrator.integrate_building-*.nbi"  # numba's index file of the engine
 
 
 def engine_in_cache() -> bool:
@@ -45,7 +45,7 @@ def engine_in_cache() -> bool:
     chosen = os.environ.get("NUMBA_CACHE_DIR", "")
     if chosen:
         return any(Path(chosen).glob(f"*/{_ENGINE_INDEX}"))
-    if any((_PACKAGE_ROOT / "structures" / "__pycache__").glob(_ENGINE_INDEX)):
+    if any((_PACKAGE_ROOT / "structures" / "compiled" / "__pycache__").glob(_ENGINE_INDEX)):
         return True
     user_wide = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "numba"
     return user_wide.is_dir() and any(user_wide.glob(f"*/{_ENGINE_INDEX}"))
@@ -68,15 +68,15 @@ class CompileAhead:
 
     def help(self) -> float:
         """Compile here, meanwhile, the parts the second process will reach last
-        (:func:`structures.engine.warm_up_late`), so that it finds them in the cache; return
-        the time spent [s] (0 when no process was started).
+        (:func:`structures.compiled.engine.warm_up_late`), so that it finds them in the cache;
+        return the time spent [s] (0 when no process was started).
 
         Call it right after :func:`compile_ahead`, before this process's own work: both then
         compile on their own core, and the second one sooner reaches the end.
         """
         if self.process is None or self.process.poll() is not None:
             return 0.0
-        from structures.engine import warm_up_late
+        from structures.compiled.engine import warm_up_late
 
         return warm_up_late()
 
@@ -132,7 +132,7 @@ def compile_ahead() -> CompileAhead:
     path = os.environ.get("PYTHONPATH", "")
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (str(_PACKAGE_ROOT), path) if p)}
     try:
-        process = subprocess.Popen([sys.executable, "-m", "structures.compile_ahead"], env=env,
+        process = subprocess.Popen([sys.executable, "-m", "structures.compiled.ahead"], env=env,
                                    stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                    stderr=subprocess.DEVNULL)
     except OSError:
@@ -141,6 +141,6 @@ def compile_ahead() -> CompileAhead:
 
 
 if __name__ == "__main__":  # the second process
-    from structures.engine import warm_up
+    from structures.compiled.engine import warm_up
 
     warm_up()

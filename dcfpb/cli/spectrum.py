@@ -6,7 +6,7 @@ Arias intensity, the D5-75 and D5-95 significant durations and a table of Sd, Sv
 standard (or the given) periods; ``--plot`` draws the three spectra on a dense period grid.
 The record is used as read: no baseline correction or filtering.
 
-Registered by adding ``"dcfpb.cli_spectrum"`` to ``dcfpb.cli.COMMAND_MODULES``.
+Registered by adding ``"dcfpb.cli.spectrum"`` to ``dcfpb.cli.COMMAND_MODULES``.
 """
 
 from __future__ import annotations

@@ -4,9 +4,9 @@
     :func:`structures.integrators.integrate` on :class:`IsolatedShearBuilding` objects: the
     readable specification, one Python call per Newton iteration.
 ``"compiled"``
-    :func:`structures.compiled.integrate_building`, the same algorithm as one numba function;
-    this module packs the model into arrays, runs it and turns its status into the reference's
-    result, message or exception.
+    :func:`structures.compiled.integrator.integrate_building`, the same algorithm as one numba
+    function; this module packs the model into arrays, runs it and turns its status into the
+    reference's result, message or exception.
 ``"auto"``
     The compiled engine when numba is available and the configuration is one it knows
     (:func:`unsupported` returns None), else the reference.
@@ -23,15 +23,15 @@ from typing import NamedTuple
 import numpy as np
 
 from dcfpb.validation import check_choice
-from isolator import kernels
 from isolator.bearing import AxialLoadHistory
+from isolator.compiled import bearing as cb
+from isolator.compiled import kernels
+from isolator.compiled.bearing import BEARING_FIELDS
+from isolator.compiled.kernels import PTV_PARAMETERS
 from isolator.contact_window import window_history
 from isolator.friction import ConstantFriction, PTVFriction, PTVFrictionState
 from isolator.heating import CentrePoint, MonitorLine
-from isolator.kernels import PTV_PARAMETERS
-from structures import compiled
-from structures import compiled_bearing as cb
-from structures.compiled_bearing import BEARING_FIELDS
+from structures.compiled import integrator as compiled
 from structures.integrators import HHT, IntegrationResult, Newmark
 from structures.isolated_building import IsolatedShearBuilding
 
@@ -280,11 +280,11 @@ def warm_up_late() -> float:
 
     In the order :func:`warm_up` needs them: the window moves of the heat history, its sum
     and the friction of the heated model (late in the bearing's trial), then the bearing's
-    commit (after the whole Newton step). :mod:`structures.compile_ahead` has this process
+    commit (after the whole Newton step). :mod:`structures.compiled.ahead` has this process
     do them while the second one works through the rest, which then finds them in the cache.
     Every call is made on a resting bearing and changes nothing that matters.
     """
-    from isolator.kernels import ptv_friction
+    from isolator.compiled.kernels import ptv_friction
 
     start = _time.perf_counter()
     workspace = compiled.new_workspace(1, 0)

@@ -2,16 +2,16 @@
 
 ``dcfpb compare-opensees BUILDING.toml --record FILE [--model constant|velocity|ptv]
 [--scale S] [--json] [--plot DIR]`` runs the building file under the record with our engine
-and with openseespy (:mod:`structures.opensees_comparison`), and prints the peaks of each,
+and with openseespy (:mod:`structures.opensees.comparison`), and prints the peaks of each,
 their differences (relative peak difference, and NRMSE = RMS difference / peak of ours, of
 the isolator displacement, base shear and roof acceleration), the wall time of each and their
 ratio. ``--plot`` overlays the histories and the hysteresis loops.
 
 ``dcfpb compare-opensees-bearing [--model ...]`` is the same for one bearing under an imposed
-sine (:mod:`structures.opensees_bearing`): peak force, force NRMSE, energy dissipated per
+sine (:mod:`structures.opensees.bearing`): peak force, force NRMSE, energy dissipated per
 cycle and temperature of each.
 
-Registered by adding ``"dcfpb.cli_opensees"`` to ``dcfpb.cli.COMMAND_MODULES``.
+Registered by adding ``"dcfpb.cli.opensees"`` to ``dcfpb.cli.COMMAND_MODULES``.
 """
 
 from __future__ import annotations
@@ -86,8 +86,8 @@ def _import_error(command: str, error: ImportError) -> int:
 
 def run_building(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb compare-opensees``; returns the exit status."""
-    from dcfpb.cli import building_run_inputs, print_peaks
-    from structures.opensees_comparison import comparison_bearing, run_comparison
+    from dcfpb.cli.run import building_run_inputs, print_peaks
+    from structures.opensees.comparison import comparison_bearing, run_comparison
 
     config, integrator, motion = building_run_inputs(args, "dcfpb compare-opensees")
     if args.duration is not None:
@@ -136,7 +136,7 @@ def bearing_summary(ours, opensees) -> dict[str, Any]:
     """Peak force, EDC and temperature of both bearing tests, and their differences."""
     import numpy as np
 
-    from structures.opensees_comparison import nrmse
+    from structures.opensees.comparison import nrmse
 
     def side(result) -> dict[str, Any]:
         cycles = [c.EDC for c in result.characteristics()]
@@ -162,8 +162,8 @@ def run_bearing(args: argparse.Namespace) -> int:
     from isolator.experiments import protocol_bearing
     from isolator.protocols import sine
     from isolator.testrig import run_test
-    from structures.opensees_bearing import run_opensees_test
-    from structures.opensees_comparison import shaped_bearing
+    from structures.opensees.bearing import run_opensees_test
+    from structures.opensees.comparison import shaped_bearing
 
     bearing = shaped_bearing(protocol_bearing(
         "constant" if args.model == "constant" else "simplified",

@@ -170,7 +170,7 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
 
 def _run(args: argparse.Namespace) -> int:
     from structures.config import load_config
-    from structures.suite import Suite, record_files, run_suite
+    from structures.suites.suite import Suite, record_files, run_suite
 
     if args.period_range and not args.target:
         raise ValueError("--period-range applies to --target only.")
@@ -199,7 +199,7 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _plots(result, suite, target, period_range) -> list[Path]:
-    from dcfpb.plotting_suite import plot_peak_distributions, plot_scaled_spectra
+    from dcfpb.plotting.suite import plot_peak_distributions, plot_scaled_spectra
 
     out = Path(result.out_dir) / "plots"
     written = [plot_peak_distributions(result.peaks, out / "peak_distributions.png",
@@ -218,7 +218,7 @@ def _plots(result, suite, target, period_range) -> list[Path]:
 
 
 def _report(result, plots: list[Path], as_json: bool) -> None:
-    from structures.suite_summary import QUANTITIES, summary_dict
+    from structures.suites.summary import QUANTITIES, summary_dict
 
     done = int((result.peaks["status"] == "done").sum())
     summary = summary_dict(result.summary)

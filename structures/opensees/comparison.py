@@ -9,7 +9,7 @@ The friction models compared (``model``), each as the OpenSees element that repr
     paper's factors, velocity dependent only (constant pressure), as ``VelDependent``.
 ``"ptv"``
     Eq. 7 with Kumar's factors (``KumarFactors()``) shaped as FPBearingPTV models it
-    (:func:`~structures.opensees_bearing.fpbearingptv_equivalent`: one surface heated at its
+    (:func:`~structures.opensees.bearing.fpbearingptv_equivalent`: one surface heated at its
     centre while |u| < sqrt(pi)/2 r, spherical restoring law), as ``FPBearingPTV``.
 
 Differences are those of OpenSees from ours, relative to ours:
@@ -39,8 +39,8 @@ from isolator.factors import KumarFactors
 from isolator.friction import ConstantFriction, PTVFriction
 from structures.analysis import peaks, run
 from structures.integrators import HHT, Newmark
-from structures.opensees import run_opensees
-from structures.opensees_bearing import fpbearingptv_equivalent
+from structures.opensees.bearing import fpbearingptv_equivalent
+from structures.opensees.building import run_opensees
 
 __all__ = ["COMPARED", "MODELS", "Comparison", "compare", "comparison_bearing", "nrmse",
            "run_comparison", "shaped_bearing"]
@@ -60,7 +60,8 @@ class Comparison(NamedTuple):
     Attributes
     ----------
     ours, opensees : xarray.Dataset
-        Results of :func:`structures.analysis.run` and :func:`structures.opensees.run_opensees`.
+        Results of :func:`structures.analysis.run` and
+        :func:`structures.opensees.building.run_opensees`.
     summary : dict
         :func:`compare` of the two (JSON-ready).
     """
@@ -191,7 +192,7 @@ def run_comparison(
     building, bearing, motion, integrator, n_bearings, dt
         As :func:`structures.analysis.run`.
     pendulum : {"singlefp", "spring"}
-        As :func:`structures.opensees.run_opensees`.
+        As :func:`structures.opensees.building.run_opensees`.
     warm_up : bool
         Run ours first on the record's first 3 samples, so that the timed run does not
         include a one-off compilation of a compiled engine.

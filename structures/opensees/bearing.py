@@ -68,7 +68,7 @@ from isolator.factors import KumarFactors
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import CentrePoint
 from isolator.testrig import HISTORY_FIELDS, BearingTestResult, imposed_history, run_test
-from structures.opensees_runtime import import_opensees
+from structures.opensees.runtime import import_opensees
 
 __all__ = [
     "ELEMENTS",

@@ -5,7 +5,7 @@ function, with no Python object touched per step: the Newmark / HHT-alpha Newton
 :mod:`structures.integrators`, the bearing of :mod:`isolator.bearing` (elastic-plastic return
 map, linear or spherical restoring law) and its friction (constant, or Eq. 7 with or without
 heating), through the kernels the element calls: ``cold_friction``, ``solve_friction``,
-``heated_window`` and ``ptv_friction`` of :mod:`isolator.kernels` (``ptv_trial`` is
+``heated_window`` and ``ptv_friction`` of :mod:`isolator.compiled.kernels` (``ptv_trial`` is
 ``heated_window``, ``contact_history`` and ``ptv_friction``) and ``step_factors`` of
 :mod:`isolator.heating`. It mirrors the reference operation for operation, so the two agree
 to round-off:
@@ -32,7 +32,7 @@ Two things are done differently, both exact rearrangements:
 What it costs to compile on a cold cache (``benchmarks/COLD_START.md``) is kept down by
 writing the loop in plain scalar arithmetic: the work arrays come from Python
 (:func:`new_workspace`), the two dense solves are direct LAPACK calls
-(:mod:`structures.compiled_lapack`), and nothing is allocated, broadcast or multiplied as a
+(:mod:`structures.compiled.lapack`), and nothing is allocated, broadcast or multiplied as a
 matrix inside, since numba compiles each such numpy construct as a function of its own. The
 helpers are ordinary compiled functions, which LLVM inlines; numba's own IR inlining
 (``inline="always"``) cost more compile time than it saved.
@@ -40,8 +40,8 @@ helpers are ordinary compiled functions, which LLVM inlines; numba's own IR inli
 Without numba, or with ``DCFPB_DISABLE_NUMBA=1``, the same source runs as plain Python (slow,
 meant for tests); ``integrate_building.py_func`` is the Python original of the top level.
 The bearing, its friction and heat history in array form are
-:mod:`structures.compiled_bearing`; the Python side of the engine (packing the model, the
-messages, the result) is :mod:`structures.engine`.
+:mod:`isolator.compiled.bearing`; the Python side of the engine (packing the model, the
+messages, the result) is :mod:`structures.compiled.engine`.
 """
 
 from __future__ import annotations
@@ -50,8 +50,7 @@ import math
 
 import numpy as np
 
-from isolator.kernels import jit
-from structures.compiled_bearing import (
+from isolator.compiled.bearing import (
     BEARING_FIELDS,
     FORCE,
     INITIAL_MU,
@@ -69,8 +68,9 @@ from structures.compiled_bearing import (
     bearing_trial,
     record_state,
 )
-from structures.compiled_bearing import DISPLACEMENT as BEARING_DISPLACEMENT
-from structures.compiled_lapack import invert, solve
+from isolator.compiled.bearing import DISPLACEMENT as BEARING_DISPLACEMENT
+from isolator.compiled.kernels import jit
+from structures.compiled.lapack import invert, solve
 
 __all__ = ["BEARING_FIELDS", "integrate_building", "new_workspace"]
 
@@ -249,10 +249,10 @@ def integrate_building(mass, damping, stiffness, influence, ground, time, method
     bearing : ndarray, shape (BEARING_PARAMETERS,)
         One bearing and the number of them (see the index names of this module); SI units.
     ptv : ndarray, shape (15,)
-        The constants of :func:`isolator.kernels.ptv_trial` (``PTV_PARAMETERS``); also read
+        The constants of :func:`isolator.compiled.kernels.ptv_trial` (``PTV_PARAMETERS``); also read
         by the friction model without heating.
     heating : tuple of ndarray
-        The heat history (:func:`structures.compiled_bearing.new_heating`), from zero;
+        The heat history (:func:`isolator.compiled.bearing.new_heating`), from zero;
         advanced in place.
     workspace : tuple of ndarray
         Work arrays (:func:`new_workspace`), zero at the start.

@@ -1,0 +1,74 @@
+"""The ``dcfpb`` command line: parses, calls the library, prints and plots.
+
+One module per sub-command, each with ``register(subparsers)`` and its handler:
+
+- :mod:`~dcfpb.cli.protocol`: a virtual bearing test and its per-cycle characteristics;
+- :mod:`~dcfpb.cli.run`: a building file under a recorded ground motion (and what the other
+  building commands share: inputs, integrator flags, the peaks table);
+- :mod:`~dcfpb.cli.demo`: the main job on bundled data, three friction models and the fixed base;
+- :mod:`~dcfpb.cli.spectrum`, :mod:`~dcfpb.cli.suite`, :mod:`~dcfpb.cli.opensees`,
+  :mod:`~dcfpb.cli.diagnose`.
+
+Parsing one of the light commands (:data:`OWN_COMMANDS`) registers those three only, so that
+it does not import the others' modules (``dcfpb diagnose`` alone costs about 2 s of imports);
+``dcfpb --help`` and the other commands see them all.
+
+Exit status: 0 for success, 1 for a run that failed on its own terms
+(:class:`dcfpb.errors.RunFailure`, or a run that stopped early), 2 for bad input.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+
+from dcfpb import __version__
+
+__all__ = ["build_parser", "main"]
+
+
+OWN_COMMANDS = {"protocol": "dcfpb.cli.protocol", "run": "dcfpb.cli.run",
+                "demo": "dcfpb.cli.demo"}
+"""The light sub-commands and their modules: parsing one of them imports no other module."""
+
+COMMAND_MODULES: tuple[str, ...] = (
+    "dcfpb.cli.spectrum",
+    "dcfpb.cli.suite",
+    "dcfpb.cli.opensees",
+    "dcfpb.cli.diagnose",
+)
+"""Modules with a ``register(subparsers)`` function adding further sub-commands."""
+
+
+def build_parser(*, modules: bool = True) -> argparse.ArgumentParser:
+    """The argument parser of the ``dcfpb`` command.
+
+    ``modules=False`` leaves out the sub-commands of :data:`COMMAND_MODULES` (and their
+    imports): enough to parse one of :data:`OWN_COMMANDS`.
+    """
+    parser = argparse.ArgumentParser(
+        prog="dcfpb",
+        description="Time-history analysis of buildings on double concave friction pendulum "
+        "bearings.",
+    )
+    parser.add_argument("--version", action="version", version=f"dcfpb {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True)
+    for module in (*OWN_COMMANDS.values(), *(COMMAND_MODULES if modules else ())):
+        importlib.import_module(module).register(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``dcfpb`` console script; returns the exit status."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    command = next((a for a in argv if not a.startswith("-")), None)
+    own = command in OWN_COMMANDS and argv.index(command) == 0
+    parser = build_parser(modules=not own)
+    args = parser.parse_args(argv)
+    try:
+        return args.handler(args)
+    except (ValueError, TypeError, OSError) as error:
+        print(f"dcfpb {args.command}: error: {error}", file=sys.stderr)
+        return 2

@@ -1,0 +1,96 @@
+"""``dcfpb protocol``: a virtual bearing test (a sine displacement history on one bearing) and
+its per-cycle force-deflection characteristics."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add ``dcfpb protocol`` to the sub-commands."""
+    p = sub.add_parser(
+        "protocol",
+        help="impose a displacement history on a bearing (virtual test machine)",
+        description="Impose a sine displacement history on a DCFPB and report the per-cycle "
+        "force-deflection characteristics (paper Section 3.1). All values in SI units.",
+    )
+    p.add_argument("--model", choices=("precise", "simplified", "constant"), default="precise",
+                   help="friction model (default: precise)")
+    p.add_argument("--slider-diameter", type=float, default=0.3, help="slider diameter [m]")
+    load = p.add_mutually_exclusive_group()
+    load.add_argument("--pressure", type=float, help="contact pressure [Pa] (default 60e6)")
+    load.add_argument("--axial-load", type=float, help="axial load [N]")
+    p.add_argument("--effective-radius", type=float, default=4.5, help="effective radius [m]")
+    p.add_argument("--amplitude", type=float, default=0.3, help="displacement amplitude [m]")
+    p.add_argument("--period", type=float, default=4.26, help="period of the sine [s]")
+    p.add_argument("--cycles", type=int, default=3, help="number of cycles")
+    p.add_argument("--dt", type=float, default=0.005, help="time step [s]")
+    p.add_argument("--refinement", type=float, default=0.5,
+                   help="refinement factor lambda of the simplified model (default 0.5)")
+    p.add_argument("--mu0", type=float, default=None,
+                   help="reference friction coefficient of the constant model "
+                   "(default 0.041 for a 300 mm slider, 0.038 for 400 mm)")
+    p.add_argument("--mu-t0", type=float, default=0.075,
+                   help="mu_t0 of the precise and simplified models (default 0.075)")
+    p.add_argument("--initial-temperature", type=float, default=20.0,
+                   help="initial temperature [degC]")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
+    p.add_argument("--output", metavar="FILE.csv", help="write the history to a CSV file")
+    p.add_argument("--plot", metavar="FILE.png", help="draw the hysteresis loop and temperature")
+    p.set_defaults(handler=_run_protocol)
+
+
+def _run_protocol(args: argparse.Namespace) -> int:
+    from isolator.experiments import protocol_bearing
+    from isolator.protocols import sine
+
+    bearing = protocol_bearing(
+        model=args.model,
+        slider_diameter=args.slider_diameter,
+        effective_radius=args.effective_radius,
+        pressure=args.pressure,
+        axial_load=args.axial_load,
+        design_velocity=2.0 * math.pi * args.amplitude / args.period,
+        refinement=args.refinement,
+        mu0=args.mu0,
+        mu_t0=args.mu_t0,
+        initial_temperature=args.initial_temperature,
+        displacement_capacity=max(0.6, 1.05 * args.amplitude),
+    )
+    history = sine(args.amplitude, args.period, args.cycles, args.dt)
+    from isolator.testrig import run_test
+
+    result = run_test(bearing, history.time, history.displacement, history.velocity,
+                      name=history.name)
+    cycles = [c.to_dict() for c in result.characteristics()]
+    summary = {
+        "model": args.model,
+        "max_temperature": float(result.temperature.max()),
+        "axial_load": bearing.axial_load_at(0.0),
+        "cycles": cycles,
+    }
+    if args.output:
+        result.to_csv(args.output)
+    if args.plot:
+        from dcfpb.plotting import plot_bearing_test
+
+        plot_bearing_test(result, args.plot, title=f"{args.model} model")
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        _print_cycles(summary)
+    return 0
+
+
+def _print_cycles(summary: dict) -> None:
+    print(f"model: {summary['model']}   max temperature: {summary['max_temperature']:.1f} degC"
+          f"   axial load: {summary['axial_load'] / 1e3:.1f} kN")
+    header = f"{'cycle':>5} {'Fmax kN':>9} {'Fmin kN':>9} {'Kru kN/m':>9} {'Krl kN/m':>9} " \
+             f"{'EDC kJ':>8} {'Keff kN/m':>10} {'beta_eff':>8}"
+    print(header)
+    for c in summary["cycles"]:
+        print(f"{c['cycle']:>5d} {c['Fmax'] / 1e3:9.2f} {c['Fmin'] / 1e3:9.2f} "
+              f"{c['Kru'] / 1e3:9.1f} {c['Krl'] / 1e3:9.1f} {c['EDC'] / 1e3:8.2f} "
+              f"{c['Keff'] / 1e3:10.1f} {c['beta_eff']:8.3f}")

@@ -1,0 +1,138 @@
+"""``dcfpb run``: a building file under a recorded ground motion; and what the other building
+commands share with it (the inputs, the integrator flags, the peaks table, the bundled example)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add ``dcfpb run`` to the sub-commands."""
+    p = sub.add_parser(
+        "run",
+        help="time-history analysis of a building file under a ground motion",
+        description="Run a shear building on DCFPB isolators (a TOML building file, see "
+        "examples/five_storey.toml) under a recorded ground motion (PEER .AT2 or text).",
+    )
+    p.add_argument("building", metavar="BUILDING.toml", help="building file")
+    p.add_argument("--record", required=True, metavar="FILE", help="ground-motion record")
+    p.add_argument("--scale", type=float, default=1.0, help="amplitude scale factor [-]")
+    p.add_argument("--model", choices=("precise", "simplified", "constant"),
+                   help="friction model (default: the building file's)")
+    p.add_argument("--integrator", choices=("newmark", "hht"),
+                   help="time integration (default: the building file's)")
+    p.add_argument("--alpha", type=float, help="HHT alpha in [-1/3, 0]")
+    p.add_argument("--dt", type=float, help="analysis time step [s] (default: the file's)")
+    p.add_argument("--json", action="store_true", help="print the peaks as JSON")
+    p.add_argument("--output", metavar="FILE.nc", help="write the full result to netCDF")
+    p.add_argument("--plot", metavar="DIR", help="write plots to this folder")
+    p.set_defaults(handler=_run_building)
+
+
+def integrator_from_args(config, kind: str | None, alpha: float | None):
+    """The building file's integrator, or the one ``--integrator``/``--alpha`` ask for."""
+    from structures.integrators import HHT, Newmark
+
+    if kind is None and alpha is None:
+        return config.integrator
+    if (kind or ("hht" if isinstance(config.integrator, HHT) else "newmark")) == "newmark":
+        if alpha is not None:
+            raise ValueError("--alpha applies to --integrator hht only.")
+        return Newmark()
+    return HHT(alpha=-0.05 if alpha is None else alpha)
+
+
+def building_run_inputs(args: argparse.Namespace, command: str):
+    """The building file, the integrator and the (scaled) record of a building command.
+
+    Reads ``args.building``, ``args.integrator``, ``args.alpha``, ``args.record`` and
+    ``args.scale``; every value is checked before any work starts.
+
+    Returns
+    -------
+    config : BuildingConfig
+    integrator : Newmark or HHT
+    motion : GroundMotion
+    """
+    from dcfpb.validation import check_real
+    from groundmotions.readers import read_record
+    from structures.config import load_config
+
+    check_real(args.scale, "scale", command, low=0.0, low_open=True)
+    config = load_config(args.building)
+    integrator = integrator_from_args(config, args.integrator, args.alpha)
+    motion = read_record(args.record)
+    if args.scale != 1.0:
+        motion = motion.scaled(args.scale)
+    return config, integrator, motion
+
+
+def _run_building(args: argparse.Namespace) -> int:
+    from structures.compiled.ahead import compile_ahead
+
+    with compile_ahead() as ahead:  # the engine compiles while the inputs are read
+        ahead.help()
+        from structures.analysis import peaks, run
+        from structures.floor_spectra import with_floor_spectra
+
+        config, integrator, motion = building_run_inputs(args, "dcfpb run")
+        model = args.model or config.friction["model"]
+        ahead.wait()
+        result = run(config.building, config.bearing(model), motion, integrator,
+                     n_bearings=config.n_bearings, dt=args.dt or config.dt)
+    summary = peaks(result)
+    result = with_floor_spectra(result, motion)
+    if args.output:
+        result.to_netcdf(args.output)
+    if args.plot:
+        from dcfpb.plotting import plot_runs
+
+        plot_runs({model: result}, args.plot, title=f"{config.name}: {motion.name}")
+    if args.json:
+        keys = ("peak_isolator_displacement", "peak_base_shear", "peak_roof_acceleration",
+                "energy_balance_error", "steps", "wall_time")
+        print(json.dumps({k: summary[k] for k in keys} | {
+            "peak_storey_drift": summary["peak_storey_drift"],
+            "max_temperature": summary["max_temperature"],
+            "success": bool(result.attrs["success"]), "message": result.attrs["message"]},
+            indent=2))
+    else:
+        print_peaks({model: summary}, f"{config.name} under {motion.name} "
+                     f"(scale {args.scale:g}, {integrator!r})")
+        if not result.attrs["success"]:
+            print(f"warning: the run stopped early: {result.attrs['message']}")
+    return 0 if result.attrs["success"] else 1
+
+
+def print_peaks(rows: dict[str, dict], heading: str, *, fixed_base=None) -> None:
+    """Print a peaks table, one row per run, under ``heading``.
+
+    ``fixed_base`` (a :func:`structures.fixed_base.run_fixed_base` Dataset) adds its row: the
+    first-storey shear in the base-shear column, no isolator, temperature or energy.
+    """
+    print(heading)
+    print(f"{'model':12s} {'isol. disp':>10s} {'base shear':>11s} {'roof acc':>9s} "
+          f"{'drift':>7s} {'T max':>7s} {'energy err':>10s} {'wall':>6s}")
+    print(f"{'':12s} {'[mm]':>10s} {'[kN]':>11s} {'[m/s2]':>9s} {'[mm]':>7s} {'[degC]':>7s} "
+          f"{'[-]':>10s} {'[s]':>6s}")
+    for name, p in rows.items():
+        print(f"{name:12s} {1e3 * p['peak_isolator_displacement']:10.1f} "
+              f"{p['peak_base_shear'] / 1e3:11.0f} {p['peak_roof_acceleration']:9.2f} "
+              f"{1e3 * p['peak_storey_drift']:7.2f} {p['max_temperature']:7.1f} "
+              f"{p['energy_balance_error']:10.1e} {p['wall_time']:6.2f}")
+    if fixed_base is not None:
+        from structures.fixed_base import superstructure_peaks
+
+        p = superstructure_peaks(fixed_base)
+        print(f"{'fixed base':12s} {'-':>10s} {p['peak_base_shear'] / 1e3:11.0f} "
+              f"{p['peak_roof_acceleration']:9.2f} {1e3 * p['peak_storey_drift']:7.2f} "
+              f"{'-':>7s} {'-':>10s} {fixed_base.attrs['wall_time']:6.2f}")
+
+
+def example_path(name: str) -> Path:
+    """The example building file shipped in the package (a copy of ``examples/NAME``)."""
+    from importlib.resources import files
+
+    return Path(str(files("dcfpb").joinpath("data", name)))
