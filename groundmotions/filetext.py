@@ -1,0 +1,274 @@
+"""What every record reader needs from a file: its lines, its numbers, the units its header
+states and the plausibility of what was read.
+
+Units of a record (:func:`record_units`), in this order of authority:
+
+1. a *statement* in the header: ``UNITS OF G``, ``The units are (g)``, ``units=cm/sec/sec``,
+   ``Units: gal`` (the word ``unit(s)`` followed by ``of``, ``are``, ``is``, ``in``, ``=`` or
+   ``:``). Statements that disagree with each other, name a velocity or a length, or name a
+   unit the readers do not know, are refused (the last unless the caller gives the units);
+2. otherwise a *mention* of an acceleration unit: ``Acceleration in g``, ``(g)``, ``[m/s^2]``,
+   ``CM/SEC/SEC`` anywhere in the header (mentions that disagree are refused);
+3. the units given by the caller (``units=``; ``--units`` on the command line), which must
+   agree with the header when the header states or mentions known units;
+4. otherwise :data:`groundmotions.units.DEFAULT_UNITS` (g, the PEER AT2 convention).
+
+After reading, :func:`check_plausible` refuses a record whose PGA lies outside
+:data:`groundmotions.units.PGA_LIMITS_G` and names the unit that would make it plausible.
+"""
+
+from __future__ import annotations
+
+import re
+from bisect import bisect_left
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+
+from dcfpb.units import STANDARD_GRAVITY
+from groundmotions.records import RecordFormatError
+from groundmotions.units import (
+    DEFAULT_UNITS,
+    PGA_LIMITS_G,
+    TO_M_PER_S2,
+    TYPICAL_PGA_G,
+    UNIT_NAMES,
+    check_units,
+    describe_units,
+    likely_units,
+    parse_units,
+    quantity_of,
+)
+
+__all__ = ["RecordUnits", "check_finite", "check_plausible", "first_non_number",
+           "line_of_value", "read_lines", "record_units"]
+
+_OTHER_QUANTITY = re.compile(r"\b(VELOCITY|DISPLACEMENT)\s+TIME\s+(HISTORY|SERIES)", re.IGNORECASE)
+_STATEMENT = re.compile(
+    r"\bunits?\s*(?:of|are|is|in|=|:)\s*(?:of\s+)?[(\[]?\s*"
+    r"(?P<unit>[^\s,;()\[\]]+(?:\s*[*.·]?\s*s\s*\^?\s*-\s*2)?)",
+    re.IGNORECASE,
+)
+_BRACKETED = re.compile(r"[(\[]\s*([^()\[\]]{1,24}?)\s*[)\]]")
+_AFTER_IN = re.compile(r"\bin\s+([^\s,;()\[\]]+)", re.IGNORECASE)
+_COMPOUND = re.compile(r"(?<![\w/^*])[a-z]+\s*/\s*(?:s|sec)\s*(?:/\s*(?:s|sec)|(?:\^|\*\*)?\s*2|²)"
+                       r"(?![\w/^*])", re.IGNORECASE)
+_AROUND_OPERATORS = re.compile(r"\s*([/^*·])\s*")
+_KNOWN = ", ".join(UNIT_NAMES)
+
+
+class RecordUnits(NamedTuple):
+    """The units of a record's values and where they come from."""
+
+    name: str
+    """Canonical unit (a key of :data:`groundmotions.units.TO_M_PER_S2`)."""
+    factor: float
+    """Factor to [m/s^2]."""
+    source: str
+    """``"header"``, ``"given"`` or ``"default"``."""
+    line: int | None
+    """Line of the header that states the units (None when not from the header)."""
+    written: str
+    """The units as written in the header (or as given)."""
+
+
+# --------------------------------------------------------------------------------- file text
+
+
+def read_lines(path: Path) -> list[str]:
+    """Lines of a text file without their ends; LF, CR LF, CR CR LF and CR all count once.
+
+    UTF-8, or Latin-1 when the bytes are not UTF-8 (every byte string decodes as Latin-1).
+    """
+    raw = path.read_bytes()
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        text = raw.decode("latin-1")
+    if "\n" in text:
+        return [line.rstrip("\r") for line in text.split("\n")]
+    return text.split("\r")
+
+
+def first_non_number(tokens: Iterable[str]) -> str:
+    """The first token that ``float`` cannot read ("" when there is none)."""
+    for token in tokens:
+        try:
+            float(token)
+        except ValueError:
+            return token
+    return ""
+
+
+def line_of_value(line_ends: Sequence[tuple[int, int]], index: int) -> int:
+    """Line number of value ``index`` (0-based), from ``(line number, values so far)`` pairs."""
+    return line_ends[bisect_left([end for _, end in line_ends], index + 1)][0]
+
+
+def check_finite(path: Path, values: np.ndarray, line_ends: Sequence[tuple[int, int]]) -> None:
+    """Raise on the first NaN or infinite value, naming its line (float() accepts 'nan')."""
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        index = int(bad[0])
+        raise RecordFormatError(path, line_of_value(line_ends, index),
+                                f"value {index + 1} is {values[index]!r}, not finite")
+
+
+# ------------------------------------------------------------------------------------ units
+
+
+def _squeezed(line: str) -> str:
+    """The line without blanks around ``/``, ``^``, ``*`` and ``·`` (``cm / s^2`` -> ``cm/s^2``)."""
+    return _AROUND_OPERATORS.sub(r"\1", line)
+
+
+def _statements(header: Sequence[tuple[int, str]]) -> list[tuple[int, str]]:
+    found = []
+    for number, line in header:
+        for match in _STATEMENT.finditer(_squeezed(line)):
+            written = match["unit"].strip().rstrip(".:")
+            if re.search(r"[a-zA-Z]", written):  # "unit 5", "units: 12" are not units
+                found.append((number, written))
+    return found
+
+
+def _mentions(header: Sequence[tuple[int, str]]) -> list[tuple[int, str, str]]:
+    found = []
+    for number, text in header:
+        line = _squeezed(text)
+        candidates = [m.group(1) for m in _BRACKETED.finditer(line)]
+        candidates += [m.group(1) for m in _AFTER_IN.finditer(line)]
+        candidates += [m.group(0) for m in _COMPOUND.finditer(line)]
+        for written in candidates:
+            name = parse_units(written)
+            if name is not None:
+                found.append((number, written.strip(), name))
+    return found
+
+
+def _from_header(path: Path, header: Sequence[tuple[int, str]],
+                 given: str | None) -> tuple[str, int, str] | None:
+    """(canonical unit, line, as written) stated or mentioned by the header, or None."""
+    for number, line in header:
+        other = _OTHER_QUANTITY.search(line)
+        if other:
+            raise RecordFormatError(
+                path, number, f"this is a {other.group(1).lower()} record, not an acceleration"
+            )
+    known: list[tuple[int, str, str]] = []
+    for number, written in _statements(header):
+        quantity = quantity_of(written)
+        if quantity is None:
+            if given is None:
+                raise RecordFormatError(
+                    path, number, f"the header states units {written!r}, which the readers do "
+                    f"not know; known units: {_KNOWN} (with spellings such as CM/SEC/SEC, "
+                    "M/S/S or IN/S/S); correct the header or declare the units (--units)",
+                )  # fmt: skip
+            continue
+        if quantity[0] != "acceleration":
+            raise RecordFormatError(
+                path, number, f"the header states units {written!r}, a {quantity[0]} "
+                f"({quantity[1]}), not an acceleration: only acceleration records are read",
+            )  # fmt: skip
+        known.append((number, written, quantity[1]))
+    kind = "states"
+    if not known:
+        known, kind = _mentions(header), "mentions"
+    for number, written, name in known[1:]:
+        if name != known[0][2]:
+            first_line, first_written, _ = known[0]
+            raise RecordFormatError(
+                path, number, f"the header {kind} units {first_written!r} on line {first_line} "
+                f"and {written!r} on this line: which are the values in? Correct the header",
+            )  # fmt: skip
+    return (known[0][2], known[0][0], known[0][1]) if known else None
+
+
+def record_units(path: Path, header: Sequence[tuple[int, str]], given: object,
+                 owner: str) -> RecordUnits:
+    """The units of a record's values (the order of authority is in the module docstring).
+
+    Parameters
+    ----------
+    path : Path
+        The file (for messages).
+    header : sequence of (int, str)
+        Header lines with their line numbers.
+    given : str or None
+        Units given by the caller (any spelling :func:`groundmotions.units.parse_units`
+        reads), or None.
+    owner : str
+        The function that takes ``given`` (for the message of a bad value).
+
+    Raises
+    ------
+    RecordFormatError
+        A velocity or displacement record, units the readers do not know, statements that
+        disagree, or given units that disagree with the header's.
+    InputError
+        ``given`` is not an acceleration unit.
+    """
+    name = None if given is None else check_units(given, owner)
+    stated = _from_header(path, header, name)
+    if stated is not None:
+        unit, line, written = stated
+        if name is not None and name != unit:
+            raise RecordFormatError(
+                path, line, f"the header says the values are in {written!r} "
+                f"({describe_units(unit)}) but the units given (--units / units=) are "
+                f"{describe_units(name)}; correct the header or leave the units out",
+            )  # fmt: skip
+        return RecordUnits(unit, TO_M_PER_S2[unit], "header", line, written)
+    if name is not None:
+        return RecordUnits(name, TO_M_PER_S2[name], "given", None, str(given))
+    return RecordUnits(DEFAULT_UNITS, TO_M_PER_S2[DEFAULT_UNITS], "default", None, "")
+
+
+def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
+                    line_ends: Sequence[tuple[int, int]]) -> None:
+    """Refuse a record whose PGA lies outside :data:`groundmotions.units.PGA_LIMITS_G`.
+
+    Parameters
+    ----------
+    path : Path
+        The file (for messages).
+    values : numpy.ndarray
+        The finite values as written in the file [file units].
+    units : RecordUnits
+        Their units.
+    line_ends : sequence of (int, int)
+        ``(line number, values up to and including that line)`` (the line of the peak is
+        named).
+
+    Raises
+    ------
+    RecordFormatError
+        Saying the PGA found, the allowed range and the units that would bring the PGA into
+        :data:`groundmotions.units.TYPICAL_PGA_G`.
+    """
+    index = int(np.argmax(np.abs(values)))
+    peak = float(abs(values[index]))
+    pga = peak * (units.factor / STANDARD_GRAVITY)  # never overflows: factor / g <= 1
+    low, high = PGA_LIMITS_G
+    if low <= pga <= high:
+        return
+    candidates = likely_units(peak, units.name)
+    if candidates:
+        look = " or ".join(f"{describe_units(name)} (PGA {g:.3g} g)" for name, g in candidates)
+        look = f"the values look like {look}"
+    else:
+        look = f"no known unit brings it into {TYPICAL_PGA_G[0]:g}-{TYPICAL_PGA_G[1]:g} g"
+    if units.source == "header":
+        advice = (f"the header says {units.written!r} on line {units.line}; correct the header")
+    elif units.source == "given":
+        advice = f"check the units given (--units / units=): {describe_units(units.name)}"
+    else:
+        advice = "declare the units in the header (e.g. 'UNITS OF CM/S/S') or with --units"
+    raise RecordFormatError(
+        path, line_of_value(line_ends, index),
+        f"PGA {pga:.3g} g (value {values[index]:.6g} read as {describe_units(units.name)}) is "
+        f"outside the plausible range {low:g} to {high:g} g: {look}; {advice}",
+    )

@@ -1,0 +1,243 @@
+"""Reader of PEER .AT2 acceleration records (`read_peer_at2`).
+
+Every header layout met so far is read: ``NPTS=  7996, DT= .00500 SEC``,
+``NPTS=   1451, dt=  .02000``, ``NPTS=   7998, DT=   .0050 SEC,`` (trailing comma), the NGA
+"values first" ``7997 0.0050 NPTS, DT`` and free-text headers of any length (the NPTS/DT line is
+found by search, not by position), a trailing ``*** End Data ***`` line, and LF, CR LF, CR CR LF
+or CR line ends (line numbers in messages count each of these once). The units of the values
+are read from the header (`groundmotions.filetext.record_units`: g, gal, cm/s^2, m/s^2, mm/s^2,
+in/s^2, ft/s^2 in their usual spellings; g when the header states none).
+
+A file that cannot be read as written raises `RecordFormatError` naming the file and the line;
+nothing is silently fixed (a missing value is never padded, an extra one never dropped).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from datetime import date
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from groundmotions.filetext import (
+    check_finite,
+    check_plausible,
+    first_non_number,
+    read_lines,
+    record_units,
+)
+from groundmotions.records import GroundMotion, PathLike, RecordFormatError
+
+__all__ = ["read_peer_at2"]
+
+_NPTS_WORD = re.compile(r"\bNPTS\b", re.IGNORECASE)
+_VALUES_FIRST = re.compile(r"^\s*([^\s,]+)[\s,]+([^\s,]+)[\s,]+NPTS\s*,?\s*DT\b", re.IGNORECASE)
+_NPTS_KEY = re.compile(r"\bNPTS\s*=\s*([^\s,]*)", re.IGNORECASE)
+_DT_KEY = re.compile(r"\bDT\s*=\s*([^\s,]*)", re.IGNORECASE)
+_FILTER = re.compile(r"\b(HP|LP)\s*=\s*([0-9.]+)\s*HZ", re.IGNORECASE)
+_DATE = re.compile(r"(?<![\d/])(\d{1,2})/(\d{1,2})/(\d{4}|\d{2})(?![\d/])")
+_TIME_OF_DAY = re.compile(r"^[\s,]*(\d{1,2}:\d{2}|\d{4})\s*,")
+_AGENCY = re.compile(r"\(([^()]*)\)\s*$")
+
+
+def has_npts_line(lines: list[str]) -> bool:
+    """Whether an NPTS line comes before the first row of numbers (a PEER file, whatever its
+    extension)."""
+    for line in lines:
+        if _NPTS_WORD.search(line):
+            return True
+        tokens = line.split()
+        if tokens and not first_non_number(tokens):
+            return False
+    return False
+
+
+def _find_npts_dt(path: Path, lines: list[str]) -> tuple[int, int, float]:
+    """Return (index of the NPTS/DT line, npts, dt [s]), searching from the top."""
+    for index, line in enumerate(lines):
+        tokens = line.split()
+        if tokens and not first_non_number(tokens):
+            raise RecordFormatError(path, index + 1, "numbers begin before any NPTS/DT line")
+        if not _NPTS_WORD.search(line):
+            continue
+        match = _VALUES_FIRST.match(line)
+        if match:
+            npts_text, dt_text = match.groups()
+        else:
+            npts_match, dt_match = _NPTS_KEY.search(line), _DT_KEY.search(line)
+            if npts_match is None:
+                raise RecordFormatError(path, index + 1, f"cannot read NPTS from {line.strip()!r}")
+            if dt_match is None:
+                raise RecordFormatError(path, index + 1, f"no DT on the NPTS line {line.strip()!r}")
+            npts_text, dt_text = npts_match.group(1), dt_match.group(1)
+        try:
+            npts, dt = int(npts_text), float(dt_text)
+        except ValueError:
+            raise RecordFormatError(
+                path, index + 1, f"cannot read NPTS={npts_text!r}, DT={dt_text!r} as numbers"
+            ) from None
+        if npts < 2 or not (math.isfinite(dt) and dt > 0.0):
+            raise RecordFormatError(
+                path, index + 1, f"NPTS must be >= 2 and DT > 0; got NPTS={npts}, DT={dt!r}"
+            )
+        return index, npts, dt
+    raise RecordFormatError(path, len(lines), "no NPTS/DT line found in the whole file")
+
+
+def _read_values(
+    path: Path, lines: list[str], start: int, npts: int
+) -> tuple[np.ndarray, list[tuple[int, int]], list[str]]:
+    """Read exactly ``npts`` numbers row by row from ``lines[start:]``; return them, the
+    ``(line number, values so far)`` pairs and the non-numeric trailer (e.g.
+    ``*** End Data ***``) that may follow them.
+
+    Nothing of size ``npts`` is allocated before the values are there: a header that claims
+    more values than the file holds costs no more than the file.
+    """
+    values: list[float] = []
+    line_ends: list[tuple[int, int]] = []
+    trailer: list[str] = []
+    for index in range(start, len(lines)):
+        tokens = lines[index].split()
+        if not tokens:
+            continue
+        try:
+            row = [float(token) for token in tokens]
+        except ValueError:
+            if len(values) == npts:
+                trailer = [line.strip() for line in lines[index:] if line.strip()]
+                break
+            raise RecordFormatError(
+                path,
+                index + 1,
+                f"expected {npts} values (NPTS) but found non-numeric text "
+                f"{first_non_number(tokens)!r} after {len(values)} values",
+            ) from None
+        if len(values) + len(row) > npts:
+            raise RecordFormatError(
+                path, index + 1, f"NPTS is {npts} but value {npts + 1} is on this line"
+            )
+        values.extend(row)
+        line_ends.append((index + 1, len(values)))
+    if len(values) < npts:
+        last = line_ends[-1][0] if line_ends else start
+        raise RecordFormatError(
+            path, last, f"expected {npts} values (NPTS) but the file ends after {len(values)}"
+        )
+    array = np.array(values)
+    check_finite(path, array, line_ends)
+    return array, line_ends, trailer
+
+
+def _parse_peer_line2(line: str) -> dict[str, str | None]:
+    """EVENT [,] MM/DD/YY [,] [HH:MM|HHMM,] STATION, COMPONENT [(AGENCY ...)] -> fields."""
+    match = _DATE.search(line)
+    if match is None or "," not in line[match.end() :]:
+        return {}
+    month, day, year = (int(g) for g in match.groups())
+    if year < 100:  # two-digit years: 30-99 -> 19xx, 00-29 -> 20xx
+        year += 1900 if year >= 30 else 2000
+    try:
+        iso = date(year, month, day).isoformat()
+    except ValueError:
+        iso = None
+    rest = line[match.end() :]
+    time_match = _TIME_OF_DAY.match(rest)
+    if time_match:
+        rest = rest[time_match.end() :]
+    station, comma, tail = rest.strip(" ,").rpartition(",")
+    agency_match = _AGENCY.search(tail)
+    component = tail[: agency_match.start()] if agency_match else tail
+    return {
+        "event": line[: match.start()].strip(" ,") or None,
+        "date": iso,
+        "date_as_written": match.group(0),
+        "time": time_match.group(1) if time_match else None,
+        "station": station.strip() if comma else component.strip(),
+        "component": component.strip() if comma else None,
+        "agency": agency_match.group(1).strip() if agency_match else None,
+    }
+
+
+def _units_label(units: Any) -> str:
+    """``units_in_file`` of the metadata (the strings of earlier versions for g and cm/s^2)."""
+    if units.source == "default":
+        return "g (not stated; the PEER AT2 convention)"
+    return units.name if units.source == "header" else f"{units.name} (given by the caller)"
+
+
+def parse_peer(path: Path, lines: list[str], name: str | None = None,
+               units: str | None = None) -> GroundMotion:
+    """The record of a PEER file already split into lines (see `read_peer_at2`)."""
+    index, npts, dt = _find_npts_dt(path, lines)
+    header = [line.rstrip() for line in lines[: index + 1]]
+    found = record_units(path, list(enumerate(header, start=1)), units, "read_peer_at2")
+    values, line_ends, trailer = _read_values(path, lines, index + 1, npts)
+    check_plausible(path, values, found, line_ends)
+    label = _units_label(found)
+    metadata: dict[str, Any] = {
+        "event": None, "date": None, "time": None, "station": None, "component": None,
+        "agency": None, "description": header[0].strip() if index > 0 else None,
+    }  # fmt: skip
+    if index == 3:  # a PEER 4-line header: line 2 holds event, date, station, component
+        metadata.update(_parse_peer_line2(header[1]))
+    for key, value in _FILTER.findall("\n".join(header)):
+        metadata["highpass_hz" if key.upper() == "HP" else "lowpass_hz"] = float(value)
+    metadata.update(
+        format="PEER AT2",
+        source_file=path.name,
+        source_path=str(path),
+        units_in_file=label,
+        header_lines=tuple(header),
+        npts_dt_line=header[index].strip(),
+        npts_dt_line_number=index + 1,
+        trailer_lines=tuple(trailer),
+    )
+    step = f"read from {path.name} ({label.split()[0]} -> m/s^2)"
+    return GroundMotion(values * found.factor, dt, name or path.stem, metadata, (step,))
+
+
+def read_peer_at2(
+    path: PathLike, *, name: str | None = None, units: str | None = None
+) -> GroundMotion:
+    """Read a PEER .AT2 acceleration record.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file.
+    name : str, optional
+        Name of the record; the file stem by default.
+    units : str, optional
+        Units of the values when the header does not state them: ``"g"``, ``"gal"``,
+        ``"cm/s^2"``, ``"m/s^2"``, ``"mm/s^2"``, ``"in/s^2"``, ``"ft/s^2"`` (or another
+        spelling, e.g. ``"CM/S/S"``). By default the header's, else g (the PEER convention);
+        units given that disagree with the header's are refused.
+
+    Returns
+    -------
+    GroundMotion
+        Acceleration converted from the file's units to [m/s^2]
+        (`groundmotions.units.TO_M_PER_S2`, with ``dcfpb.units.STANDARD_GRAVITY`` for g).
+
+    Raises
+    ------
+    RecordFormatError
+        No NPTS/DT line, a missing DT, a value count that disagrees with NPTS, a non-numeric,
+        NaN or infinite value, a velocity/displacement file, units the readers do not know, or
+        a PGA outside 1e-4 to 5 g (the message names the units that would fit); the message
+        names the file and the line.
+    InputError
+        ``units`` is not an acceleration unit.
+
+    Notes
+    -----
+    Event, date, time, station, component and agency are parsed from line 2 when the header has
+    the PEER 4-line layout; the station and component are split at the last comma and only a
+    trailing parenthesised group is the agency (station names may hold parentheses).
+    """
+    path = Path(path)
+    return parse_peer(path, read_lines(path), name, units)

@@ -1,0 +1,183 @@
+"""Reader of text records (`read_text_record`): one column (acceleration at a step ``dt``) or
+two columns (time, acceleration).
+
+Leading non-numeric lines and lines starting with ``#`` or ``%`` before the data are the header;
+it may state the units of the acceleration (``# units: gal``, ``# acceleration [m/s^2]``,
+``time, acc (g)``; see `groundmotions.filetext.record_units`). Columns may be separated by
+blanks, commas or semicolons.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from dcfpb.errors import InputError
+from dcfpb.validation import check_real
+from groundmotions.filetext import (
+    check_finite,
+    check_plausible,
+    first_non_number,
+    read_lines,
+    record_units,
+)
+from groundmotions.records import GroundMotion, PathLike, RecordFormatError
+
+__all__ = ["read_text_record"]
+
+_OWNER = "read_text_record"
+
+
+def _read_columns(
+    path: Path, lines: list[str]
+) -> tuple[np.ndarray, list[int], list[tuple[int, str]]]:
+    """Numeric rows of one or two columns (whitespace, comma or semicolon separated), their
+    line numbers, and the header lines with theirs."""
+    header: list[tuple[int, str]] = []
+    rows: list[list[float]] = []
+    numbers: list[int] = []
+    for index, line in enumerate(lines):
+        text = line.strip()
+        if not text or text.startswith(("#", "%")):
+            if not rows and text:
+                header.append((index + 1, text))
+            continue
+        tokens = text.replace(",", " ").replace(";", " ").split()
+        try:
+            row = [float(token) for token in tokens]
+        except ValueError:
+            if not rows:
+                header.append((index + 1, text))
+                continue
+            raise RecordFormatError(
+                path, index + 1, f"non-numeric value {first_non_number(tokens)!r} in the data"
+            ) from None
+        if not rows and len(row) not in (1, 2):
+            raise RecordFormatError(
+                path, index + 1, f"expected 1 or 2 columns (acceleration or time, acceleration) "
+                f"but found {len(row)}; PEER files with several values a row need read_peer_at2",
+            )  # fmt: skip
+        if rows and len(row) != len(rows[0]):
+            raise RecordFormatError(
+                path, index + 1, f"expected {len(rows[0])} column(s) as on line {numbers[0]} "
+                f"but found {len(row)}",
+            )  # fmt: skip
+        rows.append(row)
+        numbers.append(index + 1)
+    if len(rows) < 2:
+        raise RecordFormatError(path, len(lines), f"found {len(rows)} data rows; at least 2 needed")
+    table = np.array(rows)
+    ends = [(number, (i + 1) * table.shape[1]) for i, number in enumerate(numbers)]
+    check_finite(path, table.ravel(), ends)
+    return table, numbers, header
+
+
+def _time_step(path: Path, times: np.ndarray, numbers: list[int], dt: float | None) -> float:
+    """The step of a time column, checked to be uniform (and to agree with ``dt`` if given)."""
+    span = float(times[-1]) - float(times[0])  # Python floats: inf, not an overflow warning
+    step = span / (times.size - 1)
+    if not (step > 0.0 and np.isfinite(step)):
+        raise RecordFormatError(
+            path, numbers[-1], f"the time column does not increase to a finite time "
+            f"(from {times[0]:g} s to {times[-1]:g} s)",
+        )  # fmt: skip
+    # Uniform if every time lies within 1 % of a step of the grid from the first to the last
+    # time (robust to times printed with few digits: rounding does not accumulate).
+    with np.errstate(over="ignore", invalid="ignore"):
+        off = np.abs(times - (times[0] + step * np.arange(times.size)))
+    if not off.max() <= 0.01 * step:
+        with np.errstate(over="ignore", invalid="ignore"):
+            steps = np.diff(times)
+            typical = float(np.median(steps))
+            irregular = ~(np.abs(steps - typical) <= 0.01 * abs(typical))
+        i = int(np.argmax(irregular)) + 1 if irregular.any() else int(np.argmax(off))
+        raise RecordFormatError(
+            path, numbers[i], f"time {times[i]:g} s follows {times[i - 1]:g} s, a step of "
+            f"{float(times[i]) - float(times[i - 1]):.6g} s where the usual step is "
+            f"{typical:.6g} s: the record is not uniformly sampled",
+        )  # fmt: skip
+    if dt is not None:
+        given = check_real(dt, "dt", _OWNER, low=0.0, low_open=True)
+        if abs(given - step) > 1e-3 * step:
+            raise InputError(
+                f"The 'dt' parameter of {_OWNER} must agree with the time column of "
+                f"{path.name} (dt = {step:.6g} s). Got {dt!r} instead."
+            )
+        step = given
+    return step
+
+
+def read_text_record(
+    path: PathLike, dt: float | None = None, units: str | None = None, *,
+    name: str | None = None,
+) -> GroundMotion:
+    """Read a one-column (acceleration) or two-column (time, acceleration) text record.
+
+    Leading non-numeric lines and lines starting with ``#`` or ``%`` are kept as the header;
+    columns may be separated by blanks, commas or semicolons.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file.
+    dt : float, optional
+        Time step [s]. Required for one column; for two columns it is inferred from the time
+        column (first to last time over npts - 1) and, if given, must agree with it to 0.1 %.
+    units : str, optional
+        Units of the acceleration column: ``"g"``, ``"gal"``, ``"cm/s^2"``, ``"m/s^2"``,
+        ``"mm/s^2"``, ``"in/s^2"``, ``"ft/s^2"`` (or another spelling, e.g. ``"m/s2"``). By
+        default those the header states (``# units: gal``, ``acc [m/s^2]``), else g; units
+        given that disagree with the header's are refused.
+    name : str, optional
+        Name of the record; the file stem by default.
+
+    Returns
+    -------
+    GroundMotion
+        Acceleration [m/s^2], time re-based to start at 0.
+
+    Raises
+    ------
+    RecordFormatError
+        A non-numeric, NaN or infinite value, a change in the number of columns, a time
+        column that is not uniform (a sample more than 1 % of a step off the uniform grid),
+        units the readers do not know or a PGA outside 1e-4 to 5 g (the message names the
+        units that would fit).
+    InputError
+        ``dt`` missing for one column, or disagreeing with the time column; ``units`` not an
+        acceleration unit.
+    """
+    path = Path(path)
+    table, numbers, header = _read_columns(path, read_lines(path))
+    found = record_units(path, header, units, _OWNER)
+    start_time = 0.0
+    if table.shape[1] == 1:
+        if dt is None:
+            raise InputError(
+                f"The 'dt' parameter of {_OWNER} must be a float in (0, inf) for the one-column "
+                f"file {path.name} (--record-dt on the command line). Got None instead."
+            )
+        step = check_real(dt, "dt", _OWNER, low=0.0, low_open=True)
+    else:
+        start_time = float(table[0, 0])
+        step = _time_step(path, table[:, 0], numbers, dt)
+    values = table[:, -1]
+    check_plausible(path, values, found, [(n, i + 1) for i, n in enumerate(numbers)])
+    label = found.name if found.source != "given" else str(units)
+    read = "g -> m/s^2" if found.name == "g" else (
+        "m/s^2" if found.name == "m/s^2" else f"{found.name} -> m/s^2")
+    processing = [f"read from {path.name} ({read})"]
+    if start_time != 0.0:
+        processing.append(f"time re-based: the file starts at t = {start_time:g} s")
+    metadata: dict[str, Any] = {
+        "format": f"text, {table.shape[1]} column(s)",
+        "source_file": path.name,
+        "source_path": str(path),
+        "units_in_file": label,
+        "header_lines": tuple(text for _, text in header),
+        "start_time": start_time,
+    }
+    return GroundMotion(values * found.factor, step, name or path.stem, metadata,
+                        tuple(processing))
