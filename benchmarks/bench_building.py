@@ -70,7 +70,8 @@ def bearing(model: str, weight: float):
 
 def repeated_record(n_steps: int):
     """El Centro from 2 s to 12 s (the strong part) repeated to ``n_steps`` steps of 5 ms."""
-    from groundmotions.records import GroundMotion, load_bundled
+    from groundmotions.bundled import load_bundled
+    from groundmotions.records import GroundMotion
 
     motion = load_bundled("elcentro")
     t = np.arange(0.0, 10.0, DT)
@@ -249,7 +250,7 @@ def main() -> int:
                         help="skip the from-scratch compilation (about a minute)")
     args = parser.parse_args()
 
-    from groundmotions.records import load_bundled
+    from groundmotions.bundled import load_bundled
     from structures.analysis import run
     from structures.compiled.engine import warm_up
 

@@ -32,7 +32,7 @@ SPEED_UP_TARGET = 1.8
 
 def _warm_up() -> None:
     """Import the analysis and run a tiny case once in a worker (kernels from the cache)."""
-    from groundmotions.records import load_bundled
+    from groundmotions.bundled import load_bundled
     from structures.config import load_config
     from structures.suites.runs import RunSpec, execute_run
 

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from structures.analysis import run
 from structures.config import load_config
 from structures.fixed_base import run_fixed_base, superstructure_peaks

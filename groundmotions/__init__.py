@@ -1,4 +1,85 @@
-"""Ground motions: records, readers, spectra, scaling.
+"""Ground motions: records, readers, units, processing, spectra, scaling and synthetics.
 
-Imports nothing of ours but ``dcfpb.units`` and ``dcfpb.validation``.
+Everything listed in ``__all__`` is importable from the package itself
+(``from groundmotions import read_record, spectrum``). The package imports nothing of the
+project but the lowest layer (``dcfpb.errors``, ``dcfpb.units``, ``dcfpb.validation``); within
+it, `groundmotions.records` (`GroundMotion`, `RecordFormatError`) imports no other module of
+the package at run time, and the readers (`groundmotions.readers`, `groundmotions.peer`,
+`groundmotions.text_records`) and the bundled records (`groundmotions.bundled`) import it.
 """
+
+from groundmotions.bundled import bundled_names, load_bundled
+from groundmotions.processing import (
+    arias_intensity,
+    baseline_corrected,
+    filtered,
+    resampled,
+    significant_duration,
+    velocity_and_displacement,
+    zero_residuals,
+)
+from groundmotions.readers import read_peer_at2, read_record, read_text_record
+from groundmotions.records import GroundMotion, RecordFormatError
+from groundmotions.scaling import (
+    ScalingReport,
+    TargetSpectrum,
+    asce7_design_spectrum,
+    isolated_period_range,
+    scale_suite,
+)
+from groundmotions.spectra import (
+    Spectrum,
+    nigam_jennings_coefficients,
+    peak_ground_values,
+    response_spectra,
+    response_spectrum,
+    sdof_response,
+    spectrum,
+)
+from groundmotions.synthetic import (
+    PiecewiseEnvelope,
+    SaragoniHartEnvelope,
+    clough_penzien,
+    clough_penzien_psd,
+    kanai_tajimi,
+    kanai_tajimi_psd,
+)
+from groundmotions.units import TO_M_PER_S2, UNIT_NAMES, parse_units
+
+__all__ = [
+    "TO_M_PER_S2",
+    "UNIT_NAMES",
+    "GroundMotion",
+    "PiecewiseEnvelope",
+    "RecordFormatError",
+    "SaragoniHartEnvelope",
+    "ScalingReport",
+    "Spectrum",
+    "TargetSpectrum",
+    "arias_intensity",
+    "asce7_design_spectrum",
+    "baseline_corrected",
+    "bundled_names",
+    "clough_penzien",
+    "clough_penzien_psd",
+    "filtered",
+    "isolated_period_range",
+    "kanai_tajimi",
+    "kanai_tajimi_psd",
+    "load_bundled",
+    "nigam_jennings_coefficients",
+    "parse_units",
+    "peak_ground_values",
+    "read_peer_at2",
+    "read_record",
+    "read_text_record",
+    "resampled",
+    "response_spectra",
+    "response_spectrum",
+    "scale_suite",
+    "sdof_response",
+    "significant_duration",
+    "spectrum",
+    "velocity_and_displacement",
+    "zero_residuals",
+]

@@ -22,12 +22,15 @@ acceleration between samples, and the integrals below are exact for that interpr
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dcfpb.units import STANDARD_GRAVITY
 from dcfpb.validation import check_int, check_real
-from groundmotions.records import GroundMotion
+
+if TYPE_CHECKING:  # records imports this module for GroundMotion's methods: no import back
+    from groundmotions.records import GroundMotion
 
 __all__ = [
     "arias_intensity",
@@ -46,14 +49,17 @@ ANTI_ALIAS_ORDER = 8
 """Butterworth order of the anti-alias low-pass (doubled by the forward-backward pass) [-]."""
 
 
+_MOTION_FIELDS = ("acceleration", "dt", "name", "metadata", "processing")
+
+
 def _new(motion: GroundMotion, acceleration: np.ndarray, dt: float, step: str) -> GroundMotion:
-    return GroundMotion(
+    return type(motion)(
         acceleration, dt, motion.name, dict(motion.metadata), (*motion.processing, step)
     )
 
 
 def _check_motion(motion: object, owner: str) -> GroundMotion:
-    if not isinstance(motion, GroundMotion):
+    if not all(hasattr(motion, name) for name in _MOTION_FIELDS):
         raise TypeError(
             f"The 'motion' parameter of {owner} must be a GroundMotion. Got {motion!r} instead."
         )

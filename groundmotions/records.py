@@ -6,9 +6,9 @@ truncated record still says where it came from. Nothing is cached and nothing is
 place: the acceleration array is read-only. ``baseline_corrected``, ``filtered`` and
 ``resampled`` delegate to the pure functions of `groundmotions.processing`.
 
-Records shipped with the package: `load_bundled`, `bundled_names`. The file readers
-(`read_peer_at2`, `read_text_record`, `read_record`) live in `groundmotions.readers` and can be
-imported from here as well.
+This module imports no reader: the readers (`groundmotions.readers`: `read_record`,
+`read_peer_at2`, `read_text_record`) and the records shipped with the package
+(`groundmotions.bundled`: `load_bundled`, `bundled_names`) import it.
 """
 
 from __future__ import annotations
@@ -17,29 +17,17 @@ import math
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from dcfpb.errors import InputError
-from dcfpb.validation import check_array, check_choice, check_real
+from dcfpb.validation import check_array, check_real
 
-__all__ = ["GroundMotion", "RecordFormatError", "bundled_names", "load_bundled"]
+__all__ = ["GroundMotion", "RecordFormatError"]
 
 PathLike = str | os.PathLike[str]
-
-_READER_NAMES = ("read_peer_at2", "read_record", "read_text_record")
-
-
-def __getattr__(name: str) -> Any:
-    """Re-export the readers lazily (they import this module, so not at import time)."""
-    if name in _READER_NAMES:
-        from groundmotions import readers
-
-        return getattr(readers, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class RecordFormatError(InputError):
@@ -186,47 +174,3 @@ class GroundMotion:
         from groundmotions.processing import resampled
 
         return resampled(self, dt, anti_alias=anti_alias)
-
-
-# --------------------------------------------------------------------------- bundled records
-
-_BUNDLED: dict[str, tuple[str, dict[str, Any]]] = {
-    "elcentro": (
-        "elcentro_1940_ns.at2",
-        {
-            "title": "El Centro 1940 N-S",
-            "event": "Imperial Valley 1940",
-            "date": "1940-05-19",  # UTC; the evening of 18 May 1940 local time
-            "station": "El Centro Array #9 (Imperial Valley Irrigation District substation)",
-            "component": "NS",
-            "agency": "US Coast and Geodetic Survey (its strong-motion work is now USGS's)",
-            "licence": "public domain (US government recording)",
-            "origin": "OpenSees EXAMPLES/ExampleScripts/elCentro.AT2 (Peknold version)",
-        },
-    ),
-}
-
-
-def bundled_names() -> tuple[str, ...]:
-    """Names of the records shipped in ``groundmotions/data`` (for `load_bundled`)."""
-    return tuple(sorted(_BUNDLED))
-
-
-def load_bundled(name: str = "elcentro") -> GroundMotion:
-    """Load a record shipped with the package (works without any data folder of the project).
-
-    Parameters
-    ----------
-    name : str
-        One of `bundled_names()`; ``"elcentro"`` is El Centro 1940 N-S (1559 samples at
-        0.02 s, PGA 0.319 g).
-    """
-    check_choice(name, "name", "load_bundled", bundled_names())
-    file_name, extra = _BUNDLED[name]
-    resource = resources.files(__package__ or "groundmotions").joinpath("data", file_name)
-    from groundmotions.readers import read_peer_at2  # the readers import this module
-
-    with resources.as_file(resource) as path:
-        motion = read_peer_at2(path, name=name)
-    return GroundMotion(motion.acceleration, motion.dt, extra.get("title", name),
-                        {**motion.metadata, **extra}, motion.processing)

@@ -50,7 +50,7 @@ def run(args: argparse.Namespace) -> int:
     with compile_ahead() as ahead:
         ahead.help()  # on a cold cache: compile a share of the engine, then do the rest
         from dcfpb.cli.run import example_path
-        from groundmotions.records import load_bundled
+        from groundmotions.bundled import load_bundled
         from structures.analysis import peaks
         from structures.analysis import run as run_building
         from structures.config import load_config

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from isolator.diagnosis import BearingRecord, Campaign, diagnose
 from structures.analysis import run
 from structures.config import load_config

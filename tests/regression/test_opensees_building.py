@@ -45,7 +45,7 @@ import numpy as np
 import pytest
 import scipy.special
 
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from isolator.heating import exact_rise
 from isolator.testrig import run_test
 from structures.config import load_config

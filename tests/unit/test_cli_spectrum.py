@@ -10,8 +10,8 @@ import pytest
 
 from dcfpb.cli import main
 from dcfpb.units import STANDARD_GRAVITY
+from groundmotions.bundled import load_bundled
 from groundmotions.processing import arias_intensity, significant_duration
-from groundmotions.records import load_bundled
 from groundmotions.spectra import peak_ground_values, spectrum
 
 REPO = Path(__file__).resolve().parents[2]

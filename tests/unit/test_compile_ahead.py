@@ -32,7 +32,7 @@ class Listener(event.Listener):
                                 "__qualname__", "?"))
 event.register("numba:compile", Listener())
 import numpy as np
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from structures.analysis import run
 from structures.config import load_config
 config = load_config(sys.argv[1])
@@ -87,7 +87,7 @@ def test_a_run_after_the_second_process_compiles_nothing_and_computes_the_same(t
                          check=True, timeout=900, capture_output=True, text=True).stdout
     assert json.loads(out.strip().splitlines()[-1]) == []  # everything came from the cache
 
-    from groundmotions.records import load_bundled
+    from groundmotions.bundled import load_bundled
     from structures.analysis import run
     from structures.config import load_config
 

@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 
 from dcfpb.units import STANDARD_GRAVITY
+from groundmotions.bundled import bundled_names, load_bundled
 from groundmotions.readers import read_peer_at2, read_record, read_text_record
-from groundmotions.records import GroundMotion, RecordFormatError, bundled_names, load_bundled
+from groundmotions.records import GroundMotion, RecordFormatError
 
 PEER_HEADER = (
     "PEER STRONG MOTION DATABASE RECORD. PROCESSING BY PACIFIC ENGINEERING.\n"

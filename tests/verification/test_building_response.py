@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from structures.analysis import peaks, run
 from structures.config import load_config
 from structures.integrators import HHT

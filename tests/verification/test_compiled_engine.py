@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from isolator.compiled.kernels import COMPILED
 from isolator.factors import KumarFactors
 from isolator.friction import PTVFriction
@@ -196,7 +196,7 @@ def test_engine_selection(config):
 _FALLBACK = """
 import json, sys
 import numpy as np
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from isolator.compiled.kernels import COMPILED
 from structures.analysis import run
 from structures.config import load_config

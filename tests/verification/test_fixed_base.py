@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from groundmotions.spectra import response_spectrum
 from structures.analysis import resampled_record, run
 from structures.config import load_config

@@ -16,7 +16,7 @@ import pytest
 
 from dcfpb.cli import main
 from dcfpb.cli.spectrum import STANDARD_PERIODS
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from groundmotions.spectra import response_spectra, response_spectrum, sdof_response
 from structures.analysis import run
 from structures.config import load_config

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from dcfpb.units import STANDARD_GRAVITY
+from groundmotions.bundled import load_bundled
 from groundmotions.processing import (
     arias_intensity,
     baseline_corrected,
@@ -16,7 +17,7 @@ from groundmotions.processing import (
     velocity_and_displacement,
     zero_residuals,
 )
-from groundmotions.records import GroundMotion, load_bundled
+from groundmotions.records import GroundMotion
 
 ELCENTRO = load_bundled("elcentro")
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from dcfpb.units import STANDARD_GRAVITY as G
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from groundmotions.scaling import (
     ScalingReport,
     TargetSpectrum,

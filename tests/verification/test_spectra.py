@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy import linalg, signal
 
-from groundmotions.records import load_bundled
+from groundmotions.bundled import load_bundled
 from groundmotions.spectra import (
     nigam_jennings_coefficients,
     peak_ground_values,
