@@ -16,5 +16,8 @@ MM_PER_M = 1.0e3
 M_PER_INCH = 0.0254
 """Metres in one inch [m]."""
 
+M_PER_FOOT = 0.3048
+"""Metres in one international foot (exact; not ``12 * M_PER_INCH``, which rounds) [m]."""
+
 N_PER_KIP = 4448.2216152605
 """Newtons in one kip [N]."""

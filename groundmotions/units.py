@@ -26,7 +26,7 @@ import math
 import re
 
 from dcfpb.errors import InputError
-from dcfpb.units import M_PER_INCH, STANDARD_GRAVITY
+from dcfpb.units import M_PER_FOOT, M_PER_INCH, STANDARD_GRAVITY
 
 __all__ = [
     "DEFAULT_UNITS",
@@ -39,9 +39,6 @@ __all__ = [
     "likely_units",
     "parse_units",
 ]
-
-M_PER_FOOT = 0.3048
-"""Metres in one international foot (exact) [m]."""
 
 TO_M_PER_S2: dict[str, float] = {
     "g": STANDARD_GRAVITY,
