@@ -26,9 +26,11 @@ from dataclasses import dataclass, field
 from typing import NamedTuple, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from dcfpb.validation import check_choice, check_int, check_real
-from isolator.compiled.kernels import PTV_PARAMETERS, cold_friction, ptv_trial, solve_friction
+from isolator.compiled.kernels import cold_friction, ptv_trial, solve_friction
+from isolator.compiled.layout import pack_ptv
 from isolator.factors import KumarFactors, PaperFactors, factor_set
 from isolator.heating import (
     CentrePoint,
@@ -157,6 +159,54 @@ class ConstantFrictionState:
         """Nothing to revert."""
 
 
+def eq7(
+    pressure: ArrayLike,
+    speed: ArrayLike,
+    temperature: ArrayLike,
+    *,
+    mu_t0: float,
+    factors: PaperFactors | KumarFactors,
+    dependencies: tuple[str, ...] = DEPENDENCIES,
+) -> np.ndarray:
+    """Eq. 7 as written in the paper, in plain numpy: mu_t = mu_t0 gamma(p) alpha(v) beta(T).
+
+    The readable reference of the compiled kernels (:func:`isolator.compiled.kernels.ptv_friction`
+    solves the same law with the contact temperature depending on mu through the newest flux;
+    ``tests/verification/test_friction_reference.py`` holds them to this function).
+
+    Parameters
+    ----------
+    pressure : array_like
+        Contact pressure p [Pa].
+    speed : array_like
+        Sliding speed |v| [m/s].
+    temperature : array_like
+        Contact temperature T [degC].
+    mu_t0 : float
+        Friction coefficient at the reference condition [-].
+    factors : PaperFactors or KumarFactors
+        The dependency factors gamma, alpha and beta (Eq. 1-3).
+    dependencies : tuple of str
+        The active dependencies; a factor left out is 1.
+
+    Returns
+    -------
+    numpy.ndarray
+        mu_t [-], broadcast over the inputs.
+    """
+    pressure, speed, temperature = np.broadcast_arrays(
+        np.asarray(pressure, dtype=float), np.abs(np.asarray(speed, dtype=float)),
+        np.asarray(temperature, dtype=float))
+    mu = np.full(pressure.shape, float(mu_t0))
+    if "pressure" in dependencies:
+        mu = mu * np.asarray(factors.pressure(pressure)[0])
+    if "velocity" in dependencies:
+        mu = mu * np.asarray(factors.velocity(speed)[0])
+    if "temperature" in dependencies:
+        mu = mu * np.asarray(factors.temperature(temperature)[0])
+    return mu
+
+
 @dataclass(frozen=True)
 class PTVFriction:
     """Pressure, velocity and temperature dependent friction, Eq. 7.
@@ -252,12 +302,17 @@ class PTVFrictionState:
         self._pending: tuple[float, tuple[int, int], float] | None = None
         if self._heating is not None:  # constant arguments of the fused kernel, packed once
             h = self._heating
-            self._parameters = np.array(
-                [h.first_point, h.spacing, h.n_points, h.flux_half_width,
-                 h.average_over_contact, self._initial_temperature, h.coefficient,
-                 *self._kernel_parameters, model.mu_t0, self._use_pressure, self._use_velocity,
-                 self._use_temperature, self._surfaces], dtype=float)
-            assert self._parameters.size == len(PTV_PARAMETERS)
+            code, reference_pressure, rate = self._kernel_parameters
+            self._parameters = pack_ptv({
+                "first_point": h.first_point, "spacing": h.spacing, "n_points": h.n_points,
+                "flux_half_width": h.flux_half_width,
+                "average_over_contact": h.average_over_contact,
+                "initial_temperature": self._initial_temperature,
+                "flux_coefficient": h.coefficient, "factor_code": code,
+                "reference_pressure": reference_pressure, "rate_parameter": rate,
+                "mu_t0": model.mu_t0, "use_pressure": self._use_pressure,
+                "use_velocity": self._use_velocity, "use_temperature": self._use_temperature,
+                "surfaces": self._surfaces})
 
     @property
     def heating(self) -> SurfaceHeating | None:

@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from isolator.compiled import layout as L
 from isolator.compiled.kernels import (
     cold_friction,
     heated_window,
@@ -154,10 +155,12 @@ def bearing_trial(displacement, velocity, time, bearing, ptv, committed, trial, 
         mu, dmu_dspeed, flux = bearing[CONSTANT_MU], 0.0, 0.0
         temperature = bearing[INITIAL_TEMPERATURE]
     elif model == COLD_PTV or dt <= 0.0:
-        mu_cold, dmu_cold = cold_friction(int(ptv[7]), ptv[8], ptv[9], ptv[10], ptv[11] != 0.0,
-                                          ptv[12] != 0.0, bearing[PRESSURE], speed)
-        mu, dmu_dspeed, temperature = solve_friction(int(ptv[7]), mu_cold, dmu_cold,
-                                                     ptv[13] != 0.0,
+        mu_cold, dmu_cold = cold_friction(int(ptv[L.FACTOR_CODE]), ptv[L.REFERENCE_PRESSURE],
+                                          ptv[L.RATE_PARAMETER], ptv[L.MU_T0],
+                                          ptv[L.USE_PRESSURE] != 0.0, ptv[L.USE_VELOCITY] != 0.0,
+                                          bearing[PRESSURE], speed)
+        mu, dmu_dspeed, temperature = solve_friction(int(ptv[L.FACTOR_CODE]), mu_cold, dmu_cold,
+                                                     ptv[L.USE_TEMPERATURE] != 0.0,
                                                      bearing[INITIAL_TEMPERATURE], 0.0, 0.0)
         flux = mu * bearing[PRESSURE] * speed / bearing[SURFACES]
     else:  # the heated model: only it touches the heating arrays
@@ -167,9 +170,10 @@ def bearing_trial(displacement, velocity, time, bearing, ptv, committed, trial, 
             trial[PENDING_DT] = dt
             return 0.0, 0.0, 0.0, STEP_BELOW_MIN_LAG
         # ptv_trial, with contact_history formed from the window held as a group
-        average_over_contact = ptv[4] != 0.0
-        lo, hi, inside = heated_window(displacement / bearing[SURFACES], ptv[0], ptv[1],
-                                       int(ptv[2]), ptv[3], average_over_contact)
+        average_over_contact = ptv[L.AVERAGE_OVER_CONTACT] != 0.0
+        lo, hi, inside = heated_window(displacement / bearing[SURFACES], ptv[L.FIRST_POINT],
+                                       ptv[L.SPACING], int(ptv[L.N_POINTS]),
+                                       ptv[L.FLUX_HALF_WIDTH], average_over_contact)
         if not inside:
             trial[DISPLACEMENT] = displacement
             return 0.0, 0.0, 0.0, LEFT_MONITOR_LINE

@@ -14,6 +14,8 @@ import os
 
 import numpy as np
 
+from isolator.compiled import layout as L
+from isolator.compiled.layout import pack_ptv
 from isolator.factors import (
     kumar_pressure_raw,
     kumar_temperature_raw,
@@ -179,14 +181,6 @@ def heated_window(position, first, spacing, n_points, half_width, average_over_c
     return 0, 0, True
 
 
-PTV_PARAMETERS = (
-    "first_point", "spacing", "n_points", "flux_half_width", "average_over_contact",
-    "initial_temperature", "flux_coefficient", "factor_code", "reference_pressure",
-    "rate_parameter", "mu_t0", "use_pressure", "use_velocity", "use_temperature", "surfaces",
-)
-"""Order of the constant parameters packed into the ``parameters`` array of :func:`ptv_trial`."""
-
-
 @jit
 def ptv_friction(rise, heated, parameters, newest, pressure, speed):
     """Eq. 7 for a contact whose temperature history part is ``rise``: the end of a PTV trial.
@@ -201,14 +195,17 @@ def ptv_friction(rise, heated, parameters, newest, pressure, speed):
     mu, dmu_dspeed, temperature, flux : float
     """
     fraction = 1.0 if heated else 0.0
-    base = parameters[5] + parameters[6] * rise
-    code = int(parameters[7])
-    mu_cold, dmu_cold = cold_friction(code, parameters[8], parameters[9], parameters[10],
-                                      parameters[11] != 0.0, parameters[12] != 0.0, pressure,
+    base = parameters[L.INITIAL_TEMPERATURE] + parameters[L.FLUX_COEFFICIENT] * rise
+    code = int(parameters[L.FACTOR_CODE])
+    mu_cold, dmu_cold = cold_friction(code, parameters[L.REFERENCE_PRESSURE],
+                                      parameters[L.RATE_PARAMETER], parameters[L.MU_T0],
+                                      parameters[L.USE_PRESSURE] != 0.0,
+                                      parameters[L.USE_VELOCITY] != 0.0, pressure,
                                       speed)
-    flux_per_mu_speed = pressure / parameters[14]
+    flux_per_mu_speed = pressure / parameters[L.SURFACES]
     newest_per_mu_speed = newest * fraction * flux_per_mu_speed
-    mu, dmu_dspeed, temperature = solve_friction(code, mu_cold, dmu_cold, parameters[13] != 0.0,
+    mu, dmu_dspeed, temperature = solve_friction(code, mu_cold, dmu_cold,
+                                                 parameters[L.USE_TEMPERATURE] != 0.0,
                                                  base, newest_per_mu_speed * speed,
                                                  newest_per_mu_speed)
     return mu, dmu_dspeed, temperature, mu * flux_per_mu_speed * speed
@@ -221,7 +218,7 @@ def ptv_trial(states, weighted_decay, parameters, position, newest, pressure, sp
     Finds the monitor points under the slider (``position`` on the plate [m]), forms the
     contact temperature from their committed history, and solves Eq. 7 with the newest
     interval's flux q = mu p |v| / surfaces entering the temperature (``newest`` = 2 c
-    sqrt(dt) [degC m^2/W]). ``parameters`` holds the constants named in ``PTV_PARAMETERS``.
+    sqrt(dt) [degC m^2/W]). ``parameters`` is :func:`~isolator.compiled.layout.pack_ptv` of it.
     It is :func:`heated_window`, :func:`contact_history` and :func:`ptv_friction` in turn.
 
     Returns
@@ -232,9 +229,10 @@ def ptv_trial(states, weighted_decay, parameters, position, newest, pressure, sp
     inside : bool
         False when the slider has left the monitor line (nothing else is valid then).
     """
-    average_over_contact = parameters[4] != 0.0
-    lo, hi, inside = heated_window(position, parameters[0], parameters[1], int(parameters[2]),
-                                   parameters[3], average_over_contact)
+    average_over_contact = parameters[L.AVERAGE_OVER_CONTACT] != 0.0
+    lo, hi, inside = heated_window(position, parameters[L.FIRST_POINT], parameters[L.SPACING],
+                                   int(parameters[L.N_POINTS]),
+                                   parameters[L.FLUX_HALF_WIDTH], average_over_contact)
     if not inside:
         return 0.0, 0.0, 0.0, 0.0, 0, 0, False
     if average_over_contact:
@@ -256,6 +254,10 @@ def warm_up() -> None:
         cold_friction(code, 60e6, 100.0, 0.075, True, True, 60e6, 0.4)
         solve_friction(code, 0.07, 0.0, True, 20.0, 1.0, 1.0)
         for average in (1.0, 0.0):
-            parameters = np.array([-1.0, 1.0, 3.0, 0.1, average, 20.0, 1e-4, code, 60e6,
-                                   100.0, 0.075, 1.0, 1.0, 1.0, 2.0])
+            parameters = pack_ptv({
+                "first_point": -1.0, "spacing": 1.0, "n_points": 3.0, "flux_half_width": 0.1,
+                "average_over_contact": average, "initial_temperature": 20.0,
+                "flux_coefficient": 1e-4, "factor_code": code, "reference_pressure": 60e6,
+                "rate_parameter": 100.0, "mu_t0": 0.075, "use_pressure": 1.0,
+                "use_velocity": 1.0, "use_temperature": 1.0, "surfaces": 2.0})
             ptv_trial(states, vec, parameters, 0.0, 0.01, 60e6, 0.4)

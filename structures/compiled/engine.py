@@ -27,7 +27,7 @@ from isolator.bearing import AxialLoadHistory
 from isolator.compiled import bearing as cb
 from isolator.compiled import kernels
 from isolator.compiled.bearing import BEARING_FIELDS
-from isolator.compiled.kernels import PTV_PARAMETERS
+from isolator.compiled.layout import pack_ptv
 from isolator.contact_window import window_history
 from isolator.friction import ConstantFriction, PTVFriction, PTVFrictionState
 from isolator.heating import CentrePoint, MonitorLine
@@ -121,7 +121,7 @@ def _bearing_arrays(model: IsolatedShearBuilding):
     packed[cb.AXIAL_LOAD] = load
     packed[cb.PRESSURE] = load / bearing.contact_area
     packed[cb.INITIAL_MU] = model.element.committed.mu  # as the reference element at rest
-    ptv = np.zeros(len(PTV_PARAMETERS))
+    ptv = pack_ptv({})
     rates, weights, states, heating = np.ones(1), np.zeros(1), np.zeros((1, 1)), None
     if isinstance(friction, ConstantFriction):
         packed[cb.FRICTION_MODEL] = cb.CONSTANT
@@ -158,9 +158,7 @@ def _bearing_arrays(model: IsolatedShearBuilding):
         rates = np.ascontiguousarray(heating.kernel.rates, dtype=float)
         weights = np.ascontiguousarray(heating.kernel.weights, dtype=float)
         states = np.zeros((heating.n_points, rates.size))
-    for i, name in enumerate(PTV_PARAMETERS):
-        ptv[i] = values.get(name, 0.0)
-    return packed, ptv, rates, weights, states, heating
+    return packed, pack_ptv(values), rates, weights, states, heating
 
 
 def _method_array(method: Newmark | HHT, tolerance: float, max_iterations: int,
@@ -291,8 +289,7 @@ def warm_up_late() -> float:
     heating = cb.new_heating(np.ones(1), np.zeros(1), np.zeros((1, 1)))
     cb._move_window(heating, 0, 1, 0.0)
     window_history(heating[cb.ACCUMULATOR], heating[cb.OFFSETS], heating[cb.DECAYS][0], 1)
-    ptv = np.zeros(len(PTV_PARAMETERS))
-    ptv[PTV_PARAMETERS.index("surfaces")] = 2.0
+    ptv = pack_ptv({"surfaces": 2.0})
     ptv_friction(0.0, True, ptv, 0.0, 6.0e7, 0.1)
     cb.bearing_commit(np.zeros(cb.BEARING_PARAMETERS), workspace[compiled.COMMITTED],
                       workspace[compiled.TRIAL], heating)  # nothing pending: a copy
