@@ -21,6 +21,8 @@ import json
 import math
 from typing import Any
 
+from dcfpb.cli.run import add_record_options
+
 MODELS = ("constant", "velocity", "ptv")
 _ELEMENT = {"constant": "coulomb", "velocity": "velocity", "ptv": "ptv"}
 _ROWS = (("isolator_displacement", "isolator displacement"), ("base_shear", "base shear"),
@@ -53,6 +55,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="time integration (default: the building file's)")
     p.add_argument("--alpha", type=float, help="HHT alpha in [-1/3, 0] (OpenSees: 1 + alpha)")
     p.add_argument("--dt", type=float, help="analysis time step [s] (default: the file's)")
+    add_record_options(p)
     p.add_argument("--json", action="store_true", help="print the comparison as JSON")
     p.add_argument("--plot", metavar="DIR", help="write overlay plots to this folder")
     p.set_defaults(handler=run_building)

@@ -25,10 +25,37 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="time integration (default: the building file's)")
     p.add_argument("--alpha", type=float, help="HHT alpha in [-1/3, 0]")
     p.add_argument("--dt", type=float, help="analysis time step [s] (default: the file's)")
+    add_record_options(p)
     p.add_argument("--json", action="store_true", help="print the peaks as JSON")
     p.add_argument("--output", metavar="FILE.nc", help="write the full result to netCDF")
     p.add_argument("--plot", metavar="DIR", help="write plots to this folder")
     p.set_defaults(handler=_run_building)
+
+
+RECORD_UNITS = ("g", "gal", "cm/s^2", "m/s^2", "mm/s^2", "in/s^2", "ft/s^2")
+"""The ``--units`` choices: `groundmotions.units.UNIT_NAMES` written out (parsing imports no
+numpy; a test holds the two equal)."""
+
+
+def add_record_options(p: argparse.ArgumentParser, dt_flags: tuple[str, ...] = ("--record-dt",),
+                       ) -> None:
+    """Add ``--units`` and ``--record-dt`` (the record's own step, not the analysis step) to
+    a command that reads ``--record``/``FILE`` with :func:`read_record_from_args`."""
+    p.add_argument("--units", choices=RECORD_UNITS,
+                   help="units of the record's values when its header states none (default: "
+                   "the header's, else g); units that disagree with the header are refused")
+    p.add_argument(*dt_flags, dest="record_dt", type=float, metavar="DT",
+                   help="time step of a one-column text record [s]; for a two-column or PEER "
+                   "record it must agree with the file's")
+
+
+def read_record_from_args(path: str, args: argparse.Namespace):
+    """The record at ``path`` read with ``args.units`` and ``args.record_dt`` (when the command
+    has them): a `groundmotions.records.GroundMotion` [m/s^2]."""
+    from groundmotions.readers import read_record
+
+    return read_record(path, units=getattr(args, "units", None),
+                       dt=getattr(args, "record_dt", None))
 
 
 def integrator_from_args(config, kind: str | None, alpha: float | None):
@@ -47,8 +74,9 @@ def integrator_from_args(config, kind: str | None, alpha: float | None):
 def building_run_inputs(args: argparse.Namespace, command: str):
     """The building file, the integrator and the (scaled) record of a building command.
 
-    Reads ``args.building``, ``args.integrator``, ``args.alpha``, ``args.record`` and
-    ``args.scale``; every value is checked before any work starts.
+    Reads ``args.building``, ``args.integrator``, ``args.alpha``, ``args.record`` (with
+    ``args.units`` and ``args.record_dt`` when given) and ``args.scale``; every value is
+    checked before any work starts.
 
     Returns
     -------
@@ -57,13 +85,12 @@ def building_run_inputs(args: argparse.Namespace, command: str):
     motion : GroundMotion
     """
     from dcfpb.validation import check_real
-    from groundmotions.readers import read_record
     from structures.config import load_config
 
     check_real(args.scale, "scale", command, low=0.0, low_open=True)
     config = load_config(args.building)
     integrator = integrator_from_args(config, args.integrator, args.alpha)
-    motion = read_record(args.record)
+    motion = read_record_from_args(args.record, args)
     if args.scale != 1.0:
         motion = motion.scaled(args.scale)
     return config, integrator, motion

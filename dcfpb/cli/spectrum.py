@@ -1,7 +1,9 @@
 """The ``dcfpb spectrum`` command: peak values, Arias intensity, durations and spectra of a record.
 
-``dcfpb spectrum FILE [--damping 0.05] [--periods T ...] [--json] [--plot FILE.png]`` reads a
-PEER .AT2 or text record (`groundmotions.readers.read_record`) and prints PGA, PGV, PGD, the
+``dcfpb spectrum FILE [--units U] [--dt DT] [--damping 0.05] [--periods T ...] [--json]
+[--plot FILE.png]`` reads a PEER .AT2 or text record (`groundmotions.readers.read_record`;
+``--units`` when the header states none, ``--dt`` or ``--record-dt`` the step of a one-column
+text record) and prints PGA, PGV, PGD, the
 Arias intensity, the D5-75 and D5-95 significant durations and a table of Sd, Sv and Sa at
 standard (or the given) periods; ``--plot`` draws the three spectra on a dense period grid.
 The record is used as read: no baseline correction or filtering.
@@ -18,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from dcfpb.cli.run import add_record_options, read_record_from_args
 from dcfpb.units import STANDARD_GRAVITY
 
 STANDARD_PERIODS = (0.0, 0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0)
@@ -32,11 +35,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p = subparsers.add_parser(
         "spectrum",
         help="peak values, Arias intensity, durations and response spectra of a record",
-        description="Read a ground-motion record (PEER .AT2 or text, acceleration in g) and "
+        description="Read a ground-motion record (PEER .AT2 or text; acceleration in the "
+        "units its header states, else --units, else g) and "
         "print PGA, PGV, PGD, Arias intensity, D5-75, D5-95 and elastic response spectra "
         "(exact piecewise-linear recurrence). All values in SI units.",
     )
     p.add_argument("record", metavar="FILE", help="ground-motion record")
+    add_record_options(p, ("--record-dt", "--dt"))
     p.add_argument("--damping", type=float, default=0.05, help="damping ratio (default 0.05)")
     p.add_argument("--periods", type=float, nargs="+", metavar="T",
                    help="periods of the table [s] (default: 0, 0.05 ... 5 s)")
@@ -74,9 +79,7 @@ def summarise(motion: Any, periods: Any, damping: float) -> dict[str, Any]:
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb spectrum``; returns the exit status."""
-    from groundmotions.readers import read_record
-
-    motion = read_record(args.record)
+    motion = read_record_from_args(args.record, args)
     periods = STANDARD_PERIODS if args.periods is None else args.periods
     summary = summarise(motion, periods, args.damping)
     if args.plot:
