@@ -24,7 +24,7 @@ from scipy.optimize import minimize_scalar
 
 from dcfpb.validation import check_choice, check_real
 from isolator.bearing import AxialLoadHistory, DCFPBearing
-from isolator.diagnosis.data import Campaign
+from isolator.diagnosis.data import Campaign, check_plausible
 from isolator.diagnosis.features import (
     Features,
     measured_temperature_rise,
@@ -144,7 +144,12 @@ class BaselineFit:
 def calibrate(campaign: Campaign, features: Features, spec: BaselineSpec) -> BaselineFit:
     """Fit the baseline's own parameters to the whole campaign (see the module docstring):
     mu (or mu_t0), the pre-sliding transition u_y (down to the rigid-plastic limit) and the
-    time offset between the force and displacement channels (to a fraction of a sample)."""
+    time offset between the force and displacement channels (to a fraction of a sample).
+
+    The tests' levels are checked first (:func:`~isolator.diagnosis.data.check_plausible`):
+    a unit mistake or a wrong R_eff or axial load would otherwise end in a verdict on
+    nonsense or in a friction coefficient blamed on the sign convention of the force."""
+    check_plausible(campaign)
     dt = float(np.median(np.diff(features.time)[np.diff(features.test) == 0]))
     t0 = _initial_temperature(campaign)
     iterations = 0

@@ -6,7 +6,10 @@ A test is a CSV file with a header line and the columns ``time`` [s], ``displace
 Gzipped files (``.csv.gz``) are read as they are. Every problem is reported with the file, the
 column and the row (the first data row is row 2, after the header), before any fitting starts:
 missing columns, non-numeric values, NaNs, columns of different lengths, time that does not
-increase, a non-positive axial force, a displacement that looks like millimetres.
+increase, a non-positive axial force, a displacement that looks like millimetres; then the
+levels a campaign's tests imply (velocity, friction coefficient, pendulum slope), which betray
+time in ms, force in kN, a dead force channel, a wrong R_eff or axial load
+(:func:`check_plausible`).
 
 A :class:`Campaign` is the tests of one bearing in the order they were run (wear accumulates
 across them), with the bearing's effective radius (``inf`` for a flat slider or a friction
@@ -252,13 +255,51 @@ def load_campaign(
 ) -> Campaign:
     """Read the tests of a campaign, in the order given (the order they were run).
 
-    See :func:`read_record` for ``axial_load`` and the errors.
+    See :func:`read_record` for ``axial_load`` and the errors; the tests' physical levels are
+    then checked against unit mistakes (:func:`check_plausible`).
     """
     if isinstance(paths, str | Path) or not paths:
         raise DataError("load_campaign needs a list of one or more CSV files.")
     tests = tuple(read_record(p, axial_load=axial_load) for p in paths)
     check_consistent_units(tests)
-    return Campaign(tests, effective_radius, slider_diameter)
+    campaign = Campaign(tests, effective_radius, slider_diameter)
+    source = "column 'axial_force'" if axial_load is None else "the axial load given"
+    check_plausible(campaign, [str(p) for p in paths], [source] * len(tests))
+    return campaign
+
+
+def check_plausible(campaign: Campaign, where: Sequence[str] | None = None,
+                    load_sources: Sequence[str] | None = None) -> None:
+    """Refuse tests whose implied physical levels betray a unit mistake, before any fitting.
+
+    The sample interval, the peak velocity, the friction coefficient the loops imply and
+    their slope against N / R_eff are checked (:mod:`isolator.diagnosis.plausibility`).
+
+    Parameters
+    ----------
+    campaign : Campaign
+        The tests and the effective radius R_eff [m] told.
+    where : sequence of str, optional
+        Per test, the file (and manifest test) to name; default ``test 'name'``.
+    load_sources : sequence of str, optional
+        Per test, where its axial load [N] came from; default "the axial load".
+
+    Raises
+    ------
+    DataError
+        Naming the file, the column or value, the implied level, the allowed range and the
+        likely mistake ("time looks like milliseconds", "force looks like kN", ...).
+    """
+    from isolator.diagnosis.plausibility import implausibility, implied_levels
+
+    for k, test in enumerate(campaign.tests):
+        levels = implied_levels(test.time, test.displacement, test.force, test.axial_force,
+                                derived_velocity(test.time, test.displacement))
+        message = implausibility(levels, campaign.effective_radius,
+                                 where[k] if where else f"test {test.name!r}",
+                                 load_sources[k] if load_sources else "the axial load")
+        if message:
+            raise DataError(message)
 
 
 UNIT_RATIO = 30.0  # tests of one campaign whose scales differ more than this mix units

@@ -30,6 +30,7 @@ from isolator.diagnosis.data import (
     Campaign,
     DataError,
     check_consistent_units,
+    check_plausible,
     read_record,
 )
 
@@ -117,7 +118,8 @@ def load_manifest(
     ------
     DataError
         Naming the manifest, the test and the problem: a missing file, a load that disagrees
-        with the file's column, a campaign that mixes units.
+        with the file's column, a campaign that mixes units, levels that betray a unit
+        mistake or a wrong R_eff or axial load (:func:`~isolator.diagnosis.data.check_plausible`).
     """
     path = Path(path)
     rows, top = read_manifest(path)
@@ -126,14 +128,18 @@ def load_manifest(
     if radius is None or diameter is None:
         raise DataError(f"{path}: give the effective radius and the slider diameter (on the "
                         "command line, or in a TOML manifest).")
-    tests = []
+    tests, places, sources = [], [], []
     for number, row in enumerate(rows, start=1):
         file = (path.parent / row["file"]).resolve()
         where = f"{path}: test {number} ({row['file']})"
+        places.append(where)
         if not file.is_file():
             raise DataError(f"{where}: the file does not exist ({file}).")
         load = row["axial_load"] if row["axial_load"] is not None else axial_load
         has_column = _has_axial_column(file)
+        sources.append("column 'axial_force'" if has_column else
+                       "the manifest's axial_load" if row["axial_load"] is not None else
+                       "the axial load given")
         if has_column and row["axial_load"] is not None:
             record = read_record(file, initial_temperature=row["initial_temperature"],
                                  rest_before=row["rest_before"])
@@ -151,7 +157,9 @@ def load_manifest(
                                  rest_before=row["rest_before"])
         tests.append(record)
     check_consistent_units(tests)
-    return Campaign(tuple(tests), float(radius), float(diameter))
+    campaign = Campaign(tuple(tests), float(radius), float(diameter))
+    check_plausible(campaign, places, sources)
+    return campaign
 
 
 def _has_axial_column(file: Path) -> bool:

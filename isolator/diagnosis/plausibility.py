@@ -1,0 +1,278 @@
+"""Plausibility of a bearing test's physical levels: catch unit mistakes before any fitting.
+
+A test in the wrong units still reads (every value is a finite number) and a friction model
+can still be fitted to it, so the diagnosis would hand back a verdict on nonsense: a time
+column in milliseconds makes every velocity 1000 times too small (the friction looks
+velocity-independent), a force in kN makes the friction coefficient 1000 times too small,
+and a wrong effective radius or axial load turns the pendulum's restoring force into an
+"unmodelled stiffness" or into a force that seems to push along the motion. So every test
+is checked, after it is read and before the campaign is fitted, for the levels it implies:
+
+1. the force column must vary (an all-zero or constant column is a dead channel);
+2. the sample interval and the peak velocity |du/dt| must be those of a bearing test
+   (:data:`MAX_SAMPLE_INTERVAL`, :data:`VELOCITY_RANGE`);
+3. in the sliding phase the force must follow the direction of motion (a friction loop
+   standing out of the scatter) and resist it (the sign convention);
+4. the friction coefficient the loop implies, its half-height over the axial load, must lie in
+   :data:`MU_RANGE`;
+5. the slope of force against displacement must be the pendulum's N / R_eff within a factor
+   of :data:`STIFFNESS_FACTOR` (not for R_eff = inf: a friction damper's loops tilt too).
+
+The friction level and the slope come from one least-squares fit on the sliding-phase
+samples (|v| above :data:`SLIDING_FRACTION` of its peak): force = k u + F sign(v) + c. F
+(the loop's half-height) and k are independent of the R_eff and the axial load told, so they
+tell a unit mistake in the force (both off by the same factor 1000) from a wrong R_eff (only
+the slope off). :func:`implausibility` returns the first failure as a message naming the file
+or test, the column or value, the implied level, the allowed range and the likely mistake;
+:func:`isolator.diagnosis.data.check_plausible` raises it as a ``DataError``. This module
+works on plain arrays and imports nothing of the project, so the input layer can use it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+MU_RANGE = (0.003, 0.8)
+"""Allowed friction coefficient implied by the loop, F / N [-].
+
+Sliding bearings span about 0.005 (lubricated PTFE at high pressure) to 0.15 (dry composites
+at high speed, breakaway up to 0.3); friction dampers with metal or brake-lining interfaces
+reach 0.5-0.6 (and the real friction-damper data the tests diagnose, over a nominal 100 kN,
+reach about 0.2). The bounds leave margin on both sides and are only 270 apart, so a factor
+of 1000 (kN for N, or an axial load in kN) takes any real coefficient outside them.
+"""
+VELOCITY_RANGE = (1.0e-3, 5.0)
+"""Allowed peak |du/dt| of a test [m/s].
+
+Below 1 mm/s a test is a creep test, not what the friction models describe, and a time column
+in milliseconds puts a typical 0.05-1 m/s test at 0.05-1 mm/s. The fastest bearing rigs and
+shake tables reach about 2 m/s; a displacement in millimetres makes a 5 mm/s test 5 m/s.
+"""
+MAX_SAMPLE_INTERVAL = 0.1
+"""Largest median sample interval [s] (10 Hz).
+
+The diagnosis resolves the force after each reversal (a few mm of travel) and its thresholds
+were chosen on 100-500 Hz records (the real data: 256 Hz); a time column in milliseconds
+makes a record sampled below 10 kHz show an interval of 0.1 s or more.
+"""
+STIFFNESS_FACTOR = 3.0
+"""Largest factor between the loops' slope and N / R_eff [-].
+
+An unmodelled stiffness or another radius than the one told (the ``stiffness`` effect, e.g.
+3.6 m told 4.5 m, a factor 1.25) and the flattening of a spherical surface are well inside a
+factor of 3; a larger factor is a wrong R_eff or axial load, which the diagnosis would
+otherwise blame on an effect or on the sign convention.
+"""
+SLIDING_FRACTION = 0.2
+"""Samples with |v| above this fraction of the peak velocity are taken as sliding [-]."""
+MIN_LOOP_CONTRAST = 0.15
+"""The loop's half-height must exceed this multiple of the fit's residual RMS [-].
+
+A force channel with noise only gives about scatter / sqrt(samples), under 0.05 for a few
+hundred samples; the project's panels show 2.4-42 and the real friction-damper data, whose
+backlash loops a sign(v) fits poorly, 0.41-2.4."""
+_UNIT = 1000.0  # the factor of the unit mistakes named (ms, mm, kN)
+
+
+@dataclass(frozen=True)
+class Levels:
+    """The physical levels a test implies (SI units).
+
+    Parameters
+    ----------
+    sample_interval : float
+        Median sample interval [s].
+    peak_velocity : float
+        Peak |du/dt| from the displacement and the time [m/s].
+    friction_force : float
+        Half-height of the sliding-phase loop, F [N] (negative: the force aids the motion).
+    slope : float
+        Slope of force against displacement in the sliding phase, k [N/m].
+    scatter : float
+        RMS of the sliding-phase force about the fit [N].
+    axial_load : float
+        Mean axial load [N].
+    stroke : float
+        99th percentile of |u| [m].
+    force_range : float
+        Peak-to-peak force [N] (zero: a dead channel).
+    first_force : float
+        The first force value [N].
+    """
+
+    sample_interval: float
+    peak_velocity: float
+    friction_force: float
+    slope: float
+    scatter: float
+    axial_load: float
+    stroke: float
+    force_range: float
+    first_force: float
+
+    @property
+    def mu(self) -> float:
+        """Implied friction coefficient F / N [-]."""
+        return self.friction_force / self.axial_load
+
+
+def implied_levels(time: np.ndarray, displacement: np.ndarray, force: np.ndarray,
+                   axial_force: np.ndarray, velocity: np.ndarray) -> Levels:
+    """The sample interval, peak velocity, loop half-height and slope of one test.
+
+    Nothing is assumed about the units here: the levels are those the numbers imply if they
+    are in s, m and N.
+
+    Parameters
+    ----------
+    time : numpy.ndarray
+        Strictly increasing sample times [s].
+    displacement : numpy.ndarray
+        Relative displacement u [m].
+    force : numpy.ndarray
+        Horizontal force [N].
+    axial_force : numpy.ndarray
+        Axial load [N].
+    velocity : numpy.ndarray
+        du/dt derived from ``displacement`` and ``time`` [m/s] (not a measured velocity
+        column, whose units are not the ones checked).
+
+    Returns
+    -------
+    Levels
+    """
+    u = np.asarray(displacement, dtype=float)
+    force = np.asarray(force, dtype=float)
+    velocity = np.asarray(velocity, dtype=float)
+    peak = float(np.max(np.abs(velocity)))
+    sliding = np.abs(velocity) > SLIDING_FRACTION * peak
+    if np.count_nonzero(sliding) < 4:
+        sliding = np.ones(u.size, dtype=bool)
+    design = np.column_stack([u[sliding], np.sign(velocity[sliding]),
+                              np.ones(np.count_nonzero(sliding))])
+    coef, *_ = np.linalg.lstsq(design, force[sliding], rcond=None)
+    residual = force[sliding] - design @ coef
+    return Levels(float(np.median(np.diff(time))), peak, float(coef[1]), float(coef[0]),
+                  float(np.sqrt(np.mean(residual**2))), float(np.mean(axial_force)),
+                  float(np.percentile(np.abs(u), 99)), float(np.ptp(force)), float(force[0]))
+
+
+def implausibility(levels: Levels, effective_radius: float, where: str,
+                   load_source: str = "the axial load") -> str | None:
+    """The first unit mistake the levels of one test betray, as a message; None if none.
+
+    Parameters
+    ----------
+    levels : Levels
+        From :func:`implied_levels`.
+    effective_radius : float
+        The effective radius R_eff told [m]; ``inf`` for a flat slider or a friction damper.
+    where : str
+        The file (and test of a manifest) to name in the message.
+    load_source : str
+        Where the axial load came from (a column, a flag, a manifest), for the message.
+
+    Returns
+    -------
+    str or None
+        The message: ``where``, the column or value, the implied level, the allowed range
+        and the likely mistake.
+    """
+    if levels.force_range == 0.0:
+        state = ("all zero" if levels.first_force == 0.0
+                 else f"constant at {levels.first_force:.6g} N")
+        return (f"{where}: column 'force' is {state}; it must vary with the motion. The force "
+                "channel recorded nothing (a disconnected load cell, or the wrong column?).")
+    for check in (_check_time, _check_loop):
+        message = check(levels, where)
+        if message:
+            return message
+    return (_check_friction(levels, where, load_source)
+            or _check_slope(levels, effective_radius, where, load_source))
+
+
+def _check_time(levels: Levels, where: str) -> str | None:
+    dt, peak = levels.sample_interval, levels.peak_velocity
+    low, high = VELOCITY_RANGE
+    if dt > MAX_SAMPLE_INTERVAL:
+        return (f"{where}: time looks like milliseconds: column 'time' has a sample interval "
+                f"of {dt:.4g} s ({1.0 / dt:.3g} Hz); allowed: at most {MAX_SAMPLE_INTERVAL:g} s "
+                f"(peak velocity |du/dt| {peak:.3g} m/s). If time is in ms, divide "
+                "it by 1000.")
+    if peak < low:
+        return (f"{where}: time looks like milliseconds: the peak velocity |du/dt| of columns "
+                f"'displacement' and 'time' is {peak:.3g} m/s, outside the {low:g}-{high:g} "
+                f"m/s of a bearing test (sample interval {dt:.4g} s). If time is in ms, "
+                "divide it by 1000.")
+    if peak > high:
+        return (f"{where}: displacement looks like mm: the peak velocity |du/dt| of columns "
+                f"'displacement' and 'time' is {peak:.3g} m/s, outside the {low:g}-{high:g} "
+                f"m/s of a bearing test (stroke {levels.stroke:.4g}). If displacement is in "
+                "mm, divide it by 1000.")
+    return None
+
+
+def _check_loop(levels: Levels, where: str) -> str | None:
+    f, scatter = levels.friction_force, levels.scatter
+    if abs(f) < MIN_LOOP_CONTRAST * scatter:
+        return (f"{where}: column 'force' shows no friction loop: its sliding-phase level "
+                f"(loop half-height) is {f:.4g} N against a scatter of {scatter:.4g} N, "
+                f"below the {MIN_LOOP_CONTRAST:g} x scatter allowed; the force does not "
+                "follow the direction of motion (a dead or wrong force channel?).")
+    if f < 0.0:
+        return (f"{where}: column 'force' looks sign-reversed: in the sliding phase it pushes "
+                f"along the motion (loop half-height {f:.4g} N, mu = {levels.mu:.3g}, "
+                "allowed: positive); the force must resist the imposed displacement. "
+                "Multiply it by -1.")
+    return None
+
+
+def _check_friction(levels: Levels, where: str, load_source: str) -> str | None:
+    mu, (low, high) = levels.mu, MU_RANGE
+    if low <= mu <= high:
+        return None
+    text = (f"{where}: the friction coefficient implied by column 'force' (loop half-height "
+            f"{levels.friction_force:.4g} N) over {load_source} ({levels.axial_load:.6g} N) "
+            f"is {mu:.3g}, outside the {low:g}-{high:g} of a sliding bearing: ")
+    if mu < low:
+        hint = ("force looks like kN: multiply it by 1000 (or the axial load is 1000 times "
+                "too large)" if low <= _UNIT * mu <= high else
+                "the force is far too small for the axial load; check the units of both")
+    else:
+        hint = (f"{load_source} looks like kN: give it in N (multiply it by 1000)"
+                if low <= mu / _UNIT <= high else
+                "the force is far too large for the axial load; check the units of both")
+    return text + hint + "."
+
+
+def _check_slope(levels: Levels, effective_radius: float, where: str,
+                 load_source: str) -> str | None:
+    n, k, stroke = levels.axial_load, levels.slope, levels.stroke
+    if math.isinf(effective_radius):
+        # no slope bound for a flat slider or a friction damper: the real damper data's loops
+        # tilt as steeply as a pendulum's (backlash, band stiffness: restoring force at the
+        # stroke up to 6 times the friction, "radii" of 0.06-0.7 m at a nominal 100 kN that
+        # grow with the nominal load), so a forgotten R_eff cannot be told from them; the
+        # diagnosis names it ``stiffness`` with the apparent R_eff
+        return None
+    expected = n / effective_radius
+    ratio = k / expected
+    # a factor only counts where the mismatch is a visible part of the loop
+    visible = abs(k - expected) * stroke > 0.5 * levels.friction_force
+    if not visible or 1.0 / STIFFNESS_FACTOR <= ratio <= STIFFNESS_FACTOR:
+        return None
+    text = (f"the loops' slope of force against displacement is {k:.4g} N/m, "
+            f"{ratio:.3g} times the pendulum's N / R_eff = {expected:.4g} N/m (R_eff = "
+            f"{effective_radius:g} m, {load_source} {n:.6g} N; allowed: a factor of "
+            f"{STIFFNESS_FACTOR:g} either way)")
+    if 1.0 / (STIFFNESS_FACTOR * _UNIT) <= ratio <= STIFFNESS_FACTOR / _UNIT:
+        return (f"{where}: displacement looks like mm: {text}; if displacement is in mm, "
+                "divide it by 1000.")
+    implied = (f"; the slope implies R_eff = {n / k:.3g} m at that load, or an axial load of "
+               f"{k * effective_radius:.4g} N at that R_eff" if k > 0.0 else
+               "; the force falls as the displacement grows")
+    return (f"{where}: R_eff or the axial load looks wrong: {text}{implied}. The diagnosis "
+            "would blame it on an effect or on the sign convention of 'force'.")
