@@ -27,7 +27,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from dcfpb.errors import InputError
 from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.validation import check_real
 from groundmotions.records import RecordFormatError
 from groundmotions.units import (
     DEFAULT_UNITS,
@@ -42,7 +44,7 @@ from groundmotions.units import (
     quantity_of,
 )
 
-__all__ = ["RecordUnits", "check_finite", "check_plausible", "first_non_number",
+__all__ = ["RecordUnits", "check_finite", "check_plausible", "check_step", "first_non_number",
            "line_of_value", "read_lines", "record_units"]
 
 _OTHER_QUANTITY = re.compile(r"\b(VELOCITY|DISPLACEMENT)\s+TIME\s+(HISTORY|SERIES)", re.IGNORECASE)
@@ -113,7 +115,16 @@ def check_finite(path: Path, values: np.ndarray, line_ends: Sequence[tuple[int, 
     if bad.size:
         index = int(bad[0])
         raise RecordFormatError(path, line_of_value(line_ends, index),
-                                f"value {index + 1} is {values[index]!r}, not finite")
+                                f"value {index + 1} is {float(values[index])!r}, not finite")
+
+
+def check_step(dt: object, owner: str) -> float:
+    """A time step given by the caller [s], > 0 and finite; `InputError` otherwise (the
+    message of `dcfpb.validation.check_real`)."""
+    try:
+        return check_real(dt, "dt", owner, low=0.0, low_open=True)
+    except ValueError as error:
+        raise InputError(str(error)) from None
 
 
 # ------------------------------------------------------------------------------------ units

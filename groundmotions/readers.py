@@ -22,8 +22,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from dcfpb.errors import InputError
-from dcfpb.validation import check_real
-from groundmotions.filetext import read_lines
+from groundmotions.filetext import check_step, read_lines
 from groundmotions.peer import has_npts_line, parse_peer, read_peer_at2
 from groundmotions.records import GroundMotion, PathLike
 from groundmotions.text_records import read_text_record
@@ -75,7 +74,7 @@ def read_record(
     if path.suffix.lower() == ".at2" or has_npts_line(lines):
         motion = parse_peer(path, lines, name, units)
         if dt is not None:
-            given = check_real(dt, "dt", "read_record", low=0.0, low_open=True)
+            given = check_step(dt, "read_record")
             if abs(given - motion.dt) > 1e-3 * motion.dt:
                 raise InputError(
                     f"The 'dt' parameter of read_record must agree with the DT of "

@@ -15,10 +15,10 @@ from typing import Any
 import numpy as np
 
 from dcfpb.errors import InputError
-from dcfpb.validation import check_real
 from groundmotions.filetext import (
     check_finite,
     check_plausible,
+    check_step,
     first_non_number,
     read_lines,
     record_units,
@@ -99,7 +99,7 @@ def _time_step(path: Path, times: np.ndarray, numbers: list[int], dt: float | No
             f"{typical:.6g} s: the record is not uniformly sampled",
         )  # fmt: skip
     if dt is not None:
-        given = check_real(dt, "dt", _OWNER, low=0.0, low_open=True)
+        given = check_step(dt, _OWNER)
         if abs(given - step) > 1e-3 * step:
             raise InputError(
                 f"The 'dt' parameter of {_OWNER} must agree with the time column of "
@@ -159,7 +159,7 @@ def read_text_record(
                 f"The 'dt' parameter of {_OWNER} must be a float in (0, inf) for the one-column "
                 f"file {path.name} (--record-dt on the command line). Got None instead."
             )
-        step = check_real(dt, "dt", _OWNER, low=0.0, low_open=True)
+        step = check_step(dt, _OWNER)
     else:
         start_time = float(table[0, 0])
         step = _time_step(path, table[:, 0], numbers, dt)
