@@ -1,1 +1,73 @@
-"""Isolator layer: friction laws, frictional heating, the DCFPB element, bearing tests."""
+"""Isolator layer: friction laws, frictional heating, the DCFPB element, bearing tests, the
+force-deflection characteristics and the diagnosis of the sim-to-real gap
+(:mod:`isolator.diagnosis`); the compiled element and its kernels in :mod:`isolator.compiled`.
+
+The names in ``__all__`` are importable from the package (on first use: the element's kernels
+import numba)::
+
+    from isolator import DCFPBearing, PTVFriction, MonitorLine, run_test, sine
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from dcfpb.lazy import lazy_exports
+
+_EXPORTS = {
+    "DCFPBearing": "isolator.bearing",
+    "AxialLoadHistory": "isolator.bearing",
+    "BearingElement": "isolator.bearing",
+    "ConstantFriction": "isolator.friction",
+    "PTVFriction": "isolator.friction",
+    "eq7": "isolator.friction",
+    "MonitorLine": "isolator.heating",
+    "CentrePoint": "isolator.heating",
+    "ThermalProperties": "isolator.heating",
+    "PaperFactors": "isolator.factors",
+    "KumarFactors": "isolator.factors",
+    "friction_model": "isolator.experiments",
+    "protocol_bearing": "isolator.experiments",
+    "ImposedHistory": "isolator.protocols",
+    "sine": "isolator.protocols",
+    "asce7_prototype_sequence": "isolator.protocols",
+    "wind_cycles": "isolator.protocols",
+    "run_test": "isolator.testrig",
+    "BearingTestResult": "isolator.testrig",
+    "CycleCharacteristics": "isolator.characteristics",
+    "cycle_characteristics": "isolator.characteristics",
+}
+__all__ = [
+    "AxialLoadHistory",
+    "BearingElement",
+    "BearingTestResult",
+    "CentrePoint",
+    "ConstantFriction",
+    "CycleCharacteristics",
+    "DCFPBearing",
+    "ImposedHistory",
+    "KumarFactors",
+    "MonitorLine",
+    "PTVFriction",
+    "PaperFactors",
+    "ThermalProperties",
+    "asce7_prototype_sequence",
+    "cycle_characteristics",
+    "eq7",
+    "friction_model",
+    "protocol_bearing",
+    "run_test",
+    "sine",
+    "wind_cycles",
+]
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
+
+if TYPE_CHECKING:
+    from isolator.bearing import AxialLoadHistory, BearingElement, DCFPBearing
+    from isolator.characteristics import CycleCharacteristics, cycle_characteristics
+    from isolator.experiments import friction_model, protocol_bearing
+    from isolator.factors import KumarFactors, PaperFactors
+    from isolator.friction import ConstantFriction, PTVFriction, eq7
+    from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
+    from isolator.protocols import ImposedHistory, asce7_prototype_sequence, sine, wind_cycles
+    from isolator.testrig import BearingTestResult, run_test

@@ -10,13 +10,26 @@ isolation level.
 from __future__ import annotations
 
 import dataclasses
+import warnings
 
 import numpy as np
 
+from dcfpb.errors import InputWarning
 from dcfpb.validation import check_int
-from isolator.bearing import BearingElement, DCFPBearing
+from isolator.bearing import AxialLoadHistory, BearingElement, DCFPBearing
 from structures.model import RestoringForce
 from structures.shear_building import ShearBuilding
+
+
+def _warn_if_replaced(given: object, load: float, n_bearings: int) -> None:
+    """Say so when the building replaces an axial load the bearing was given."""
+    if given is None:
+        return
+    if isinstance(given, AxialLoadHistory) or abs(float(given) - load) > 1e-9 * load:
+        warnings.warn(
+            f"The bearing's 'axial_load' ({given!r}) is replaced by the building's weight "
+            f"shared by its {n_bearings} bearing(s), W / n = {load:.6g} N; describe the "
+            "bearing with axial_load=None.", InputWarning, stacklevel=3)
 
 
 class IsolatedShearBuilding:
@@ -27,8 +40,10 @@ class IsolatedShearBuilding:
     building : ShearBuilding
         Floor masses, storey stiffnesses, base slab mass and superstructure damping.
     bearing : DCFPBearing
-        One bearing of the isolation level. Its axial load is replaced by the building's
-        weight shared equally by the bearings, W / n_bearings.
+        One bearing of the isolation level, best described without an axial load
+        (``axial_load=None``): its load is the building's weight shared equally by the
+        bearings, W / n_bearings. A load given on the bearing that differs from it is replaced,
+        with an :class:`~dcfpb.errors.InputWarning`.
     n_bearings : int
         Number of identical bearings under the base slab.
     """
@@ -42,7 +57,9 @@ class IsolatedShearBuilding:
                             f"DCFPBearing. Got {bearing!r} instead.")
         self.n_bearings = check_int(n_bearings, "n_bearings", type(self).__name__, low=1)
         self.building = building
-        self.bearing = dataclasses.replace(bearing, axial_load=building.weight / self.n_bearings)
+        load = building.weight / self.n_bearings
+        _warn_if_replaced(bearing.axial_load, load, self.n_bearings)
+        self.bearing = dataclasses.replace(bearing, axial_load=load)
         self.element: BearingElement = self.bearing.element()
         self._mass = building.isolated_mass_matrix
         self._damping = building.isolated_damping_matrix

@@ -104,7 +104,7 @@ def test_fpbearingptv_refuses_hht():
     from structures.opensees.building import run_opensees
 
     building = ShearBuilding.from_period(MASSES, 0.6, base_mass=5e5)
-    bearing = shaped_bearing(DCFPBearing(4.5, 0.3, 1.0, PTVFriction(0.075)), "ptv")
+    bearing = shaped_bearing(DCFPBearing(4.5, 0.3, None, PTVFriction(0.075)), "ptv")
     motion = GroundMotion(np.zeros(5), 0.01, "zeros")
     with pytest.raises(ValueError, match="Newmark for FPBearingPTV"):
         run_opensees(building, bearing, motion, HHT(-0.05))
