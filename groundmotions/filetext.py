@@ -272,7 +272,9 @@ def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
         look = f"the values look like {look}"
     else:
         look = f"no known unit brings it into {TYPICAL_PGA_G[0]:g}-{TYPICAL_PGA_G[1]:g} g"
-    if units.source == "header":
+    if not candidates:
+        advice = "check the values"
+    elif units.source == "header":
         advice = (f"the header says {units.written!r} on line {units.line}; correct the header")
     elif units.source == "given":
         advice = f"check the units given (--units / units=): {describe_units(units.name)}"
