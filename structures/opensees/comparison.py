@@ -39,8 +39,8 @@ from isolator.factors import KumarFactors
 from isolator.friction import ConstantFriction, PTVFriction
 from structures.analysis import peaks, run
 from structures.integrators import HHT, Newmark
-from structures.opensees.bearing import fpbearingptv_equivalent
 from structures.opensees.building import run_opensees
+from structures.opensees.equivalents import fpbearingptv_equivalent
 
 __all__ = ["COMPARED", "MODELS", "Comparison", "compare", "comparison_bearing", "nrmse",
            "run_comparison", "shaped_bearing"]

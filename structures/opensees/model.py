@@ -59,7 +59,7 @@ import numpy as np
 from dcfpb.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction, PTVFriction
-from structures.opensees.bearing import fpbearingptv_equivalent, velocity_dependent_parameters
+from structures.opensees.equivalents import fpbearingptv_equivalent, velocity_dependent_parameters
 from structures.shear_building import ShearBuilding
 
 __all__ = ["PENDULUMS", "BearingRecord", "OpenSeesModel", "build_model", "element_kind",
