@@ -1,0 +1,21 @@
+"""The DCFPB element for the compiled engine: the kernels of the hot path
+(:mod:`~isolator.compiled.kernels`: Eq. 7 solved with the newest flux, the heat-history update;
+compiled by numba or run as Python), the element as arrays (:mod:`~isolator.compiled.bearing`)
+and the named layout of the friction constants with its one packer
+(:mod:`~isolator.compiled.layout`)."""
+
+from __future__ import annotations
+
+from dcfpb.lazy import lazy_exports
+
+_EXPORTS = {
+    "pack_ptv": "isolator.compiled.layout",
+    "PTV_PARAMETERS": "isolator.compiled.layout",
+    "COMPILED": "isolator.compiled.kernels",
+}
+__all__ = [
+    "COMPILED",
+    "PTV_PARAMETERS",
+    "pack_ptv",
+]
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())

@@ -1,0 +1,22 @@
+"""Ground-motion suites: records x scale factors x friction models through Dask, one result
+file per run (:mod:`~structures.suites.suite`, :mod:`~structures.suites.runs`,
+:mod:`~structures.suites.store`) and the statistics of their peaks
+(:mod:`~structures.suites.summary`)."""
+
+from __future__ import annotations
+
+from dcfpb.lazy import lazy_exports
+
+_EXPORTS = {
+    "Suite": "structures.suites.suite",
+    "run_suite": "structures.suites.suite",
+    "record_files": "structures.suites.suite",
+    "summarize": "structures.suites.summary",
+}
+__all__ = [
+    "Suite",
+    "record_files",
+    "run_suite",
+    "summarize",
+]
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
