@@ -177,7 +177,7 @@ def test_the_contract_catches_an_upward_import(tmp_path):
     assert found == ["groundmotions.spectra (layer groundmotions) imports dcfpb.cli "
                      "(layer dcfpb.cli)"]
     records = tmp_path / "groundmotions" / "records.py"
-    records.write_text(records.read_text() + "\nimport groundmotions.synthetic\n")  # imports records
+    records.write_text(records.read_text() + "\nimport groundmotions.synthetic\n")  # a loop
     assert any("groundmotions.records" in component and "groundmotions.synthetic" in component
                for component in cycles(import_graph(tmp_path, runtime_only=True)))
 
