@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from groundmotions.filetext import (
+    RecordUnits,
     check_finite,
     check_plausible,
     first_non_number,
@@ -162,7 +163,7 @@ def _parse_peer_line2(line: str) -> dict[str, str | None]:
     }
 
 
-def _units_label(units: Any) -> str:
+def _units_label(units: RecordUnits) -> str:
     """``units_in_file`` of the metadata (the strings of earlier versions for g and cm/s^2)."""
     if units.source == "default":
         return "g (not stated; the PEER AT2 convention)"

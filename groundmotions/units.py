@@ -38,6 +38,7 @@ __all__ = [
     "describe_units",
     "likely_units",
     "parse_units",
+    "quantity_of",
 ]
 
 TO_M_PER_S2: dict[str, float] = {
