@@ -261,10 +261,11 @@ def load_campaign(
     if isinstance(paths, str | Path) or not paths:
         raise DataError("load_campaign needs a list of one or more CSV files.")
     tests = tuple(read_record(p, axial_load=axial_load) for p in paths)
-    check_consistent_units(tests)
+    places = [str(p) for p in paths]
+    check_consistent_units(tests, places)
     campaign = Campaign(tests, effective_radius, slider_diameter)
     source = "column 'axial_force'" if axial_load is None else "the axial load given"
-    check_plausible(campaign, [str(p) for p in paths], [source] * len(tests))
+    check_plausible(campaign, places, [source] * len(tests))
     return campaign
 
 
@@ -305,12 +306,14 @@ def check_plausible(campaign: Campaign, where: Sequence[str] | None = None,
 UNIT_RATIO = 30.0  # tests of one campaign whose scales differ more than this mix units
 
 
-def check_consistent_units(tests: Sequence[BearingRecord]) -> None:
+def check_consistent_units(tests: Sequence[BearingRecord],
+                           where: Sequence[str] | None = None) -> None:
     """Refuse a campaign whose tests look written in different units.
 
     The sampling interval, the peak displacement and the peak force of every test are
     compared with the campaign's medians; a factor above ``UNIT_RATIO`` (ms against s, mm
-    against m, kN against N are factors of 1000) is an error naming the test.
+    against m, kN against N are factors of 1000) is an error naming the test (``where``: per
+    test, the file or manifest test to name; default ``test 'name'``).
     """
     if len(tests) < 2:
         return
@@ -321,9 +324,10 @@ def check_consistent_units(tests: Sequence[BearingRecord]) -> None:
     }
     for what, (values, unit) in scales.items():
         middle = float(np.median(values))
-        for test, value in zip(tests, values, strict=True):
+        for k, (test, value) in enumerate(zip(tests, values, strict=True)):
             if middle > 0.0 and value > 0.0 and max(value / middle, middle / value) > UNIT_RATIO:
-                raise DataError(f"test {test.name!r}: its {what} is {value:.4g} {unit} against "
+                name = where[k] if where else f"test {test.name!r}"
+                raise DataError(f"{name}: its {what} is {value:.4g} {unit} against "
                                 f"{middle:.4g} {unit} for the campaign's median test, a factor "
                                 f"of {max(value / middle, middle / value):.0f}; the campaign "
                                 "mixes units (every file must be in s, m and N).")

@@ -156,7 +156,7 @@ def load_manifest(
                                  initial_temperature=row["initial_temperature"],
                                  rest_before=row["rest_before"])
         tests.append(record)
-    check_consistent_units(tests)
+    check_consistent_units(tests, places)
     campaign = Campaign(tuple(tests), float(radius), float(diameter))
     check_plausible(campaign, places, sources)
     return campaign

@@ -18,12 +18,13 @@ is checked, after it is read and before the campaign is fitted, for the levels i
 5. the slope of force against displacement must be the pendulum's N / R_eff within a factor
    of :data:`STIFFNESS_FACTOR` (not for R_eff = inf: a friction damper's loops tilt too).
 
-The friction level and the slope come from one least-squares fit on the sliding-phase
-samples (|v| above :data:`SLIDING_FRACTION` of its peak): force = k u + F sign(v) + c. F
-(the loop's half-height) and k are independent of the R_eff and the axial load told, so they
-tell a unit mistake in the force (both off by the same factor 1000) from a wrong R_eff (only
-the slope off). :func:`implausibility` returns the first failure as a message naming the file
-or test, the column or value, the implied level, the allowed range and the likely mistake;
+The friction level and the slope come from least-squares fits of force = k u + F sign(v) + c:
+F on the sliding-phase samples (|v| above :data:`SLIDING_FRACTION` of its peak), k on the
+middle of the loop, past the pre-sliding transition. F (the loop's half-height) and k are
+independent of the R_eff and the axial load told, so they tell a unit mistake in the force
+(both off by the same factor 1000) from a wrong R_eff (only the slope off).
+:func:`implausibility` returns the first failure as a message naming the file or test, the
+column or value, the implied level, the allowed range and the likely mistake;
 :func:`isolator.diagnosis.data.check_plausible` raises it as a ``DataError``. This module
 works on plain arrays and imports nothing of the project, so the input layer can use it.
 """
@@ -66,6 +67,9 @@ An unmodelled stiffness or another radius than the one told (the ``stiffness`` e
 factor of 3; a larger factor is a wrong R_eff or axial load, which the diagnosis would
 otherwise blame on an effect or on the sign convention.
 """
+MIN_SLOPE_STROKE = 0.01
+"""Smallest stroke [m] on which the slope is judged: the middle of the loop must be past the
+pre-sliding transition after each reversal (u_y up to 2 mm, about twice that to cross)."""
 SLIDING_FRACTION = 0.2
 """Samples with |v| above this fraction of the peak velocity are taken as sliding [-]."""
 MIN_LOOP_CONTRAST = 0.15
@@ -90,7 +94,8 @@ class Levels:
     friction_force : float
         Half-height of the sliding-phase loop, F [N] (negative: the force aids the motion).
     slope : float
-        Slope of force against displacement in the sliding phase, k [N/m].
+        Slope of force against displacement in the middle of the loop, k [N/m]; NaN for a
+        stroke or a history too short to tell.
     scatter : float
         RMS of the sliding-phase force about the fit [N].
     axial_load : float
@@ -148,16 +153,51 @@ def implied_levels(time: np.ndarray, displacement: np.ndarray, force: np.ndarray
     force = np.asarray(force, dtype=float)
     velocity = np.asarray(velocity, dtype=float)
     peak = float(np.max(np.abs(velocity)))
+    stroke = float(np.percentile(np.abs(u), 99))
     sliding = np.abs(velocity) > SLIDING_FRACTION * peak
     if np.count_nonzero(sliding) < 4:
         sliding = np.ones(u.size, dtype=bool)
-    design = np.column_stack([u[sliding], np.sign(velocity[sliding]),
-                              np.ones(np.count_nonzero(sliding))])
-    coef, *_ = np.linalg.lstsq(design, force[sliding], rcond=None)
-    residual = force[sliding] - design @ coef
-    return Levels(float(np.median(np.diff(time))), peak, float(coef[1]), float(coef[0]),
-                  float(np.sqrt(np.mean(residual**2))), float(np.mean(axial_force)),
-                  float(np.percentile(np.abs(u), 99)), float(np.ptp(force)), float(force[0]))
+    (_, friction, _), scatter = _loop_fit(u, velocity, force, sliding)
+    return Levels(float(np.median(np.diff(time))), peak, friction,
+                  _middle_slope(u, velocity, force, sliding, stroke), scatter,
+                  float(np.mean(axial_force)), stroke, float(np.ptp(force)), float(force[0]))
+
+
+def _loop_fit(u: np.ndarray, velocity: np.ndarray, force: np.ndarray,
+              chosen: np.ndarray) -> tuple[np.ndarray, float]:
+    """((k [N/m], F [N], offset [N]), residual RMS [N]) of force = k u + F sign(v) + c."""
+    design = np.column_stack([u[chosen], np.sign(velocity[chosen]),
+                              np.ones(np.count_nonzero(chosen))])
+    coef, *_ = np.linalg.lstsq(design, force[chosen], rcond=None)
+    residual = force[chosen] - design @ coef
+    return coef, float(np.sqrt(np.mean(residual**2)))
+
+
+def _middle_slope(u: np.ndarray, velocity: np.ndarray, force: np.ndarray,
+                  sliding: np.ndarray, stroke: float) -> float:
+    """Slope k [N/m] of the loop's middle, where both branches slide; NaN without one.
+
+    Near a reversal the force crosses from one branch to the other over a few u_y (and a
+    play); a fit there takes that crossing for slope, many times N / R_eff on a stroke of a
+    few mm. So only samples in the middle half of the stroke, more than a quarter of the
+    stroke past the last reversal (which leaves out small cycles), are used, and only for a
+    stroke of at least :data:`MIN_SLOPE_STROKE`.
+    """
+    if stroke < MIN_SLOPE_STROKE:
+        return math.nan
+    direction = np.sign(velocity)
+    moving = np.flatnonzero(direction != 0.0)
+    changes = moving[1:][np.diff(direction[moving]) != 0.0]
+    last = np.zeros(u.size, dtype=int)
+    last[changes] = changes
+    last = np.maximum.accumulate(last)
+    centre = 0.5 * (float(np.max(u)) + float(np.min(u)))
+    middle = (sliding & (np.abs(u - centre) < 0.5 * stroke)
+              & (np.abs(u - u[last]) > 0.25 * stroke))
+    if min(np.count_nonzero(middle & (velocity > 0.0)),
+           np.count_nonzero(middle & (velocity < 0.0))) < 10:
+        return math.nan
+    return float(_loop_fit(u, velocity, force, middle)[0][0])
 
 
 def implausibility(levels: Levels, effective_radius: float, where: str,
@@ -221,7 +261,8 @@ def _check_loop(levels: Levels, where: str) -> str | None:
         return (f"{where}: column 'force' shows no friction loop: its sliding-phase level "
                 f"(loop half-height) is {f:.4g} N against a scatter of {scatter:.4g} N, "
                 f"below the {MIN_LOOP_CONTRAST:g} x scatter allowed; the force does not "
-                "follow the direction of motion (a dead or wrong force channel?).")
+                "follow the direction of motion (a dead or wrong force channel, or a stroke "
+                f"of {levels.stroke:.3g} m too small for the bearing to slide?).")
     if f < 0.0:
         return (f"{where}: column 'force' looks sign-reversed: in the sliding phase it pushes "
                 f"along the motion (loop half-height {f:.4g} N, mu = {levels.mu:.3g}, "
@@ -251,6 +292,8 @@ def _check_friction(levels: Levels, where: str, load_source: str) -> str | None:
 def _check_slope(levels: Levels, effective_radius: float, where: str,
                  load_source: str) -> str | None:
     n, k, stroke = levels.axial_load, levels.slope, levels.stroke
+    if math.isnan(k):
+        return None
     if math.isinf(effective_radius):
         # no slope bound for a flat slider or a friction damper: the real damper data's loops
         # tilt as steeply as a pendulum's (backlash, band stiffness: restoring force at the
