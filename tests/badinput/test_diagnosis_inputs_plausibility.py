@@ -6,7 +6,8 @@ displacement in millimetres, a dead or sign-reversed force channel, a wrong R_ef
 load. Each case runs through the CLI entry point and must exit with status 2 before any
 fitting, naming the file (and the manifest's test), the column or value and the likely
 mistake. The positive controls: the good test diagnoses (status 0), and the checks pass on
-the real friction-damper data and on every case of both validation panels.
+strokes of 3-400 mm with u_y of 0.1-2 mm, on the real friction-damper data and on every case
+of both validation panels.
 
 The tests are made from a realistic history: a DCFPB (R_eff = 4.5 m, 300 mm slider, 60 MPa,
 constant mu 0.04 at the design velocity) driven through three 150 mm sine cycles of 2.5 s at
@@ -23,6 +24,7 @@ import numpy as np
 import pytest
 
 from dcfpb.cli import main
+from isolator.bearing import DCFPBearing
 from isolator.diagnosis import Campaign, DataError, diagnose, load_campaign
 from isolator.diagnosis.data import BearingRecord
 from isolator.experiments import protocol_bearing
@@ -35,9 +37,11 @@ EXIT_BAD_INPUT = 2
 
 
 def _history(amplitude: float, period: float, cycles: int = 3, dt: float = 0.01,
-             seed: int = 0) -> dict[str, np.ndarray]:
+             seed: int = 0, yield_displacement: float = 5.0e-4) -> dict[str, np.ndarray]:
     """A measured-looking test [s, m, N] and its axial load [N] (a constant column)."""
     bearing = protocol_bearing("constant", effective_radius=R_EFF, slider_diameter=DIAMETER)
+    bearing = DCFPBearing(R_EFF, DIAMETER, bearing.axial_load, bearing.friction,
+                          yield_displacement=yield_displacement, displacement_capacity=0.6)
     h = sine(amplitude, period, cycles, dt)
     r = run_test(bearing, h.time, h.displacement, h.velocity)
     rng = np.random.default_rng(seed)
@@ -113,6 +117,18 @@ def test_the_real_friction_damper_data_passes_at_nominal_loads(shared_dir):
     campaign = load_campaign(files, effective_radius=math.inf, slider_diameter=0.05,
                              axial_load=1.0e5)
     assert len(campaign.tests) == len(files)
+
+
+@pytest.mark.parametrize("yield_displacement", [1.0e-4, 2.0e-3])
+@pytest.mark.parametrize("amplitude, period", [(0.003, 2.5), (0.005, 10.0), (0.01, 2.5),
+                                               (0.05, 10.0), (0.4, 5.0)])
+def test_short_and_long_strokes_pass(tmp_path, amplitude, period, yield_displacement):
+    """A stroke of a few u_y is mostly pre-sliding transition: its loop must not be taken
+    for a pendulum slope many times N / R_eff."""
+    h = _history(amplitude, period, cycles=2, yield_displacement=yield_displacement)
+    path = _write(tmp_path / "t.csv", h)
+    campaign = load_campaign([path], effective_radius=R_EFF, slider_diameter=DIAMETER)
+    assert campaign.tests[0].constant_axial_force
 
 
 def test_every_panel_case_passes(tmp_path):
