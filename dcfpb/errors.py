@@ -28,4 +28,39 @@ class InputError(ValueError):
 
 
 class RunFailure(RuntimeError):
-    """A run with good input that cannot finish; the message says why and when."""
+    """A run with good input that cannot finish; the message says why and when.
+
+    Raised inside a time integration (by the model or by the ``on_commit`` hook), it ends
+    the run with ``success=False`` and the message, keeping the steps already committed
+    (:func:`structures.integrators.integrate`). ``kind`` names the reason for tables:
+    ``"capacity"``, ``"timeout"``, ``"model"``...
+    """
+
+    kind = "error"
+
+
+class CapacityExceeded(RunFailure, ValueError):
+    """A bearing pushed past its displacement capacity, or past the range its model covers
+    (the precise model's monitor line, the spherical law's radius).
+
+    Also a ``ValueError``, as the element and the heating model raised before a run could
+    end on it: callers of the element that catch ``ValueError`` keep working.
+
+    Parameters
+    ----------
+    message : str
+        What was exceeded, by which displacement [m], at what time [s].
+    kind : str
+        ``"capacity"`` (beyond the displacement capacity) or ``"model"`` (within it, but
+        beyond the model's range, e.g. a monitor line given shorter than the capacity).
+    """
+
+    def __init__(self, message: str, kind: str = "capacity") -> None:
+        super().__init__(message)
+        self.kind = kind
+
+
+class TimeLimitExceeded(RunFailure):
+    """A run past its wall-clock time limit."""
+
+    kind = "timeout"

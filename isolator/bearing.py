@@ -22,6 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from dcfpb.errors import CapacityExceeded
 from dcfpb.validation import check_array, check_choice, check_real
 from isolator.friction import ConstantFriction, Friction, PTVFriction
 
@@ -182,6 +183,52 @@ class DCFPBearing:
         return BearingElement(self)
 
 
+def beyond_capacity_message(displacement: float, time: float, capacity: float, *,
+                            trial: bool = False, detail: str = "") -> str:
+    """The message of a run ended by a bearing beyond its displacement capacity.
+
+    One wording for every friction model and both engines, and for the check of the
+    committed steps (:func:`structures.results.response_dataset`).
+
+    Parameters
+    ----------
+    displacement : float
+        The isolator displacement that exceeded the capacity [m].
+    time : float
+        When [s].
+    capacity : float
+        The bearing's ``displacement_capacity`` [m].
+    trial : bool
+        The displacement is a trial of a step that could not be evaluated (the step was not
+        committed), not a committed one.
+    detail : str
+        What the model said, e.g. the precise model's monitor line.
+    """
+    where = " in a trial of the step" if trial else ""
+    detail = f" ({detail.rstrip('.')})" if detail else ""
+    return (f"Capacity exceeded: the isolator displacement reached {abs(displacement):.4g} m "
+            f"at t = {time:.6g} s{where}, beyond the bearing's displacement_capacity "
+            f"{capacity:g} m{detail}: the bearing would hit its restrainer, so the response "
+            "from then on is not physical.")
+
+
+def trial_failure(bearing: DCFPBearing, displacement: float, time: float,
+                  detail: str) -> CapacityExceeded:
+    """The error of a trial displacement [m] at ``time`` [s] the bearing's model cannot
+    evaluate (the slider off the monitor line, beyond the spherical law's radius): a
+    capacity failure when it is beyond the displacement capacity, else a ``"model"``
+    failure (the model's range is shorter than the capacity). ``detail`` says what the
+    model refused. Both engines raise or report it in these words."""
+    capacity = bearing.displacement_capacity
+    if abs(displacement) > capacity:
+        return CapacityExceeded(beyond_capacity_message(displacement, time, capacity,
+                                                        trial=True, detail=detail))
+    return CapacityExceeded(
+        f"At t = {time:.6g} s a trial isolator displacement of {abs(displacement):.4g} m, "
+        f"within the displacement_capacity {capacity:g} m, is outside the bearing model's "
+        f"range: {detail}", kind="model")
+
+
 class BearingElement:
     """Stateful DCFPB element: set_trial / commit / revert.
 
@@ -221,11 +268,15 @@ class BearingElement:
         """The bound friction evaluator (gives access to the heating model)."""
         return self._friction
 
-    def _restoring(self, u: float, n: float) -> tuple[float, float]:
+    def _restoring(self, u: float, n: float, time: float) -> tuple[float, float]:
         if math.isinf(self._radius):
             return 0.0, 0.0
         if self._spherical:
-            root = math.sqrt(self._radius**2 - u * u)
+            squared = self._radius**2 - u * u
+            if not squared > 0.0:
+                raise trial_failure(self.bearing, u, time, f"at the effective radius "
+                                    f"{self._radius!r} m of the spherical law")
+            root = math.sqrt(squared)
             return n * u / root, n * self._radius**2 / root**3
         return n * u / self._radius, n / self._radius
 
@@ -236,6 +287,10 @@ class BearingElement:
         ------
         ValueError
             If ``time`` is before the last committed time.
+        dcfpb.errors.CapacityExceeded
+            If the model cannot evaluate the displacement (the slider off the precise
+            model's monitor line, at the spherical law's radius); an integration ends there
+            with ``success=False`` (:func:`trial_failure`).
         """
         c = self._committed
         dt = time - c.time
@@ -255,9 +310,12 @@ class BearingElement:
             restoring = stiffness = 0.0
             n = 0.0
         else:
-            friction = self._friction.trial(displacement, velocity, n / self.bearing.contact_area,
-                                            dt)
-            restoring, stiffness = self._restoring(displacement, n)
+            try:
+                friction = self._friction.trial(displacement, velocity,
+                                                n / self.bearing.contact_area, dt)
+            except CapacityExceeded as error:
+                raise trial_failure(self.bearing, displacement, time, str(error)) from None
+            restoring, stiffness = self._restoring(displacement, n, time)
         friction_force = friction.mu * n * z
         force = restoring + friction_force
         self._trial = BearingState(time, displacement, velocity, force, friction_force, z,

@@ -26,6 +26,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from dcfpb.errors import CapacityExceeded
 from dcfpb.validation import check_real
 from isolator.compiled.kernels import advance_states, contact_history, heated_window, jit
 
@@ -311,7 +312,7 @@ class SurfaceHeating:
         lo, hi, inside = heated_window(position, self.first_point, self.spacing, self.n_points,
                                        self.flux_half_width, self.average_over_contact)
         if not inside:
-            raise ValueError(
+            raise CapacityExceeded(
                 f"The slider centre at {position:.4f} m has left the monitor line "
                 f"(+-{self.points[-1]:.4f} m): the displacement exceeds the bearing's "
                 "displacement_capacity; give a larger capacity or MonitorLine.half_length."

@@ -13,6 +13,7 @@ about a hundred times faster), which ``run`` uses whenever it can.
 from __future__ import annotations
 
 import time as _time
+from typing import Any
 
 import numpy as np
 
@@ -24,6 +25,7 @@ from structures.compiled.engine import (
     EngineHistory,
     compiled_history,
     select_engine,
+    time_limit_error,
 )
 from structures.integrators import HHT, Newmark, as_method, integrate
 from structures.isolated_building import IsolatedShearBuilding
@@ -44,10 +46,13 @@ def resampled_record(motion: GroundMotion, dt: float | None) -> tuple[np.ndarray
 
 def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, step: float,
                       integrator: str | Newmark | HHT, *, tolerance: float,
-                      max_iterations: int = 25, max_subdivisions: int) -> EngineHistory:
+                      max_iterations: int = 25, max_subdivisions: int,
+                      time_limit: float | None = None) -> EngineHistory:
     """The reference engine: :func:`integrate` on the model, recording the bearing at each
-    committed step (the arguments as :func:`structures.compiled.engine.compiled_history`)."""
+    committed step (the arguments as :func:`structures.compiled.engine.compiled_history`; the
+    ``time_limit`` [s] is checked after every step)."""
     nt = acceleration.size
+    deadline = np.inf
     record = {name: np.empty(nt) for name in BEARING_FIELDS}
     restoring = np.empty((nt, model.mass_matrix.shape[0]))
     element = model.element
@@ -58,9 +63,13 @@ def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, st
             record[name][k] = getattr(state, name)
         restoring[k] = model.superstructure_stiffness @ u
         restoring[k, 0] += model.n_bearings * state.force
+        if _time.perf_counter() > deadline:  # ends the run, this step kept
+            raise time_limit_error(time_limit, t)
 
     on_commit(0, 0.0, np.zeros(restoring.shape[1]), None, None)
     start = _time.perf_counter()
+    if time_limit is not None:
+        deadline = start + time_limit
     result = integrate(model, acceleration, step, integrator, tolerance=tolerance,
                        max_iterations=max_iterations, max_subdivisions=max_subdivisions,
                        on_commit=on_commit)
@@ -82,6 +91,7 @@ def run(
     max_subdivisions: int = 6,
     engine: str = "auto",
     floor_spectra: bool = False,
+    time_limit: float | None = None,
 ):
     """Run a time-history analysis.
 
@@ -110,6 +120,12 @@ def run(
         Add the 5 %-damped floor response spectra and the record's spectrum
         (:func:`structures.floor_spectra.with_floor_spectra`: ``floor_spectrum``,
         ``ground_spectrum``, coordinate ``period``).
+    time_limit : float, optional
+        Wall-clock limit of the integration [s] (compiling the engine is not counted). Past
+        it the run ends as a failure (``failure = "timeout"``) with the histories so far:
+        the reference engine looks at the clock after every step, the compiled one after
+        every ``CHUNK_STEPS`` steps (:func:`structures.compiled.engine.compiled_history`).
+        Default: none.
 
     Returns
     -------
@@ -122,6 +138,14 @@ def run(
         ``energy_input``, ``energy_kinetic``, ``energy_damping``, ``energy_strain``,
         ``energy_friction``, ``energy_error`` (time). Attributes describe the model and the
         run, including ``success``, ``message``, ``energy_balance_error`` and ``engine``.
+
+        A run that fails ends there, for every friction model and both engines alike: a
+        bearing beyond its ``displacement_capacity`` (a committed step past it, or a trial
+        the precise model's monitor line no longer covers), a step that does not converge,
+        or the ``time_limit``. The Dataset then holds the histories up to the failure, with
+        ``success = 0``, the reason in ``message``, ``failure`` (``"capacity"``,
+        ``"convergence"``, ``"timeout"``, ``"model"``), ``failed_at`` [s] and
+        ``peaks_up_to_failure = 1`` (:func:`structures.results.response_dataset`).
     """
 
     model = IsolatedShearBuilding(building, bearing, n_bearings)
@@ -129,10 +153,10 @@ def run(
     method = as_method(integrator)
     if select_engine(engine, model, method) == "compiled":
         history = compiled_history(model, acceleration, step, method, tolerance=tolerance,
-                                   max_subdivisions=max_subdivisions)
+                                   max_subdivisions=max_subdivisions, time_limit=time_limit)
     else:
         history = reference_history(model, acceleration, step, method, tolerance=tolerance,
-                                    max_subdivisions=max_subdivisions)
+                                    max_subdivisions=max_subdivisions, time_limit=time_limit)
     result, record = history.result, history.bearing
     kept = result.time.size
     n = model.n_bearings
@@ -142,7 +166,8 @@ def run(
     dataset = response_dataset(
         model, motion, step, acceleration[:kept], result.displacement, result.velocity,
         result.absolute_acceleration, isolator, integrator=repr(result.method),
-        success=result.success, message=result.message,
+        success=result.success, message=result.message, failure=result.failure,
+        failed_at=result.failed_at,
         attrs={"newton_iterations": int(result.iterations.sum()),
                "subdivisions": int(result.subdivisions.sum()),
                "wall_time": history.wall_time, "engine": history.engine},
@@ -155,9 +180,16 @@ def run(
     return dataset
 
 
-def peaks(result) -> dict[str, float]:
-    """Peak responses of a run (SI units) and the run's bookkeeping."""
+def peaks(result) -> dict[str, Any]:
+    """Peak responses of a run (SI units) and the run's bookkeeping.
+
+    The peaks are those of the histories the Dataset holds: for a failed run, up to the
+    failure, which the keys ``peaks_up_to_failure`` (bool), ``failed_at`` (time [s], None
+    for a run that finished) and ``failure`` (the reason's kind, ``""`` for none) say.
+    """
     roof = result["absolute_acceleration"].isel(floor=-1)
+    failed = not result.attrs["success"]
+    failed_at = result.attrs.get("failed_at")
     return {
         "peak_isolator_displacement": float(np.abs(result["isolator_displacement"]).max()),
         "peak_base_shear": float(np.abs(result["base_shear"]).max()),
@@ -167,4 +199,7 @@ def peaks(result) -> dict[str, float]:
         "energy_balance_error": float(result.attrs["energy_balance_error"]),
         "steps": int(result.attrs["steps"]),
         "wall_time": float(result.attrs["wall_time"]),
+        "peaks_up_to_failure": failed,
+        "failed_at": float(failed_at) if failed and failed_at is not None else None,
+        "failure": str(result.attrs.get("failure", "error" if failed else "")),
     }

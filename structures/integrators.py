@@ -4,7 +4,9 @@ As in ``scipy.integrate``, a method is data over one shared algorithm: :class:`N
 :class:`HHT` are small frozen parameter sets (``gamma``, ``beta``, ``alpha``) and
 :class:`NewmarkStepper` is the one Newton step that uses them. :func:`integrate` is the entry
 point; ``method`` is a name from :data:`METHODS` or an instance. Misuse raises; a numerical
-failure ends the run with ``success=False`` and a message, keeping the steps already taken.
+failure ends the run with ``success=False`` and a message, keeping the steps already taken,
+and so does a :class:`dcfpb.errors.RunFailure` raised by the model (a bearing beyond its
+displacement capacity) or by the ``on_commit`` hook (a time limit).
 
 The step from ``t_n`` to ``t_{n+1} = t_n + h`` solves for ``u_{n+1}`` (Hilber, Hughes & Taylor
 1977; ``alpha = 0`` is Newmark)::
@@ -38,6 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dcfpb.errors import RunFailure
 from dcfpb.validation import check_array, check_choice, check_int, check_real
 from structures.model import DynamicModel
 
@@ -140,6 +143,11 @@ class IntegrationResult:
         Step halvings needed by each committed step, shape (nt-1,).
     method : Newmark or HHT
         The method used.
+    failure : str
+        Why the run ended early: ``""`` (it did not), ``"convergence"``, or the ``kind`` of
+        the :class:`dcfpb.errors.RunFailure` that ended it (``"capacity"``, ``"timeout"``...).
+    failed_at : float or None
+        Time of the step that failed [s] (None on success).
     """
 
     time: np.ndarray
@@ -152,6 +160,8 @@ class IntegrationResult:
     iterations: np.ndarray
     subdivisions: np.ndarray
     method: Newmark | HHT
+    failure: str = ""
+    failed_at: float | None = None
 
 
 def _matrix(value: object, name: str, shape: tuple[int, ...]) -> np.ndarray:
@@ -360,7 +370,8 @@ def integrate(
     on_commit : callable, optional
         ``on_commit(step_index, time, u, v, a)`` after each committed full step (index >= 1),
         e.g. to record the bearing state; the arrays are rows of the result and must not be
-        modified.
+        modified. It may end the run by raising :class:`dcfpb.errors.RunFailure` (e.g. a
+        time limit): that step is kept.
 
     Returns
     -------
@@ -385,17 +396,27 @@ def integrate(
     limits = {"max_iterations": iterations_max, "max_subdivisions": subdivisions_max}
     stepper = NewmarkStepper(model, chosen, time[0], record[0], u0, v0, tolerance=tol, **limits)
     displacement[0], velocity[0], acceleration[0] = stepper.u, stepper.v, stepper.a
-    last, success = nt - 1, True
+    last, success, failure, failed_at = nt - 1, True, "", None
     message = "The integration reached the end of the record."
     for k in range(1, nt):
-        success = stepper.step(time[k], record[k])
+        try:
+            success = stepper.step(time[k], record[k])
+        except RunFailure as error:  # the model cannot go on: the run ends at step k - 1
+            model.revert()
+            success, failure, stepper.message = False, error.kind, str(error)
         iterations[k - 1], subdivisions[k - 1] = stepper.step_iterations, stepper.step_subdivisions
         if not success:
-            last, message = k - 1, f"Step {k}: {stepper.message}"
+            last, message, failed_at = k - 1, f"Step {k}: {stepper.message}", float(time[k])
+            failure = failure or "convergence"
             break
         displacement[k], velocity[k], acceleration[k] = stepper.u, stepper.v, stepper.a
-        if on_commit is not None:
-            on_commit(k, time[k], displacement[k], velocity[k], acceleration[k])
+        try:
+            if on_commit is not None:
+                on_commit(k, time[k], displacement[k], velocity[k], acceleration[k])
+        except RunFailure as error:  # e.g. a time limit: step k is kept
+            last, success, failure, failed_at = k, False, error.kind, float(time[k])
+            message = f"Step {k}: {error}"
+            break
 
     kept = slice(0, last + 1)
     influence = np.asarray(model.influence, dtype=float)
@@ -404,4 +425,5 @@ def integrate(
     arrays += [iterations[:last], subdivisions[:last]]
     for array in arrays:
         array.setflags(write=False)
-    return IntegrationResult(*arrays[:5], success, message, *arrays[5:], method=chosen)
+    return IntegrationResult(*arrays[:5], success, message, *arrays[5:], method=chosen,
+                             failure=failure, failed_at=failed_at)

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from groundmotions.records import GroundMotion
+from isolator.bearing import beyond_capacity_message
 from isolator.friction import ConstantFriction, PTVFriction
 from structures.energy import energy_balance
 from structures.isolated_building import IsolatedShearBuilding
@@ -45,6 +46,8 @@ def response_dataset(
     message: str,
     attrs: dict[str, Any],
     restoring: np.ndarray | None = None,
+    failure: str = "",
+    failed_at: float | None = None,
 ):
     """Assemble the Dataset of a run.
 
@@ -73,10 +76,44 @@ def response_dataset(
     restoring : ndarray, shape (nt, n + 1), optional
         Total restoring force (storey springs + isolators) the producer recorded [N]; by
         default it is formed from the displacements and the isolator force.
+    failure : str
+        The kind of the producer's failure (``"convergence"``, ``"capacity"``,
+        ``"timeout"``...); ``"error"`` when it failed without saying.
+    failed_at : float, optional
+        Time of the producer's failure [s].
+
+    Notes
+    -----
+    The failure contract: the first committed step whose isolator displacement exceeds
+    ``displacement_capacity`` ends the run there. Every history is cut after that step
+    (the response beyond it is not physical) and the run is a failure, ``"capacity"``, at
+    that step's time, whatever the producer said (its own failure can only come later).
+    A failed run's Dataset has ``success = 0``, ``message`` (the reason, then up to when the
+    histories go), ``failure``, ``failed_at`` [s] and ``peaks_up_to_failure = 1``; a run
+    that finished has ``failure = ""`` and ``peaks_up_to_failure = 0``.
     """
     import xarray as xr
 
     building, bearing = model.building, model.bearing
+    capacity = bearing.displacement_capacity
+    beyond = np.flatnonzero(np.abs(displacement[:, 0]) > capacity)
+    if beyond.size:  # the run ends at the first step beyond the capacity
+        kept = int(beyond[0]) + 1
+        displacement, velocity = displacement[:kept], velocity[:kept]
+        ground_acceleration = ground_acceleration[:kept]
+        absolute_acceleration = absolute_acceleration[:kept]
+        isolator = {name: values[:kept] for name, values in isolator.items()}
+        restoring = None if restoring is None else restoring[:kept]
+        success, failure, failed_at = False, "capacity", step * (kept - 1)
+        message = beyond_capacity_message(displacement[-1, 0], failed_at, capacity)
+    if success:
+        failure, failed_at = "", None
+    else:
+        failure = failure or "error"
+        if failed_at is None:
+            failed_at = step * (displacement.shape[0] - 1)
+        message = (f"{message} The histories and peaks are those up to t = "
+                   f"{step * (displacement.shape[0] - 1):.6g} s.")
     u, v, ag = displacement, velocity, ground_acceleration
     if restoring is None:
         restoring = u @ model.superstructure_stiffness.T
@@ -85,14 +122,6 @@ def response_dataset(
                               model.influence, restoring, isolator["friction_force"])
     inertia = -absolute_acceleration * np.diag(model.mass_matrix)  # [N] per floor
     storey_shear = np.cumsum(inertia[:, :0:-1], axis=1)[:, ::-1]  # sum of the floors above
-    capacity = bearing.displacement_capacity
-    beyond = np.abs(u[:, 0]) > capacity
-    if beyond.any():
-        success = False
-        message = (f"The isolator displacement reached {np.abs(u[:, 0]).max():.4g} m at t = "
-                   f"{step * int(np.argmax(beyond)):.4g} s, beyond the bearing's "
-                   f"displacement_capacity {capacity:g} m: the bearing would hit its restrainer, "
-                   "so the response from then on is not physical.")
 
     def var(dims, data, units, long_name):
         return dims, np.asarray(data), {"units": units, "long_name": long_name}
@@ -139,10 +168,14 @@ def response_dataset(
         "total_mass": building.total_mass,
         "success": int(success),
         "message": message,
+        "failure": failure,
+        "peaks_up_to_failure": int(not success),
         "steps": int(u.shape[0] - 1),
         "energy_balance_error": energies.relative_error,
     }
     n = building.n_storeys
     coords = {"time": ("time", step * np.arange(u.shape[0]), {"units": "s"}),
               "floor": np.arange(n + 1), "storey": np.arange(1, n + 1)}
+    if failed_at is not None:
+        common["failed_at"] = float(failed_at)
     return xr.Dataset(data, coords=coords, attrs=common | attrs)

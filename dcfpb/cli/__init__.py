@@ -25,6 +25,7 @@ import sys
 from collections.abc import Sequence
 
 from dcfpb import __version__
+from dcfpb.errors import RunFailure
 
 __all__ = ["build_parser", "main"]
 
@@ -69,6 +70,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         return args.handler(args)
+    except RunFailure as error:  # good input, a run that cannot finish; caught first, as
+        print(f"dcfpb {args.command}: run failed: {error}", file=sys.stderr)  # a capacity
+        return 1  # failure is a ValueError too
     except (ValueError, TypeError, OSError) as error:
         print(f"dcfpb {args.command}: error: {error}", file=sys.stderr)
         return 2

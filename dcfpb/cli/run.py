@@ -123,14 +123,25 @@ def _run_building(args: argparse.Namespace) -> int:
         print(json.dumps({k: summary[k] for k in keys} | {
             "peak_storey_drift": summary["peak_storey_drift"],
             "max_temperature": summary["max_temperature"],
-            "success": bool(result.attrs["success"]), "message": result.attrs["message"]},
+            "success": bool(result.attrs["success"]), "message": result.attrs["message"],
+            "peaks_up_to_failure": summary["peaks_up_to_failure"],
+            "failed_at": summary["failed_at"], "failure": summary["failure"]},
             indent=2))
     else:
         print_peaks({model: summary}, f"{config.name} under {motion.name} "
                      f"(scale {args.scale:g}, {integrator!r})")
-        if not result.attrs["success"]:
-            print(f"warning: the run stopped early: {result.attrs['message']}")
+        print_failure(summary, result.attrs["message"])
     return 0 if result.attrs["success"] else 1
+
+
+def print_failure(summary: dict, message: str) -> None:
+    """Say that a run failed, why, and that its peaks are those up to the failure (nothing
+    for a run that finished). ``summary`` is :func:`structures.analysis.peaks` of it."""
+    if not summary.get("peaks_up_to_failure"):
+        return
+    print(f"RUN FAILED ({summary['failure']}) at t = {summary['failed_at']:.6g} s: the peaks "
+          "above are those up to the failure, not of the whole record.")
+    print(f"  {message}")
 
 
 def print_peaks(rows: dict[str, dict], heading: str, *, fixed_base=None) -> None:

@@ -23,7 +23,8 @@ from typing import NamedTuple
 import numpy as np
 
 from dcfpb.validation import check_choice
-from isolator.bearing import AxialLoadHistory
+from dcfpb.errors import CapacityExceeded, TimeLimitExceeded
+from isolator.bearing import AxialLoadHistory, trial_failure
 from isolator.compiled import bearing as cb
 from isolator.compiled import kernels
 from isolator.compiled.bearing import BEARING_FIELDS
@@ -167,18 +168,56 @@ def _method_array(method: Newmark | HHT, tolerance: float, max_iterations: int,
                      max_subdivisions], dtype=float)
 
 
-def _raise_model_error(info: np.ndarray, model: IsolatedShearBuilding, heating) -> None:
-    """Raise what the reference element raises for the engine's error ``info``."""
+CHUNK_STEPS = 1024
+"""Steps the engine takes between two looks at the clock when a run has a time limit."""
+
+
+def time_limit_error(limit: float, time: float) -> TimeLimitExceeded:
+    """The error of a run past its ``limit`` [s] of wall-clock time, stopped at ``time`` [s]
+    of the record (both engines)."""
+    return TimeLimitExceeded(f"timeout after {limit:g} s: the integration exceeded its time "
+                             f"limit of {limit:g} s (wall clock) at t = {time:.6g} s of the "
+                             "record.")
+
+
+def _model_error(info: np.ndarray, model: IsolatedShearBuilding, heating) -> CapacityExceeded:
+    """The error the reference element raises for the engine's error ``info``: a trial the
+    bearing's model cannot evaluate (:func:`isolator.bearing.trial_failure`, which ends the
+    run), or, for a sub-step below the heat kernel's shortest lag, the reference's
+    ``ValueError`` raised here."""
     status = int(info[compiled.STATUS])
     value = float(info[compiled.FAIL_VALUE])
-    if status == cb.LEFT_MONITOR_LINE:
-        heating.window(value / model.bearing.friction.surfaces)
-    elif status == cb.STEP_BELOW_MIN_LAG:
+    if status == cb.STEP_BELOW_MIN_LAG:
         heating.prepare(value)
-    raise ValueError(
-        f"The isolator displacement {value!r} m at t = {info[compiled.FAIL_TIME]:.6g} s reached "
-        f"the effective radius {model.bearing.effective_radius!r} m of the spherical law."
-    )
+    detail = (f"at the effective radius {model.bearing.effective_radius!r} m of the "
+              "spherical law")
+    if status == cb.LEFT_MONITOR_LINE:
+        try:
+            heating.window(value / model.bearing.friction.surfaces)
+        except CapacityExceeded as error:
+            detail = str(error)
+    return trial_failure(model.bearing, value, float(info[compiled.FAIL_TIME]), detail)
+
+
+def _integrate(function, arguments: tuple, nt: int, start: float,
+               time_limit: float | None) -> bool:
+    """Run the engine through the record: in one call, or, with a ``time_limit`` [s] from
+    ``start`` (``perf_counter``), in calls of ``CHUNK_STEPS`` steps with a look at the clock
+    between them (the same arithmetic: see ``integrate_building``'s ``steps``). True when
+    the limit stopped it."""
+    info = arguments[-1]
+    steps = np.array([1, nt if time_limit is None else 1], dtype=np.int64)
+    if time_limit is None:
+        function(*arguments, steps)
+        return False
+    while steps[1] < nt:
+        steps[0], steps[1] = steps[1], min(int(steps[1]) + CHUNK_STEPS, nt)
+        function(*arguments, steps)
+        if int(info[compiled.STATUS]) != cb.SUCCESS:
+            return False
+        if steps[1] < nt and _time.perf_counter() - start > time_limit:
+            return True
+    return False
 
 
 def _failure_message(info: np.ndarray, tolerance: float) -> str:
@@ -206,6 +245,7 @@ def compiled_history(
     max_iterations: int = 25,
     max_subdivisions: int,
     python: bool = False,
+    time_limit: float | None = None,
 ) -> EngineHistory:
     """Run the compiled engine from rest through ``acceleration`` sampled every ``dt``.
 
@@ -223,13 +263,20 @@ def compiled_history(
         As :func:`structures.integrators.integrate`.
     python : bool
         Run the Python original of the top-level loop (tests; slow).
+    time_limit : float, optional
+        Wall-clock limit of the integration [s] (compilation left out): the engine then runs
+        ``CHUNK_STEPS`` steps at a time and, past the limit, the run ends with
+        ``success=False``, failure ``"timeout"`` and the steps taken so far.
+
+    A trial the bearing's model cannot evaluate (the slider off the monitor line, the
+    spherical law's radius) ends the run with ``success=False`` and the reference's message
+    (:func:`isolator.bearing.trial_failure`), as the reference does.
 
     Raises
     ------
     ValueError
-        Where the reference element raises: the slider leaves the monitor line, a (sub-)step
-        shorter than the heating kernel's shortest lag, or a displacement beyond the radius
-        of the spherical law.
+        Where the reference element raises: a (sub-)step shorter than the heating kernel's
+        shortest lag.
     """
     acceleration = np.ascontiguousarray(acceleration, dtype=float)
     nt = acceleration.size
@@ -251,23 +298,33 @@ def compiled_history(
     start = _time.perf_counter()
     heating_arrays = cb.new_heating(rates, weights, states)
     workspace = compiled.new_workspace(n, max_subdivisions)
-    function(*matrices, acceleration, time, method_array, bearing, ptv, heating_arrays,
-             workspace, u, v, a, record, restoring, iterations, subdivisions, info)
+    timed_out = _integrate(function, (*matrices, acceleration, time, method_array, bearing, ptv,
+                                      heating_arrays, workspace, u, v, a, record, restoring,
+                                      iterations, subdivisions, info), nt, start, time_limit)
     wall = _time.perf_counter() - start
     status = int(info[compiled.STATUS])
-    if status not in (cb.SUCCESS, cb.NOT_CONVERGED):
-        _raise_model_error(info, model, heating)
     last = int(info[compiled.LAST_STEP])
-    success = status == cb.SUCCESS
-    message = ("The integration reached the end of the record." if success
-               else _failure_message(info, tolerance))
+    success = status == cb.SUCCESS and not timed_out
+    failure, failed_at = "", None
+    message = "The integration reached the end of the record."
+    if timed_out:
+        failure, failed_at = "timeout", float(time[last])
+        message = f"Step {last}: {time_limit_error(time_limit, failed_at)}"
+    elif not success:
+        failed_at = float(time[last + 1])
+        if status == cb.NOT_CONVERGED:
+            failure, message = "convergence", _failure_message(info, tolerance)
+        else:
+            error = _model_error(info, model, heating)
+            failure, message = error.kind, f"Step {last + 1}: {error}"
     kept = slice(0, last + 1)
     absolute = a[kept] + acceleration[kept, None] * np.asarray(model.influence, dtype=float)
     arrays = [time[kept], u[kept], v[kept], a[kept], absolute, iterations[:last],
               subdivisions[:last]]
     for array in arrays:
         array.setflags(write=False)
-    result = IntegrationResult(*arrays[:5], success, message, *arrays[5:], method=method)
+    result = IntegrationResult(*arrays[:5], success, message, *arrays[5:], method=method,
+                               failure=failure, failed_at=failed_at)
     fields = {name: record[i, kept] for i, name in enumerate(BEARING_FIELDS)}
     return EngineHistory(result, fields, restoring[kept], wall, "compiled")
 

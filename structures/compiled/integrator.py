@@ -230,8 +230,14 @@ def _newton(h, time, ground, mass, damping, stiffness, mass_influence, inverses,
 @jit
 def integrate_building(mass, damping, stiffness, influence, ground, time, method, bearing, ptv,
                        heating, workspace, displacement, velocity, acceleration, record,
-                       restoring, iterations, subdivisions, info):
+                       restoring, iterations, subdivisions, info, steps):
     """Integrate the isolated building through a ground motion, from rest; fill the outputs.
+
+    ``steps`` = (first, end) takes the steps ``first .. end - 1``: (1, nt) is the whole run.
+    A call with ``first > 1`` resumes where the call that ended at ``first - 1`` stopped,
+    from the state it left in ``workspace`` and ``heating``, with the same arithmetic as one
+    call (the committed time and ground acceleration are then ``time[first - 1]`` and
+    ``ground[first - 1]``, exactly what the step to ``first - 1`` committed).
 
     Parameters
     ----------
@@ -266,6 +272,8 @@ def integrate_building(mass, damping, stiffness, influence, ground, time, method
         Output: Newton iterations (failed attempts included) and halvings of each step.
     info : ndarray, shape (INFO_SIZE,)
         Output: status, last committed step and, on failure, where and why.
+    steps : ndarray of int64, shape (2,)
+        The steps to take, ``[first, end)`` (see above).
     """
     n = mass.shape[0]
     nt = ground.shape[0]
@@ -282,25 +290,29 @@ def integrate_building(mass, damping, stiffness, influence, ground, time, method
         for j in range(n):
             total += mass[i, j] * influence[j]
         mass_influence[i] = total
-    committed[TEMPERATURE] = bearing[INITIAL_TEMPERATURE]
-    committed[MU] = bearing[INITIAL_MU]
-    for i in range(STATE_SIZE):
-        trial[i] = committed[i]
+    first, end = steps[0], steps[1]
+    if first <= 1:
+        first = 1
+        committed[TEMPERATURE] = bearing[INITIAL_TEMPERATURE]
+        committed[MU] = bearing[INITIAL_MU]
+        for i in range(STATE_SIZE):
+            trial[i] = committed[i]
 
-    # from rest: u = v = 0, so f = 0 and q = 0; the load row holds p - q for the solve
-    for i in range(n):
-        dofs[P_C, i] = -mass_influence[i] * ground[0]
-        dofs[LOAD, i] = dofs[P_C, i] - dofs[Q_C, i]
-    solve(mass, dofs[LOAD], dofs[A_C], work, pivots)
-    for i in range(n):
-        displacement[0, i], velocity[0, i] = dofs[U_C, i], dofs[V_C, i]
-        acceleration[0, i], restoring[0, i] = dofs[A_C, i], 0.0
-    record_state(record[:, 0], committed)
-    info[STATUS], info[LAST_STEP] = SUCCESS, nt - 1
+        # from rest: u = v = 0, so f = 0 and q = 0; the load row holds p - q for the solve
+        for i in range(n):
+            dofs[P_C, i] = -mass_influence[i] * ground[0]
+            dofs[LOAD, i] = dofs[P_C, i] - dofs[Q_C, i]
+        solve(mass, dofs[LOAD], dofs[A_C], work, pivots)
+        for i in range(n):
+            displacement[0, i], velocity[0, i] = dofs[U_C, i], dofs[V_C, i]
+            acceleration[0, i], restoring[0, i] = dofs[A_C, i], 0.0
+        record_state(record[:, 0], committed)
+    end = min(end, nt)
+    info[STATUS], info[LAST_STEP] = SUCCESS, end - 1
 
-    t_committed = time[0]
-    ground_committed = ground[0]
-    for k in range(1, nt):
+    t_committed = time[first - 1]
+    ground_committed = ground[first - 1]
+    for k in range(first, end):
         start, end = t_committed, time[k]
         span = end - start
         ground_start, ground_end = ground_committed, ground[k]
