@@ -1,0 +1,349 @@
+"""Frictional heating over a whole plate: the precise model's monitor points on a 2D grid.
+
+The planar precise model (:class:`~isolator.heating.MonitorLine`, paper Fig. 3a) tracks points
+every 5 mm on a line through the plate centre along the sliding direction; the contact is taken
+as the square of equal area (half side a = sqrt(pi) r / 2, Eq. 5) and the contact temperature is
+the mean over the points inside it. The paper notes that for a square contact "one line of
+monitor points in the direction of sliding gives the same result as a grid". This module is that
+grid, for a slider moving anywhere on the plate:
+
+- points at (m s, n s), m and n integers, in a frame (e1, e2) fixed to the plate;
+- a point is under the slider when it lies in the square of side 2a centred on the slider,
+  with its sides along e1 and e2: |x - p1| <= a and |y - p2| <= a (Eq. 5 on each axis);
+- it takes the flux q of Eq. 5 while under the slider, and holds the same sum-of-exponentials
+  history as a point of the line (:mod:`isolator.heating`, Eq. 4);
+- the contact temperature is the mean over the points under the slider (touched or not).
+
+Why this reduces exactly to the line: along a straight path through the centre in the direction
+e1, the rows under the slider never change and every point of a column has the history of the
+line's point in that column, so the grid's mean equals the line's mean. That needs e1 along the
+path: a grid fixed to x/y cannot reproduce a line at 30 degrees (its columns are not
+perpendicular to the path). The frame is therefore fixed by the motion (``orientation=None``,
+the default): e1 points along the slider's position on the plate at the first commit that puts
+heat on it (along the velocity if the slider is then at the centre, along x if both are zero),
+and stays so. For a unidirectional history this is the line's direction, at any angle; for an
+orbit the orientation of the square is a modelling choice like any other (the paper's square
+has none), and a fixed one can be given. The per-axis window is the planar kernel
+:func:`~isolator.compiled.kernels.heated_window` on axes with the planar line's geometry, so the
+two models pick the same points to the last rounding.
+
+Storage: only points ever heated are stored (a growing array of histories, indexed per grid
+column by a small int array), so the cost grows with the area the slider has swept, not with
+the plate. A stored point outside the window is not updated: it keeps its history and the time
+it was last advanced and is decayed exactly, exp(-s_k elapsed), when the slider comes back.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from dcfpb.errors import CapacityExceeded
+from dcfpb.validation import check_real
+from isolator.compiled.kernels import heated_window
+from isolator.heating import MonitorLine, SumOfExponentials, ThermalProperties, step_factors
+
+_INITIAL_CAPACITY = 256  # stored points before the first growth of the arrays
+
+
+@dataclass(frozen=True)
+class MonitorGrid:
+    """The precise model's monitor points over the plate (a square grid) and its frame.
+
+    Parameters
+    ----------
+    spacing : float
+        Distance between neighbouring points along each axis [m]; default 0.005 (the paper's).
+    orientation : float or None
+        Angle of the grid's first axis from x [deg], counter-clockwise. None (the default): the
+        first axis follows the motion (see the module docstring), which makes a unidirectional
+        history reproduce the planar precise model at any angle.
+    half_length : float or None
+        Half side of the square of plate covered by the grid [m]; None sizes it like the planar
+        line (:meth:`MonitorLine.points`) for the slider's travel.
+    """
+
+    spacing: float = 0.005
+    orientation: float | None = None
+    half_length: float | None = None
+
+    def __post_init__(self) -> None:
+        owner = type(self).__name__
+        check_real(self.spacing, "spacing", owner, low=1e-5, high=0.1)
+        if self.orientation is not None:
+            check_real(self.orientation, "orientation", owner, low=-360.0, high=360.0)
+        if self.half_length is not None:
+            check_real(self.half_length, "half_length", owner, low=0.0, low_open=True, high=100.0)
+
+    @classmethod
+    def from_line(cls, line: MonitorLine, orientation: float | None = None) -> MonitorGrid:
+        """The grid of a planar precise model's monitor line (same spacing and extent)."""
+        return cls(line.spacing, orientation, line.half_length)
+
+    def axis(self, contact_radius: float, travel: float) -> np.ndarray:
+        """Point coordinates along either axis [m]: those of the planar line."""
+        return MonitorLine(self.spacing, self.half_length).points(contact_radius, travel)
+
+
+def plate_frame(position: np.ndarray, hint: np.ndarray | None = None,
+                orientation: float | None = None) -> np.ndarray:
+    """The grid's axes as the rows of a 2x2 rotation (e1, e2) [-].
+
+    Parameters
+    ----------
+    position : ndarray, shape (2,)
+        Slider centre on the plate [m]; gives e1 when ``orientation`` is None and it is not 0.
+    hint : ndarray, shape (2,) or None
+        Direction to use when the slider is at the centre (its velocity) [any unit].
+    orientation : float or None
+        A fixed angle of e1 from x [deg] (overrides the rest).
+    """
+    if orientation is not None:
+        angle = math.radians(orientation)
+        e1 = np.array([math.cos(angle), math.sin(angle)])
+    else:
+        e1 = np.array([1.0, 0.0])
+        for direction in (position, hint):
+            if direction is not None and math.hypot(direction[0], direction[1]) > 0.0:
+                e1 = np.asarray(direction, dtype=float) / math.hypot(direction[0], direction[1])
+                break
+    return np.array([[e1[0], e1[1]], [-e1[1], e1[0]]])
+
+
+class GridTrial(NamedTuple):
+    """The contact terms of a trial slider position on the grid.
+
+    Attributes
+    ----------
+    rise : float
+        Mean over the points under the slider of their committed history, decayed to the trial
+        time: sum_k w_k exp(-s_k dt) G_jk [W s^0.5 / m^2] (``contact_history`` of the line).
+    window : (int, int, int, int)
+        Index ranges ``[i_lo, i_hi) x [k_lo, k_hi)`` of the points under the slider.
+    axes : ndarray, shape (2, 2)
+        The frame the window was found in.
+    """
+
+    rise: float
+    window: tuple[int, int, int, int]
+    axes: np.ndarray
+
+    @property
+    def points(self) -> int:
+        """Number of grid points under the slider."""
+        i_lo, i_hi, k_lo, k_hi = self.window
+        return max(i_hi - i_lo, 0) * max(k_hi - k_lo, 0)
+
+
+class GridHeating:
+    """Temperature of one plate under a slider moving in 2D; trial / commit / revert.
+
+    A trial never changes the state; :meth:`commit` adds one interval of constant flux on the
+    trial's window. There is nothing to revert (an uncommitted trial is dropped).
+
+    Parameters
+    ----------
+    layout : MonitorGrid
+        Spacing, frame and extent of the grid.
+    contact_radius : float
+        Contact radius r of the slider [m].
+    travel : float
+        Largest distance of the slider centre from the plate centre [m].
+    thermal : ThermalProperties
+        Conductivity, diffusivity and initial temperature.
+    kernel : SumOfExponentials
+        Approximation of the history kernel 1/sqrt(tau).
+    """
+
+    def __init__(self, layout: MonitorGrid, contact_radius: float, travel: float,
+                 thermal: ThermalProperties, kernel: SumOfExponentials) -> None:
+        self.layout = layout
+        self.thermal = thermal
+        self.kernel = kernel
+        axis = layout.axis(contact_radius, travel)
+        self.first_point = float(axis[0])
+        self.spacing = float(layout.spacing)
+        self.n_points = int(axis.size)
+        self.half_length = float(axis[-1])
+        self.flux_half_width = MonitorLine(layout.spacing).flux_half_width(contact_radius)
+        self.coefficient = thermal.flux_coefficient
+        size = kernel.rates.size
+        self._states = np.zeros((_INITIAL_CAPACITY, size))
+        self._stamps = np.zeros(_INITIAL_CAPACITY)
+        self._grid_index = np.zeros((_INITIAL_CAPACITY, 2), dtype=np.int64)
+        self._stored = 0
+        self._columns: dict[int, tuple[int, np.ndarray]] = {}  # i -> (first k, storage rows)
+        self._axes: np.ndarray | None = None
+        self._time = 0.0  # committed time of the plate's own clock [s]
+        self._factors: dict[float, tuple[np.ndarray, np.ndarray, float]] = {}
+
+    # --- geometry -------------------------------------------------------------------------
+
+    @property
+    def axes(self) -> np.ndarray | None:
+        """The grid's frame (rows e1, e2), or None before any heat was committed."""
+        return None if self._axes is None else self._axes.copy()
+
+    @property
+    def stored_points(self) -> int:
+        """Number of points holding a history (those ever under the slider with heat)."""
+        return self._stored
+
+    def frame(self, position: np.ndarray, hint: np.ndarray | None = None) -> np.ndarray:
+        """The frame a trial at ``position`` [m] uses: the fixed one, or the one it would fix."""
+        if self._axes is not None:
+            return self._axes
+        return plate_frame(position, hint, self.layout.orientation)
+
+    def window(self, position: np.ndarray, axes: np.ndarray) -> tuple[int, int, int, int]:
+        """Index ranges of the points under a slider centred at ``position`` [m] on the plate.
+
+        Raises
+        ------
+        dcfpb.errors.CapacityExceeded
+            When the square under the slider reaches past the grid's edge.
+        """
+        along = float(axes[0, 0] * position[0] + axes[0, 1] * position[1])
+        across = float(axes[1, 0] * position[0] + axes[1, 1] * position[1])
+        i_lo, i_hi, inside_i = heated_window(along, self.first_point, self.spacing,
+                                             self.n_points, self.flux_half_width, True)
+        k_lo, k_hi, inside_k = heated_window(across, self.first_point, self.spacing,
+                                             self.n_points, self.flux_half_width, True)
+        if not (inside_i and inside_k):
+            raise CapacityExceeded(
+                f"The slider centre at ({position[0]:.4f}, {position[1]:.4f}) m has left the "
+                f"monitor grid (+-{self.half_length:.4f} m along its axes): the displacement "
+                "exceeds the bearing's displacement_capacity; give a larger capacity or "
+                "MonitorLine.half_length.")
+        return i_lo, i_hi, k_lo, k_hi
+
+    # --- the step factors -----------------------------------------------------------------
+
+    def factors(self, dt: float) -> tuple[np.ndarray, np.ndarray, float]:
+        """exp(-s_k dt) and (1 - exp(-s_k dt)) / s_k stacked (2, K), w_k exp(-s_k dt) (K,) and
+        2 c sqrt(dt) [degC m^2 / W] for a step ``dt`` [s] (kept for the last few dt)."""
+        entry = self._factors.get(dt)
+        if entry is None:
+            if dt < self.kernel.min_lag:
+                raise ValueError(
+                    f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
+                    f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag.")
+            size = self.kernel.rates.size
+            step, weighted = np.empty((2, size)), np.empty(size)
+            newest = step_factors(self.kernel.rates, self.kernel.weights, self.coefficient, dt,
+                                  step, weighted)
+            if len(self._factors) >= 16:
+                self._factors.pop(next(iter(self._factors)))
+            entry = self._factors[dt] = (step, weighted, float(newest))
+        return entry
+
+    # --- stored histories -----------------------------------------------------------------
+
+    def _rows(self, window: tuple[int, int, int, int]) -> np.ndarray:
+        """Storage rows of the stored points in ``window``."""
+        i_lo, i_hi, k_lo, k_hi = window
+        found = []
+        for i in range(i_lo, i_hi):
+            column = self._columns.get(i)
+            if column is None:
+                continue
+            k0, rows = column
+            a, b = max(k_lo - k0, 0), min(k_hi - k0, rows.size)
+            if b > a:
+                found.append(rows[a:b])
+        if not found:
+            return np.zeros(0, dtype=np.int64)
+        rows = np.concatenate(found)
+        return rows[rows >= 0]
+
+    def _histories_now(self, rows: np.ndarray) -> np.ndarray:
+        """Histories G_jk of ``rows`` at the committed time (a copy)."""
+        histories = self._states[rows]
+        elapsed = self._time - self._stamps[rows]
+        stale = elapsed > 0.0
+        if np.any(stale):
+            histories[stale] *= np.exp(-np.multiply.outer(elapsed[stale], self.kernel.rates))
+        return histories
+
+    def _store(self, window: tuple[int, int, int, int]) -> np.ndarray:
+        """Storage rows of every point of ``window``, new (zero) histories for the others."""
+        i_lo, i_hi, k_lo, k_hi = window
+        out = []
+        for i in range(i_lo, i_hi):
+            k0, rows = self._columns.get(i, (k_lo, np.zeros(0, dtype=np.int64)))
+            start, stop = min(k0, k_lo), max(k0 + rows.size, k_hi)
+            if start < k0 or stop > k0 + rows.size:  # widen the column's index
+                wider = np.full(stop - start, -1, dtype=np.int64)
+                wider[k0 - start:k0 - start + rows.size] = rows
+                k0, rows = start, wider
+            part = rows[k_lo - k0:k_hi - k0]
+            for offset in np.flatnonzero(part < 0):
+                part[offset] = self._new_point(i, k_lo + int(offset))
+            self._columns[i] = (k0, rows)
+            out.append(part.copy())
+        return np.concatenate(out)
+
+    def _new_point(self, i: int, k: int) -> int:
+        if self._stored == self._stamps.size:
+            grow = self._stamps.size
+            self._states = np.vstack([self._states, np.zeros((grow, self._states.shape[1]))])
+            self._stamps = np.concatenate([self._stamps, np.zeros(grow)])
+            self._grid_index = np.vstack([self._grid_index, np.zeros((grow, 2), np.int64)])
+        row = self._stored
+        self._states[row] = 0.0
+        self._stamps[row] = self._time
+        self._grid_index[row] = (i, k)
+        self._stored += 1
+        return row
+
+    # --- trial / commit -------------------------------------------------------------------
+
+    def trial(self, position: np.ndarray, dt: float, hint: np.ndarray | None = None) -> GridTrial:
+        """Contact terms for the slider centre at ``position`` [m] on the plate after ``dt`` [s].
+
+        ``hint`` (the velocity) orients a frame not yet fixed when the slider is at the centre.
+        The newest interval's share 2 c sqrt(dt) q is left to the friction solve.
+        """
+        axes = self.frame(position, hint)
+        window = self.window(position, axes)
+        rows = self._rows(window)
+        count = GridTrial(0.0, window, axes).points
+        if rows.size == 0 or count == 0:
+            return GridTrial(0.0, window, axes)
+        _, weighted, _ = self.factors(dt)
+        column_sums = self._histories_now(rows).sum(axis=0)
+        return GridTrial(float(column_sums @ weighted) / count, window, axes)
+
+    def commit(self, dt: float, trial: GridTrial, flux: float) -> None:
+        """Add one interval ``dt`` [s] of constant ``flux`` [W/m^2] on the trial's window."""
+        if flux != 0.0 and trial.points > 0:
+            if self._axes is None:
+                self._axes = np.array(trial.axes, dtype=float)
+            step, _, _ = self.factors(dt)
+            rows = self._store(trial.window)
+            self._states[rows] = self._histories_now(rows) * step[0] + flux * step[1]
+            self._stamps[rows] = self._time + dt
+        self._time += dt
+
+    # --- read-outs ------------------------------------------------------------------------
+
+    def point_indices(self) -> np.ndarray:
+        """Grid indices (i, k) of the stored points, shape (m, 2); point (i, k) lies at
+        (first + i s, first + k s) in the grid frame."""
+        return self._grid_index[:self._stored].copy()
+
+    def point_positions(self) -> np.ndarray:
+        """Plate coordinates (x, y) of the stored points [m], shape (m, 2)."""
+        local = self.first_point + self.spacing * self.point_indices().astype(float)
+        axes = self._axes if self._axes is not None else np.eye(2)
+        return local @ axes
+
+    def point_temperatures(self, dt: float = 0.0) -> np.ndarray:
+        """Temperature of the stored points ``dt`` [s] after the last commit [degC]."""
+        rows = np.arange(self._stored)
+        weighted = self.kernel.weights * np.exp(-self.kernel.rates * max(dt, 0.0))
+        rise = self._histories_now(rows) @ weighted
+        return self.thermal.initial_temperature + self.coefficient * rise
