@@ -45,7 +45,10 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb demo``; returns the exit status."""
+    from dcfpb.cli.outputs import check_outputs
     from structures.compiled.ahead import compile_ahead
+
+    check_outputs(folders={"--plot": args.plot})
 
     with compile_ahead() as ahead:
         ahead.help()  # on a cold cache: compile a share of the engine, then do the rest

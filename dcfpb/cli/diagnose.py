@@ -61,6 +61,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the diagnosis for parsed arguments; returns the exit status."""
+    from dcfpb.cli.outputs import check_outputs
+
+    check_outputs(folders={"--report": args.report})  # before the 2 s of imports
     from isolator.diagnosis import BaselineSpec, DataError, diagnose, load_campaign
     from isolator.diagnosis.manifest import load_manifest
 

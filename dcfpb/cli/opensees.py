@@ -89,6 +89,9 @@ def _import_error(command: str, error: ImportError) -> int:
 
 def run_building(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb compare-opensees``; returns the exit status."""
+    from dcfpb.cli.outputs import check_outputs
+
+    check_outputs(folders={"--plot": args.plot})
     from dcfpb.cli.run import building_run_inputs, print_peaks
     from structures.opensees.comparison import comparison_bearing, run_comparison
 

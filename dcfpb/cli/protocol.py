@@ -43,9 +43,11 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_protocol(args: argparse.Namespace) -> int:
+    from dcfpb.cli.outputs import check_outputs
     from isolator.experiments import protocol_bearing
     from isolator.protocols import sine
 
+    check_outputs(files={"--output": args.output}, figures={"--plot": args.plot})
     bearing = protocol_bearing(
         model=args.model,
         slider_diameter=args.slider_diameter,

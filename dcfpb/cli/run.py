@@ -97,8 +97,10 @@ def building_run_inputs(args: argparse.Namespace, command: str):
 
 
 def _run_building(args: argparse.Namespace) -> int:
+    from dcfpb.cli.outputs import check_outputs
     from structures.compiled.ahead import compile_ahead
 
+    check_outputs(files={"--output": args.output}, folders={"--plot": args.plot})
     with compile_ahead() as ahead:  # the engine compiles while the inputs are read
         ahead.help()
         from structures.analysis import peaks, run

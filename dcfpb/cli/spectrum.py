@@ -79,6 +79,9 @@ def summarise(motion: Any, periods: Any, damping: float) -> dict[str, Any]:
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb spectrum``; returns the exit status."""
+    from dcfpb.cli.outputs import check_outputs
+
+    check_outputs(figures={"--plot": args.plot})
     motion = read_record_from_args(args.record, args)
     periods = STANDARD_PERIODS if args.periods is None else args.periods
     summary = summarise(motion, periods, args.damping)
