@@ -15,10 +15,15 @@ from tests.verification.test_integrators import ElasticPerfectlyPlastic
 DT = 0.01
 BUILDING = ShearBuilding([2.0e5, 1.6e5], [3.0e8, 2.0e8], 2.5e5, RayleighDamping((0.05, 0.05)))
 
+# Ground accelerations of physical size: 0, or 1e-6 to 15 m/s^2 in magnitude (the readers refuse
+# a record whose PGA is below 1e-4 g). Far smaller values (hypothesis found 6e-167) make the
+# squares inside the Euclidean norms of the convergence test underflow, which says nothing
+# about the integrator.
 records = arrays(
     float,
     st.integers(min_value=2, max_value=60),
-    elements=st.floats(min_value=-15.0, max_value=15.0, allow_nan=False, allow_subnormal=False),
+    elements=st.floats(min_value=-15.0, max_value=15.0, allow_nan=False,
+                       allow_subnormal=False).filter(lambda x: x == 0.0 or abs(x) >= 1e-6),
 )
 methods = st.sampled_from([Newmark(), Newmark(0.5, 1.0 / 6.0), HHT(-0.1), HHT(-1.0 / 3.0)])
 models = st.sampled_from(
