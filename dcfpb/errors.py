@@ -64,3 +64,8 @@ class TimeLimitExceeded(RunFailure):
     """A run past its wall-clock time limit."""
 
     kind = "timeout"
+
+
+class InputWarning(UserWarning):
+    """A value given that does not apply, or is replaced, where the run goes on regardless: the
+    message names it and what is used instead."""

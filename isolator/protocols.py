@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dcfpb.validation import check_array, check_choice, check_int, check_real
+from isolator.limits import DEFAULT_MAX_STEPS, history_steps
 
 WIND_PEAK_VELOCITY = 0.015
 """Peak velocity of the paper's wind-load test T02 [m/s] (about 15 mm/s)."""
@@ -104,11 +105,6 @@ class ImposedHistory:
         return [slice(start, stop) for lab, start, stop in self.segments if lab == label]
 
 
-def _steps(duration: float, dt: float) -> int:
-    """Number of equal steps no longer than ``dt`` that fill ``duration``."""
-    return max(1, math.ceil(duration / dt - _ROUNDING))
-
-
 def _labelled(history: ImposedHistory, label: str) -> ImposedHistory:
     return ImposedHistory(
         history.time, history.displacement, history.velocity, label, ((label, 0, len(history)),)
@@ -116,7 +112,8 @@ def _labelled(history: ImposedHistory, label: str) -> ImposedHistory:
 
 
 def sine(
-    amplitude: float, period: float, cycles: int, dt: float, *, start_time: float = 0.0
+    amplitude: float, period: float, cycles: int, dt: float, *, start_time: float = 0.0,
+    max_steps: int = DEFAULT_MAX_STEPS,
 ) -> ImposedHistory:
     """Fully reversed sine cycles ``u = A sin(2 pi (t - t0) / T)``.
 
@@ -132,6 +129,8 @@ def sine(
         Largest time step [s], in (0, T/20] (see the module's sampling convention).
     start_time : float
         Time t0 of the first sample [s].
+    max_steps : int
+        Most steps allowed, checked before any array is made (:mod:`isolator.limits`).
 
     Returns
     -------
@@ -144,7 +143,7 @@ def sine(
     cycles = check_int(cycles, "cycles", owner, low=1)
     dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=period / _STEPS_PER_PERIOD_MIN)
     start_time = check_real(start_time, "start_time", owner)
-    n = _steps(cycles * period, dt)
+    n = history_steps(cycles * period, dt, max_steps=max_steps)
     k = np.arange(n + 1)
     # Phase as an exact fraction of a cycle (integer arithmetic), so that whole cycles end on 0.
     phase = 2.0 * np.pi * ((k * cycles) % n) / n
@@ -219,7 +218,7 @@ def hold(duration: float, dt: float) -> ImposedHistory:
     owner = "hold"
     duration = check_real(duration, "duration", owner, low=0.0, low_open=True)
     dt = check_real(dt, "dt", owner, low=0.0, low_open=True)
-    n = _steps(duration, dt)
+    n = history_steps(duration, dt)
     time = duration * np.arange(n + 1) / n
     zeros = np.zeros(n + 1)
     return ImposedHistory(time, zeros, zeros, "rest", (("rest", 0, n + 1),))

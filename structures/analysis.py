@@ -29,6 +29,7 @@ from structures.compiled.engine import (
 )
 from structures.integrators import HHT, Newmark, as_method, integrate
 from structures.isolated_building import IsolatedShearBuilding
+from structures.limits import DEFAULT_MAX_STEPS, building_fields, check_run
 from structures.results import response_dataset
 from structures.shear_building import ShearBuilding
 
@@ -92,6 +93,7 @@ def run(
     engine: str = "auto",
     floor_spectra: bool = False,
     time_limit: float | None = None,
+    max_steps: int = DEFAULT_MAX_STEPS,
 ):
     """Run a time-history analysis.
 
@@ -126,6 +128,10 @@ def run(
         the reference engine looks at the clock after every step, the compiled one after
         every ``CHUNK_STEPS`` steps (:func:`structures.compiled.engine.compiled_history`).
         Default: none.
+    max_steps : int
+        Most time steps the run may take (default 2,000,000, see :mod:`isolator.limits`):
+        a longer run, or one whose histories would not fit in the memory available, is
+        refused before anything is allocated (:func:`structures.limits.check_run`).
 
     Returns
     -------
@@ -148,6 +154,7 @@ def run(
         ``peaks_up_to_failure = 1`` (:func:`structures.results.response_dataset`).
     """
 
+    check_run(motion, dt, building_fields(building.n_storeys), max_steps=max_steps)
     model = IsolatedShearBuilding(building, bearing, n_bearings)
     acceleration, step = resampled_record(motion, dt)
     method = as_method(integrator)

@@ -29,6 +29,7 @@ import numpy as np
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import sdof_response
 from structures.analysis import resampled_record
+from structures.limits import DEFAULT_MAX_STEPS, check_run, fixed_base_fields
 from structures.shear_building import ShearBuilding
 
 __all__ = ["PEAK_NAMES", "ratios_to_fixed_base", "run_fixed_base", "superstructure_peaks"]
@@ -53,7 +54,8 @@ def _modal_damping_ratios(building: ShearBuilding, shapes: np.ndarray,
     return diagonal / (2.0 * omega)
 
 
-def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float | None = None):
+def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float | None = None,
+                   max_steps: int = DEFAULT_MAX_STEPS):
     """The linear response of the superstructure on a fixed base to a ground motion.
 
     Parameters
@@ -65,6 +67,8 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float |
     dt : float, optional
         Output step [s], at most the record's; finer steps interpolate the record linearly
         (exactly as :func:`structures.analysis.run` does, so the two share a time axis).
+    max_steps : int
+        Most time steps the run may take, as in :func:`structures.analysis.run`.
 
     Returns
     -------
@@ -78,10 +82,14 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float |
     Raises
     ------
     ValueError
-        For a ``dt`` outside (0, record dt], or a damping that is not classical.
+        For a ``dt`` outside (0, record dt], or a damping that is not classical; an
+        :class:`~dcfpb.errors.InputError` for a run past ``max_steps`` or the memory available.
     """
     import xarray as xr
 
+    check_run(motion, dt, fixed_base_fields(building.n_storeys), max_steps=max_steps,
+              what="The fixed-base run",
+              raise_with="the max_steps argument of structures.fixed_base.run_fixed_base")
     acceleration, step = resampled_record(motion, dt)
     start = _time.perf_counter()
     modes = building.fixed_base_modes()

@@ -1,0 +1,134 @@
+"""How long a run may be: a bound on its number of time steps and on the memory its histories
+take, checked before anything is allocated.
+
+A run's cost grows with its number of steps, duration / dt: a record with a wrong DT of 100 s
+read at an analysis step of 5 ms asks for 31 million steps and some 20 GB. :func:`check_steps`
+refuses such a run up front with the step count, where it comes from and how to raise the
+limit; bearing tests (:mod:`isolator.protocols`) and building runs (:mod:`structures.limits`)
+share it.
+
+Default limit, :data:`DEFAULT_MAX_STEPS` = 2,000,000 steps: the longest recorded ground motions
+(subduction events, 300 to 600 s) at the finest step in use (5 ms, or 1 ms for a convergence
+study) take 60,000 to 600,000 steps, so real runs stay well inside it, while a building run
+of that length still fits in about 1.2 GB (five storeys) and takes seconds with the compiled
+engine. Past it, the user raises the limit on purpose (``--max-steps``, ``max_steps=``).
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+from dcfpb.errors import InputError
+
+DEFAULT_MAX_STEPS = 2_000_000
+"""Most time steps a run may take unless the caller raises the limit."""
+
+MEMINFO = Path("/proc/meminfo")
+
+
+def available_memory(meminfo: Path = MEMINFO) -> int | None:
+    """Memory available to a new allocation [bytes]: ``MemAvailable`` of ``/proc/meminfo``,
+    or None where there is no such file or line (the memory check is then skipped)."""
+    try:
+        for line in meminfo.read_text().splitlines():
+            if line.startswith("MemAvailable:"):
+                return int(line.split()[1]) * 1024  # the file gives kB
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
+
+
+def _size(n_bytes: float) -> str:
+    for unit, scale in (("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if n_bytes >= scale:
+            return f"{n_bytes / scale:.3g} {unit}"
+    return f"{n_bytes:.0f} bytes"
+
+
+def check_steps(
+    steps: int,
+    *,
+    what: str,
+    duration: float,
+    dt: float,
+    bytes_per_step: float,
+    max_steps: int,
+    raise_with: str,
+    hint: str = "Check the duration and the time step",
+    meminfo: Path = MEMINFO,
+) -> None:
+    """Refuse a run of ``steps`` time steps past ``max_steps`` or the memory available.
+
+    Parameters
+    ----------
+    steps : int
+        Time steps the run would take.
+    what : str
+        What is run, for the message (e.g. ``"the building run"``).
+    duration, dt : float
+        The duration [s] and step [s] that give ``steps``, for the message.
+    bytes_per_step : float
+        Memory the run holds per step [bytes] (its stored fields x 8 bytes).
+    max_steps : int
+        The limit, >= 1.
+    raise_with : str
+        How the user raises the limit, e.g. ``"--max-steps"`` or ``"max_steps="``.
+    hint : str
+        What to check first, for the message.
+    meminfo : Path
+        Where the available memory is read (see :func:`available_memory`).
+
+    Raises
+    ------
+    InputError
+        Past the limit, with the steps, the duration and dt they come from and the way to
+        raise it; or when the estimated memory exceeds the memory available.
+    """
+    if isinstance(max_steps, bool) or not isinstance(max_steps, int) or max_steps < 1:
+        raise InputError(f"{raise_with} must be an integer in [1, inf). Got {max_steps!r} "
+                         "instead.")
+    need = steps * bytes_per_step
+    source = f"{steps:,} steps ({duration:.6g} s at dt = {dt:.6g} s)"
+    if steps > max_steps:
+        raise InputError(
+            f"{what} would take {source}, past the limit of {max_steps:,} steps, and hold about "
+            f"{_size(need)}. {hint}; to run it all the same, raise the limit with {raise_with} "
+            f"(at least {steps:,}).")
+    free = available_memory(meminfo)
+    if free is not None and need > free:
+        raise InputError(
+            f"{what} would take {source} and hold about {_size(need)}, more than the "
+            f"{_size(free)} of memory available. {hint}.")
+
+
+HISTORY_FIELDS = 17
+"""Values an imposed history and its bearing test hold per sample: the history as made and as
+kept (:class:`isolator.protocols.ImposedHistory`: time, displacement, velocity, and the sample
+index and phase of a sine) and the test's nine histories (:func:`isolator.testrig.run_test`)."""
+
+
+def history_steps(
+    duration: float,
+    dt: float,
+    *,
+    max_steps: int = DEFAULT_MAX_STEPS,
+    what: str = "The imposed history",
+    raise_with: str = "the max_steps argument of isolator.protocols.sine",
+    hint: str = "Check the duration and the time step",
+) -> int:
+    """Number of equal steps no longer than ``dt`` [s] that fill ``duration`` [s] (at least
+    one), after checking it against ``max_steps`` and the memory available
+    (:func:`check_steps`, :data:`HISTORY_FIELDS` values per sample).
+
+    Raises
+    ------
+    InputError
+        Past the limit or the memory available.
+    """
+    ratio = duration / dt - 1e-9  # relative slack: a step that divides the duration fits
+    steps = max(1, math.ceil(ratio)) if math.isfinite(ratio) else sys.maxsize
+    check_steps(steps, what=what, duration=duration, dt=dt, bytes_per_step=8 * HISTORY_FIELDS,
+                max_steps=max_steps, raise_with=raise_with, hint=hint)
+    return steps

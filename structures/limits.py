@@ -1,0 +1,98 @@
+"""The length of a building run, estimated before it starts: its steps and its memory.
+
+:func:`check_run` is called by :func:`structures.analysis.run` and
+:func:`structures.fixed_base.run_fixed_base` before anything is allocated, and by the command
+line (``--max-steps``) before it waits for the engine. The limit and its default are those of
+:mod:`isolator.limits` (:data:`~isolator.limits.DEFAULT_MAX_STEPS` = 2,000,000 steps).
+
+Memory per step is counted from what a run holds at once: the fields the result Dataset stores
+(:func:`structures.results.response_dataset`: displacement, velocity and absolute acceleration
+of the n + 1 floors, drift and shear of the n storeys, 15 histories of one value: isolator
+displacement and force, base shear, friction force, mu, temperature, heat flux, ground
+acceleration, six energies and the time) and the engine's working histories beside them
+(displacement, velocity and acceleration of the n + 1 floors, the restoring force, seven
+bearing fields, iterations, subdivisions, the record and the time), 8 bytes each.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+
+from dcfpb.validation import check_real
+from groundmotions.records import GroundMotion
+from isolator.limits import DEFAULT_MAX_STEPS, check_steps
+
+__all__ = ["DEFAULT_MAX_STEPS", "building_fields", "check_run", "fixed_base_fields",
+           "run_steps"]
+
+_BYTES = 8  # one float64 (or int64) per field and step
+
+
+def building_fields(n_storeys: int) -> int:
+    """Values a building run holds per step: the Dataset's and the engine's (see above)."""
+    dataset = 3 * (n_storeys + 1) + 2 * n_storeys + 15
+    engine = 4 * (n_storeys + 1) + 11
+    return dataset + engine
+
+
+def fixed_base_fields(n_storeys: int) -> int:
+    """Values a fixed-base run holds per step: its Dataset (displacement, velocity, absolute
+    acceleration, drift and shear of n floors; base shear, ground acceleration, time) and the
+    modal responses (two per mode)."""
+    return 7 * n_storeys + 3
+
+
+def run_steps(motion: GroundMotion, dt: float | None, owner: str = "run") -> tuple[int, float]:
+    """The steps and the step [s] of a run on ``motion`` at the analysis step ``dt``.
+
+    ``dt`` None (or the record's) runs on the record's samples; a finer one interpolates the
+    record (:func:`structures.analysis.resampled_record`): ``floor(duration / dt)`` steps.
+
+    Raises
+    ------
+    ValueError
+        For a ``dt`` outside (0, record dt], naming ``owner``.
+    """
+    if dt is None or abs(dt - motion.dt) <= 1e-12 * motion.dt:
+        return int(motion.acceleration.size) - 1, float(motion.dt)
+    check_real(dt, "dt", owner, low=0.0, high=motion.dt, low_open=True)
+    ratio = motion.duration / dt + 1e-9  # inf for a step of 1e-320 s
+    return (math.floor(ratio) if math.isfinite(ratio) else sys.maxsize), float(dt)
+
+
+def check_run(
+    motion: GroundMotion,
+    dt: float | None,
+    fields: int,
+    *,
+    max_steps: int = DEFAULT_MAX_STEPS,
+    what: str = "The building run",
+    raise_with: str = "the max_steps argument of structures.analysis.run",
+    owner: str = "run",
+) -> int:
+    """Refuse a run past ``max_steps`` steps or the memory available; return its steps.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The record (its duration [s] and step [s]).
+    dt : float or None
+        Analysis step [s]; None for the record's.
+    fields : int
+        Values held per step (:func:`building_fields`, :func:`fixed_base_fields`).
+    max_steps : int
+        The limit (default :data:`DEFAULT_MAX_STEPS`).
+    what, raise_with, owner : str
+        The run, how to raise the limit, and who checks ``dt``, for the messages.
+
+    Raises
+    ------
+    InputError
+        Past the limit or the available memory (see :func:`isolator.limits.check_steps`).
+    """
+    steps, step = run_steps(motion, dt, owner)
+    check_steps(steps, what=what, duration=float(motion.duration), dt=step,
+                bytes_per_step=fields * _BYTES, max_steps=max_steps, raise_with=raise_with,
+                hint="Check the record's time step (DT in its header) and the analysis dt")
+    return steps
