@@ -14,7 +14,10 @@ it does not import the others' modules (``dcfpb diagnose`` alone costs about 2 s
 ``dcfpb --help`` and the other commands see them all.
 
 Exit status: 0 for success, 1 for a run that failed on its own terms
-(:class:`dcfpb.errors.RunFailure`, or a run that stopped early), 2 for bad input.
+(:class:`dcfpb.errors.RunFailure`, or a run that stopped early), 2 for bad input. Errors print
+as one line ``dcfpb <command>: error: <message>`` on stderr, and warnings (e.g. a building-file
+setting without effect, :class:`dcfpb.errors.InputWarning`) as ``dcfpb <command>: warning:
+<message>``.
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
 from collections.abc import Sequence
 
 from dcfpb import __version__
@@ -68,6 +72,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     own = command in OWN_COMMANDS and argv.index(command) == 0
     parser = build_parser(modules=not own)
     args = parser.parse_args(argv)
+    shown = warnings.formatwarning
+    warnings.formatwarning = _warning_line(args.command)
     try:
         return args.handler(args)
     except RunFailure as error:  # good input, a run that cannot finish; caught first, as
@@ -76,3 +82,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (ValueError, TypeError, OSError) as error:
         print(f"dcfpb {args.command}: error: {error}", file=sys.stderr)
         return 2
+    finally:
+        warnings.formatwarning = shown
+
+
+def _warning_line(command: str):
+    """``warnings.formatwarning`` for the command line: one line, ``dcfpb <command>: warning:
+    <message>``, the category named unless it is one of ours (an ``InputWarning``)."""
+
+    def line(message, category, filename, lineno, text=None) -> str:
+        from dcfpb.errors import InputWarning
+
+        kind = "" if issubclass(category, InputWarning) else f" ({category.__name__})"
+        return f"dcfpb {command}: warning: {message}{kind}\n"
+
+    return line

@@ -21,7 +21,7 @@ import json
 import math
 from typing import Any
 
-from dcfpb.cli.run import add_record_options
+from dcfpb.cli.run import add_max_steps, add_record_options
 
 MODELS = ("constant", "velocity", "ptv")
 _ELEMENT = {"constant": "coulomb", "velocity": "velocity", "ptv": "ptv"}
@@ -54,7 +54,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--integrator", choices=("newmark", "hht"),
                    help="time integration (default: the building file's)")
     p.add_argument("--alpha", type=float, help="HHT alpha in [-1/3, 0] (OpenSees: 1 + alpha)")
-    p.add_argument("--dt", type=float, help="analysis time step [s] (default: the file's)")
+    p.add_argument("--dt", type=float, help="analysis time step [s], in (0, 1] and at most "
+                   "the record's (default: the file's, else the record's)")
+    add_max_steps(p, "each run")
     add_record_options(p)
     p.add_argument("--json", action="store_true", help="print the comparison as JSON")
     p.add_argument("--plot", metavar="DIR", help="write overlay plots to this folder")
@@ -74,7 +76,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     b.add_argument("--amplitude", type=float, default=0.2, help="displacement amplitude [m]")
     b.add_argument("--period", type=float, default=4.26, help="period of the sine [s]")
     b.add_argument("--cycles", type=int, default=3, help="number of cycles")
-    b.add_argument("--dt", type=float, default=0.005, help="time step [s]")
+    b.add_argument("--dt", type=float, default=0.005,
+                   help="time step [s], at most 1/20 of the period (default 0.005)")
+    add_max_steps(b, "the test")
     b.add_argument("--mu-t0", type=float, default=0.075, help="mu_t0 (velocity, ptv)")
     b.add_argument("--json", action="store_true", help="print the comparison as JSON")
     b.set_defaults(handler=run_bearing)
@@ -92,17 +96,19 @@ def run_building(args: argparse.Namespace) -> int:
     from dcfpb.cli.outputs import check_outputs
 
     check_outputs(folders={"--plot": args.plot})
-    from dcfpb.cli.run import building_run_inputs, print_peaks
+    from dcfpb.cli.run import analysis_dt, building_run_inputs, check_run_length, print_peaks
     from structures.opensees.comparison import comparison_bearing, run_comparison
 
-    config, integrator, motion = building_run_inputs(args, "dcfpb compare-opensees")
+    command = "dcfpb compare-opensees"
+    config, integrator, motion = building_run_inputs(args, command)
     if args.duration is not None:
         motion = motion.truncated(args.duration)
+    check_run_length(args, config, motion, command)
     bearing = comparison_bearing(config, args.model)
     try:
         result = run_comparison(config.building, bearing, motion, integrator,
-                                n_bearings=config.n_bearings, dt=args.dt or config.dt,
-                                pendulum=args.pendulum)
+                                n_bearings=config.n_bearings, dt=analysis_dt(args, config),
+                                pendulum=args.pendulum, max_steps=args.max_steps)
     except ImportError as error:
         return _import_error("compare-opensees", error)
     summary = result.summary
@@ -165,19 +171,21 @@ def bearing_summary(ours, opensees) -> dict[str, Any]:
 
 def run_bearing(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb compare-opensees-bearing``; returns the exit status."""
+    from dcfpb.cli.protocol import check_sine_flags
     from isolator.experiments import protocol_bearing
     from isolator.protocols import sine
     from isolator.testrig import run_test
     from structures.opensees.bearing import run_opensees_test
     from structures.opensees.comparison import shaped_bearing
 
+    check_sine_flags(args, "dcfpb compare-opensees-bearing")
     bearing = shaped_bearing(protocol_bearing(
         "constant" if args.model == "constant" else "simplified",
         slider_diameter=args.slider_diameter, effective_radius=args.effective_radius,
         pressure=args.pressure, mu_t0=args.mu_t0,
         design_velocity=2.0 * math.pi * args.amplitude / args.period,
         displacement_capacity=max(0.6, 1.05 * args.amplitude)), args.model)
-    history = sine(args.amplitude, args.period, args.cycles, args.dt)
+    history = sine(args.amplitude, args.period, args.cycles, args.dt, max_steps=args.max_steps)
     t, u, v = history.time, history.displacement, history.velocity
     try:
         opensees = run_opensees_test(bearing, t, u, v, element=_ELEMENT[args.model],

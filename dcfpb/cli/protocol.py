@@ -26,7 +26,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--amplitude", type=float, default=0.3, help="displacement amplitude [m]")
     p.add_argument("--period", type=float, default=4.26, help="period of the sine [s]")
     p.add_argument("--cycles", type=int, default=3, help="number of cycles")
-    p.add_argument("--dt", type=float, default=0.005, help="time step [s]")
+    p.add_argument("--dt", type=float, default=0.005,
+                   help="time step [s], at most 1/20 of the period (default 0.005)")
     p.add_argument("--refinement", type=float, default=0.5,
                    help="refinement factor lambda of the simplified model (default 0.5)")
     p.add_argument("--mu0", type=float, default=None,
@@ -36,10 +37,46 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="mu_t0 of the precise and simplified models (default 0.075)")
     p.add_argument("--initial-temperature", type=float, default=20.0,
                    help="initial temperature [degC]")
+    from dcfpb.cli.run import add_max_steps
+
+    add_max_steps(p, "the test")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument("--output", metavar="FILE.csv", help="write the history to a CSV file")
     p.add_argument("--plot", metavar="FILE.png", help="draw the hysteresis loop and temperature")
     p.set_defaults(handler=_run_protocol)
+
+
+_FLAGS = {  # flag: (low, high, low_open); None: unbounded; finite but for a flat slider's radius
+    "slider_diameter": (0.0, 10.0, True),
+    "pressure": (0.0, 1e9, True),
+    "axial_load": (0.0, None, True),
+    "effective_radius": (0.0, None, True),  # inf: a flat slider
+    "amplitude": (0.0, 9.5, True),  # the bearing's capacity, 1.05 x amplitude, is at most 10 m
+    "period": (0.0, None, True),
+    "refinement": (0.0, 2.0, True),
+    "mu0": (0.0, 1.0, True),
+    "mu_t0": (0.0, 1.0, True),
+    "initial_temperature": (-273.15, 1000.0, False),
+}
+
+
+def check_sine_flags(args: argparse.Namespace, command: str) -> None:
+    """Check the flags of a sine test (``dcfpb protocol``, ``dcfpb compare-opensees-bearing``)
+    by their names and ranges, and its length against ``--max-steps``, before any work."""
+    from dcfpb.validation import check_int, check_real
+    from isolator.limits import DEFAULT_MAX_STEPS, history_steps
+
+    for name, (low, high, low_open) in _FLAGS.items():
+        if getattr(args, name, None) is not None:
+            check_real(getattr(args, name), "--" + name.replace("_", "-"), command, low=low,
+                       high=high, low_open=low_open, allow_inf=name == "effective_radius")
+    cycles = check_int(args.cycles, "--cycles", command, low=1)
+    check_real(args.dt, "--dt", command, low=0.0, low_open=True, high=args.period / 20)
+    max_steps = getattr(args, "max_steps", DEFAULT_MAX_STEPS)
+    check_int(max_steps, "--max-steps", command, low=1)
+    history_steps(cycles * args.period, args.dt, max_steps=max_steps,
+                  what=f"The test ({cycles} cycles of {args.period:g} s)",
+                  raise_with="--max-steps", hint="Check --cycles, --period and --dt")
 
 
 def _run_protocol(args: argparse.Namespace) -> int:
@@ -48,6 +85,7 @@ def _run_protocol(args: argparse.Namespace) -> int:
     from isolator.protocols import sine
 
     check_outputs(files={"--output": args.output}, figures={"--plot": args.plot})
+    check_sine_flags(args, "dcfpb protocol")
     bearing = protocol_bearing(
         model=args.model,
         slider_diameter=args.slider_diameter,
@@ -61,7 +99,7 @@ def _run_protocol(args: argparse.Namespace) -> int:
         initial_temperature=args.initial_temperature,
         displacement_capacity=max(0.6, 1.05 * args.amplitude),
     )
-    history = sine(args.amplitude, args.period, args.cycles, args.dt)
+    history = sine(args.amplitude, args.period, args.cycles, args.dt, max_steps=args.max_steps)
     from isolator.testrig import run_test
 
     result = run_test(bearing, history.time, history.displacement, history.velocity,

@@ -24,7 +24,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--integrator", choices=("newmark", "hht"),
                    help="time integration (default: the building file's)")
     p.add_argument("--alpha", type=float, help="HHT alpha in [-1/3, 0]")
-    p.add_argument("--dt", type=float, help="analysis time step [s] (default: the file's)")
+    p.add_argument("--dt", type=float, help="analysis time step [s], in (0, 1] and at most "
+                   "the record's (default: the file's, else the record's)")
+    add_max_steps(p)
     add_record_options(p)
     p.add_argument("--json", action="store_true", help="print the peaks as JSON")
     p.add_argument("--output", metavar="FILE.nc", help="write the full result to netCDF")
@@ -58,8 +60,32 @@ def read_record_from_args(path: str, args: argparse.Namespace):
                        dt=getattr(args, "record_dt", None))
 
 
+def add_max_steps(p: argparse.ArgumentParser, what: str = "the run") -> None:
+    """Add ``--max-steps``, the bound on a run's time steps (:mod:`isolator.limits`)."""
+    from isolator.limits import DEFAULT_MAX_STEPS
+
+    p.add_argument("--max-steps", type=int, default=DEFAULT_MAX_STEPS, metavar="N",
+                   help=f"refuse {what} if it would take more than N time steps (duration / "
+                   f"dt) or more memory than is available (default {DEFAULT_MAX_STEPS:,})")
+
+
+def analysis_dt(args: argparse.Namespace, config) -> float | None:
+    """The analysis step [s]: ``--dt`` when given, else the building file's (None: the
+    record's)."""
+    return args.dt if args.dt is not None else config.dt
+
+
+def check_run_length(args: argparse.Namespace, config, motion, command: str) -> None:
+    """Refuse a building run past ``--max-steps`` or the memory available, before any work."""
+    from structures.limits import building_fields, check_run
+
+    check_run(motion, analysis_dt(args, config), building_fields(config.building.n_storeys),
+              max_steps=args.max_steps, raise_with="--max-steps", owner=command)
+
+
 def integrator_from_args(config, kind: str | None, alpha: float | None):
-    """The building file's integrator, or the one ``--integrator``/``--alpha`` ask for."""
+    """The building file's integrator, or the one ``--integrator``/``--alpha`` ask for (with
+    the file's alpha when the file runs HHT and ``--alpha`` is not given)."""
     from structures.integrators import HHT, Newmark
 
     if kind is None and alpha is None:
@@ -68,15 +94,18 @@ def integrator_from_args(config, kind: str | None, alpha: float | None):
         if alpha is not None:
             raise ValueError("--alpha applies to --integrator hht only.")
         return Newmark()
-    return HHT(alpha=-0.05 if alpha is None else alpha)
+    if alpha is None:
+        alpha = config.integrator.alpha if isinstance(config.integrator, HHT) else -0.05
+    return HHT(alpha=alpha)
 
 
 def building_run_inputs(args: argparse.Namespace, command: str):
     """The building file, the integrator and the (scaled) record of a building command.
 
     Reads ``args.building``, ``args.integrator``, ``args.alpha``, ``args.record`` (with
-    ``args.units`` and ``args.record_dt`` when given) and ``args.scale``; every value is
-    checked before any work starts.
+    ``args.units`` and ``args.record_dt`` when given) and ``args.scale``, and checks
+    ``args.dt`` and ``args.max_steps`` when the command has them; every value is checked
+    before any work starts.
 
     Returns
     -------
@@ -84,10 +113,14 @@ def building_run_inputs(args: argparse.Namespace, command: str):
     integrator : Newmark or HHT
     motion : GroundMotion
     """
-    from dcfpb.validation import check_real
+    from dcfpb.validation import check_int, check_real
     from structures.config import load_config
 
     check_real(args.scale, "scale", command, low=0.0, low_open=True)
+    if getattr(args, "dt", None) is not None:
+        check_real(args.dt, "--dt", command, low=0.0, low_open=True, high=1.0)
+    if hasattr(args, "max_steps"):
+        check_int(args.max_steps, "--max-steps", command, low=1)
     config = load_config(args.building)
     integrator = integrator_from_args(config, args.integrator, args.alpha)
     motion = read_record_from_args(args.record, args)
@@ -102,15 +135,18 @@ def _run_building(args: argparse.Namespace) -> int:
 
     check_outputs(files={"--output": args.output}, folders={"--plot": args.plot})
     with compile_ahead() as ahead:  # the engine compiles while the inputs are read
+        # bad input (a record of 31 M steps) is refused first, before this process compiles
+        config, integrator, motion = building_run_inputs(args, "dcfpb run")
+        check_run_length(args, config, motion, "dcfpb run")
         ahead.help()
         from structures.analysis import peaks, run
         from structures.floor_spectra import with_floor_spectra
 
-        config, integrator, motion = building_run_inputs(args, "dcfpb run")
         model = args.model or config.friction["model"]
         ahead.wait()
         result = run(config.building, config.bearing(model), motion, integrator,
-                     n_bearings=config.n_bearings, dt=args.dt or config.dt)
+                     n_bearings=config.n_bearings, dt=analysis_dt(args, config),
+                     max_steps=args.max_steps)
     summary = peaks(result)
     result = with_floor_spectra(result, motion)
     if args.output:

@@ -64,9 +64,9 @@ def test_csv_and_plot_outputs(tmp_path, capsys):
 def test_bad_value_is_a_clear_error_with_exit_status_2(capsys):
     assert main([*ARGS[:-2], "--dt", "-0.01"]) == 2
     err = capsys.readouterr().err
-    assert "'dt'" in err and "-0.01" in err
+    assert "'--dt'" in err and "-0.01" in err  # the flag, by its name
     assert main([*ARGS, "--mu0", "2"]) == 2
-    assert "'mu0'" in capsys.readouterr().err
+    assert "'--mu0'" in capsys.readouterr().err
 
 
 def test_pure_python_fallback_gives_the_compiled_answer(capsys):
