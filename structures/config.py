@@ -1,12 +1,14 @@
 """A building and its isolators from a TOML file (see ``examples/five_storey.toml``).
 
 One place turns the file into the objects every workflow uses (single runs, suites, the
-OpenSees comparison), so they all build the same model. Unknown keys are errors: a typo must
-not silently fall back to a default.
+OpenSees comparison), so they all build the same model. Every value is checked first, by
+:mod:`structures.config_schema` (types, ranges, unknown keys: a typo must not silently fall back
+to a default; settings without effect are warned about), then the objects are built.
 """
 
 from __future__ import annotations
 
+import codecs
 import math
 import tomllib
 from dataclasses import dataclass
@@ -15,28 +17,17 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.errors import InputError
-from dcfpb.validation import check_choice, check_real
+from dcfpb.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS, friction_model
+from structures.config_schema import ConfigError, ConfigWarning, check_tables
 from structures.integrators import HHT, Newmark
 from structures.shear_building import ModalDamping, RayleighDamping, ShearBuilding
 
-_KEYS = {
-    "": {"name", "building", "bearing", "friction", "analysis"},
-    "building": {"floor_masses", "storey_stiffnesses", "fixed_base_period",
-                 "stiffness_profile", "base_mass", "damping"},
-    "building.damping": {"kind", "ratios", "modes", "ratio"},
-    "bearing": {"count", "effective_radius", "slider_diameter", "yield_displacement",
-                "displacement_capacity"},
-    "friction": {"model", "mu_t0", "refinement", "mu0", "design_velocity",
-                 "initial_temperature"},
-    "analysis": {"integrator", "alpha", "dt"},
-}
+__all__ = ["BuildingConfig", "ConfigError", "ConfigWarning", "load_config", "read_toml"]
 
-
-class ConfigError(InputError):
-    """A building file that cannot be used, with the file and the key named."""
+MAX_FILE_BYTES = 10_000_000
+"""Largest building file read [bytes]; the example is 4 kB."""
 
 
 @dataclass(frozen=True)
@@ -69,78 +60,105 @@ class BuildingConfig:
         return DCFPBearing(axial_load=load, friction=friction, **self.bearing_geometry)
 
 
-def _check_keys(table: dict, section: str, path: Path) -> None:
-    unknown = set(table) - _KEYS[section]
-    if unknown:
-        raise ConfigError(f"{path}: unknown key(s) {sorted(unknown)} in [{section or 'top'}]; "
-                          f"allowed: {sorted(_KEYS[section])}.")
-
-
-def _damping(table: dict, path: Path) -> RayleighDamping | ModalDamping:
-    _check_keys(table, "building.damping", path)
-    kind = table.get("kind", "rayleigh")
-    if kind == "rayleigh":
-        return RayleighDamping(ratios=tuple(table.get("ratios", (0.02, 0.02))),
-                               modes=tuple(table.get("modes", (1, 2))))
-    if kind == "modal":
-        return ModalDamping(table.get("ratio", table.get("ratios", 0.02)))
-    raise ConfigError(f"{path}: [building.damping] kind must be 'rayleigh' or 'modal'. "
-                      f"Got {kind!r} instead.")
-
-
-def load_config(path: str | Path) -> BuildingConfig:
-    """Read a building file.
+def read_toml(path: Path) -> dict[str, Any]:
+    """The table of a TOML file, read as UTF-8 (a byte-order mark is skipped).
 
     Raises
     ------
     ConfigError
-        For a missing file, bad TOML, unknown keys, or missing required keys.
-    ValueError
-        From the model objects, naming the parameter, its range and the value given.
+        For a missing or unreadable file, one larger than :data:`MAX_FILE_BYTES`, bytes that
+        are not UTF-8 (the first offending byte and its offset named) or text that is not TOML.
     """
-    path = Path(path)
     try:
-        raw = tomllib.loads(path.read_text())
+        if path.stat().st_size > MAX_FILE_BYTES:
+            raise ConfigError(f"{path}: {path.stat().st_size} bytes is not a building file "
+                              f"(at most {MAX_FILE_BYTES} bytes).")
+        data = path.read_bytes()
     except FileNotFoundError as error:
         raise ConfigError(f"{path}: no such building file.") from error
+    except OSError as error:
+        raise ConfigError(f"{path}: cannot be read ({error.strerror or error}).") from error
+    skip = len(codecs.BOM_UTF8) if data.startswith(codecs.BOM_UTF8) else 0
+    try:
+        text = data[skip:].decode("utf-8")
+    except UnicodeDecodeError as error:
+        at = skip + error.start  # offset in the file
+        raise ConfigError(f"{path}: not UTF-8 text (byte 0x{data[at]:02x} at offset {at}); "
+                          "save it as UTF-8.") from None
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise ConfigError(f"{path}: not valid TOML: {error}") from error
-    _check_keys(raw, "", path)
-    for section in ("building", "bearing", "friction", "analysis"):
-        raw.setdefault(section, {})
-        _check_keys(raw[section], section, path)
-    b = raw["building"]
-    try:
-        masses = np.asarray(b["floor_masses"], dtype=float)
-        base_mass = b["base_mass"]
-    except KeyError as error:
-        raise ConfigError(f"{path}: [building] needs {error.args[0]!r}.") from error
-    damping = _damping(b.get("damping", {}), path)
+    except RecursionError:
+        raise ConfigError(f"{path}: not valid TOML: arrays or tables nested too deeply.") from None
+
+
+def _damping(table: dict) -> RayleighDamping | ModalDamping:
+    if table.get("kind", "rayleigh") == "rayleigh":
+        return RayleighDamping(ratios=tuple(table.get("ratios", (0.02, 0.02))),
+                               modes=tuple(table.get("modes", (1, 2))))
+    ratio = table.get("ratio", table.get("ratios", 0.02))
+    return ModalDamping(tuple(ratio) if isinstance(ratio, list) else ratio)
+
+
+def _build(tables: dict[str, dict], path: Path) -> BuildingConfig:
+    """The objects of a checked file (:func:`structures.config_schema.check_tables`)."""
+    b = tables["building"]
+    masses = np.asarray(b["floor_masses"], dtype=float)
+    damping = _damping(tables["building.damping"])
     if "storey_stiffnesses" in b:
         building = ShearBuilding(masses, np.asarray(b["storey_stiffnesses"], dtype=float),
-                                 base_mass, damping)
-    elif "fixed_base_period" in b:
-        building = ShearBuilding.from_period(masses, b["fixed_base_period"], base_mass=base_mass,
-                                             damping=damping,
-                                             profile=b.get("stiffness_profile", "uniform"))
+                                 b["base_mass"], damping)
     else:
-        raise ConfigError(f"{path}: [building] needs 'storey_stiffnesses' or "
-                          "'fixed_base_period'.")
-    bearing = dict(raw["bearing"])
+        building = ShearBuilding.from_period(masses, b["fixed_base_period"],
+                                             base_mass=b["base_mass"], damping=damping,
+                                             profile=b.get("stiffness_profile", "uniform"))
+    bearing = dict(tables["bearing"])
     count = bearing.pop("count", 1)
-    for key in ("effective_radius", "slider_diameter"):
-        if key not in bearing:
-            raise ConfigError(f"{path}: [bearing] needs {key!r}.")
-    friction = dict(raw["friction"])
-    friction["model"] = check_choice(friction.get("model", "precise"), "model", str(path), MODELS)
-    analysis = raw["analysis"]
-    kind = check_choice(analysis.get("integrator", "newmark"), "integrator", str(path),
-                        ("newmark", "hht"))
-    integrator = HHT(alpha=analysis.get("alpha", -0.05)) if kind == "hht" else Newmark()
-    dt = analysis.get("dt")
-    if dt is not None:
-        check_real(dt, "dt", str(path), low=0.0, low_open=True, high=1.0)
-    config = BuildingConfig(raw.get("name", path.stem), building, int(count), bearing, friction,
-                            integrator, dt)
-    config.bearing()  # validate the bearing now, before any run starts
+    friction = dict(tables["friction"])
+    friction["model"] = friction.get("model", "precise")
+    analysis = tables["analysis"]
+    hht = analysis.get("integrator", "newmark") == "hht"
+    integrator = HHT(alpha=analysis.get("alpha", -0.05)) if hht else Newmark()
+    config = BuildingConfig(tables[""].get("name", path.stem), building, count, bearing,
+                            friction, integrator, analysis.get("dt"))
+    for model in MODELS:  # every model the file may run (--model, suites), checked now
+        config.bearing(model)
     return config
+
+
+def load_config(path: str | Path) -> BuildingConfig:
+    """Read a building file (TOML, UTF-8; see ``examples/five_storey.toml``).
+
+    Parameters
+    ----------
+    path : str or Path
+        The building file.
+
+    Returns
+    -------
+    BuildingConfig
+        The building, the bearing geometry and friction parameters, the integrator and the
+        analysis step [s] (None: the record's).
+
+    Raises
+    ------
+    ConfigError
+        (an :class:`~dcfpb.errors.InputError`) for anything wrong with the file: missing,
+        not UTF-8, not TOML, an unknown or missing key, a value of the wrong type or outside
+        its range (the file, section and key named with what is allowed), or a combination
+        the model objects refuse.
+
+    Warns
+    -----
+    ConfigWarning
+        For a setting without effect (see :func:`structures.config_schema.check_tables`).
+    """
+    path = Path(path)
+    tables = check_tables(read_toml(path), path)
+    try:
+        return _build(tables, path)
+    except ConfigError:
+        raise
+    except (ValueError, TypeError, ArithmeticError) as error:  # a combination of good values
+        raise ConfigError(f"{path}: {error}") from error

@@ -1,0 +1,396 @@
+"""The building file's schema: every section and key, its TOML type and its allowed range.
+
+:func:`check_tables` checks every value of a building file's table (read by
+:func:`structures.config.read_toml`) before any object is built: numbers are numbers
+(``true`` and ``"6"`` are not), integers are integers (``2.7`` and ``true`` are not), arrays hold
+what they should (no nested arrays or tables where numbers belong), each value lies in its
+range, and every friction parameter is checked whatever model the file chooses, since
+``--model`` and suites run the others. Every error is a :class:`ConfigError` naming the file,
+the section and the key, the allowed type and range and the value given::
+
+    five_storey.toml: [bearing] 'count' must be an integer in [1, 10000]. Got 2.7 (a float)
+    instead.
+
+A setting that does not apply to the chosen integrator or damping (``alpha`` under Newmark,
+``modes`` under modal damping) is accepted with a :class:`ConfigWarning` saying it is ignored.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from dcfpb.errors import InputError, InputWarning
+
+MAX_STOREYS = 1000
+"""Most floors a building file may describe (the tallest buildings have about 160)."""
+MAX_BEARINGS = 10_000
+"""Most bearings a building file may share its weight among."""
+PROFILES = ("uniform", "triangular", "storey_shear")
+FRICTION_MODELS = ("precise", "simplified", "constant")
+INTEGRATORS = ("newmark", "hht")
+DAMPING_KINDS = ("rayleigh", "modal")
+
+
+class ConfigError(InputError):
+    """A building file that cannot be used, with the file, section and key named."""
+
+
+class ConfigWarning(InputWarning):
+    """A setting of a building file that is accepted but has no effect, and why."""
+
+
+_KINDS = ((bool, "a boolean"), (int, "an integer"), (float, "a float"), (str, "a string"),
+          (list, "an array"), (dict, "a table"))
+
+
+def _kind(value: object) -> str:
+    """The TOML type of a parsed value, with its article."""
+    return next((name for kind, name in _KINDS if isinstance(value, kind)),
+                f"a {type(value).__name__.replace('datetime', 'date-time')}")
+
+
+def _values(n: int) -> str:
+    return "1 value" if n == 1 else f"{n} values"
+
+
+def _shown(value: object) -> str:
+    """A value as the file would write it, cut short."""
+    if isinstance(value, bool):
+        text = "true" if value else "false"
+    elif isinstance(value, str):
+        text = '"' + value.replace('"', '\\"') + '"'
+    else:
+        text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+@dataclass(frozen=True)
+class Where:
+    """A key of a building file, for the messages."""
+
+    path: Path
+    section: str
+    key: str
+
+    def __str__(self) -> str:
+        return f"{self.path}: [{self.section or 'top'}] {self.key!r}"
+
+    def error(self, allowed: str, value: object, detail: str = "") -> ConfigError:
+        """The error for ``value`` where ``allowed`` was expected."""
+        return ConfigError(f"{self} must be {allowed}. Got {_shown(value)} ({_kind(value)})"
+                           f"{detail} instead.")
+
+    def warn(self, text: str) -> None:
+        """Say that this key is ignored, and why."""
+        warnings.warn(f"{self} is ignored: {text}.", ConfigWarning, stacklevel=2)
+
+
+@dataclass(frozen=True)
+class Number:
+    """A real number (TOML integer or float) in an interval; ``allow_inf`` admits +inf."""
+
+    low: float | None = None
+    high: float | None = None
+    low_open: bool = False
+    high_open: bool = False
+    allow_inf: bool = False
+    text: str | None = None  # how the interval is written, when not by its bounds
+
+    @property
+    def interval(self) -> str:
+        if self.text:
+            return self.text
+        left = "(" if self.low is None or self.low_open else "["
+        right = ")" if self.high is None or (self.high_open and not self.allow_inf) else "]"
+        low = "-inf" if self.low is None else f"{self.low:g}"
+        high = "inf" if self.high is None or self.allow_inf else f"{self.high:g}"
+        return f"{left}{low}, {high}{right}"
+
+    @property
+    def allowed(self) -> str:
+        return f"a number in {self.interval}"
+
+    def fits(self, value: object) -> bool:
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            return False
+        x = float(value)
+        if math.isnan(x) or (math.isinf(x) and not (self.allow_inf and x > 0)):
+            return False
+        if self.low is not None and (x < self.low or (self.low_open and x == self.low)):
+            return False
+        return self.high is None or math.isinf(x) or x < self.high or (
+            x == self.high and not self.high_open)
+
+    def check(self, value: object, where: Where) -> Any:
+        if not self.fits(value):
+            raise where.error(self.allowed, value)
+        return value
+
+
+@dataclass(frozen=True)
+class Integer:
+    """A TOML integer (not a float, not a boolean) in ``[low, high]``."""
+
+    low: int
+    high: int
+
+    @property
+    def allowed(self) -> str:
+        return f"an integer in [{self.low}, {self.high}]"
+
+    def check(self, value: object, where: Where) -> Any:
+        if isinstance(value, bool) or not isinstance(value, int) or not (
+                self.low <= value <= self.high):
+            raise where.error(self.allowed, value)
+        return value
+
+
+@dataclass(frozen=True)
+class Choice:
+    """One of a few strings."""
+
+    choices: tuple[str, ...]
+
+    @property
+    def allowed(self) -> str:
+        return "one of " + ", ".join(f'"{c}"' for c in self.choices)
+
+    def fits(self, value: object) -> bool:
+        return isinstance(value, str) and value in self.choices
+
+    def check(self, value: object, where: Where) -> Any:
+        if not self.fits(value):
+            raise where.error(self.allowed, value)
+        return value
+
+
+@dataclass(frozen=True)
+class Text:
+    """Any string."""
+
+    allowed: str = "a string"
+
+    def check(self, value: object, where: Where) -> Any:
+        if not isinstance(value, str):
+            raise where.error(self.allowed, value)
+        return value
+
+
+@dataclass(frozen=True)
+class Array:
+    """An array of ``item`` values, ``length`` of them or between ``min_length`` and
+    ``max_length``."""
+
+    item: Number | Integer
+    min_length: int = 1
+    max_length: int = MAX_STOREYS
+    length: int | None = None
+    what: str = "values"
+
+    @property
+    def allowed(self) -> str:
+        count = (f"{self.length}" if self.length is not None
+                 else f"{self.min_length} to {self.max_length}")
+        inside = self.item.allowed.removeprefix("a number ").removeprefix("an integer ")
+        kind = "integers" if isinstance(self.item, Integer) else "numbers"
+        return f"an array of {count} {kind} {inside}".rstrip() + f" ({self.what})"
+
+    def check(self, value: object, where: Where) -> Any:
+        if not isinstance(value, list):
+            raise where.error(self.allowed, value)
+        low, high = ((self.length, self.length) if self.length is not None
+                     else (self.min_length, self.max_length))
+        if not low <= len(value) <= high:
+            raise ConfigError(f"{where} must be {self.allowed}. Got {_values(len(value))} "
+                              "instead.")
+        for i, item in enumerate(value):
+            try:
+                self.item.check(item, where)
+            except ConfigError:
+                raise where.error(self.allowed, item, f" at index {i}") from None
+        return value
+
+
+@dataclass(frozen=True)
+class Either:
+    """A value of the first kind that fits, e.g. one ratio or an array of them."""
+
+    kinds: tuple[Number | Array | Choice, ...]
+
+    @property
+    def allowed(self) -> str:
+        return " or ".join(kind.allowed for kind in self.kinds)
+
+    def check(self, value: object, where: Where) -> Any:
+        wanted = Array if isinstance(value, list) else Choice if isinstance(value, str) else Number
+        kind = next((k for k in self.kinds if isinstance(k, wanted)), None)
+        if kind is None or (wanted is not Array and not kind.fits(value)):
+            raise where.error(self.allowed, value)
+        return kind.check(value, where)
+
+
+_MASS = Number(low=0.0, low_open=True, high=1e10)  # [kg]; ten million tonnes a floor
+_RATIO = Number(low=0.0, high=1.0, high_open=True)
+_TABLE = "a table"
+
+SCHEMA: dict[str, dict[str, Any]] = {
+    "": {"name": Text(), "building": _TABLE, "bearing": _TABLE, "friction": _TABLE,
+         "analysis": _TABLE},
+    "building": {
+        "floor_masses": Array(_MASS, what="kg, first floor up"),
+        "storey_stiffnesses": Array(Number(low=0.0, low_open=True, high=1e15),
+                                    what="N/m, first storey up"),
+        "fixed_base_period": Number(low=1e-3, high=100.0),
+        "stiffness_profile": Either((Choice(PROFILES), Array(Number(low=1e-6, high=1e6),
+                                                             what="relative, first storey up"))),
+        "base_mass": _MASS,
+        "damping": _TABLE,
+    },
+    "building.damping": {
+        "kind": Choice(DAMPING_KINDS),
+        "ratios": Either((_RATIO, Array(_RATIO, what="-"))),
+        "modes": Array(Integer(1, MAX_STOREYS), length=2, what="1-based mode numbers"),
+        "ratio": Either((_RATIO, Array(_RATIO, what="-, one per mode"))),
+    },
+    "bearing": {
+        "count": Integer(1, MAX_BEARINGS),
+        "effective_radius": Number(low=1e-3, high=1e4, allow_inf=True,
+                                   text="[0.001, 10000] or inf (a flat slider)"),
+        "slider_diameter": Number(low=1e-3, high=10.0),
+        "yield_displacement": Number(low=0.0, low_open=True, high=0.1),
+        "displacement_capacity": Number(low=0.0, low_open=True, high=10.0),
+    },
+    "friction": {
+        "model": Choice(FRICTION_MODELS),
+        "mu_t0": Number(low=0.0, low_open=True, high=1.0),
+        "refinement": Number(low=0.0, low_open=True, high=2.0),
+        "mu0": Number(low=0.0, low_open=True, high=1.0),
+        "design_velocity": Number(low=0.0, high=100.0),
+        "initial_temperature": Number(low=-273.15, high=1000.0),
+    },
+    "analysis": {
+        "integrator": Choice(INTEGRATORS),
+        "alpha": Number(low=-1 / 3, high=0.0, text="[-1/3, 0]"),
+        "dt": Number(low=0.0, low_open=True, high=1.0),
+    },
+}
+"""Section (``""`` for the top level) -> key -> what its value must be (or "a table")."""
+
+
+def _check_keys(table: dict[str, Any], section: str, path: Path) -> None:
+    allowed = sorted(SCHEMA[section])
+    unknown = sorted(set(table) - set(allowed))
+    if unknown:
+        hints = [f"{key!r} (did you mean {close[0]!r}?)" if close else repr(key)
+                 for key in unknown
+                 for close in [difflib.get_close_matches(key, allowed, n=1)]]
+        raise ConfigError(f"{path}: unknown key(s) {', '.join(hints)} in "
+                          f"[{section or 'top'}]; allowed: {allowed}.")
+
+
+def _section(raw: dict[str, Any], section: str, path: Path) -> dict[str, Any]:
+    """Check the keys and values of one table (sub-tables are checked on their own)."""
+    parent, _, name = section.rpartition(".")
+    table = raw.get(name, {})
+    if not isinstance(table, dict):
+        raise Where(path, parent, name).error(_TABLE, table)
+    _check_keys(table, section, path)
+    for key, value in table.items():
+        spec = SCHEMA[section][key]
+        if spec == _TABLE:
+            if not isinstance(value, dict):
+                raise Where(path, section, key).error(_TABLE, value)
+        else:
+            spec.check(value, Where(path, section, key))
+    return table
+
+
+def _building(b: dict[str, Any], path: Path) -> None:
+    """The building's keys that depend on each other."""
+    def where(key: str, section: str = "building") -> Where:
+        return Where(path, section, key)
+
+    for key in ("floor_masses", "base_mass"):
+        if key not in b:
+            raise ConfigError(f"{path}: [building] needs {key!r}.")
+    n = len(b["floor_masses"])
+    for key in ("storey_stiffnesses", "stiffness_profile"):
+        value = b.get(key)
+        if isinstance(value, list) and len(value) != n:
+            raise ConfigError(f"{where(key)} must hold one value per floor ({n}, as "
+                              f"'floor_masses'). Got {_values(len(value))} instead.")
+    if "storey_stiffnesses" in b:
+        for key in ("fixed_base_period", "stiffness_profile"):
+            if key in b:
+                where(key).warn("'storey_stiffnesses' gives the stiffnesses")
+    elif "fixed_base_period" not in b:
+        raise ConfigError(f"{path}: [building] needs 'storey_stiffnesses' or "
+                          "'fixed_base_period'.")
+    damping = b.get("damping", {})
+    kind = damping.get("kind", "rayleigh")
+    section = "building.damping"
+    if kind == "rayleigh":
+        ratios = damping.get("ratios", [0.02, 0.02])
+        if not isinstance(ratios, list) or len(ratios) != 2:
+            raise where("ratios", section).error(
+                "an array of 2 numbers in [0, 1) (-) for kind = \"rayleigh\"", ratios)
+        modes = damping.get("modes", [1, 2])
+        if modes[0] == modes[1] or max(modes) > n:
+            raise where("modes", section).error(
+                f"2 distinct mode numbers in [1, {n}] for a {n}-storey building (kind = "
+                '"modal" damps a single storey)', modes, "" if "modes" in damping
+                else " (the default)")
+        if "ratio" in damping:
+            where("ratio", section).warn("kind = \"rayleigh\" takes 'ratios' at two 'modes'")
+    else:
+        if "modes" in damping:
+            where("modes", section).warn("kind = \"modal\" damps every mode alike")
+        if "ratio" in damping and "ratios" in damping:
+            where("ratios", section).warn("'ratio' is given")
+        ratio = damping.get("ratio", damping.get("ratios", 0.02))
+        if isinstance(ratio, list) and len(ratio) != n:
+            key = "ratio" if "ratio" in damping else "ratios"
+            raise ConfigError(f"{where(key, section)} must hold one ratio per mode ({n}) for "
+                              f"kind = \"modal\". Got {_values(len(ratio))} instead.")
+
+
+def check_tables(raw: dict[str, Any], path: Path) -> dict[str, dict[str, Any]]:
+    """Check a building file's table against :data:`SCHEMA` and the rules between its keys.
+
+    Returns
+    -------
+    dict
+        ``{section: table}`` for ``""``, ``"building"``, ``"building.damping"``,
+        ``"bearing"``, ``"friction"`` and ``"analysis"`` (absent ones empty), the values as
+        the file gives them.
+
+    Raises
+    ------
+    ConfigError
+        Naming the file, the section, the key, what is allowed and the value given.
+
+    Warns
+    -----
+    ConfigWarning
+        For a setting that has no effect: ``alpha`` without ``integrator = "hht"``, a stiffness
+        period or profile beside ``storey_stiffnesses``, a damping key the damping kind does
+        not use.
+    """
+    tables = {"": _section({"": raw}, "", path)}
+    for section in ("building", "building.damping", "bearing", "friction", "analysis"):
+        parent = tables[section.rpartition(".")[0]]
+        tables[section] = _section(parent, section, path)
+    _building(tables["building"], path)
+    for key in ("effective_radius", "slider_diameter"):
+        if key not in tables["bearing"]:
+            raise ConfigError(f"{path}: [bearing] needs {key!r}.")
+    analysis = tables["analysis"]
+    if "alpha" in analysis and analysis.get("integrator", "newmark") != "hht":
+        Where(path, "analysis", "alpha").warn(
+            'it applies to integrator = "hht" only, and this file runs "newmark"')
+    return tables
