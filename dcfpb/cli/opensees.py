@@ -125,6 +125,10 @@ def run_building(args: argparse.Namespace) -> int:
                      f"{integrator!r}), {args.model} model; OpenSees: "
                      f"{summary['opensees']['element']}")
         _print_differences(summary)
+        from dcfpb.cli.run import print_failure
+
+        for side in ("ours", "opensees"):
+            print_failure(summary[side], f"{side}: {summary[side]['message']}")
     ok = summary["ours"]["success"] and summary["opensees"]["success"]
     return 0 if ok else 1
 

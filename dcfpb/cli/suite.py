@@ -58,7 +58,14 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="use a running Dask scheduler, e.g. tcp://10.0.0.5:8786")
     p.add_argument("--out", default="dcfpb-suite", metavar="DIR",
-                   help="result folder (default ./dcfpb-suite)")
+                   help="result folder (default ./dcfpb-suite); one suite at a time: a "
+                   "second one into it refuses (exit status 2) unless --wait-lock")
+    p.add_argument("--wait-lock", nargs="?", type=float, const=float("inf"), default=0.0,
+                   metavar="SECONDS", help="wait for a suite running into --out to finish "
+                   "(as long as it takes, or at most SECONDS) instead of refusing")
+    p.add_argument("--run-timeout", type=float, metavar="SECONDS",
+                   help="wall-clock limit of each run [s] (default: none); a run past it is "
+                   "recorded as failed ('timeout after N s') and the suite goes on")
     p.add_argument("--no-plots", action="store_true", help="do not draw the figures")
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
     p.add_argument("--json", action="store_true", help="print the outcome as JSON")
@@ -169,9 +176,16 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
 
 
 def _run(args: argparse.Namespace) -> int:
+    from dcfpb.cli.outputs import check_outputs
+    from dcfpb.validation import check_real
     from structures.config import load_config
+    from structures.suites.lock import SuiteLock
     from structures.suites.suite import Suite, record_files, run_suite
 
+    check_outputs(folders={"--out": args.out})
+    if args.run_timeout is not None:
+        check_real(args.run_timeout, "--run-timeout", "dcfpb suite", low=0.0, low_open=True)
+    check_real(args.wait_lock, "--wait-lock", "dcfpb suite", low=0.0, allow_inf=True)
     if args.period_range and not args.target:
         raise ValueError("--period-range applies to --target only.")
     if args.workers is not None and args.scheduler:
@@ -186,15 +200,17 @@ def _run(args: argparse.Namespace) -> int:
                   scales=_floats(args.scales, "--scales"),
                   property_modifiers=_floats(args.modifiers, "--modifiers"),
                   record_factors=factors, duration=args.duration, dt=args.dt)
-    try:
-        result = run_suite(suite, args.out, n_workers=args.workers,
-                           scheduler_address=args.scheduler, progress=not args.no_progress)
-    except KeyboardInterrupt:
-        print(f"interrupted: finished runs are kept in {args.out}; run the same command "
-              "again to finish the suite.")
-        return 130
-    plots = [] if args.no_plots else _plots(result, suite, target, period_range)
-    _report(result, plots, args.json)
+    with SuiteLock(args.out, wait=args.wait_lock):  # the plots and tables too
+        try:
+            result = run_suite(suite, args.out, n_workers=args.workers,
+                               scheduler_address=args.scheduler, progress=not args.no_progress,
+                               run_timeout=args.run_timeout, lock=False)
+        except KeyboardInterrupt:
+            print(f"interrupted: finished runs are kept in {args.out}; run the same command "
+                  "again to finish the suite.")
+            return 130
+        plots = [] if args.no_plots else _plots(result, suite, target, period_range)
+        _report(result, plots, args.json)
     return 0 if not result.failures else 1
 
 
@@ -218,29 +234,63 @@ def _plots(result, suite, target, period_range) -> list[Path]:
 
 
 def _report(result, plots: list[Path], as_json: bool) -> None:
-    from structures.suites.summary import QUANTITIES, summary_dict
+    from structures.suites.summary import STATISTICS_OVER, failure_counts, summary_dict
 
     done = int((result.peaks["status"] == "done").sum())
     summary = summary_dict(result.summary)
+    counts = failure_counts(result.peaks)
     if as_json:
         print(json.dumps({"runs": len(result.peaks), "done": done, "failed": result.failures,
+                          "n_failed": counts.pop("failed"), "failures_by_kind": counts,
+                          "statistics_over": STATISTICS_OVER,
                           "wall_time": result.wall_time, "computed": result.computed,
                           "skipped": result.skipped, "out": str(result.out_dir),
                           "summary": summary}, indent=2))
         return
     print(f"{len(result.peaks)} runs: {done} done ({result.skipped} kept from before), "
-          f"{len(result.failures)} failed, {result.wall_time:.1f} s; results in "
-          f"{result.out_dir}")
-    print(f"{'group':34s} {'':6s} {'isol. disp':>10s} {'base shear':>11s} {'roof acc':>9s} "
-          f"{'drift':>7s}")
-    print(f"{'':34s} {'':6s} {'[mm]':>10s} {'[kN]':>11s} {'[m/s2]':>9s} {'[mm]':>7s}")
-    factors = (1e3, 1e-3, 1.0, 1e3)
-    for group, quantities in summary.items():
-        for stat in ("median", "p84"):
-            cells = [f * quantities[q][stat] for f, q in zip(factors, QUANTITIES, strict=True)]
-            print(f"{group:34s} {stat:6s} {cells[0]:10.1f} {cells[1]:11.0f} {cells[2]:9.2f} "
-                  f"{cells[3]:7.2f}")
+          f"{len(result.failures)} failed{_kinds(counts)}, {result.wall_time:.1f} s; results "
+          f"in {result.out_dir}")
+    _print_statistics(summary)
     for failure in result.failures:
         print(f"failed: {failure['run']}: {failure['reason']}")
+    if counts["failed"]:
+        print(f"warning: {counts['failed']} of {len(result.peaks)} runs failed"
+              f"{_kinds(counts)}: the statistics are over the {STATISTICS_OVER} only (column "
+              "'ok'); the failed runs are often the strongest (past the bearings' capacity), "
+              "so a group with failures understates its responses.")
     if plots:
         print("plots: " + ", ".join(str(p) for p in plots))
+
+
+def _kinds(counts: dict[str, int]) -> str:
+    """`` (capacity 3, timeout 1)`` of the failure counts, empty when none failed."""
+    kinds = ", ".join(f"{kind} {n}" for kind, n in counts.items() if kind != "failed" and n)
+    return f" ({kinds})" if kinds else ""
+
+
+def _print_statistics(summary: dict) -> None:
+    """The median and 84th percentile of each group, over its successful runs, with the
+    group's runs that finished ('ok'), all its runs and its failures beside them."""
+    from structures.suites.summary import QUANTITIES
+
+    print("statistics over the successful runs of each group (ok of all runs):")
+    print(f"{'group':34s} {'':6s} {'isol. disp':>10s} {'base shear':>11s} {'roof acc':>9s} "
+          f"{'drift':>7s} {'ok/all':>8s}  failed")
+    print(f"{'':34s} {'':6s} {'[mm]':>10s} {'[kN]':>11s} {'[m/s2]':>9s} {'[mm]':>7s}")
+    factors = (1e3, 1e-3, 1.0, 1e3)
+    widths = (10, 11, 9, 7)
+    digits = (1, 0, 2, 2)
+    for group, quantities in summary.items():
+        first = next(iter(quantities.values()))
+        kinds = {k[2:]: v for k, v in first.items()
+                 if k.startswith("n_") and k not in ("n_runs", "n_failed")}
+        for stat in ("median", "p84"):
+            cells = []
+            for f, q, w, d in zip(factors, QUANTITIES, widths, digits, strict=True):
+                value = quantities[q][stat]
+                cells.append(f"{'-':>{w}s}" if value is None else f"{f * value:{w}.{d}f}")
+            tail = ""
+            if stat == "median":
+                failed = (f"{first['n_failed']}{_kinds(kinds)}" if first["n_failed"] else "-")
+                tail = f" {first['n']:>3d}/{first['n_runs']:<4d}  {failed}"
+            print(f"{group:34s} {stat:6s} {' '.join(cells)}{tail}")

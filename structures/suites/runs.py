@@ -43,8 +43,32 @@ PEAK_COLUMNS = ("peak_isolator_displacement", "peak_base_shear", "peak_roof_acce
 
 COLUMNS = ("run_id", "record", "record_file", "scale", "record_factor", "multiplier", "model",
            "modifier", "duration", "dt", *PEAK_COLUMNS, "task_time", "status", "reason",
-           "worker")
-"""Columns of the peaks table, one row per run."""
+           "worker", "failure", "failed_at")
+"""Columns of the peaks table, one row per run. A failed run keeps the peaks of the part that
+ran (up to ``failed_at`` [s] of the record, empty when it never ran); ``failure`` is its kind,
+one of :data:`FAILURE_KINDS` (empty for a run that finished)."""
+
+FAILURE_KINDS = ("capacity", "convergence", "timeout", "error")
+"""Why a run failed: a bearing past its displacement capacity; a step that did not converge;
+past its time limit (``run_suite(run_timeout=...)``); anything else (an exception, an
+unreadable record, a worker that kept dying, a model outside its range)."""
+
+
+def failure_kind(row: dict[str, Any]) -> str:
+    """The :data:`FAILURE_KINDS` entry of a failed run's row (``""`` for a finished run);
+    rows written before the ``failure`` column are read from their reason."""
+    if row.get("status") == "done":
+        return ""
+    kind = row.get("failure")
+    if isinstance(kind, str) and kind:
+        return kind if kind in FAILURE_KINDS else "error"
+    reason = str(row.get("reason") or "")
+    for kind, marks in (("capacity", ("Capacity exceeded", "displacement_capacity")),
+                        ("timeout", ("timeout after",)),
+                        ("convergence", ("did not converge",))):
+        if any(mark in reason for mark in marks):
+            return kind
+    return "error"
 
 NETCDF_ENGINE = "scipy"
 """xarray engine of the result files: netCDF3 (64-bit offset) written to bytes in memory,
@@ -185,13 +209,14 @@ class RunSpec:
                    model=self.model, modifier=self.modifier, duration=self.duration)
         return row
 
-    def failure(self, reason: str, row: dict[str, Any] | None = None) -> dict[str, Any]:
-        """The row of a failed run, with its ``reason``."""
-        return (row or self.row()) | {"status": "failed", "reason": reason}
+    def failure(self, reason: str, row: dict[str, Any] | None = None,
+                kind: str = "error") -> dict[str, Any]:
+        """The row of a failed run, with its ``reason`` and ``kind`` (:data:`FAILURE_KINDS`)."""
+        return (row or self.row()) | {"status": "failed", "reason": reason, "failure": kind}
 
 
-def execute_run(spec: RunSpec, motion: GroundMotion | None,
-                config: BuildingConfig) -> tuple[dict[str, Any], bytes | None]:
+def execute_run(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig,
+                time_limit: float | None = None) -> tuple[dict[str, Any], bytes | None]:
     """Compute one run (the work of a Dask task).
 
     Parameters
@@ -203,13 +228,17 @@ def execute_run(spec: RunSpec, motion: GroundMotion | None,
         it here.
     config : BuildingConfig
         The building file.
+    time_limit : float, optional
+        Wall-clock limit of the run's integration [s] (``run(time_limit=...)``): past it
+        the run fails with the reason ``"timeout after N s: ..."``.
 
     Returns
     -------
     row : dict
         The peaks-table row: status ``"done"``, or ``"failed"`` with the ``reason`` (any
         exception, e.g. an unreadable record, or a run that stopped early: ``success == 0``
-        in the result attributes, in which case the peaks of the part that ran are kept).
+        in the result attributes, in which case the peaks of the part that ran are kept)
+        and the ``failure`` kind and time ``failed_at`` [s].
     data : bytes or None
         The result as netCDF (:data:`NETCDF_ENGINE`), None for a failed run.
     """
@@ -228,11 +257,17 @@ def execute_run(spec: RunSpec, motion: GroundMotion | None,
         step = analysis_step(spec.dt if spec.dt is not None else config.dt, motion.dt)
         bearing = modified_bearing(config, spec.model, spec.modifier)
         result = run(config.building, bearing, motion, config.integrator,
-                     n_bearings=config.n_bearings, dt=step)
+                     n_bearings=config.n_bearings, dt=step, time_limit=time_limit)
         row.update(peaks(result), dt=float(result.attrs["dt"]))
         if not result.attrs["success"]:
             row["task_time"] = time.perf_counter() - start
-            return spec.failure(f"run stopped early: {result.attrs['message']}", row), None
+            kind = failure_kind({"failure": row["failure"]})
+            reason = f"run stopped early: {result.attrs['message']}"
+            if kind == "timeout":
+                reason = (f"timeout after {time_limit:g} s: the run was stopped at t = "
+                          f"{row['failed_at']:.6g} s of the record (its peaks are those up "
+                          "to then)")
+            return spec.failure(reason, row, kind), None
         result.attrs.update(run_id=spec.run_id, record_file=row["record_file"],
                             scale=spec.scale, property_modifier=spec.modifier,
                             building_fingerprint=spec.settings)
@@ -240,5 +275,5 @@ def execute_run(spec: RunSpec, motion: GroundMotion | None,
     except Exception as error:  # any failure is this run's, reported, and the suite goes on
         row["task_time"] = time.perf_counter() - start
         return spec.failure(f"{type(error).__name__}: {error}", row), None
-    row.update(status="done", task_time=time.perf_counter() - start)
+    row.update(status="done", task_time=time.perf_counter() - start, failure="")
     return row, data

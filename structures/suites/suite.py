@@ -11,7 +11,14 @@ file system shared with it.
 A rerun of the same suite into the same folder skips the runs that are complete and computes
 the rest: killing a suite loses at most the runs in flight. A run that fails (unreadable
 record, a run stopping early, any exception, a worker that keeps dying) is recorded with its
-reason and the others carry on; failures are retried on the next run.
+reason and the others carry on; failures are retried on the next run. A worker lost in the
+middle of a batch (:mod:`structures.suites.tasks`) has its batch redone elsewhere by Dask;
+the runs of it that were stored already are kept, not computed again.
+
+One suite at a time per folder: a second suite into a folder in use refuses at once, or waits
+(:mod:`structures.suites.lock`). ``run_timeout`` bounds each run's wall-clock time: a run past
+it is recorded as failed (``"timeout after N s"``) and the suite goes on (the limit is
+checked inside the run, on whichever worker it runs: ``structures.analysis.run(time_limit=)``).
 
 Example::
 
@@ -25,25 +32,24 @@ from __future__ import annotations
 
 import csv
 import json
-import os
 import sys
 import time
 import uuid
 from collections import Counter
-from collections.abc import Callable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Mapping, Sequence
+from contextlib import nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from dcfpb.validation import check_choice, check_int, check_real
+from dcfpb.validation import check_choice, check_real
 from groundmotions.records import GroundMotion
 from isolator.experiments import MODELS
 from structures.config import BuildingConfig
+from structures.suites.lock import SuiteLock
 from structures.suites.runs import (
     COLUMNS,
     RunSpec,
-    analysis_step,
     config_fingerprint,
     execute_run,
     file_digest,
@@ -51,12 +57,22 @@ from structures.suites.runs import (
 )
 from structures.suites.store import RunStore, atomic_write
 from structures.suites.summary import summarize, write_summary
+from structures.suites.tasks import (
+    BATCH_SIZE,
+    batches,
+    client_for,
+    compute_and_store,
+    cost,
+    local_cluster,
+    run_batch,
+)
 
 if TYPE_CHECKING:
     import pandas as pd
 
+__all__ = ["Suite", "SuiteResult", "local_cluster", "record_files", "run_suite"]
+
 RecordFactors = Mapping[str, float] | Callable[[Sequence[GroundMotion]], Any]
-_MODEL_COST = {"precise": 2.0, "simplified": 1.5, "constant": 1.0}  # relative cost per step
 _MANIFEST_HEADERS = {"file", "filename", "file_name", "record", "path"}
 
 
@@ -244,87 +260,10 @@ class SuiteResult:
     summary: pd.DataFrame
 
 
-def local_cluster(n_workers: int | None = None) -> Any:
-    """A ``distributed.LocalCluster`` of this machine for suites: ``n_workers`` processes
-    (default: the number of CPUs) of one thread each, every socket on the loopback
-    interface, no dashboard. (The scheduler's small HTTP server of health and metrics
-    routes cannot be turned off; it gets a free loopback port instead of 8787, so suites
-    running side by side do not compete for that port.)"""
-    from distributed import LocalCluster
-
-    workers = (os.cpu_count() or 1) if n_workers is None else n_workers
-    workers = check_int(workers, "n_workers", "local_cluster", low=1)
-    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                        host="127.0.0.1", dashboard_address=None,
-                        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
-
-
-BATCH_SIZE = 6
-"""Runs of one record handed to a worker as one task (see :func:`_run_batch`)."""
-
-
-@contextmanager
-def _client(n_workers: int | None, scheduler_address: str | None) -> Iterator[Any]:
-    from distributed import Client
-
-    if scheduler_address:
-        with Client(scheduler_address) as client:
-            yield client
-        return
-    with local_cluster(n_workers) as cluster, Client(cluster) as client:
-        yield client
-
-
-def _cost(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig) -> int:
-    """Estimated cost, steps (or, for a record not read here, file bytes) x model weight:
-    the longest runs start first, so fewer workers idle at the end of the suite."""
-    if motion is None:
-        try:
-            return int(os.path.getsize(spec.record_file) * _MODEL_COST[spec.model])
-        except OSError:
-            return 0
-    length = motion.duration if spec.duration is None else min(spec.duration, motion.duration)
-    step = analysis_step(spec.dt if spec.dt is not None else config.dt, motion.dt)
-    return int(length / step * _MODEL_COST[spec.model])
-
-
-def _compute_and_store(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig,
-                       out_dir: str) -> dict[str, Any]:
-    """The task of ``write="workers"``: compute a run and write its files where it ran."""
-    row, data = execute_run(spec, motion, config)
-    store = RunStore(out_dir)
-    return store.save_failure(row) if data is None else store.save_done(row, data)
-
-
-def _run_batch(task: Any, specs: list[RunSpec], motion: GroundMotion | None,
-               config: BuildingConfig, *extra: Any) -> list[Any]:
-    """One Dask task: the runs of one record, in turn, each saved as soon as it is done.
-
-    The record is read once for all of them (a record that cannot be read is left to each
-    run, which then fails with the reader's reason). Batching the runs of a record cuts the
-    scheduling overhead per run, which matters for runs of a few tens of milliseconds.
-    """
-    if motion is None:
-        from groundmotions.readers import read_record
-
-        try:
-            motion = read_record(specs[0].record_file)
-        except Exception:
-            motion = None
-    return [task(spec, motion, config, *extra) for spec in specs]
-
-
-def _batches(pending: list[RunSpec], size: int) -> list[list[RunSpec]]:
-    """The pending runs grouped by record file, in chunks of at most ``size`` runs."""
-    groups: dict[str, list[RunSpec]] = {}
-    for spec in pending:
-        groups.setdefault(spec.record_file, []).append(spec)
-    return [group[i:i + size] for group in groups.values() for i in range(0, len(group), size)]
-
-
 def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None,
               scheduler_address: str | None = None, write: str = "workers",
-              progress: bool = True) -> SuiteResult:
+              progress: bool = True, run_timeout: float | None = None, lock: bool = True,
+              wait_lock: float = 0.0) -> SuiteResult:
     """Compute a suite, or finish one that was interrupted.
 
     Parameters
@@ -346,16 +285,43 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
         cluster, but the writing is serial).
     progress : bool
         Show a progress bar (runs done, failed, ETA) on stderr.
+    run_timeout : float, optional
+        Wall-clock limit of each run's integration [s] (default: none). A run past it is
+        recorded as failed, ``"timeout after N s"``, with its peaks up to then, and the
+        suite goes on. The run itself looks at the clock (every step in the reference
+        engine, every ``CHUNK_STEPS`` steps in the compiled one), so it works on any worker,
+        frees the worker at once and needs no process killed.
+    lock : bool
+        Hold the folder's lock while the suite runs (:class:`structures.suites.lock.
+        SuiteLock`); False when the caller holds it.
+    wait_lock : float
+        How long to wait for a folder locked by another suite [s]; 0 refuses at once.
 
     Returns
     -------
     SuiteResult
         Also written: ``peaks.csv``, ``failures.json``, ``summary.csv``, ``summary.parquet``.
+
+    Raises
+    ------
+    structures.suites.lock.SuiteLocked
+        When another suite writes into ``out_dir``.
     """
+    check_choice(write, "write", "run_suite", ("workers", "client"))
+    if run_timeout is not None:
+        check_real(run_timeout, "run_timeout", "run_suite", low=0.0, low_open=True)
+    with SuiteLock(out_dir, wait=wait_lock) if lock else nullcontext():
+        return _run_suite(suite, out_dir, n_workers, scheduler_address, write, progress,
+                          run_timeout)
+
+
+def _run_suite(suite: Suite, out_dir: str | Path, n_workers: int | None,
+               scheduler_address: str | None, write: str, progress: bool,
+               run_timeout: float | None) -> SuiteResult:
+    """:func:`run_suite` with the folder locked."""
     from distributed import as_completed
     from tqdm import tqdm
 
-    check_choice(write, "write", "run_suite", ("workers", "client"))
     start = time.perf_counter()
     store = RunStore(out_dir)
     store.clean_temporary()
@@ -377,22 +343,22 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
                file=sys.stderr, desc="suite", postfix=counts)
     try:
         if pending:
-            with _client(n_workers, scheduler_address) as client:
+            with client_for(n_workers, scheduler_address) as client:
                 needed = sorted({s.record_file for s in pending}) if ship else []
                 shared = (dict(zip(needed, client.scatter([motions[f] for f in needed],
                                                            hash=False), strict=True))
                           if needed else {})
                 token = uuid.uuid4().hex[:8]
-                task, extra = ((_compute_and_store, (str(store.root.resolve()),))
-                               if write == "workers" else (execute_run, ()))
-                futures = {client.submit(_run_batch, task, batch,
+                task, extra = ((compute_and_store, (str(store.root.resolve()), run_timeout))
+                               if write == "workers" else (execute_run, (run_timeout,)))
+                futures = {client.submit(run_batch, task, batch,
                                          shared.get(batch[0].record_file), suite.config,
                                          *extra, pure=False,
                                          key=f"dcfpb-{token}-{batch[0].run_id}",
-                                         priority=sum(_cost(spec, motions.get(spec.record_file),
+                                         priority=sum(cost(spec, motions.get(spec.record_file),
                                                             suite.config) for spec in batch)
                                          ): batch
-                           for batch in _batches(pending, BATCH_SIZE)}
+                           for batch in batches(pending, BATCH_SIZE)}
                 for future in as_completed(futures):
                     batch = futures.pop(future)
                     try:

@@ -1,9 +1,15 @@
 """Statistics of a suite's peaks per friction model: mean, median and 84th percentile.
 
 The groups are the friction model, the property modifier and the suite-wide scale multiplier
-(one group per model for a plain suite); only runs that finished count. The 84th percentile is
-the linear interpolation between order statistics (``numpy.percentile``'s default), the
-usual stand-in for the median plus one logarithmic standard deviation.
+(one group per model for a plain suite). The statistics are over the runs that finished
+(``n``), and every group says beside them how many runs it has (``n_runs``) and how many
+failed, by kind (``n_failed``, ``n_capacity``, ``n_convergence``, ``n_timeout``,
+``n_error``): a failed run is never dropped silently. Failures are not random: the runs past
+the bearings' capacity are the strongest ones, so the statistics of a group with failures
+understate its responses (a median at 20 times the record below the one at 1 time). A group
+whose runs all failed has its counts and no statistics (NaN). The 84th percentile is the
+linear interpolation between order statistics (``numpy.percentile``'s default), the usual
+stand-in for the median plus one logarithmic standard deviation.
 """
 
 from __future__ import annotations
@@ -14,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from structures.suites.runs import FAILURE_KINDS, failure_kind
 from structures.suites.store import atomic_write
 
 if TYPE_CHECKING:
@@ -28,7 +35,12 @@ QUANTITIES = {
 """Peak responses summarised, with their units."""
 
 GROUP_KEYS = ("model", "modifier", "multiplier")
-SUMMARY_COLUMNS = (*GROUP_KEYS, "quantity", "units", "n", "mean", "median", "p84")
+COUNT_COLUMNS = ("n_runs", "n_failed", *(f"n_{kind}" for kind in FAILURE_KINDS))
+"""Counts beside the statistics: runs of the group, failed runs, and those by kind."""
+SUMMARY_COLUMNS = (*GROUP_KEYS, "quantity", "units", "n", "mean", "median", "p84",
+                   *COUNT_COLUMNS)
+STATISTICS_OVER = "successful runs"
+"""What the statistics are over (the label the reports print)."""
 
 
 def summarize(peaks: pd.DataFrame) -> pd.DataFrame:
@@ -43,21 +55,30 @@ def summarize(peaks: pd.DataFrame) -> pd.DataFrame:
     -------
     pandas.DataFrame
         Tidy: one row per group and quantity, columns ``model``, ``modifier``,
-        ``multiplier``, ``quantity``, ``units``, ``n`` (finished runs) and ``mean``,
-        ``median``, ``p84`` in the quantity's SI units. Empty if no run finished.
+        ``multiplier``, ``quantity``, ``units``, ``n`` (finished runs, those the statistics
+        are over) and ``mean``, ``median``, ``p84`` in the quantity's SI units (NaN when no
+        run of the group finished), then :data:`COUNT_COLUMNS`: ``n_runs``, ``n_failed`` and
+        ``n_capacity``, ``n_convergence``, ``n_timeout``, ``n_error``. Empty for an empty
+        table.
     """
     import pandas as pd
 
-    done = peaks[peaks["status"] == "done"]
     rows = []
-    for key, group in done.groupby(list(GROUP_KEYS), sort=False):
+    for key, group in peaks.groupby(list(GROUP_KEYS), sort=False):
+        done = group[group["status"] == "done"]
+        kinds = [failure_kind(row) for row in group.to_dict("records")]
+        counts = {"n_runs": len(group), "n_failed": len(group) - len(done)} | {
+            f"n_{kind}": kinds.count(kind) for kind in FAILURE_KINDS}
         for quantity, units in QUANTITIES.items():
-            values = np.asarray(group[quantity], dtype=float)
+            values = np.asarray(done[quantity], dtype=float)
+            statistics = dict.fromkeys(("mean", "median", "p84"), float("nan"))
+            if values.size:
+                statistics = {"mean": float(np.mean(values)),
+                              "median": float(np.median(values)),
+                              "p84": float(np.percentile(values, 84.0))}
             rows.append(dict(zip(GROUP_KEYS, key, strict=True)) | {
-                "quantity": quantity, "units": units, "n": int(values.size),
-                "mean": float(np.mean(values)), "median": float(np.median(values)),
-                "p84": float(np.percentile(values, 84.0)),
-            })
+                "quantity": quantity, "units": units, "n": int(values.size)} | statistics
+                | counts)
     return pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
 
 
@@ -81,13 +102,26 @@ def group_labels(table: pd.DataFrame, separator: str = ", ") -> list[str]:
 
 def summary_dict(summary: pd.DataFrame) -> dict[str, Any]:
     """The summary as nested JSON-ready dicts: ``{group: {quantity: {n, mean, median, p84,
-    units}}}``; the group is labelled by :func:`group_labels`."""
+    units, over, n_runs, n_failed, n_capacity, ...}}}``; the group is labelled by
+    :func:`group_labels`, ``over`` says what the statistics are over (:data:`STATISTICS_OVER`)
+    and a statistic without a finished run is None."""
     out: dict[str, Any] = {}
-    for label, row in zip(group_labels(summary), summary.itertuples(index=False), strict=True):
-        out.setdefault(label, {})[row.quantity] = {
-            "n": int(row.n), "mean": row.mean, "median": row.median, "p84": row.p84,
-            "units": row.units}
+    for label, row in zip(group_labels(summary), summary.to_dict("records"), strict=True):
+        out.setdefault(label, {})[row["quantity"]] = {
+            "n": int(row["n"]),
+            **{k: None if not np.isfinite(row[k]) else float(row[k])
+               for k in ("mean", "median", "p84")},
+            "units": row["units"], "over": STATISTICS_OVER,
+            **{k: int(row[k]) for k in COUNT_COLUMNS}}
     return out
+
+
+def failure_counts(peaks: pd.DataFrame) -> dict[str, int]:
+    """Failed runs of a peaks table by kind (:data:`FAILURE_KINDS`), and ``"failed"``, all
+    of them."""
+    kinds = [failure_kind(row) for row in peaks.to_dict("records")]
+    return {"failed": sum(map(bool, kinds))} | {kind: kinds.count(kind)
+                                                 for kind in FAILURE_KINDS}
 
 
 def write_summary(summary: pd.DataFrame, out_dir: str | Path) -> list[Path]:

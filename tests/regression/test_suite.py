@@ -158,8 +158,11 @@ def test_killed_suite_resumes_without_recomputing(config, scheduler, tmp_path):
     stamp = {rid: [(p.stat().st_ino, p.stat().st_mtime_ns)
                    for p in (store.result_path(rid), store.row_path(rid))] for rid in finished}
     (store.runs / ".stray.nc.1.abcd.tmp").write_bytes(b"half a file")
+    assert (out / ".suite.lock").exists()  # the killed suite's lock, stale now
 
-    result = run_suite(suite, out, scheduler_address=scheduler, progress=False)
+    with pytest.warns(UserWarning, match="took over the lock of a suite that no longer runs"):
+        result = run_suite(suite, out, scheduler_address=scheduler, progress=False)
+    assert not (out / ".suite.lock").exists()
     assert (result.skipped, result.computed) == (len(finished), len(specs) - len(finished))
     for rid, before in stamp.items():  # kept, never rewritten
         assert [(p.stat().st_ino, p.stat().st_mtime_ns)

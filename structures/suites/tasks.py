@@ -1,0 +1,109 @@
+"""The Dask side of a suite (:func:`structures.suites.suite.run_suite`): the cluster, and the
+tasks, each a batch of runs of one record computed and stored one by one, and their order.
+
+A worker lost in the middle of a batch (killed, out of memory) has its task redone by Dask on
+another worker; :func:`compute_and_store` then keeps the runs of the batch that were stored
+already instead of computing them again, so nothing finished is lost or computed twice.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import Any
+
+from dcfpb.validation import check_int
+from groundmotions.records import GroundMotion
+from structures.config import BuildingConfig
+from structures.suites.runs import RunSpec, analysis_step, execute_run
+from structures.suites.store import RunStore
+
+
+def local_cluster(n_workers: int | None = None) -> Any:
+    """A ``distributed.LocalCluster`` of this machine for suites: ``n_workers`` processes
+    (default: the number of CPUs) of one thread each, every socket on the loopback
+    interface, no dashboard. (The scheduler's small HTTP server of health and metrics
+    routes cannot be turned off; it gets a free loopback port instead of 8787, so suites
+    running side by side do not compete for that port.)"""
+    from distributed import LocalCluster
+
+    workers = (os.cpu_count() or 1) if n_workers is None else n_workers
+    workers = check_int(workers, "n_workers", "local_cluster", low=1)
+    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                        host="127.0.0.1", dashboard_address=None,
+                        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
+
+
+@contextmanager
+def client_for(n_workers: int | None, scheduler_address: str | None) -> Iterator[Any]:
+    """A Dask client: of the scheduler at ``scheduler_address``, or of a new
+    :func:`local_cluster` of ``n_workers``, closed (with its cluster) on leaving."""
+    from distributed import Client
+
+    if scheduler_address:
+        with Client(scheduler_address) as client:
+            yield client
+        return
+    with local_cluster(n_workers) as cluster, Client(cluster) as client:
+        yield client
+
+
+_MODEL_COST = {"precise": 2.0, "simplified": 1.5, "constant": 1.0}  # relative cost per step
+
+BATCH_SIZE = 6
+"""Runs of one record handed to a worker as one task (see :func:`run_batch`)."""
+
+
+def cost(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig) -> int:
+    """Estimated cost, steps (or, for a record not read here, file bytes) x model weight:
+    the longest runs start first, so fewer workers idle at the end of the suite."""
+    if motion is None:
+        try:
+            return int(os.path.getsize(spec.record_file) * _MODEL_COST[spec.model])
+        except OSError:
+            return 0
+    length = motion.duration if spec.duration is None else min(spec.duration, motion.duration)
+    step = analysis_step(spec.dt if spec.dt is not None else config.dt, motion.dt)
+    return int(length / step * _MODEL_COST[spec.model])
+
+
+def compute_and_store(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig,
+                       out_dir: str, time_limit: float | None = None) -> dict[str, Any]:
+    """The task of ``write="workers"``: compute a run and write its files where it ran.
+
+    A run already complete in the folder is not computed again: its batch is being redone
+    after the worker that held it was lost, and this run was stored before.
+    """
+    store = RunStore(out_dir)
+    row = store.completed_row(spec.run_id)
+    if row is not None:
+        return row
+    row, data = execute_run(spec, motion, config, time_limit)
+    return store.save_failure(row) if data is None else store.save_done(row, data)
+
+
+def run_batch(task: Any, specs: list[RunSpec], motion: GroundMotion | None,
+               config: BuildingConfig, *extra: Any) -> list[Any]:
+    """One Dask task: the runs of one record, in turn, each saved as soon as it is done.
+
+    The record is read once for all of them (a record that cannot be read is left to each
+    run, which then fails with the reader's reason). Batching the runs of a record cuts the
+    scheduling overhead per run, which matters for runs of a few tens of milliseconds.
+    """
+    if motion is None:
+        from groundmotions.readers import read_record
+
+        try:
+            motion = read_record(specs[0].record_file)
+        except Exception:
+            motion = None
+    return [task(spec, motion, config, *extra) for spec in specs]
+
+
+def batches(pending: list[RunSpec], size: int) -> list[list[RunSpec]]:
+    """The pending runs grouped by record file, in chunks of at most ``size`` runs."""
+    groups: dict[str, list[RunSpec]] = {}
+    for spec in pending:
+        groups.setdefault(spec.record_file, []).append(spec)
+    return [group[i:i + size] for group in groups.values() for i in range(0, len(group), size)]
