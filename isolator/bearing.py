@@ -205,7 +205,7 @@ def beyond_capacity_message(displacement: float, time: float, capacity: float, *
         What the model said, e.g. the precise model's monitor line.
     """
     where = " in a trial of the step" if trial else ""
-    detail = f" ({detail.rstrip('.')})" if detail else ""
+    detail = f" ({detail[:1].lower()}{detail[1:].rstrip('.')})" if detail else ""
     return (f"Capacity exceeded: the isolator displacement reached {abs(displacement):.4g} m "
             f"at t = {time:.6g} s{where}, beyond the bearing's displacement_capacity "
             f"{capacity:g} m{detail}: the bearing would hit its restrainer, so the response "

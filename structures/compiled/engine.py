@@ -210,6 +210,9 @@ def _integrate(function, arguments: tuple, nt: int, start: float,
     if time_limit is None:
         function(*arguments, steps)
         return False
+    if hasattr(function, "signatures") and not function.signatures:
+        warm_up()  # compile (or load) first: the limit is the run's own time
+        start = _time.perf_counter()
     while steps[1] < nt:
         steps[0], steps[1] = steps[1], min(int(steps[1]) + CHUNK_STEPS, nt)
         function(*arguments, steps)
