@@ -222,14 +222,22 @@ def line(amplitude: float, period: float, cycles: int, dt: float, *, angle: floa
     """The sine of :func:`isolator.protocols.sine` along the direction ``angle`` [deg].
 
     The samples are those of the planar sine (same times, u = u_sine (cos, sin)), so a planar
-    test and this one see the same history along the line.
+    test and this one see the same history along the line. Each cycle is a block ``"line"``
+    when the cycles end on samples (the sine's steps a multiple of ``cycles``, as when dt
+    divides the period), else the whole history is one block.
     """
     owner = "line"
     _check(owner, amplitude, "amplitude", period, cycles, dt, angle)
     history = sine(amplitude, period, cycles, dt, max_steps=max_steps)
     direction = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+    steps = len(history) - 1
+    if steps % cycles == 0:
+        each = steps // cycles
+        segments = tuple((owner, j * each, (j + 1) * each + 1) for j in range(cycles))
+    else:
+        segments = ((owner, 0, steps + 1),)
     return Orbit(history.time, np.outer(history.displacement, direction),
-                 np.outer(history.velocity, direction), owner, history.segments)
+                 np.outer(history.velocity, direction), owner, segments)
 
 
 def orbit(kind: str, amplitude: float, period: float, cycles: int, dt: float, *,

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import time as _time
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -100,6 +101,19 @@ class OrbitTestResult:
     def friction_work(self, samples: slice = slice(None)) -> float:
         """Work of the friction force alone, integral of mu N z . du [J]."""
         return path_integral(self.displacement[samples], self.friction_force[samples])
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write time [s], displacement and velocity (x, y) [m, m/s], force (x, y) [N], mu [-]
+        and temperature [degC] to a CSV file with one header line of their names."""
+        path = Path(path)
+        columns = {"time": self.time}
+        for name in ("displacement", "velocity", "force"):
+            for i, axis in enumerate(AXES):
+                columns[f"{name}_{axis}"] = getattr(self, name)[:, i]
+        columns |= {"mu": self.mu, "temperature": self.temperature}
+        np.savetxt(path, np.column_stack(list(columns.values())), delimiter=",",
+                   header=",".join(columns), comments="", fmt="%.10g")
+        return path
 
     def heat_input(self, samples: slice = slice(None)) -> float:
         """Heat put into the plates [J]: over each step, the flux of Eq. 5 on every sliding

@@ -43,6 +43,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument("--output", metavar="FILE.csv", help="write the history to a CSV file")
     p.add_argument("--plot", metavar="FILE.png", help="draw the hysteresis loop and temperature")
+    from dcfpb.cli.orbit_protocol import add_orbit_flags
+
+    add_orbit_flags(p)
     p.set_defaults(handler=_run_protocol)
 
 
@@ -80,6 +83,10 @@ def check_sine_flags(args: argparse.Namespace, command: str) -> None:
 
 
 def _run_protocol(args: argparse.Namespace) -> int:
+    if getattr(args, "orbit", None):  # a 2D orbit (dcfpb.cli.orbit_protocol)
+        from dcfpb.cli.orbit_protocol import run_orbit_protocol
+
+        return run_orbit_protocol(args, check_sine_flags)
     from dcfpb.cli.outputs import check_outputs
     from isolator.experiments import protocol_bearing
     from isolator.protocols import sine

@@ -68,6 +68,7 @@ def test_line_is_the_planar_sine_along_its_direction():
     assert np.array_equal(o.time, s.time)
     assert np.array_equal(o.displacement, np.outer(s.displacement, direction))
     assert np.array_equal(o.velocity, np.outer(s.velocity, direction))
+    assert o.segments == (("line", 0, 101), ("line", 100, 201))  # one block per cycle
 
 
 def test_angle_rotates_the_whole_orbit():
