@@ -87,10 +87,13 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float |
     """
     import xarray as xr
 
-    check_run(motion, dt, fixed_base_fields(building.n_storeys), max_steps=max_steps,
-              what="The fixed-base run",
-              raise_with="the max_steps argument of structures.fixed_base.run_fixed_base")
+    limit = {"max_steps": max_steps, "what": "The fixed-base run",
+             "raise_with": "the max_steps argument of structures.fixed_base.run_fixed_base"}
+    fields = fixed_base_fields(building.n_storeys)
+    check_run(motion, dt, fields, **limit)  # dt None: at least the record's steps
     acceleration, step = resampled_record(motion, dt)
+    if dt is None:  # the default step may be finer than the record's
+        check_run(motion, step, fields, **limit)
     start = _time.perf_counter()
     modes = building.fixed_base_modes()
     omega = modes.circular_frequencies
