@@ -17,9 +17,10 @@ enters the monitor points under the slider, which sits at u / surfaces on each p
   :func:`~isolator.compiled.kernels.ptv_friction`, the newest interval's flux included.
 
 Both heated models are :class:`PTVPlateState`, which calls the kernels itself rather than the
-planar evaluator: the planar evaluator returns d mu / dv as ``copysign(dmu_dspeed, v)``, which
-drops the sign of a negative d mu / d|v| (see the note in ``tests/verification/
-test_bidirectional.py``), and the 2D tangent needs the signed value.
+planar evaluator: :meth:`isolator.friction.PTVFrictionState.trial` returns d mu / dv as
+``copysign(dmu_dspeed, v)``, which drops the sign of a negative d mu / d|v| (hot plates at
+speed, where the newest flux lowers mu more than alpha raises it), and the 2D tangent needs the
+signed value (``test_tangents_against_finite_differences`` holds it to central differences).
 
 The derivative of mu with respect to the velocity vector is dmu/d|v| v / |v|.
 """
