@@ -32,6 +32,8 @@ PATHS += [("", "name"), ("bearing", "mu0"), ("analysis", "alpha"), ("building", 
           ("building.damping", "ratio"), ("building", "storey_stiffnesses")]
 FUZZ = settings(max_examples=150, deadline=None, derandomize=True,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+"""Deterministic (the same examples on every run) and a few seconds each; the changed example
+takes more examples, having more to explore."""
 
 positive = st.one_of(  # values inside many ranges, to reach the objects built from them
     st.floats(min_value=0.0, max_value=1e308, exclude_min=True),
@@ -116,7 +118,7 @@ def _table(tables: dict, section: str) -> dict:
     return table
 
 
-@FUZZ
+@settings(FUZZ, max_examples=500)
 @given(changes=st.lists(st.tuples(st.sampled_from(PATHS), values), min_size=1, max_size=4),
        drop=st.lists(st.sampled_from(PATHS), max_size=2))
 def test_example_with_random_values_loads_or_is_refused(tmp_path_factory, changes, drop):
