@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.errors import CapacityExceeded
+from dcfpb.errors import CapacityExceeded, InputError
 from dcfpb.validation import check_array, check_choice, check_real
 from isolator.friction import ConstantFriction, Friction, PTVFriction
 
@@ -104,10 +104,12 @@ class DCFPBearing:
         Effective radius R_eff [m]; ``inf`` for a flat slider (no restoring stiffness).
     slider_diameter : float
         Slider diameter [m]; the contact radius is half of it.
-    axial_load : float or AxialLoadHistory
-        Compressive axial load N [N], constant or varying in time.
+    axial_load : float or AxialLoadHistory or None
+        Compressive axial load N [N], constant or varying in time. None (the default) for a
+        bearing placed in a building, whose weight shared by its bearings is the load
+        (:class:`structures.isolated_building.IsolatedShearBuilding`); a bearing test needs one.
     friction : ConstantFriction or PTVFriction
-        Friction model of the sliding surfaces.
+        Friction model of the sliding surfaces (required).
     yield_displacement : float
         Yield displacement u_y of the return map [m]; default 0.5 mm.
     displacement_capacity : float
@@ -120,8 +122,8 @@ class DCFPBearing:
 
     effective_radius: float
     slider_diameter: float
-    axial_load: float | AxialLoadHistory
-    friction: ConstantFriction | PTVFriction
+    axial_load: float | AxialLoadHistory | None = None
+    friction: ConstantFriction | PTVFriction | None = None
     yield_displacement: float = 5.0e-4
     displacement_capacity: float = 0.6
     restoring: str = "linear"
@@ -132,7 +134,7 @@ class DCFPBearing:
                    allow_inf=True)
         check_real(self.slider_diameter, "slider_diameter", owner, low=0.0, low_open=True,
                    high=10.0)
-        if not isinstance(self.axial_load, AxialLoadHistory):
+        if self.axial_load is not None and not isinstance(self.axial_load, AxialLoadHistory):
             check_real(self.axial_load, "axial_load", owner, low=0.0, low_open=True)
         if not isinstance(self.friction, ConstantFriction | PTVFriction):
             raise TypeError(
@@ -165,6 +167,11 @@ class DCFPBearing:
 
     def axial_load_at(self, time: float) -> float:
         """Axial load N at ``time`` [N]."""
+        if self.axial_load is None:
+            raise InputError(
+                f"This {type(self).__name__} has no axial load: give 'axial_load' [N] (a "
+                "positive float or an AxialLoadHistory), or place it in a building, whose "
+                "weight shared by its bearings is the load.")
         if isinstance(self.axial_load, AxialLoadHistory):
             return self.axial_load.at(time)
         return float(self.axial_load)

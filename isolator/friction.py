@@ -356,7 +356,8 @@ class PTVFrictionState:
             if not inside:
                 heating.window(position / self._surfaces)  # raises with the full message
             self._pending = (dt, (lo, hi), flux)
-        return Friction(mu, math.copysign(dmu_dspeed, velocity) if velocity else 0.0,
+        # d mu / d v = d mu / d|v| sign(v); d mu / d|v| is negative on a hot plate at speed
+        return Friction(mu, math.copysign(1.0, velocity) * dmu_dspeed if velocity else 0.0,
                         temperature, flux)
 
     def commit(self) -> None:

@@ -12,6 +12,7 @@ about a hundred times faster), which ``run`` uses whenever it can.
 
 from __future__ import annotations
 
+import math
 import time as _time
 from typing import Any
 
@@ -33,11 +34,25 @@ from structures.limits import DEFAULT_MAX_STEPS, building_fields, check_run
 from structures.results import response_dataset
 from structures.shear_building import ShearBuilding
 
+DEFAULT_MAX_STEP = 0.005
+"""Largest default analysis step [s]: the step of the example building file, at which the
+bearing's EDC and temperature have converged to 0.1 % and 0.2 degC
+(tests/verification/test_time_step_convergence.py) and the building agrees with OpenSees."""
+
+
+def default_step(record_dt: float) -> float:
+    """The default analysis step: the record's, divided into the fewest equal parts of at most
+    :data:`DEFAULT_MAX_STEP` (0.02 s -> 0.005 s; 0.005 s and finer records keep theirs) [s]."""
+    return record_dt / math.ceil(record_dt / DEFAULT_MAX_STEP - 1e-6)
+
 
 def resampled_record(motion: GroundMotion, dt: float | None) -> tuple[np.ndarray, float]:
-    """The record on the analysis step: the record's own, or a finer one by linear
-    interpolation (exact for the piecewise-linear record the integrators assume)."""
-    if dt is None or abs(dt - motion.dt) <= 1e-12 * motion.dt:
+    """The record on the analysis step ``dt`` (None: :func:`default_step`): the record's own,
+    or a finer one by linear interpolation (exact for the piecewise-linear record the
+    integrators assume)."""
+    if dt is None:
+        dt = default_step(motion.dt)
+    if abs(dt - motion.dt) <= 1e-12 * motion.dt:
         return np.asarray(motion.acceleration, dtype=float), float(motion.dt)
     check_real(dt, "dt", "run", low=0.0, high=motion.dt, low_open=True)
     n = int(np.floor(motion.duration / dt + 1e-9)) + 1
@@ -68,6 +83,7 @@ def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, st
             raise time_limit_error(time_limit, t)
 
     on_commit(0, 0.0, np.zeros(restoring.shape[1]), None, None)
+    compile_time = _compile_kernels()
     start = _time.perf_counter()
     if time_limit is not None:
         deadline = start + time_limit
@@ -77,7 +93,19 @@ def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, st
     wall = _time.perf_counter() - start
     kept = result.time.size
     record = {name: values[:kept] for name, values in record.items()}
-    return EngineHistory(result, record, restoring[:kept], wall, "reference")
+    return EngineHistory(result, record, restoring[:kept], wall, "reference", compile_time)
+
+
+def _compile_kernels() -> float:
+    """Compile the friction and heating kernels the reference element calls, unless this
+    process has them; the time it took [s] (kept out of the run's ``wall_time``)."""
+    from isolator.compiled.kernels import ptv_trial, warm_up
+
+    if not getattr(ptv_trial, "signatures", True):  # numba, nothing compiled yet
+        start = _time.perf_counter()
+        warm_up()
+        return _time.perf_counter() - start
+    return 0.0
 
 
 def run(
@@ -111,6 +139,8 @@ def run(
         Identical bearings sharing the weight.
     dt : float, optional
         Analysis step [s], at most the record's (finer steps interpolate the record linearly).
+        Default: the record's step divided into the fewest equal parts of at most 5 ms
+        (:func:`default_step`).
     tolerance, max_subdivisions
         Passed to :func:`structures.integrators.integrate`.
     engine : {"auto", "compiled", "reference"}
@@ -154,7 +184,8 @@ def run(
         ``peaks_up_to_failure = 1`` (:func:`structures.results.response_dataset`).
     """
 
-    check_run(motion, dt, building_fields(building.n_storeys), max_steps=max_steps)
+    check_run(motion, default_step(motion.dt) if dt is None else dt,
+              building_fields(building.n_storeys), max_steps=max_steps)
     model = IsolatedShearBuilding(building, bearing, n_bearings)
     acceleration, step = resampled_record(motion, dt)
     if dt is None and step != motion.dt:  # a default step finer than the record's
@@ -179,7 +210,8 @@ def run(
         failed_at=result.failed_at,
         attrs={"newton_iterations": int(result.iterations.sum()),
                "subdivisions": int(result.subdivisions.sum()),
-               "wall_time": history.wall_time, "engine": history.engine},
+               "wall_time": history.wall_time, "compile_time": history.compile_time,
+               "engine": history.engine},
         restoring=history.restoring,
     )
     if floor_spectra:

@@ -190,7 +190,8 @@ def bearing_trial(displacement, velocity, time, bearing, ptv, committed, trial, 
             rise, hi > lo, ptv, heating[SLOTS][slot, SLOT_NEWEST], bearing[PRESSURE], speed)
         ranges[HEATED_LO], ranges[HEATED_HI] = lo, hi
         trial[PENDING_DT], trial[PENDING] = dt, 1.0
-    dmu_dvelocity = math.copysign(dmu_dspeed, velocity) if velocity != 0.0 else 0.0
+    # d mu / d v = d mu / d|v| sign(v); d mu / d|v| is negative on a hot plate at speed
+    dmu_dvelocity = math.copysign(1.0, velocity) * dmu_dspeed if velocity != 0.0 else 0.0
 
     law = int(bearing[RESTORING_LAW])
     radius = bearing[EFFECTIVE_RADIUS]
