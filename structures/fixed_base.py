@@ -28,7 +28,7 @@ import numpy as np
 
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import sdof_response
-from structures.analysis import resampled_record
+from structures.analysis import default_step, resampled_record
 from structures.limits import DEFAULT_MAX_STEPS, check_run, fixed_base_fields
 from structures.shear_building import ShearBuilding
 
@@ -90,10 +90,8 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float |
     limit = {"max_steps": max_steps, "what": "The fixed-base run",
              "raise_with": "the max_steps argument of structures.fixed_base.run_fixed_base"}
     fields = fixed_base_fields(building.n_storeys)
-    check_run(motion, dt, fields, **limit)  # dt None: at least the record's steps
+    check_run(motion, default_step(motion.dt) if dt is None else dt, fields, **limit)
     acceleration, step = resampled_record(motion, dt)
-    if dt is None:  # the default step may be finer than the record's
-        check_run(motion, step, fields, **limit)
     start = _time.perf_counter()
     modes = building.fixed_base_modes()
     omega = modes.circular_frequencies

@@ -55,7 +55,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="time integration (default: the building file's)")
     p.add_argument("--alpha", type=float, help="HHT alpha in [-1/3, 0] (OpenSees: 1 + alpha)")
     p.add_argument("--dt", type=float, help="analysis time step [s], in (0, 1] and at most "
-                   "the record's (default: the file's, else the record's)")
+                   "the record's (default: the file's, else the record's in parts of at most "
+                   "5 ms)")
     add_max_steps(p, "each run")
     add_record_options(p)
     p.add_argument("--json", action="store_true", help="print the comparison as JSON")

@@ -25,7 +25,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="time integration (default: the building file's)")
     p.add_argument("--alpha", type=float, help="HHT alpha in [-1/3, 0]")
     p.add_argument("--dt", type=float, help="analysis time step [s], in (0, 1] and at most "
-                   "the record's (default: the file's, else the record's)")
+                   "the record's (default: the file's, else the record's in parts of at most "
+                   "5 ms)")
     add_max_steps(p)
     add_record_options(p)
     p.add_argument("--json", action="store_true", help="print the peaks as JSON")
@@ -71,16 +72,19 @@ def add_max_steps(p: argparse.ArgumentParser, what: str = "the run") -> None:
 
 def analysis_dt(args: argparse.Namespace, config) -> float | None:
     """The analysis step [s]: ``--dt`` when given, else the building file's (None: the
-    record's)."""
+    analysis's default, :func:`structures.analysis.default_step`)."""
     return args.dt if args.dt is not None else config.dt
 
 
 def check_run_length(args: argparse.Namespace, config, motion, command: str) -> None:
     """Refuse a building run past ``--max-steps`` or the memory available, before any work."""
+    from structures.analysis import default_step
     from structures.limits import building_fields, check_run
 
-    check_run(motion, analysis_dt(args, config), building_fields(config.building.n_storeys),
-              max_steps=args.max_steps, raise_with="--max-steps", owner=command)
+    dt = analysis_dt(args, config)
+    check_run(motion, default_step(motion.dt) if dt is None else dt,
+              building_fields(config.building.n_storeys), max_steps=args.max_steps,
+              raise_with="--max-steps", owner=command)
 
 
 def integrator_from_args(config, kind: str | None, alpha: float | None):

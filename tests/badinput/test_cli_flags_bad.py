@@ -80,6 +80,14 @@ def test_record_with_dt_100s_is_refused_at_once_with_its_step_count(tmp_path, ca
     assert time.perf_counter() - start < 5.0, err
 
 
+def test_record_with_dt_100s_is_refused_at_the_default_step_too(tmp_path, capsys):
+    building = tmp_path / "no_dt.toml"
+    building.write_text(EXAMPLE.read_text().replace("\ndt = 0.005", "\n"))
+    record = _record_with_dt(tmp_path, "100.0")  # default step: 100 s in parts of 5 ms
+    _refused(["run", str(building), "--record", str(record)], capsys,
+             "31,160,000 steps (155800 s at dt = 0.005 s)", "--max-steps")
+
+
 @pytest.mark.skipif(available_memory() is None, reason="no /proc/meminfo: no memory check")
 def test_run_past_the_memory_available_is_refused_even_with_the_limit_raised(tmp_path, capsys):
     record = _record_with_dt(tmp_path, "100.0")
