@@ -27,6 +27,11 @@ class InputError(ValueError):
     """Bad input: the message names the file, field or parameter and what is allowed."""
 
 
+class InputTypeError(InputError, TypeError):
+    """Bad input of the wrong kind (a string where a number belongs): an :class:`InputError`
+    that is also a ``TypeError``, as Python's own checks of a kind raise."""
+
+
 class RunFailure(RuntimeError):
     """A run with good input that cannot finish; the message says why and when.
 

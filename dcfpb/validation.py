@@ -1,6 +1,7 @@
 """Parameter validation with one error template.
 
-Every bad parameter raises ``ValueError`` (or ``TypeError`` for a wrong kind) with the message
+Every bad parameter raises :class:`dcfpb.errors.InputError`, a ``ValueError`` (or
+:class:`~dcfpb.errors.InputTypeError`, also a ``TypeError``, for a wrong kind), with the message
 
     The 'mu0' parameter of ConstantFriction must be a float in (0, 1]. Got -0.1 instead.
 
@@ -13,6 +14,8 @@ import math
 from numbers import Integral, Real
 
 import numpy as np
+
+from dcfpb.errors import InputError, InputTypeError
 
 
 def _interval(low: float | None, high: float | None, low_open: bool, high_open: bool) -> str:
@@ -59,7 +62,7 @@ def check_real(
     interval = _interval(low, high, low_open, high_open)
     kind = "a float"
     if isinstance(value, bool) or not isinstance(value, Real | np.floating | np.integer):
-        raise TypeError(
+        raise InputTypeError(
             f"The {name!r} parameter of {owner} must be {kind} in {interval}. "
             f"Got {value!r} instead."
         )
@@ -70,7 +73,7 @@ def check_real(
     if high is not None and not (allow_inf and x == math.inf):
         bad = bad or x > high or (high_open and x == high)
     if bad:
-        raise ValueError(
+        raise InputError(
             f"The {name!r} parameter of {owner} must be {kind} in {interval}. "
             f"Got {value!r} instead."
         )
@@ -89,13 +92,13 @@ def check_int(
     """
     interval = _interval(low, high, False, False)
     if isinstance(value, bool) or not isinstance(value, Integral):
-        raise TypeError(
+        raise InputTypeError(
             f"The {name!r} parameter of {owner} must be an int in {interval}. "
             f"Got {value!r} instead."
         )
     x = int(value)
     if (low is not None and x < low) or (high is not None and x > high):
-        raise ValueError(
+        raise InputError(
             f"The {name!r} parameter of {owner} must be an int in {interval}. "
             f"Got {value!r} instead."
         )
@@ -112,7 +115,7 @@ def check_choice(value: object, name: str, owner: str, choices: tuple[str, ...])
     """
     if value not in choices:
         allowed = ", ".join(repr(c) for c in choices)
-        raise ValueError(
+        raise InputError(
             f"The {name!r} parameter of {owner} must be one of {{{allowed}}}. "
             f"Got {value!r} instead."
         )
@@ -139,12 +142,12 @@ def check_array(
     """
     arr = np.asarray(values, dtype=float)
     if arr.ndim != ndim:
-        raise ValueError(
+        raise InputError(
             f"The {name!r} parameter of {owner} must be a {ndim}-d array. "
             f"Got shape {arr.shape} instead."
         )
     if arr.shape[0] < min_length:
-        raise ValueError(
+        raise InputError(
             f"The {name!r} parameter of {owner} must have at least {min_length} values. "
             f"Got {arr.shape[0]} instead."
         )
@@ -157,7 +160,7 @@ def check_array(
     if bad.any():
         index = tuple(int(i) for i in np.argwhere(bad)[0])
         where = index[0] if len(index) == 1 else index
-        raise ValueError(
+        raise InputError(
             f"The {name!r} parameter of {owner} must hold finite floats in {interval}. "
             f"Got {arr[index]!r} at index {where} instead."
         )

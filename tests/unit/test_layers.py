@@ -27,7 +27,8 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("structures",),
     ("isolator",),
     ("groundmotions",),
-    ("dcfpb", "dcfpb.errors", "dcfpb.units", "dcfpb.validation"),
+    ("dcfpb.validation",),
+    ("dcfpb", "dcfpb.errors", "dcfpb.units", "dcfpb.lazy"),
 )
 """From the top down; names on one line are independent siblings (neither imports the other)."""
 
