@@ -1,7 +1,8 @@
 """Implicit time integration of ``M a + C v + f(u, v) = -M r a_g(t)``: Newmark and HHT-alpha.
 
 As in ``scipy.integrate``, a method is data over one shared algorithm: :class:`Newmark` and
-:class:`HHT` are small frozen parameter sets (``gamma``, ``beta``, ``alpha``) and
+:class:`HHT` (:mod:`structures.integration_methods`, re-exported here) are small frozen
+parameter sets (``gamma``, ``beta``, ``alpha``) and
 :class:`NewmarkStepper` is the one Newton step that uses them. :func:`integrate` is the entry
 point; ``method`` is a name from :data:`METHODS` or an instance. Misuse raises; a numerical
 failure ends the run with ``success=False`` and a message, keeping the steps already taken,
@@ -41,84 +42,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from dcfpb.errors import RunFailure
-from dcfpb.validation import check_array, check_choice, check_int, check_real
+from dcfpb.validation import check_array, check_int, check_real
+from structures.integration_methods import HHT, METHODS, Newmark, as_method
 from structures.model import DynamicModel
 
 __all__ = [
     "HHT", "METHODS", "IntegrationResult", "Newmark", "NewmarkStepper", "as_method", "integrate",
 ]
-
-
-@dataclass(frozen=True)
-class Newmark:
-    """Newmark's method; the default pair is the average acceleration (trapezoidal) rule.
-
-    Parameters
-    ----------
-    gamma : float
-        Velocity weight, in [1/2, 1] (1/2: no numerical damping).
-    beta : float
-        Displacement weight, in (0, 1/2] (1/4: average, 1/6: linear acceleration).
-    """
-
-    gamma: float = 0.5
-    beta: float = 0.25
-
-    def __post_init__(self) -> None:
-        gamma = check_real(self.gamma, "gamma", "Newmark", low=0.5, high=1.0)
-        beta = check_real(self.beta, "beta", "Newmark", low=0.0, high=0.5, low_open=True)
-        object.__setattr__(self, "gamma", gamma)
-        object.__setattr__(self, "beta", beta)
-
-    @property
-    def alpha(self) -> float:
-        """HHT weight; zero for Newmark [-]."""
-        return 0.0
-
-    @property
-    def stability_limit(self) -> float:
-        """Largest stable ``omega dt`` for a linear undamped system [-] (``inf``: unconditional)."""
-        if 2.0 * self.beta >= self.gamma:
-            return np.inf
-        return float(1.0 / np.sqrt(0.5 * self.gamma - self.beta))
-
-
-@dataclass(frozen=True)
-class HHT:
-    """The HHT-alpha method: second order, numerical damping of the high modes.
-
-    Parameters
-    ----------
-    alpha : float
-        In [-1/3, 0]; the spectral radius at ``dt/T -> inf`` is ``(1 + alpha)/(1 - alpha)``.
-        ``gamma = (1 - 2 alpha)/2`` and ``beta = (1 - alpha)^2/4`` follow from it.
-    """
-
-    alpha: float = -0.05
-
-    def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "alpha", check_real(self.alpha, "alpha", "HHT", low=-1 / 3, high=0)
-        )
-
-    @property
-    def gamma(self) -> float:
-        """Velocity weight ``(1 - 2 alpha)/2`` [-]."""
-        return 0.5 - self.alpha
-
-    @property
-    def beta(self) -> float:
-        """Displacement weight ``(1 - alpha)^2/4`` [-]."""
-        return 0.25 * (1.0 - self.alpha) ** 2
-
-    @property
-    def stability_limit(self) -> float:
-        """HHT-alpha is unconditionally stable for alpha in [-1/3, 0]."""
-        return np.inf
-
-
-METHODS: dict[str, type[Newmark] | type[HHT]] = {"newmark": Newmark, "hht": HHT}
-"""Method names accepted by :func:`integrate`, each mapped to its class (default parameters)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -302,24 +232,6 @@ class NewmarkStepper:
                 return True, iteration, r_norm, reference
             u, v, a = u + du, v + c1 * du, a + c0 * du
         return False, self.max_iterations, r_norm, reference
-
-
-def as_method(method: object) -> Newmark | HHT:
-    """The method instance for a name from :data:`METHODS` (default parameters) or an instance.
-
-    Raises
-    ------
-    TypeError
-        For anything else.
-    """
-    if isinstance(method, Newmark | HHT):
-        return method
-    if isinstance(method, str):
-        return METHODS[check_choice(method, "method", "integrate", tuple(METHODS))]()
-    raise TypeError(
-        f"The 'method' parameter of integrate must be one of {tuple(METHODS)} or a Newmark or "
-        f"HHT instance. Got {method!r} instead."
-    )
 
 
 def _initial_state(value: object, name: str, n: int) -> np.ndarray:
