@@ -143,14 +143,14 @@ def _run_building(args: argparse.Namespace) -> int:
         config, integrator, motion = building_run_inputs(args, "dcfpb run")
         check_run_length(args, config, motion, "dcfpb run")
         ahead.help()
-        from structures.analysis import peaks, run
+        from structures.analysis import peaks
         from structures.floor_spectra import with_floor_spectra
+        from structures.runner import run
 
         model = args.model or config.friction["model"]
         ahead.wait()
-        result = run(config.building, config.bearing(model), motion, integrator,
-                     n_bearings=config.n_bearings, dt=analysis_dt(args, config),
-                     max_steps=args.max_steps)
+        result = run(config, motion, model=model, integrator=integrator,
+                     dt=analysis_dt(args, config), max_steps=args.max_steps)
     summary = peaks(result)
     result = with_floor_spectra(result, motion)
     if args.output:
