@@ -66,6 +66,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--run-timeout", type=float, metavar="SECONDS",
                    help="wall-clock limit of each run [s] (default: none); a run past it is "
                    "recorded as failed ('timeout after N s') and the suite goes on")
+    p.add_argument("--max-steps", type=int, default=2_000_000, metavar="N",
+                   help="refuse a run of more time steps (default 2,000,000); such a run is "
+                   "recorded as failed with its step count and the suite goes on")
     p.add_argument("--no-plots", action="store_true", help="do not draw the figures")
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
     p.add_argument("--json", action="store_true", help="print the outcome as JSON")
@@ -177,7 +180,7 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
 
 def _run(args: argparse.Namespace) -> int:
     from dcfpb.cli.outputs import check_outputs
-    from dcfpb.validation import check_real
+    from dcfpb.validation import check_int, check_real
     from structures.config import load_config
     from structures.suites.lock import SuiteLock
     from structures.suites.suite import Suite, record_files, run_suite
@@ -186,6 +189,7 @@ def _run(args: argparse.Namespace) -> int:
     if args.run_timeout is not None:
         check_real(args.run_timeout, "--run-timeout", "dcfpb suite", low=0.0, low_open=True)
     check_real(args.wait_lock, "--wait-lock", "dcfpb suite", low=0.0, allow_inf=True)
+    check_int(args.max_steps, "--max-steps", "dcfpb suite", low=1)
     if args.period_range and not args.target:
         raise ValueError("--period-range applies to --target only.")
     if args.workers is not None and args.scheduler:
@@ -204,7 +208,8 @@ def _run(args: argparse.Namespace) -> int:
         try:
             result = run_suite(suite, args.out, n_workers=args.workers,
                                scheduler_address=args.scheduler, progress=not args.no_progress,
-                               run_timeout=args.run_timeout, lock=False)
+                               run_timeout=args.run_timeout, lock=False,
+                               max_steps=args.max_steps)
         except KeyboardInterrupt:
             print(f"interrupted: finished runs are kept in {args.out}; run the same command "
                   "again to finish the suite.")

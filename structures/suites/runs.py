@@ -34,6 +34,7 @@ from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS
 from isolator.friction import ConstantFriction
+from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
 
 PEAK_COLUMNS = ("peak_isolator_displacement", "peak_base_shear", "peak_roof_acceleration",
@@ -216,7 +217,8 @@ class RunSpec:
 
 
 def execute_run(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig,
-                time_limit: float | None = None) -> tuple[dict[str, Any], bytes | None]:
+                time_limit: float | None = None, max_steps: int = DEFAULT_MAX_STEPS,
+                ) -> tuple[dict[str, Any], bytes | None]:
     """Compute one run (the work of a Dask task).
 
     Parameters
@@ -231,6 +233,9 @@ def execute_run(spec: RunSpec, motion: GroundMotion | None, config: BuildingConf
     time_limit : float, optional
         Wall-clock limit of the run's integration [s] (``run(time_limit=...)``): past it
         the run fails with the reason ``"timeout after N s: ..."``.
+    max_steps : int
+        Refuse a run of more steps (``run(max_steps=...)``; a record whose DT is wrong): it
+        fails with the reason, before anything is allocated.
 
     Returns
     -------
@@ -257,7 +262,8 @@ def execute_run(spec: RunSpec, motion: GroundMotion | None, config: BuildingConf
         step = analysis_step(spec.dt if spec.dt is not None else config.dt, motion.dt)
         bearing = modified_bearing(config, spec.model, spec.modifier)
         result = run(config.building, bearing, motion, config.integrator,
-                     n_bearings=config.n_bearings, dt=step, time_limit=time_limit)
+                     n_bearings=config.n_bearings, dt=step, time_limit=time_limit,
+                     max_steps=max_steps)
         row.update(peaks(result), dt=float(result.attrs["dt"]))
         if not result.attrs["success"]:
             row["task_time"] = time.perf_counter() - start

@@ -16,9 +16,8 @@ middle of a batch (:mod:`structures.suites.tasks`) has its batch redone elsewher
 the runs of it that were stored already are kept, not computed again.
 
 One suite at a time per folder: a second suite into a folder in use refuses at once, or waits
-(:mod:`structures.suites.lock`). ``run_timeout`` bounds each run's wall-clock time: a run past
-it is recorded as failed (``"timeout after N s"``) and the suite goes on (the limit is
-checked inside the run, on whichever worker it runs: ``structures.analysis.run(time_limit=)``).
+(:mod:`structures.suites.lock`). ``run_timeout`` bounds each run's wall-clock time, checked
+inside the run on whichever worker it runs (``structures.analysis.run(time_limit=)``).
 
 Example::
 
@@ -42,9 +41,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from dcfpb.validation import check_choice, check_real
+from dcfpb.validation import check_choice, check_int, check_real
 from groundmotions.records import GroundMotion
 from isolator.experiments import MODELS
+from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
 from structures.suites.lock import SuiteLock
 from structures.suites.runs import (
@@ -263,7 +263,7 @@ class SuiteResult:
 def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None,
               scheduler_address: str | None = None, write: str = "workers",
               progress: bool = True, run_timeout: float | None = None, lock: bool = True,
-              wait_lock: float = 0.0) -> SuiteResult:
+              wait_lock: float = 0.0, max_steps: int = DEFAULT_MAX_STEPS) -> SuiteResult:
     """Compute a suite, or finish one that was interrupted.
 
     Parameters
@@ -288,14 +288,15 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
     run_timeout : float, optional
         Wall-clock limit of each run's integration [s] (default: none). A run past it is
         recorded as failed, ``"timeout after N s"``, with its peaks up to then, and the
-        suite goes on. The run itself looks at the clock (every step in the reference
-        engine, every ``CHUNK_STEPS`` steps in the compiled one), so it works on any worker,
-        frees the worker at once and needs no process killed.
+        suite goes on. The run looks at the clock itself (see the module docstring).
     lock : bool
-        Hold the folder's lock while the suite runs (:class:`structures.suites.lock.
-        SuiteLock`); False when the caller holds it.
+        Hold the folder's lock (:class:`~structures.suites.lock.SuiteLock`); False when the
+        caller holds it.
     wait_lock : float
         How long to wait for a folder locked by another suite [s]; 0 refuses at once.
+    max_steps : int
+        A run of more steps fails with its step count, before anything is allocated
+        (default 2,000,000; :mod:`isolator.limits`).
 
     Returns
     -------
@@ -310,14 +311,15 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
     check_choice(write, "write", "run_suite", ("workers", "client"))
     if run_timeout is not None:
         check_real(run_timeout, "run_timeout", "run_suite", low=0.0, low_open=True)
+    check_int(max_steps, "max_steps", "run_suite", low=1)
     with SuiteLock(out_dir, wait=wait_lock) if lock else nullcontext():
         return _run_suite(suite, out_dir, n_workers, scheduler_address, write, progress,
-                          run_timeout)
+                          run_timeout, max_steps)
 
 
 def _run_suite(suite: Suite, out_dir: str | Path, n_workers: int | None,
                scheduler_address: str | None, write: str, progress: bool,
-               run_timeout: float | None) -> SuiteResult:
+               run_timeout: float | None, max_steps: int) -> SuiteResult:
     """:func:`run_suite` with the folder locked."""
     from distributed import as_completed
     from tqdm import tqdm
@@ -349,8 +351,9 @@ def _run_suite(suite: Suite, out_dir: str | Path, n_workers: int | None,
                                                            hash=False), strict=True))
                           if needed else {})
                 token = uuid.uuid4().hex[:8]
-                task, extra = ((compute_and_store, (str(store.root.resolve()), run_timeout))
-                               if write == "workers" else (execute_run, (run_timeout,)))
+                task, extra = ((compute_and_store,
+                                (str(store.root.resolve()), run_timeout, max_steps))
+                               if write == "workers" else (execute_run, (run_timeout, max_steps)))
                 futures = {client.submit(run_batch, task, batch,
                                          shared.get(batch[0].record_file), suite.config,
                                          *extra, pure=False,

@@ -15,6 +15,7 @@ from typing import Any
 
 from dcfpb.validation import check_int
 from groundmotions.records import GroundMotion
+from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
 from structures.suites.runs import RunSpec, analysis_step, execute_run
 from structures.suites.store import RunStore
@@ -69,7 +70,8 @@ def cost(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig) -> 
 
 
 def compute_and_store(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig,
-                       out_dir: str, time_limit: float | None = None) -> dict[str, Any]:
+                       out_dir: str, time_limit: float | None = None,
+                       max_steps: int = DEFAULT_MAX_STEPS) -> dict[str, Any]:
     """The task of ``write="workers"``: compute a run and write its files where it ran.
 
     A run already complete in the folder is not computed again: its batch is being redone
@@ -79,7 +81,7 @@ def compute_and_store(spec: RunSpec, motion: GroundMotion | None, config: Buildi
     row = store.completed_row(spec.run_id)
     if row is not None:
         return row
-    row, data = execute_run(spec, motion, config, time_limit)
+    row, data = execute_run(spec, motion, config, time_limit, max_steps)
     return store.save_failure(row) if data is None else store.save_done(row, data)
 
 

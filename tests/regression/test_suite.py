@@ -225,6 +225,17 @@ def test_failures_inside_a_worker_are_rows_with_their_reason(config, monkeypatch
     assert row["steps"] == 100  # the peaks of the part that ran are kept
 
 
+def test_a_run_past_max_steps_fails_with_its_step_count(config):
+    """The suite's --max-steps reaches each run: refused before anything is allocated."""
+    motion = read_record(ELCENTRO).truncated(2.0)
+    spec = RunSpec(str(ELCENTRO), file_digest(ELCENTRO), "constant", dt=0.02)
+    row, data = execute_run(spec, motion, config, max_steps=50)  # 2 s at 0.02 s: 100 steps
+    assert data is None and row["status"] == "failed"
+    assert "100 steps" in row["reason"] and "limit of 50 steps" in row["reason"]
+    row, data = execute_run(spec, motion, config, max_steps=100)
+    assert data is not None and row["status"] == "done"
+
+
 def test_errors_before_any_work(config, tmp_path):
     with pytest.raises(ValueError, match="'mu_t0'"):
         Suite(config, [ELCENTRO], models=("precise",), property_modifiers=(20.0,))
