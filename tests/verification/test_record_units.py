@@ -249,3 +249,22 @@ def test_record_dt_must_agree_with_a_peer_file():
     assert read_record(ELCENTRO, dt=0.02).dt == 0.02
     with pytest.raises(InputError, match=r"'dt' parameter of read_record must agree .*0.02"):
         read_record(ELCENTRO, dt=0.01)
+
+
+@pytest.mark.parametrize("units_line, to_unit", [
+    ("ACCELERATION TIME HISTORY IN UNITS OF GAL", 0.01),
+    ("ACCELERATION TIME HISTORY IN UNITS OF M/S/S", 1.0),
+    ("ACCELERATION TIME HISTORY IN UNITS OF IN/S/S", 0.0254),
+])
+def test_copies_in_other_units_give_the_building_response_of_the_g_original(
+        tmp_path, units_line, to_unit):
+    """The tester's case: an M/S/S copy once ran 'successfully' 14.8 times too weak."""
+    import structures
+
+    example = Path(__file__).resolve().parents[2] / "examples" / "five_storey.toml"
+    original = structures.run(example, ELCENTRO, model="precise")
+    copy = structures.run(example, _copy(tmp_path, "copy.at2", units_line, to_unit),
+                          model="precise")
+    for name in ("isolator_displacement", "base_shear", "absolute_acceleration", "temperature"):
+        scale = float(np.abs(original[name]).max())
+        np.testing.assert_allclose(copy[name], original[name], rtol=0, atol=1e-9 * scale)
