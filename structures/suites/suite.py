@@ -79,9 +79,9 @@ _MANIFEST_HEADERS = {"file", "filename", "file_name", "record", "path"}
 def record_files(source: str | Path) -> tuple[Path, ...]:
     """The record files of a folder (``*.AT2``, any case) or of a manifest CSV.
 
-    A manifest's first column holds file names relative to the manifest's folder; a first
-    row whose first cell is ``file`` (or ``filename``, ``record``, ``path``) is a header.
-    Listed files that do not exist are kept: their runs fail with the reason.
+    A manifest's first column holds file names relative to its folder; a first row whose first
+    cell is ``file`` (``filename``, ``record``, ``path``) is a header. Missing files are kept:
+    their runs fail with the reason.
     """
     path = Path(source)
     if path.is_dir():
