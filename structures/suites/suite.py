@@ -6,14 +6,13 @@ this machine by default (worker processes with one thread each, loopback only, n
 dashboard), or on any running cluster given its scheduler address, with no other change.
 
 Each run's files are written atomically (:mod:`structures.suites.store`) by the worker that
-computed it, or, with ``write="client"``, by this process, so that a remote cluster needs no
-file system shared with it.
-A rerun of the same suite into the same folder skips the runs that are complete and computes
-the rest: killing a suite loses at most the runs in flight. A run that fails (unreadable
-record, a run stopping early, any exception, a worker that keeps dying) is recorded with its
-reason and the others carry on; failures are retried on the next run. A worker lost in the
-middle of a batch (:mod:`structures.suites.tasks`) has its batch redone elsewhere by Dask,
-keeping the runs of it already stored.
+computed it, or, with ``write="client"``, by this process, so that a remote cluster needs no file
+system shared with it. A rerun of the same suite into the same folder skips the runs that are
+complete and computes the rest: killing a suite loses at most the runs in flight. A run that fails
+(unreadable record, a run stopping early, any exception, a worker that keeps dying) is recorded
+with its reason and the others carry on; failures are retried on the next run. A worker lost in the
+middle of a batch (:mod:`structures.suites.tasks`) has its batch redone elsewhere by Dask, keeping
+the runs of it already stored.
 
 One suite at a time per folder: a second suite into a folder in use refuses at once, or waits
 (:mod:`structures.suites.lock`). ``run_timeout`` bounds each run's wall-clock time, checked
