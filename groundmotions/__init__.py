@@ -9,6 +9,9 @@ the package at run time, and the readers (`groundmotions.readers`, `groundmotion
 """
 
 from groundmotions.bundled import bundled_names, load_bundled
+from groundmotions.pair_scaling import PairScalingReport, scale_pairs
+from groundmotions.pair_synthetic import synthetic_pair
+from groundmotions.pairs import GroundMotionPair, read_pair, read_pair_manifest
 from groundmotions.processing import (
     arias_intensity,
     baseline_corrected,
@@ -20,6 +23,7 @@ from groundmotions.processing import (
 )
 from groundmotions.readers import read_peer_at2, read_record, read_text_record
 from groundmotions.records import GroundMotion, RecordFormatError
+from groundmotions.rotd import RotDSpectrum, rotd_spectra
 from groundmotions.scaling import (
     ScalingReport,
     TargetSpectrum,
@@ -50,8 +54,11 @@ __all__ = [
     "TO_M_PER_S2",
     "UNIT_NAMES",
     "GroundMotion",
+    "GroundMotionPair",
+    "PairScalingReport",
     "PiecewiseEnvelope",
     "RecordFormatError",
+    "RotDSpectrum",
     "SaragoniHartEnvelope",
     "ScalingReport",
     "Spectrum",
@@ -70,16 +77,21 @@ __all__ = [
     "nigam_jennings_coefficients",
     "parse_units",
     "peak_ground_values",
+    "read_pair",
+    "read_pair_manifest",
     "read_peer_at2",
     "read_record",
     "read_text_record",
     "resampled",
     "response_spectra",
     "response_spectrum",
+    "rotd_spectra",
+    "scale_pairs",
     "scale_suite",
     "sdof_response",
     "significant_duration",
     "spectrum",
+    "synthetic_pair",
     "velocity_and_displacement",
     "zero_residuals",
 ]
