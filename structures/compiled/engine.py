@@ -208,8 +208,8 @@ def _integrate(function, arguments: tuple, nt: int, start: float,
     """Run the engine through the record: in one call, or, with a ``time_limit`` [s] from
     ``start`` (``perf_counter``), in calls of ``CHUNK_STEPS`` steps with a look at the clock
     between them (the same arithmetic: see ``integrate_building``'s ``steps``). True when
-    the limit stopped it."""
-    info = arguments[-1]
+    the limit stopped it. ``arguments`` are the engine's groups, ``outputs`` last."""
+    info = arguments[-1].info
     steps = np.array([1, nt if time_limit is None else 1], dtype=np.int64)
     if time_limit is None:
         function(*arguments, steps)
@@ -299,16 +299,18 @@ def compiled_history(
     function = compiled.integrate_building
     if python:
         function = getattr(function, "py_func", function)
-    matrices = [np.ascontiguousarray(m, dtype=float) for m in (
+    matrices = compiled.Model(*(np.ascontiguousarray(m, dtype=float) for m in (
         model.mass_matrix, model.damping_matrix, model.superstructure_stiffness,
-        model.influence)]
+        model.influence)))
+    motion = compiled.Motion(acceleration, time)
+    settings = compiled.Settings(method_array, bearing, ptv)
+    outputs = compiled.Outputs(u, v, a, record, restoring, iterations, subdivisions, info)
     compile_time = 0.0 if python else compile_engine()
     start = _time.perf_counter()
-    heating_arrays = cb.new_heating(rates, weights, states)
-    workspace = compiled.new_workspace(n, max_subdivisions)
-    timed_out = _integrate(function, (*matrices, acceleration, time, method_array, bearing, ptv,
-                                      heating_arrays, workspace, u, v, a, record, restoring,
-                                      iterations, subdivisions, info), nt, start, time_limit)
+    state = compiled.State(cb.new_heating(rates, weights, states),
+                           compiled.new_workspace(n, max_subdivisions))
+    timed_out = _integrate(function, (matrices, motion, settings, state, outputs), nt, start,
+                           time_limit)
     wall = _time.perf_counter() - start
     status = int(info[compiled.STATUS])
     last = int(info[compiled.LAST_STEP])
