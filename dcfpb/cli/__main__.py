@@ -1,7 +1,5 @@
 """``python -m dcfpb.cli``: the same as the ``dcfpb`` console script."""
 
-import sys
+from dcfpb.cli import console
 
-from dcfpb.cli import main
-
-sys.exit(main())
+console()

@@ -141,6 +141,9 @@ def compile_ahead() -> CompileAhead:
 
 
 if __name__ == "__main__":  # the second process
+    import gc
+
     from structures.compiled.engine import warm_up
 
     warm_up()
+    gc.freeze()  # numba's cache is written: exit without a last collection (about 0.5 s)
