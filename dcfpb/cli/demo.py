@@ -89,7 +89,7 @@ def run(args: argparse.Namespace) -> int:
     from dcfpb.plotting import plot_runs
 
     written = plot_runs(results, args.plot, title=f"{config.name}: {motion.name}",
-                        fixed_base=fixed)
+                        fixed_base=fixed, processes=2)  # half of the figures in a fork
     print(f"plots written to {Path(args.plot).resolve()}/: "
           + ", ".join(p.name for p in written))
     return 0

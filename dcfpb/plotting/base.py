@@ -6,6 +6,11 @@ matplotlib is imported on first use (:func:`pyplot`), so the library runs withou
 
 from __future__ import annotations
 
+import os
+import sys
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
 
 def pyplot():
     """matplotlib's pyplot on the Agg backend (imported on first use: about 1 s)."""
@@ -35,3 +40,48 @@ MODEL_COLOURS = {"precise": "tab:red", "simplified": "tab:orange", "constant": "
 
 def colour(name: str, index: int) -> str:
     return MODEL_COLOURS.get(name, f"C{index}")
+
+
+def draw(figures: Sequence[tuple[Path, Callable[[], object], float]], *,
+         processes: int = 1) -> list[Path]:
+    """Draw figures and return their files, in the order given.
+
+    ``figures`` are (file, function, weight): the function draws the figure and saves it to
+    the file; the weight is its share of the drawing time (any unit). With ``processes=2``
+    (and ``os.fork``, so not on Windows) they are split in two shares of about equal weight:
+    a forked copy of this process draws one share while this process draws the other, on a
+    second core (matplotlib's drawing and PNG compression hold the GIL, so a thread would
+    not overlap them). The files are the same as drawn one after the other. Should the copy
+    fail, this process draws its share again, so that the error is raised here.
+    """
+    if processes < 2 or len(figures) < 2 or not hasattr(os, "fork"):
+        for _, function, _ in figures:
+            function()
+        return [path for path, _, _ in figures]
+    shares: tuple[list[int], list[int]] = ([], [])
+    load = [0.0, 0.0]
+    for index in sorted(range(len(figures)), key=lambda i: -figures[i][2]):
+        side = 0 if load[0] <= load[1] else 1
+        shares[side].append(index)
+        load[side] += figures[index][2]
+    mine, theirs = shares
+    sys.stdout.flush()  # nothing buffered is copied into the child (it would print it twice)
+    sys.stderr.flush()
+    pid = os.fork()
+    if pid == 0:  # the copy: draw its share and leave at once, without the parent's cleanup
+        status = 1
+        try:
+            for index in sorted(theirs):
+                figures[index][1]()
+            status = 0
+        finally:
+            os._exit(status)
+    try:
+        for index in sorted(mine):
+            figures[index][1]()
+    finally:
+        _, status = os.waitpid(pid, 0)
+    if status != 0:
+        for index in sorted(theirs):
+            figures[index][1]()
+    return [path for path, _, _ in figures]
