@@ -34,6 +34,6 @@ def test_every_file_is_written_and_returned_in_order(tmp_path, processes):
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork on this platform")
 def test_an_error_in_the_forked_share_is_raised_here(tmp_path):
     figures = _figures(tmp_path, fail="b.png")  # with a.png (6) here, b.png goes to the copy
-    with pytest.raises(RuntimeError, match="cannot draw b.png"):
+    with pytest.raises(RuntimeError, match=r"cannot draw b\.png"):
         draw(figures, processes=2)
     assert (tmp_path / "a.png").exists()
