@@ -174,10 +174,16 @@ class BidirectionalElement:
             return n * u / root, n * (_IDENTITY / root + np.outer(u, u) / root**3)
         return n * u / self._radius, (n / self._radius) * _IDENTITY
 
-    def set_trial(self, displacement: ArrayLike, velocity: ArrayLike,
-                  time: float) -> PlanarTrial:
+    def set_trial(self, displacement: ArrayLike, velocity: ArrayLike, time: float,
+                  axial_load: float | None = None) -> PlanarTrial:
         """Force and tangents at a trial displacement [m], velocity [m/s] (both (x, y)) and
         time [s].
+
+        ``axial_load`` [N], when given, is the compressive load of this trial instead of the
+        bearing's own (``DCFPBearing.axial_load_at(time)``): a building in plan computes it
+        per bearing and per trial (gravity share, vertical motion, overturning). Zero or
+        negative is uplift, as for the bearing's own load. The tangents are taken at fixed
+        load.
 
         Raises
         ------
@@ -194,7 +200,7 @@ class BidirectionalElement:
         if dt < 0.0:
             raise ValueError(f"The trial time {time!r} s of BidirectionalElement.set_trial is "
                              f"before the last committed time {c.time!r} s.")
-        n = self.bearing.axial_load_at(time)
+        n = self.bearing.axial_load_at(time) if axial_load is None else float(axial_load)
         z, dz_du = isotropic_return_map(c.z, u - c.displacement, self._yield)
         if n <= 0.0:  # uplift: no contact, no force, no heat
             self._friction.revert()

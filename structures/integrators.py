@@ -1,5 +1,10 @@
 """Implicit time integration of ``M a + C v + f(u, v) = -M r a_g(t)``: Newmark and HHT-alpha.
 
+The ground acceleration is a scalar per step with an influence vector ``r`` of shape (n,) (the
+planar building), or a vector of ``k`` components per step with an influence matrix of shape
+(n, k) (``p = -M r a_g``, e.g. the x and y components for a building in plan); the scalar case
+takes the same arithmetic as it always has.
+
 As in ``scipy.integrate``, a method is data over one shared algorithm: :class:`Newmark` and
 :class:`HHT` (:mod:`structures.integration_methods`, re-exported here) are small frozen
 parameter sets (``gamma``, ``beta``, ``alpha``) and
@@ -62,7 +67,8 @@ class IntegrationResult:
     displacement, velocity, acceleration : numpy.ndarray
         Response relative to the ground, shape (nt, n) [m], [m/s], [m/s^2].
     absolute_acceleration : numpy.ndarray
-        ``acceleration + r a_g``, shape (nt, n) [m/s^2].
+        ``acceleration + r a_g``, shape (nt, n) [m/s^2] (the translational ground
+        acceleration added along each DOF the influence names).
     success : bool
         Whether the whole record was integrated.
     message : str
@@ -118,7 +124,8 @@ class NewmarkStepper:
     model, method
         As :func:`integrate`; the model's committed state must match the initial state.
     time, ground_acceleration, displacement, velocity
-        Initial time [s], ground acceleration [m/s^2], state (n,) [m], [m/s].
+        Initial time [s], ground acceleration [m/s^2] (a float, or shape (k,) for a model whose
+        influence has shape (n, k)), state (n,) [m], [m/s].
     tolerance, max_iterations, max_subdivisions
         As :func:`integrate`.
     """
@@ -128,7 +135,7 @@ class NewmarkStepper:
         model: DynamicModel,
         method: Newmark | HHT,
         time: float,
-        ground_acceleration: float,
+        ground_acceleration: float | np.ndarray,
         displacement: np.ndarray,
         velocity: np.ndarray,
         *,
@@ -143,24 +150,39 @@ class NewmarkStepper:
         n = displacement.shape[0]
         self.mass = _matrix(model.mass_matrix, "mass_matrix", (n, n))
         self.damping = _matrix(model.damping_matrix, "damping_matrix", (n, n))
-        self.mass_influence = self.mass @ _matrix(model.influence, "influence", (n,))
+        influence = np.asarray(model.influence, dtype=float)
+        shape = (n,) if influence.ndim < 2 else (n, influence.shape[1])
+        self.mass_influence = self.mass @ _matrix(influence, "influence", shape)
+        self.components = 0 if influence.ndim < 2 else influence.shape[1]  # 0: scalar a_g
         self.t, self.u, self.v = float(time), displacement.copy(), velocity.copy()
         trial = model.restoring_force(self.u, self.v, self.t)
         for name, value, shape in zip(trial._fields, trial, ((n,), (n, n), (n, n)), strict=True):
             _matrix(value, f"restoring_force(...).{name}", shape)
         model.revert()  # the integrator never changes the history before the first step
-        self.ag = float(ground_acceleration)
-        self.p = -self.mass_influence * self.ag
+        self.ag = self._ground(ground_acceleration)
+        self.p = self._load(self.ag)
         self.q = self.damping @ self.v + trial.force
         self.a = np.linalg.solve(self.mass, self.p - self.q)
         self.step_iterations = self.step_subdivisions = 0
         self.message = ""
 
-    def step(self, time: float, ground_acceleration: float) -> bool:
+    def _ground(self, ground_acceleration: float | np.ndarray) -> float | np.ndarray:
+        """The ground acceleration of one step as the model's influence takes it."""
+        if not self.components:
+            return float(ground_acceleration)
+        return _matrix(ground_acceleration, "ground acceleration of a step", (self.components,))
+
+    def _load(self, ground_acceleration: float | np.ndarray) -> np.ndarray:
+        """``p = -M r a_g`` [N]."""
+        if not self.components:
+            return -self.mass_influence * ground_acceleration
+        return -(self.mass_influence @ ground_acceleration)
+
+    def step(self, time: float, ground_acceleration: float | np.ndarray) -> bool:
         """Advance and commit to ``time`` [s]; return False (see :attr:`message`) on failure."""
         self.step_iterations = self.step_subdivisions = 0
         self._start, self._end, self._span = self.t, float(time), float(time) - self.t
-        self._ag_start, self._ag_end = self.ag, float(ground_acceleration)
+        self._ag_start, self._ag_end = self.ag, self._ground(ground_acceleration)
         return self._advance(0.0, 1.0, 0)
 
     def _advance(self, s0: float, s1: float, depth: int) -> bool:
@@ -192,7 +214,7 @@ class NewmarkStepper:
         return self._advance(s0, middle, depth + 1) and self._advance(middle, s1, depth + 1)
 
     def _solve(
-        self, h: float, time: float, ground_acceleration: float
+        self, h: float, time: float, ground_acceleration: float | np.ndarray
     ) -> tuple[bool, int, float, float]:
         """One Newton attempt; on success the committed state moves to ``time``.
 
@@ -200,7 +222,7 @@ class NewmarkStepper:
         """
         alpha, weight = self.alpha, 1.0 + self.alpha
         c0, c1 = 1.0 / (self.beta * h * h), self.gamma / (self.beta * h)
-        p = -self.mass_influence * ground_acceleration
+        p = self._load(ground_acceleration)
         load = weight * p - alpha * self.p + alpha * self.q
         a = self.a
         u = self.u + h * self.v + (0.5 * h * h) * a
@@ -266,7 +288,9 @@ def integrate(
     model : DynamicModel
         The structure. Its committed state must correspond to the initial conditions.
     ground_acceleration : array_like
-        Ground acceleration sampled every ``dt`` from ``t = 0``, shape (nt,) [m/s^2].
+        Ground acceleration sampled every ``dt`` from ``t = 0``, shape (nt,) [m/s^2]; shape
+        (nt, k) for a model whose influence is a matrix of shape (n, k) (one column per
+        component, e.g. x and y).
     dt : float
         Time step of the record and of the integration [s].
     method : {"newmark", "hht"} or Newmark or HHT
@@ -292,7 +316,14 @@ def integrate(
     """
     owner = "integrate"
     chosen = as_method(method)
-    record = check_array(ground_acceleration, "ground_acceleration", owner, min_length=2)
+    influence = np.asarray(model.influence, dtype=float)
+    record = check_array(ground_acceleration, "ground_acceleration", owner, min_length=2,
+                         ndim=max(influence.ndim, 1))
+    if influence.ndim == 2 and record.shape[1] != influence.shape[1]:
+        raise ValueError(
+            f"The 'ground_acceleration' parameter of integrate must have one column per column "
+            f"of the model's influence ({influence.shape[1]}). Got shape {record.shape} instead."
+        )
     step = check_real(dt, "dt", owner, low=0.0, low_open=True)
     tol = check_real(tolerance, "tolerance", owner, low=0, high=1, low_open=True, high_open=True)
     iterations_max = check_int(max_iterations, "max_iterations", owner, low=1)
@@ -331,8 +362,10 @@ def integrate(
             break
 
     kept = slice(0, last + 1)
-    influence = np.asarray(model.influence, dtype=float)
-    absolute = acceleration[kept] + record[kept, None] * influence
+    if influence.ndim == 2:
+        absolute = acceleration[kept] + record[kept] @ influence.T
+    else:
+        absolute = acceleration[kept] + record[kept, None] * influence
     arrays = [time[kept], displacement[kept], velocity[kept], acceleration[kept], absolute]
     arrays += [iterations[:last], subdivisions[:last]]
     for array in arrays:

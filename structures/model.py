@@ -58,7 +58,8 @@ class DynamicModel(Protocol):
 
     @property
     def influence(self) -> np.ndarray:
-        """Ground-motion influence vector ``r``, shape (n,) [-]."""
+        """Ground-motion influence ``r``: shape (n,) for one component [-], or (n, k) for a
+        ground acceleration of k components (one column each, e.g. x and y)."""
         ...
 
     def restoring_force(self, u: np.ndarray, v: np.ndarray, time: float) -> RestoringForce:
