@@ -1,0 +1,273 @@
+"""The plan of an isolated building: where its bearings stand and where its masses sit.
+
+Coordinates are in the horizontal plane, x and y [m], from a reference point ``O`` that is the
+centre of stiffness of every storey (the storeys' centres of stiffness are taken on one vertical
+line). The bearings stand at ``(x_i, y_i)``; the centre of mass of each floor is at its
+eccentricity ``(e_x, e_y)`` from ``O`` (that of the base slab at ``base_eccentricity``).
+
+Axial loads: the base slab is rigid and the bearings are equally stiff vertically, so a vertical
+resultant ``F_z`` [N] and the moments ``S_x = sum N_i x_i``, ``S_y = sum N_i y_i`` [N m] it must
+balance are shared linearly over the bearings, ``N_i = a + b x_i + c y_i``, the one linear
+distribution that meets the three equilibrium equations (the least-squares, minimum-norm
+solution of ``A N = (F_z, S_x, S_y)``, ``A = [1; x; y]``; :func:`axial_distribution`). For the
+weight, ``F_z = W`` and ``(S_x, S_y) = W (x_G, y_G)`` with ``G`` the centre of mass of the whole
+building (:func:`gravity_shares`). With the centre of mass at the bearings' centroid the shares
+are equal, W / n. Bearings on one line cannot balance a moment about that line, and a plan in
+which a share is not positive cannot carry the weight: both are errors before any work.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from dcfpb.errors import InputError
+from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.validation import check_array, check_real
+
+__all__ = ["Plan", "axial_distribution", "gravity_shares"]
+
+_OWNER = "Plan"
+_LARGEST = 1e4  # [m]: the largest plan coordinate or dimension accepted
+
+
+def _frozen(array: np.ndarray) -> np.ndarray:
+    array.setflags(write=False)
+    return array
+
+
+def _pairs(value: object, name: str, rows: int | None = None) -> np.ndarray:
+    """An (m, 2) array of finite coordinates [m] within +-10 km."""
+    array = np.asarray(value, dtype=float)
+    if array.ndim != 2 or array.shape[1] != 2 or (rows is not None and array.shape[0] != rows):
+        count = "m" if rows is None else str(rows)
+        raise InputError(f"The {name!r} parameter of {_OWNER} must be a ({count}, 2) array of "
+                         f"(x, y) coordinates [m]. Got shape {array.shape} instead.")
+    check_array(array, name, _OWNER, ndim=2, low=-_LARGEST, high=_LARGEST)
+    return _frozen(array.copy())
+
+
+def _positive(value: object, name: str, high: float) -> np.ndarray:
+    array = check_array(np.atleast_1d(np.asarray(value, dtype=float)), name, _OWNER, low=0.0,
+                        low_open=True, high=high)
+    return _frozen(array.copy())
+
+
+def axial_distribution(coordinates: np.ndarray) -> np.ndarray:
+    """The linear distribution of a vertical resultant and its moments over the bearings.
+
+    Parameters
+    ----------
+    coordinates : numpy.ndarray
+        Bearing coordinates ``(x_i, y_i)``, shape (n_b, 2) [m], not all on one line.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``G``, shape (n_b, 3) [1, 1/m, 1/m]: the axial loads ``N = G @ (F_z, S_x, S_y)`` [N]
+        are linear in ``(x_i, y_i)`` and satisfy ``sum N = F_z``, ``sum N x = S_x`` and
+        ``sum N y = S_y`` (``G = A^T (A A^T)^-1``, ``A = [1; x; y]``).
+
+    Raises
+    ------
+    InputError
+        If the bearings lie on one line (fewer than three, or colinear).
+    """
+    xy = np.asarray(coordinates, dtype=float)
+    a = np.vstack([np.ones(xy.shape[0]), xy.T])
+    normal = a @ a.T
+    scatter = normal[1:, 1:] - np.outer(normal[0, 1:], normal[0, 1:]) / normal[0, 0]
+    spread = np.linalg.eigvalsh(scatter)  # second moments about the centroid [m^2]
+    size = max(float(np.max(np.abs(xy))), 1.0)
+    if xy.shape[0] < 3 or spread[0] <= 1e-12 * size**2 * xy.shape[0]:
+        raise InputError(
+            f"The 'bearing_coordinates' parameter of {_OWNER} must hold at least 3 bearings not "
+            f"all on one line, so that the base can carry the weight and the overturning "
+            f"moments about both axes. Got {xy.tolist()!r} instead.")
+    return a.T @ np.linalg.inv(normal)
+
+
+def gravity_shares(coordinates: np.ndarray, masses: np.ndarray,
+                   centres: np.ndarray) -> np.ndarray:
+    """Each bearing's share of the weight by the statics of the rigid base [N].
+
+    Parameters
+    ----------
+    coordinates : numpy.ndarray
+        Bearing coordinates, shape (n_b, 2) [m].
+    masses : numpy.ndarray
+        The masses the bearings carry (base slab and floors), shape (m,) [kg].
+    centres : numpy.ndarray
+        Their centres of mass, shape (m, 2) [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        ``N_i``, shape (n_b,) [N], summing to ``W = g sum(masses)``.
+
+    Raises
+    ------
+    InputError
+        If the bearings lie on one line, or a share is not positive (the centre of mass too
+        far from the bearings' centroid: outside the region where the linear distribution
+        keeps every bearing in compression), naming the bearing and the centre of mass.
+    """
+    weights = STANDARD_GRAVITY * np.asarray(masses, dtype=float)
+    total = float(weights.sum())
+    moments = weights @ np.asarray(centres, dtype=float)
+    shares = axial_distribution(coordinates) @ np.array([total, *moments])
+    low = int(np.argmin(shares))
+    if shares[low] <= 0.0:
+        xg, yg = moments / total
+        x, y = np.asarray(coordinates, dtype=float)[low]
+        raise InputError(
+            f"The plan cannot carry the weight: with the centre of mass at ({xg:.4g}, {yg:.4g}) "
+            f"m bearing {low} at ({x:.4g}, {y:.4g}) m would take {shares[low]:.4g} N of the "
+            f"weight {total:.4g} N. The 'eccentricity' and 'bearing_coordinates' of {_OWNER} "
+            "must put the centre of mass where every bearing's gravity share is positive "
+            "(well inside the bearings' outline).")
+    return shares
+
+
+@dataclass(frozen=True, eq=False)
+class Plan:
+    """The plan of a building on isolators (see the module docstring for the frame).
+
+    Parameters
+    ----------
+    bearing_coordinates : array_like
+        Bearing positions ``(x_i, y_i)`` from the centre of stiffness, shape (n_b, 2) [m], in
+        [-10000, 10000]; at least 3, not on one line.
+    eccentricity : array_like
+        Centre of mass of the floors from the centre of stiffness ``(e_x, e_y)`` [m]: one pair
+        for every floor, shape (2,), or one per floor from the first up, shape (n, 2).
+    dimensions : tuple of float, optional
+        Plan dimensions ``(a, b)`` along x and y of a rectangular plan [m], in (0, 10000]:
+        the default of the inertias (``m (a^2 + b^2) / 12``) and of the torsional stiffness.
+    floor_inertias : array_like, optional
+        Mass moment of inertia of each floor about its own centre of mass, shape (n,)
+        [kg m^2], > 0. Default from ``dimensions``.
+    base_inertia : float, optional
+        The base slab's, about its centre of mass [kg m^2], > 0. Default from ``dimensions``.
+    base_eccentricity : array_like
+        Centre of mass of the base slab ``(e_x, e_y)`` [m]; default the reference point.
+    storey_stiffnesses_y : array_like, optional
+        Storey stiffnesses along y, first storey up, shape (n,) [N/m], > 0. Default: those
+        along x (the building's ``storey_stiffnesses``).
+    torsional_stiffnesses : array_like, optional
+        Torsional storey stiffnesses about the centre of stiffness, shape (n,) [N m/rad], > 0.
+        Default: the lateral stiffness spread uniformly over the rectangle ``a x b``, walls
+        along x resisting over the depth b and along y over the width a,
+        ``k_theta = (k_x b^2 + k_y a^2) / 12``.
+    storey_heights : float or array_like, optional
+        Storey heights, one for all or one per storey [m], in (0, 1000]: the lever arms of the
+        floors' inertia forces, whose overturning moment loads the bearings. Required when the
+        overturning is modelled (:class:`structures.spatial_isolated.SpatialIsolatedBuilding`).
+
+    Raises
+    ------
+    InputError
+        For a value of the wrong shape or outside its range, naming the field.
+    """
+
+    bearing_coordinates: np.ndarray
+    eccentricity: np.ndarray = (0.0, 0.0)  # type: ignore[assignment]
+    dimensions: tuple[float, float] | None = None
+    floor_inertias: np.ndarray | None = None
+    base_inertia: float | None = None
+    base_eccentricity: np.ndarray = (0.0, 0.0)  # type: ignore[assignment]
+    storey_stiffnesses_y: np.ndarray | None = None
+    torsional_stiffnesses: np.ndarray | None = None
+    storey_heights: float | np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        fields: dict[str, object] = {
+            "bearing_coordinates": _pairs(self.bearing_coordinates, "bearing_coordinates")}
+        axial_distribution(fields["bearing_coordinates"])  # colinear bearings: an error now
+        eccentricity = np.asarray(self.eccentricity, dtype=float)
+        fields["eccentricity"] = _pairs(eccentricity.reshape(1, 2) if eccentricity.shape == (2,)
+                                        else eccentricity, "eccentricity")
+        fields["base_eccentricity"] = _pairs(np.reshape(self.base_eccentricity, (1, -1)),
+                                             "base_eccentricity", 1)[0]
+        if self.dimensions is not None:
+            dims = _positive(self.dimensions, "dimensions", _LARGEST)
+            if dims.shape != (2,):
+                raise InputError(f"The 'dimensions' parameter of {_OWNER} must be the plan's "
+                                 f"(a, b) along x and y [m]. Got {self.dimensions!r} instead.")
+            fields["dimensions"] = (float(dims[0]), float(dims[1]))
+        for name, high in (("floor_inertias", 1e16), ("storey_stiffnesses_y", 1e15),
+                           ("torsional_stiffnesses", 1e20), ("storey_heights", 1000.0)):
+            if getattr(self, name) is not None:
+                fields[name] = _positive(getattr(self, name), name, high)
+        if self.base_inertia is not None:
+            fields["base_inertia"] = check_real(self.base_inertia, "base_inertia", _OWNER,
+                                                low=0.0, low_open=True, high=1e16)
+        for name, value in fields.items():
+            object.__setattr__(self, name, value)
+
+    @property
+    def n_bearings(self) -> int:
+        """Number of bearings [-]."""
+        return int(self.bearing_coordinates.shape[0])
+
+    def _per_storey(self, name: str, n: int) -> np.ndarray:
+        value = getattr(self, name)
+        if value.shape == (1,) and name == "storey_heights":
+            return np.full(n, value[0])
+        if value.shape != (n,):
+            raise InputError(f"The {name!r} parameter of {_OWNER} must hold one value per "
+                             f"storey ({n}). Got {value.shape[0]} instead.")
+        return value
+
+    def _rectangle(self, name: str) -> tuple[float, float]:
+        if self.dimensions is None:
+            raise InputError(f"The {name!r} parameter of {_OWNER} is needed when 'dimensions' "
+                             "(the rectangle (a, b) [m] it defaults from) is not given.")
+        return self.dimensions
+
+    def floor_eccentricities(self, n: int) -> np.ndarray:
+        """Centre of mass of each floor, shape (n, 2) [m]."""
+        if self.eccentricity.shape[0] == 1:
+            return np.repeat(self.eccentricity, n, axis=0)
+        if self.eccentricity.shape[0] != n:
+            raise InputError(f"The 'eccentricity' parameter of {_OWNER} must be one (e_x, e_y) "
+                             f"pair or one per floor ({n}). Got {self.eccentricity.shape[0]} "
+                             "pairs instead.")
+        return self.eccentricity
+
+    def inertias(self, floor_masses: np.ndarray, base_mass: float) -> tuple[np.ndarray, float]:
+        """Mass moments of inertia about each centre of mass: floors (n,) and base [kg m^2]."""
+        n = len(floor_masses)
+        if self.floor_inertias is not None:
+            floors = self._per_storey("floor_inertias", n)
+        else:
+            a, b = self._rectangle("floor_inertias")
+            floors = np.asarray(floor_masses, dtype=float) * (a * a + b * b) / 12.0
+        if self.base_inertia is not None:
+            base = float(self.base_inertia)
+        else:
+            a, b = self._rectangle("base_inertia")
+            base = float(base_mass) * (a * a + b * b) / 12.0
+        return floors, base
+
+    def stiffnesses(self, storey_stiffnesses_x: np.ndarray) -> np.ndarray:
+        """Storey stiffnesses ``(k_x, k_y, k_theta)``, shape (n, 3) [N/m, N/m, N m/rad]."""
+        kx = np.asarray(storey_stiffnesses_x, dtype=float)
+        n = kx.shape[0]
+        ky = kx if self.storey_stiffnesses_y is None else self._per_storey(
+            "storey_stiffnesses_y", n)
+        if self.torsional_stiffnesses is not None:
+            kt = self._per_storey("torsional_stiffnesses", n)
+        else:
+            a, b = self._rectangle("torsional_stiffnesses")
+            kt = (kx * b * b + ky * a * a) / 12.0
+        return np.column_stack([kx, ky, kt])
+
+    def floor_heights(self, n: int) -> np.ndarray:
+        """Height of each floor above the isolation level, shape (n,) [m]."""
+        if self.storey_heights is None:
+            raise InputError(f"The 'storey_heights' parameter of {_OWNER} is needed for the "
+                             "overturning moment of the floors' inertia forces; give it, or "
+                             "leave the overturning out (overturning=False).")
+        return np.cumsum(self._per_storey("storey_heights", n))
