@@ -116,7 +116,8 @@ class LinearModel:
     stiffness : array_like
         Stiffness matrix, shape (n, n) [N/m].
     influence : array_like
-        Ground-motion influence vector ``r``, shape (n,) [-].
+        Ground-motion influence vector ``r``, shape (n,) [-], or matrix, shape (n, k), for a
+        ground acceleration of k components.
 
     Raises
     ------
@@ -136,10 +137,10 @@ class LinearModel:
         self._damping = _square(damping, "damping", n)
         self._stiffness = _square(stiffness, "stiffness", n)
         r = np.array(influence, dtype=float)
-        if r.shape != (n,) or not np.all(np.isfinite(r)):
+        if r.shape[:1] != (n,) or r.ndim > 2 or not np.all(np.isfinite(r)):
             raise ValueError(
-                f"The 'influence' parameter of LinearModel must be a finite ({n},) array. "
-                f"Got {r!r} instead."
+                f"The 'influence' parameter of LinearModel must be a finite ({n},) array (or "
+                f"({n}, k) for k ground-motion components). Got {r!r} instead."
             )
         r.setflags(write=False)
         self._influence = r
@@ -163,7 +164,7 @@ class LinearModel:
 
     @property
     def influence(self) -> np.ndarray:
-        """Ground-motion influence vector, shape (n,) [-]."""
+        """Ground-motion influence, shape (n,) or (n, k) [-]."""
         return self._influence
 
     def restoring_force(self, u: np.ndarray, v: np.ndarray, time: float) -> RestoringForce:
