@@ -5,8 +5,8 @@ through :mod:`structures.opensees.bearing3d` and :mod:`structures.opensees.orbit
 Test bearing: 300 mm slider, 60 N/mm^2 (W = 4.24 MN), R_eff = 4.5 m, u_y = 0.5 mm.
 
 singleFPBearing 3D with Coulomb friction (ConstantFriction(0.041), mu = 0.0403), dt = 0.005 s:
-a circle of radius 0.2 m and a figure-eight of amplitude 0.2 m (ratio 0.5), period 4.26 s,
-two cycles each; a sine of 0.2 m along 30 degrees (three cycles). Measured with N = W on our
+a circle of radius 0.2 m, a figure-eight of amplitude 0.2 m (ratio 0.5) and a square of half
+side 0.2 m, period 4.26 s, two cycles each; a sine of 0.2 m along 30 degrees (three cycles). Measured with N = W on our
 side (OpenSees's N = W + F . u / R lifts it by up to 0.38 %):
 
 =================  ==========  ===========  ===========  =========
@@ -14,6 +14,8 @@ orbit              peak |F|    NRMSE F_x    NRMSE F_y    energy
 =================  ==========  ===========  ===========  =========
 circle             +0.378 %    0.128 %      0.143 %      +0.199 %
 figure-eight       +0.291 %    0.133 %      0.113 %      +0.144 %
+square             +0.641 %    0.210 %      0.206 %      +0.330 %
+line at 30 deg     +0.398 %    0.180 %      0.191 %      +0.131 %
 =================  ==========  ===========  ===========  =========
 
 With singleFPBearing's normal force given to our element (``match_normal_force``): 3e-15,
@@ -43,7 +45,7 @@ from isolator.bearing import DCFPBearing
 from isolator.factors import KumarFactors
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import MonitorLine
-from isolator.orbits import circle, figure_eight, line
+from isolator.orbits import circle, figure_eight, line, square
 from isolator.protocols import sine
 from structures.opensees.bearing import run_opensees_test
 from structures.opensees.bearing3d import (
@@ -195,6 +197,21 @@ def test_coulomb_remaining_gap_is_the_restoring_law(coulomb):
     # with W) against ours mu N / u_y tilts the lagging sliding direction by about N / W - 1
     assert np.max(gap[settled & _sliding(ours)]) <= 5e-5
     assert np.max(gap) <= 1e-3  # 5.5e-4 at the turn
+
+
+def test_a_square_agrees_within_the_stated_tolerances(ops):
+    """Corners turn the sliding direction by 90 degrees at full speed; each costs a few
+    pre-sliding steps, the largest gap of the Coulomb orbits."""
+    orbit = square(AMPLITUDE, PERIOD, 2, DT)
+    difference = run_orbit_comparison(_coulomb(), orbit).summary["difference"]
+    assert abs(difference["peak_resultant_force"]) <= 0.01  # 0.64 %
+    assert max(difference["nrmse_force_x"], difference["nrmse_force_y"]) <= 0.02  # 0.21 %
+    assert abs(difference["energy"]) <= 0.01  # 0.33 %
+    matched = run_orbit_comparison(_coulomb(), orbit, match_normal_force=True)
+    difference = matched.summary["difference"]
+    assert abs(difference["peak_resultant_force"]) <= 1e-3  # 6.2e-4
+    assert max(difference["nrmse_force_x"], difference["nrmse_force_y"]) <= 1e-3  # 2.7e-4
+    assert abs(difference["energy"]) <= 1e-5  # 8e-8
 
 
 def test_a_line_at_30_degrees_is_the_planar_comparison(ops):
