@@ -22,7 +22,10 @@ from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS, friction_model
 from structures.config_schema import ConfigError, ConfigWarning, check_tables
 from structures.integrators import HHT, Newmark
+from structures.plan import Plan
+from structures.plan_schema import build_plan, check_plan
 from structures.shear_building import ModalDamping, RayleighDamping, ShearBuilding
+from structures.spatial_building import SpatialBuilding
 
 __all__ = ["BuildingConfig", "ConfigError", "ConfigWarning", "load_config", "read_toml"]
 
@@ -32,7 +35,8 @@ MAX_FILE_BYTES = 10_000_000
 
 @dataclass(frozen=True)
 class BuildingConfig:
-    """Everything a run needs besides the ground motion."""
+    """Everything a run needs besides the ground motion; ``plan`` (from a ``[plan]`` table,
+    :mod:`structures.plan_schema`) is None for a planar building."""
 
     name: str
     building: ShearBuilding
@@ -41,6 +45,19 @@ class BuildingConfig:
     friction: dict[str, Any]
     integrator: Newmark | HHT
     dt: float | None
+    plan: Plan | None = None
+
+    def spatial_building(self) -> SpatialBuilding:
+        """The building in plan of a file with a ``[plan]`` table.
+
+        Raises
+        ------
+        ConfigError
+            For a planar file (no ``[plan]``).
+        """
+        if self.plan is None:
+            raise ConfigError(f"The building {self.name!r} has no [plan] table: it is planar.")
+        return SpatialBuilding(self.building, self.plan)
 
     def bearing(self, model: str | None = None) -> DCFPBearing:
         """One bearing with friction ``model`` (default: the file's), loaded by W / count."""
@@ -114,16 +131,19 @@ def _build(tables: dict[str, dict], path: Path) -> BuildingConfig:
                                              base_mass=b["base_mass"], damping=damping,
                                              profile=b.get("stiffness_profile", "uniform"))
     bearing = dict(tables["bearing"])
-    count = bearing.pop("count", 1)
+    plan = None if tables.get("plan") is None else build_plan(tables["plan"])
+    count = bearing.pop("count", 1 if plan is None else plan.n_bearings)
     friction = dict(tables["friction"])
     friction["model"] = friction.get("model", "precise")
     analysis = tables["analysis"]
     hht = analysis.get("integrator", "newmark") == "hht"
     integrator = HHT(alpha=analysis.get("alpha", -0.05)) if hht else Newmark()
     config = BuildingConfig(tables[""].get("name", path.stem), building, count, bearing,
-                            friction, integrator, analysis.get("dt"))
+                            friction, integrator, analysis.get("dt"), plan)
     for model in MODELS:  # every model the file may run (--model, suites), checked now
         config.bearing(model)
+    if plan is not None:  # the plan fits the building and carries its weight
+        config.spatial_building()
     return config
 
 
@@ -155,7 +175,10 @@ def load_config(path: str | Path) -> BuildingConfig:
         For a setting without effect (see :func:`structures.config_schema.check_tables`).
     """
     path = Path(path)
-    tables = check_tables(read_toml(path), path)
+    raw = read_toml(path)
+    tables = check_tables(raw, path)
+    tables["plan"] = check_plan(raw, len(tables["building"]["floor_masses"]),
+                                tables["bearing"], path)
     try:
         return _build(tables, path)
     except ConfigError:

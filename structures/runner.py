@@ -20,7 +20,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from dcfpb.errors import InputError
 from dcfpb.validation import check_real
+from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from structures.config import BuildingConfig, load_config
 from structures.integrators import HHT, Newmark
@@ -28,7 +30,7 @@ from structures.integrators import HHT, Newmark
 
 def run(
     config: BuildingConfig | str | Path,
-    motion: GroundMotion | str | Path,
+    motion: GroundMotion | GroundMotionPair | str | Path,
     *,
     model: str | None = None,
     integrator: Newmark | HHT | str | None = None,
@@ -45,9 +47,12 @@ def run(
     config : BuildingConfig or str or Path
         The building: a TOML building file (see ``examples/five_storey.toml``) or its loaded
         form (:func:`structures.config.load_config`).
-    motion : GroundMotion or str or Path
+    motion : GroundMotion or GroundMotionPair or str or Path
         The ground acceleration [m/s^2], or a record file (PEER .AT2 or text;
-        :func:`groundmotions.readers.read_record`).
+        :func:`groundmotions.readers.read_record`). A pair (x, y and optionally z) runs the
+        building in plan of a file with a ``[plan]`` table
+        (:func:`structures.spatial_analysis.run_spatial`, the reference engine; ``engine``
+        and ``floor_spectra`` do not apply).
     model : {"precise", "simplified", "constant"}, optional
         Friction model (default: the building file's).
     integrator : Newmark or HHT or {"newmark", "hht"}, optional
@@ -68,12 +73,22 @@ def run(
     Returns
     -------
     xarray.Dataset
-        The result of :func:`structures.analysis.run`; ``attrs["building"]`` names the building.
+        The result of :func:`structures.analysis.run` (of
+        :func:`structures.spatial_analysis.run_spatial` for a pair); ``attrs["building"]``
+        names the building.
     """
     from structures.analysis import run as run_building
 
     if not isinstance(config, BuildingConfig):
         config = load_config(config)
+    if isinstance(motion, GroundMotionPair):
+        if engine not in ("auto", "reference") or floor_spectra:
+            raise InputError(
+                "A building in plan runs on the reference engine without floor spectra: "
+                f"engine must be 'auto' or 'reference' and floor_spectra False. Got "
+                f"engine={engine!r}, floor_spectra={floor_spectra!r} instead.")
+        return _run_pair(config, motion, model=model, integrator=integrator, dt=dt,
+                         scale=scale, **options)
     if not isinstance(motion, GroundMotion):
         from groundmotions.readers import read_record
 
@@ -86,5 +101,24 @@ def run(
         config.integrator if integrator is None else integrator,
         n_bearings=config.n_bearings, dt=config.dt if dt is None else dt, engine=engine,
         floor_spectra=floor_spectra, **options)
+    result.attrs["building"] = config.name
+    return result
+
+
+def _run_pair(config: BuildingConfig, pair: GroundMotionPair, *, model: str | None,
+              integrator: Newmark | HHT | str | None, dt: float | None, scale: float,
+              **options: Any):
+    """:func:`run` for a building in plan under a pair of records."""
+    import dataclasses
+
+    from structures.spatial_analysis import run_spatial
+
+    check_real(scale, "scale", "structures.run", low=0.0, low_open=True)
+    if scale != 1.0:
+        pair = pair.scaled(scale)
+    bearing = dataclasses.replace(config.bearing(model), axial_load=None)  # the shares
+    result = run_spatial(config.spatial_building(), bearing, pair,
+                         config.integrator if integrator is None else integrator,
+                         dt=config.dt if dt is None else dt, **options)
     result.attrs["building"] = config.name
     return result
