@@ -35,6 +35,10 @@ _EXPORTS = {
     "run_fixed_base": "structures.fixed_base",
     "ratios_to_fixed_base": "structures.fixed_base",
     "with_floor_spectra": "structures.floor_spectra",
+    "Plan": "structures.plan",
+    "SpatialBuilding": "structures.spatial_building",
+    "SpatialIsolatedBuilding": "structures.spatial_isolated",
+    "run_spatial": "structures.spatial_analysis",
 }
 __all__ = [
     "HHT",
@@ -42,8 +46,11 @@ __all__ = [
     "IsolatedShearBuilding",
     "ModalDamping",
     "Newmark",
+    "Plan",
     "RayleighDamping",
     "ShearBuilding",
+    "SpatialBuilding",
+    "SpatialIsolatedBuilding",
     "default_step",
     "energy_balance",
     "integrate",
@@ -53,6 +60,7 @@ __all__ = [
     "run",
     "run_building",
     "run_fixed_base",
+    "run_spatial",
     "with_floor_spectra",
 ]
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
@@ -66,5 +74,9 @@ if TYPE_CHECKING:
     from structures.floor_spectra import with_floor_spectra
     from structures.integrators import HHT, Newmark, integrate
     from structures.isolated_building import IsolatedShearBuilding
+    from structures.plan import Plan
     from structures.runner import run
     from structures.shear_building import ModalDamping, RayleighDamping, ShearBuilding
+    from structures.spatial_analysis import run_spatial
+    from structures.spatial_building import SpatialBuilding
+    from structures.spatial_isolated import SpatialIsolatedBuilding
