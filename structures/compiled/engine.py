@@ -33,6 +33,7 @@ from isolator.contact_window import window_history
 from isolator.friction import ConstantFriction, PTVFriction, PTVFrictionState
 from isolator.heating import CentrePoint, MonitorLine
 from structures.compiled import integrator as compiled
+from structures.compiled import workspace
 from structures.integrators import HHT, IntegrationResult, Newmark
 from structures.isolated_building import IsolatedShearBuilding
 
@@ -189,8 +190,8 @@ def _model_error(info: np.ndarray, model: IsolatedShearBuilding, heating) -> Cap
     bearing's model cannot evaluate (:func:`isolator.bearing.trial_failure`, which ends the
     run), or, for a sub-step below the heat kernel's shortest lag, the reference's
     ``ValueError`` raised here."""
-    status = int(info[compiled.STATUS])
-    value = float(info[compiled.FAIL_VALUE])
+    status = int(info[workspace.STATUS])
+    value = float(info[workspace.FAIL_VALUE])
     if status == cb.STEP_BELOW_MIN_LAG:
         heating.prepare(value)
     detail = (f"at the effective radius {model.bearing.effective_radius!r} m of the "
@@ -200,7 +201,7 @@ def _model_error(info: np.ndarray, model: IsolatedShearBuilding, heating) -> Cap
             heating.window(value / model.bearing.friction.surfaces)
         except CapacityExceeded as error:
             detail = str(error)
-    return trial_failure(model.bearing, value, float(info[compiled.FAIL_TIME]), detail)
+    return trial_failure(model.bearing, value, float(info[workspace.FAIL_TIME]), detail)
 
 
 def _integrate(function, arguments: tuple, nt: int, start: float,
@@ -220,7 +221,7 @@ def _integrate(function, arguments: tuple, nt: int, start: float,
     while steps[1] < nt:
         steps[0], steps[1] = steps[1], min(int(steps[1]) + CHUNK_STEPS, nt)
         function(*arguments, steps)
-        if int(info[compiled.STATUS]) != cb.SUCCESS:
+        if int(info[workspace.STATUS]) != cb.SUCCESS:
             return False
         if steps[1] < nt and _time.perf_counter() - start > time_limit:
             return True
@@ -229,14 +230,14 @@ def _integrate(function, arguments: tuple, nt: int, start: float,
 
 def _failure_message(info: np.ndarray, tolerance: float) -> str:
     """The reference integrator's message for a step that did not converge."""
-    t_end, h = info[compiled.FAIL_TIME], info[compiled.FAIL_SUBSTEP]
-    residual, reference = info[compiled.FAIL_RESIDUAL], info[compiled.FAIL_REFERENCE]
+    t_end, h = info[workspace.FAIL_TIME], info[workspace.FAIL_SUBSTEP]
+    residual, reference = info[workspace.FAIL_RESIDUAL], info[workspace.FAIL_REFERENCE]
     relative = residual / reference if reference > 0.0 else np.inf
     return (
-        f"Step {int(info[compiled.LAST_STEP]) + 1}: Newton iteration did not converge in the "
+        f"Step {int(info[workspace.LAST_STEP]) + 1}: Newton iteration did not converge in the "
         f"step to t = {t_end:.6g} s (sub-step of {h:.3g} s after "
-        f"{int(info[compiled.FAIL_DEPTH])} halvings): after "
-        f"{int(info[compiled.FAIL_ITERATIONS])} iterations the residual norm was "
+        f"{int(info[workspace.FAIL_DEPTH])} halvings): after "
+        f"{int(info[workspace.FAIL_ITERATIONS])} iterations the residual norm was "
         f"{residual:.3e} N ({relative:.3e} of the force reference {reference:.3e} N; "
         f"tolerance {tolerance:g})."
     )
@@ -293,27 +294,26 @@ def compiled_history(
     method_array = _method_array(method, tolerance, max_iterations, max_subdivisions)
     u, v, a = np.empty((nt, n)), np.empty((nt, n)), np.empty((nt, n))
     record, restoring = np.empty((len(BEARING_FIELDS), nt)), np.empty((nt, n))
-    iterations = np.zeros(nt - 1, dtype=np.int64)
-    subdivisions = np.zeros(nt - 1, dtype=np.int64)
-    info = np.zeros(compiled.INFO_SIZE)
+    iterations, subdivisions = np.zeros((2, nt - 1), dtype=np.int64)
+    info = np.zeros(workspace.INFO_SIZE)
     function = compiled.integrate_building
     if python:
         function = getattr(function, "py_func", function)
-    matrices = compiled.Model(*(np.ascontiguousarray(m, dtype=float) for m in (
+    matrices = workspace.Model(*(np.ascontiguousarray(m, dtype=float) for m in (
         model.mass_matrix, model.damping_matrix, model.superstructure_stiffness,
         model.influence)))
-    motion = compiled.Motion(acceleration, time)
-    settings = compiled.Settings(method_array, bearing, ptv)
-    outputs = compiled.Outputs(u, v, a, record, restoring, iterations, subdivisions, info)
+    motion = workspace.Motion(acceleration, time)
+    settings = workspace.Settings(method_array, bearing, ptv)
+    outputs = workspace.Outputs(u, v, a, record, restoring, iterations, subdivisions, info)
     compile_time = 0.0 if python else compile_engine()
     start = _time.perf_counter()
-    state = compiled.State(cb.new_heating(rates, weights, states),
-                           compiled.new_workspace(n, max_subdivisions))
+    state = workspace.State(cb.new_heating(rates, weights, states),
+                            workspace.new_workspace(n, max_subdivisions))
     timed_out = _integrate(function, (matrices, motion, settings, state, outputs), nt, start,
                            time_limit)
     wall = _time.perf_counter() - start
-    status = int(info[compiled.STATUS])
-    last = int(info[compiled.LAST_STEP])
+    status = int(info[workspace.STATUS])
+    last = int(info[workspace.LAST_STEP])
     success = status == cb.SUCCESS and not timed_out
     failure, failed_at = "", None
     message = "The integration reached the end of the record."
@@ -368,14 +368,14 @@ def warm_up_late() -> float:
     from isolator.compiled.kernels import ptv_friction
 
     start = _time.perf_counter()
-    workspace = compiled.new_workspace(1, 0)
+    arrays = workspace.new_workspace(1, 0)
     heating = cb.new_heating(np.ones(1), np.zeros(1), np.zeros((1, 1)))
     cb._move_window(heating, 0, 1, 0.0)
     window_history(heating[cb.ACCUMULATOR], heating[cb.OFFSETS], heating[cb.DECAYS][0], 1)
     ptv = pack_ptv({"surfaces": 2.0})
     ptv_friction(0.0, True, ptv, 0.0, 6.0e7, 0.1)
-    cb.bearing_commit(np.zeros(cb.BEARING_PARAMETERS), workspace[compiled.COMMITTED],
-                      workspace[compiled.TRIAL], heating)  # nothing pending: a copy
+    cb.bearing_commit(np.zeros(cb.BEARING_PARAMETERS), arrays[workspace.COMMITTED],
+                      arrays[workspace.TRIAL], heating)  # nothing pending: a copy
     return _time.perf_counter() - start
 
 
