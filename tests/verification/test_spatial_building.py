@@ -246,3 +246,23 @@ def test_hht_runs_the_coupled_system():
         < 0.05
     assert 0.0 < hht.attrs["energy_balance_error"] < 0.05
 
+
+
+def test_uplift_under_a_strong_vertical_pulse_as_the_element_handles_it():
+    """A downward vertical pulse beyond 1 g unloads every bearing: no force, no friction
+    work while it lasts, and the run goes on with the balance closed."""
+    horizontal = _pair_along(30.0)
+    time = horizontal.x.time
+    pulse = np.where((time >= 1.0) & (time <= 1.2), -1.5 * STANDARD_GRAVITY, 0.0)
+    pair = GroundMotionPair(horizontal.x, horizontal.y, GroundMotion(pulse, DT, "pulse"))
+    plan = Plan(SQUARE, eccentricity=(0.5, 0.0), dimensions=(12.0, 10.0))
+    result = run_spatial(SpatialBuilding(_building(), plan), _bearing("constant"), pair,
+                         dt=DT, overturning=False)
+    assert result.attrs["success"] and result.attrs["vertical"] == 1
+    load = result["axial_load"].values
+    lifted = (time >= 1.0 + 1e-9) & (time <= 1.2 - 1e-9)
+    assert np.all(load[lifted] == 0.0) and np.all(load[~lifted & (time < 1.0)] > 0.0)
+    assert np.all(result["bearing_force"].values[lifted] == 0.0)
+    friction = result["energy_friction"].values
+    assert friction[lifted][-1] == friction[lifted][0]
+    assert result.attrs["energy_balance_error"] < 1e-6
