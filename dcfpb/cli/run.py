@@ -7,6 +7,8 @@ import argparse
 import json
 from pathlib import Path
 
+from dcfpb.cli.pairs import add_pair_options
+
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add ``dcfpb run`` to the sub-commands."""
@@ -17,7 +19,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         "examples/five_storey.toml) under a recorded ground motion (PEER .AT2 or text).",
     )
     p.add_argument("building", metavar="BUILDING.toml", help="building file")
-    p.add_argument("--record", required=True, metavar="FILE", help="ground-motion record")
+    p.add_argument("--record", required=True, metavar="FILE",
+                   help="ground-motion record (the x component of a pair)")
+    add_pair_options(p)
     p.add_argument("--scale", type=float, default=1.0, help="amplitude scale factor [-]")
     p.add_argument("--model", choices=("precise", "simplified", "constant"),
                    help="friction model (default: the building file's)")
@@ -137,11 +141,25 @@ def _run_building(args: argparse.Namespace) -> int:
     from dcfpb.cli.outputs import check_outputs
     from structures.compiled.ahead import compile_ahead
 
+    if args.record_y is not None or args.record_z is not None:
+        from dcfpb.cli.pairs import run_plan
+
+        return run_plan(args)
+
     check_outputs(files={"--output": args.output}, folders={"--plot": args.plot})
     with compile_ahead() as ahead:  # the engine compiles while the inputs are read
         # bad input (a record of 31 M steps) is refused first, before this process compiles
         config, integrator, motion = building_run_inputs(args, "dcfpb run")
         check_run_length(args, config, motion, "dcfpb run")
+        if config.plan is not None:
+            import warnings
+
+            from dcfpb.errors import InputWarning
+
+            warnings.warn(InputWarning(
+                "the building file's [plan] table is not used: one record runs the planar "
+                "building along x; give "
+                "--record-y to run it in plan"), stacklevel=1)
         ahead.help()
         from structures.analysis import peaks
         from structures.floor_spectra import with_floor_spectra
