@@ -20,7 +20,7 @@ from structures.results import friction_name
 from structures.spatial_energy import spatial_energy_balance
 from structures.spatial_isolated import SpatialIsolatedBuilding
 
-__all__ = ["BEARING_RECORD", "spatial_dataset"]
+__all__ = ["BEARING_RECORD", "plate_fields", "spatial_dataset"]
 
 BEARING_RECORD: dict[str, tuple[int, ...]] = {
     "displacement": (2,), "force": (2,), "friction_force": (2,), "mu": (), "temperature": (),
@@ -40,6 +40,26 @@ def _capacity(record: dict[str, np.ndarray], capacity: float, step: float) -> tu
         return reach.size, ""
     kept = int(beyond[0]) + 1
     return kept, beyond_capacity_message(reach[kept - 1], step * (kept - 1), capacity)
+
+
+def plate_fields(model: SpatialIsolatedBuilding) -> tuple[np.ndarray, np.ndarray] | None:
+    """The temperature field each bearing's monitor grid holds after the last commit (the
+    precise model; None for the others): positions (n_bearings, m, 2) [m] in plate
+    coordinates and temperatures (n_bearings, m) [degC], padded with NaN to the bearing with
+    the most points ever touched."""
+    from isolator.plate_heating import GridHeating
+
+    grids = [getattr(e.friction_state, "heating", None) for e in model.elements]
+    if not all(isinstance(g, GridHeating) for g in grids):
+        return None
+    size = max(g.stored_points for g in grids)
+    positions = np.full((len(grids), size, 2), np.nan)
+    temperatures = np.full((len(grids), size), np.nan)
+    for b, grid in enumerate(grids):
+        m = grid.stored_points
+        positions[b, :m] = grid.point_positions()
+        temperatures[b, :m] = grid.point_temperatures()
+    return positions, temperatures
 
 
 def spatial_dataset(model: SpatialIsolatedBuilding, motion: GroundMotionPair, step: float,
@@ -79,9 +99,11 @@ def spatial_dataset(model: SpatialIsolatedBuilding, motion: GroundMotionPair, st
         ``bearing_friction_force`` (time, bearing, direction), ``axial_load`` (0 on
         uplift), ``mu``, ``temperature``, ``heat_flux`` (time, bearing); ``base_shear``
         (time, direction); ``ground_acceleration`` (time, direction) and, with a vertical,
-        ``vertical_ground_acceleration``; the energies ``energy_*`` (time). Coordinates
-        ``bearing_x``, ``bearing_y`` [m]. Attributes as the planar run's, with
-        ``success``, ``message``, ``failure``, ``energy_balance_error``.
+        ``vertical_ground_acceleration``; the energies ``energy_*`` (time); with the precise
+        model, ``plate_temperature`` (bearing, plate_point), the field left on each plate at
+        the end (:func:`plate_fields`), at the coordinates ``plate_point_x``,
+        ``plate_point_y`` [m]. Coordinates ``bearing_x``, ``bearing_y`` [m]. Attributes as
+        the planar run's, with ``success``, ``message``, ``failure``, ``energy_balance_error``.
     """
     import xarray as xr
 
@@ -149,6 +171,10 @@ def spatial_dataset(model: SpatialIsolatedBuilding, motion: GroundMotionPair, st
         data["vertical_ground_acceleration"] = var(
             "time", [model.vertical_acceleration(t) for t in time], "m/s^2",
             "vertical ground acceleration (positive up)")
+    plate = plate_fields(model)
+    if plate is not None:
+        data["plate_temperature"] = var(("bearing", "plate_point"), plate[1], "degC",
+                                        "temperature of the plate's monitor points at the end")
     for name in _ENERGIES:
         data[f"energy_{name}"] = var("time", getattr(energies, name), "J", f"{name} energy")
     xy = building.plan.bearing_coordinates
@@ -157,6 +183,9 @@ def spatial_dataset(model: SpatialIsolatedBuilding, motion: GroundMotionPair, st
               "bearing": np.arange(xy.shape[0]),
               "bearing_x": ("bearing", xy[:, 0], {"units": "m"}),
               "bearing_y": ("bearing", xy[:, 1], {"units": "m"})}
+    if plate is not None:
+        for axis, name in enumerate(("plate_point_x", "plate_point_y")):
+            coords[name] = (("bearing", "plate_point"), plate[0][..., axis], {"units": "m"})
     common: dict[str, Any] = {
         "record": motion.name, "record_x": motion.x.name, "record_y": motion.y.name,
         "record_processing": "; ".join(motion.x.processing), "dt": step,

@@ -124,3 +124,19 @@ def test_components_of_other_steps_are_refused_unless_resampled(files, capsys):
     err = capsys.readouterr().err
     assert "dt = 0.01 s" in err and "dt = 0.02 s" in err and "--resample" in err
     assert main([*args, "--resample", "--truncate"]) == 0
+
+
+def test_the_precise_model_leaves_its_plate_field_in_the_dataset(files, tmp_path):
+    from dcfpb.plotting.plan import plot_plan_runs
+    from groundmotions.pairs import read_pair
+
+    pair = read_pair(files["x"], files["y"], units="m/s^2")
+    result = structures.run(files["plan"], pair, model="precise")
+    field = result["plate_temperature"].values
+    assert field.shape[0] == 4 and np.isfinite(field).sum(axis=1).min() > 1000
+    # cold outside the region the slider crossed, hot inside it
+    assert np.nanmin(field) == pytest.approx(20.0, abs=0.5)
+    assert 40.0 < np.nanmax(field) < result["temperature"].values.max() + 30.0
+    assert "plate_temperature" not in structures.run(files["plan"], pair, model="simplified")
+    written = plot_plan_runs({"precise": result}, tmp_path)
+    assert tmp_path / "plate_temperature.png" in written
