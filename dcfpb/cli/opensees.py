@@ -7,6 +7,10 @@ their differences (relative peak difference, and NRMSE = RMS difference / peak o
 the isolator displacement, base shear and roof acceleration), the wall time of each and their
 ratio. ``--plot`` overlays the histories and the hysteresis loops.
 
+With ``--record-y Y [--record-z Z]`` (the pair flags of ``dcfpb run``) and a building file with
+a ``[plan]`` table, the building in plan is compared with OpenSees 3D
+(:mod:`dcfpb.cli.opensees_plan`); every other flag keeps its meaning.
+
 ``dcfpb compare-opensees-bearing [--model ...]`` is the same for one bearing under an imposed
 sine (:mod:`structures.opensees.bearing`): peak force, force NRMSE, energy dissipated per
 cycle and temperature of each.
@@ -21,6 +25,8 @@ import json
 import math
 from typing import Any
 
+from dcfpb.cli.opensees_plan import add_plan_options, run_plan_comparison
+from dcfpb.cli.pairs import add_pair_options
 from dcfpb.cli.run import add_max_steps, add_record_options
 
 MODELS = ("constant", "velocity", "ptv")
@@ -59,6 +65,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    "5 ms)")
     add_max_steps(p, "each run")
     add_record_options(p)
+    add_pair_options(p)
+    add_plan_options(p)
     p.add_argument("--json", action="store_true", help="print the comparison as JSON")
     p.add_argument("--plot", metavar="DIR", help="write overlay plots to this folder")
     p.set_defaults(handler=run_building)
@@ -94,6 +102,13 @@ def _import_error(command: str, error: ImportError) -> int:
 
 def run_building(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb compare-opensees``; returns the exit status."""
+    if args.record_y is not None or args.record_z is not None:
+        return run_plan_comparison(args)
+    if args.overturning:
+        from dcfpb.errors import InputError
+
+        raise InputError("--overturning applies to a building in plan under a pair: give "
+                         "--record-y (and a building file with a [plan] table).")
     from dcfpb.cli.outputs import check_outputs
 
     check_outputs(folders={"--plot": args.plot})
