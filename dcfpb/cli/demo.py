@@ -38,16 +38,29 @@ def register(sub: argparse._SubParsersAction) -> None:
         "same superstructure on a fixed base; prints a peaks table and the isolated peaks as "
         "ratios to the fixed base, and writes plots (floor response spectra among them).",
     )
-    p.add_argument("--plot", metavar="DIR", default="dcfpb-demo",
-                   help="folder for the plots (default: ./dcfpb-demo)")
+    p.add_argument("--plot", metavar="DIR",
+                   help="folder for the plots (default: ./dcfpb-demo, with --plan "
+                   "./dcfpb-demo-plan)")
+    p.add_argument("--plan", action="store_true",
+                   help="the same building in plan (six bearings, eccentric centre of mass) "
+                   "under a synthetic pair of records: bearing orbits coloured by "
+                   "temperature, torsion at the corner bearings, the plate's temperature field")
     p.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb demo``; returns the exit status."""
     from dcfpb.cli.outputs import check_outputs
+
+    if args.plan:
+        from dcfpb.cli.demo_plan import run_plan_demo
+
+        args.plot = args.plot or "dcfpb-demo-plan"
+        check_outputs(folders={"--plot": args.plot})
+        return run_plan_demo(args.plot)
     from structures.compiled.ahead import compile_ahead
 
+    args.plot = args.plot or "dcfpb-demo"
     check_outputs(folders={"--plot": args.plot})
 
     with compile_ahead() as ahead:

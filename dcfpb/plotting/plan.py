@@ -27,7 +27,7 @@ def corner_bearing(result: Any) -> int:
 
 def _save(plt, fig, directory: Path, name: str, title: str) -> Path:
     if title:
-        fig.suptitle(title)
+        fig.suptitle(title, fontsize=12 if fig.get_figwidth() > 7.0 else 9, wrap=True)
     path = directory / name
     fig.savefig(path, dpi=120, **PNG_OPTIONS)
     plt.close(fig)
