@@ -2,9 +2,10 @@
 
 Every threshold that decides a verdict lives in :class:`Thresholds`. The values in use are
 read from ``thresholds.json`` beside this module, written by the tuning script
-(``validation/diagnosis/tune.py``), which chooses them on the *tuning* half of the validation
-panel only; the scores reported are those on the other half. The file records the panel, the
-half and the tuning score. Without the file, the defaults below apply.
+(``validation/diagnosis/tune.py``), which chooses them on the *tune* half of the tuning panel
+(``validation/diagnosis/tuning/``) only; the scores reported are those on the other half. The
+file records the panel, the half and the tuning score. Without the file, the defaults below
+apply.
 
 Scales: ``*_z`` are in standard errors of the summed block differences of the held-out
 weighted residual (a block is a half cycle of one test); ``*_explained`` and ``name_min`` are

@@ -134,10 +134,10 @@ def test_short_and_long_strokes_pass(tmp_path, amplitude, period, yield_displace
 def test_every_panel_case_passes(tmp_path):
     """Both validation panels, all halves: 0.002-0.01 s steps, 16-630 mm/s, mu 0.02-0.08,
     slopes 0.94-1.8 times N / R_eff (the stiffness and geometry cases)."""
-    from validation.diagnosis import cases, panel
+    from validation.diagnosis import outside, tuning
     from validation.diagnosis.score import load_case
 
-    for module, name in ((cases, "tuning"), (panel, "outside")):
+    for module, name in ((tuning, "tuning"), (outside, "outside")):
         folder = tmp_path / name
         module.write_panel(folder, seed=2026)
         labels = json.loads((folder / "labels.json").read_text())

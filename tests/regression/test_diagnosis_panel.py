@@ -5,11 +5,11 @@ Two panels, each written from three truth sources (a numpy-only implementation w
 the paper, OpenSees elements, the package's own element) with the labels kept apart from the
 data (``labels.json``, read only by the scorer, after diagnosing):
 
-- the **tuning panel** (``validation/diagnosis/cases.py`` with ``plain_truths.py``): 42 cases
+- the **tuning panel** (``validation/diagnosis/tuning/`` with its ``truths.py``): 42 cases
   in 21 tune/test pairs. The thresholds in ``isolator/diagnosis/thresholds.json`` were chosen
   on its tune half (seed 2026) by ``validation/diagnosis/tune.py``; its test half is scored
   here with fresh noise (seed 2028), never seen by the tuning;
-- the **outside panel** (``validation/diagnosis/panel.py`` with ``independent_truths.py``):
+- the **outside panel** (``validation/diagnosis/outside/`` with ``independent/``):
   48 cases designed and written separately, never used to choose anything; its test half
   (24 cases) is scored here.
 
@@ -29,8 +29,8 @@ import numpy as np
 import pytest
 
 from isolator.diagnosis.thresholds import THRESHOLDS_FILE
-from validation.diagnosis import cases as tuning_panel
-from validation.diagnosis import panel as outside_panel
+from validation.diagnosis import outside as outside_panel
+from validation.diagnosis import tuning as tuning_panel
 from validation.diagnosis.score import case_names, diagnose_cases, score, summarize
 
 TOLD = {"effective_radius", "slider_diameter", "axial_load", "baseline", "without"}

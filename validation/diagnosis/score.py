@@ -1,8 +1,9 @@
 """Score the diagnosis on a validation panel: diagnose from the data alone, then read labels.
 
-A panel folder (written by :mod:`validation.diagnosis.cases`) holds one folder per case with
-the test files, ``manifest.csv`` (the tests in run order) and ``bearing.json`` (what a user
-tells the diagnosis), and ``labels.json`` apart. :func:`diagnose_cases` runs the diagnosis on
+A panel folder (written by :mod:`validation.diagnosis.tuning` or
+:mod:`validation.diagnosis.outside`) holds one folder per case with the test files,
+``manifest.csv`` (the tests in run order) and ``bearing.json`` (what a user tells the
+diagnosis), and ``labels.json`` apart. :func:`diagnose_cases` runs the diagnosis on
 the cases of one half from their files only; :func:`score` then reads the labels and judges
 each verdict; :func:`summarize` gives the figures the issue asks for.
 
@@ -154,7 +155,7 @@ def markdown(rows: list[dict], figures: dict, half: str) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("panel", help="panel folder (validation.diagnosis.cases.write_panel)")
+    parser.add_argument("panel", help="panel folder (validation.diagnosis.tuning or .outside)")
     parser.add_argument("--half", default="test", choices=[*HALVES, "all"])
     parser.add_argument("--markdown", help="write the table here")
     parser.add_argument("--json", help="write the rows and figures here")

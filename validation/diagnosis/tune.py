@@ -86,7 +86,7 @@ def tune(diagnoses: dict, labels: dict, start: Thresholds | None = None,
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("panel", help="panel folder (validation.diagnosis.cases.write_panel)")
+    parser.add_argument("panel", help="tuning panel folder (validation.diagnosis.tuning)")
     parser.add_argument("--write", action="store_true",
                         help=f"write the thresholds to {THRESHOLDS_FILE}")
     args = parser.parse_args(argv)

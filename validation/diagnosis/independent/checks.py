@@ -1,31 +1,13 @@
-"""Independent truths for the diagnosis's validation panel: a bearing test written from physics.
+"""The independent truth's closed-form self-checks.
 
-The independent truths import only numpy and the standard library. They share no code with
-``isolator``, ``structures``, ``dcfpb``, ``groundmotions`` or ``tests``, so a mistake in the
-package cannot be repeated in the data the package's diagnosis is judged on. They are
-deliberately plain: one Python loop over the samples, closed forms where they exist, and the
-equations in the docstrings of their two modules.
-
-Units are SI at every argument (m, s, N, Pa, degC); the paper's N/mm^2 and mm/s appear only
-inside its factors (Nishimoto et al., "SSB part 2: friction models", Eq. 1-8).
-
-The truths are in two modules; their names are importable from here too:
-
-- :mod:`validation.diagnosis.independent_bearing`: the bearing (restoring laws, transitions,
-  the friction coefficient's factors, heating on the monitor line, Eq. 1-5 and 7);
-- :mod:`validation.diagnosis.independent_rig`: the test machine (the tests, the play, the
-  force channel's lag, a campaign with its rests, :func:`simulate`) and the measurement noise
-  (:func:`noise`).
-
-This module holds their closed-form self-checks.
-
-Checks
-------
-``python -m validation.diagnosis.independent_truths`` runs :func:`checks`: a rigid-plastic flat
+``python -m validation.diagnosis.independent`` runs :func:`checks`: a rigid-plastic flat
 slider dissipates 4 mu W A per cycle (and 4 mu W (A - b/2) with a play b); a constant flux on
 a half-space heats by 2 q sqrt(D t / pi) / k; the closed-form Bouc-Wen matches a sub-stepped
 integration; a frictionless spherical surface gives W u / sqrt(R^2 - u^2); an integer lag is
 a shift of the samples.
+
+Like the rest of :mod:`validation.diagnosis.independent`, this module imports only numpy, the
+standard library and its siblings.
 """
 
 from __future__ import annotations
@@ -35,50 +17,16 @@ import math
 
 import numpy as np
 
-from validation.diagnosis.independent_bearing import (
+from validation.diagnosis.independent.bearing import (
     CONDUCTIVITY,
     DIFFUSIVITY,
-    HEAT_COEFFICIENT,
-    MU_T0,
-    REFERENCE_SPEED,
-    REFERENCE_TEMPERATURE,
-    SPACING,
-    TRANSITIONS,
     Bearing,
-    Breakaway,
     Plate,
-    Velocity,
-    Wear,
-    alpha,
-    beta,
     bouc_wen_step,
-    gamma,
 )
-from validation.diagnosis.independent_rig import Test, noise, simulate, sine_test
+from validation.diagnosis.independent.rig import simulate, sine_test
 
-__all__ = [
-    "CONDUCTIVITY",
-    "DIFFUSIVITY",
-    "HEAT_COEFFICIENT",
-    "MU_T0",
-    "REFERENCE_SPEED",
-    "REFERENCE_TEMPERATURE",
-    "SPACING",
-    "TRANSITIONS",
-    "Bearing",
-    "Breakaway",
-    "Plate",
-    "Test",
-    "Velocity",
-    "Wear",
-    "alpha",
-    "beta",
-    "checks",
-    "gamma",
-    "noise",
-    "simulate",
-    "sine_test",
-]
+__all__ = ["checks"]
 
 
 # --- sanity checks -------------------------------------------------------------------------
@@ -144,6 +92,3 @@ def checks(verbose: bool = True) -> dict[str, float]:
             print(f"{name:22s} {value:.2e}")
     return errors
 
-
-if __name__ == "__main__":
-    checks()

@@ -1,4 +1,4 @@
-"""Plain truths for the diagnosis's validation panel, written from the paper and physics.
+"""The tuning panel's own truth model, written from the paper and physics (numpy only).
 
 This module imports only numpy and the standard library: nothing of ``isolator``,
 ``structures``, ``dcfpb`` or ``groundmotions``, so a mistake in the package cannot be shared
@@ -41,9 +41,10 @@ mm/s inside its factors only):
   computed on a grid ten times finer and read at t - tau. Measurement noise is white or
   coloured (AR(1)) on the force and the displacement.
 
-Checks (``python -m validation.diagnosis.plain_truths``): a rigid-plastic flat slider's loop
-dissipates 4 mu N A per cycle; a constant flux on a half-space heats a point by
-2 q sqrt(D t / pi) / k.
+Checks (:func:`checks`): a rigid-plastic flat slider's loop dissipates 4 mu N A per cycle; a
+constant flux on a half-space heats a point by 2 q sqrt(D t / pi) / k::
+
+    python -c "from validation.diagnosis.tuning.truths import checks; checks()"
 """
 
 from __future__ import annotations
@@ -280,7 +281,8 @@ def noise(rng: np.random.Generator, n: int, sigma: float, colour: float = 0.0) -
     return out
 
 
-def _checks() -> None:
+def checks() -> None:
+    """Print the self-checks of the module docstring against their closed forms."""
     t = np.arange(0.0, 4.0 + 1e-9, 0.001)
     u = 0.1 * np.sin(2.0 * math.pi * t / 2.0)
     flat = Truth(weight=1.0e6, radius=math.inf, mu0=0.05, transition="rigid-plastic")
@@ -296,6 +298,3 @@ def _checks() -> None:
     exact = 2 * 1.0e5 * math.sqrt(DIFFUSIVITY * 10.0 / math.pi) / CONDUCTIVITY
     print(f"constant flux on a half-space: {rise:.6f} degC against {exact:.6f} degC")
 
-
-if __name__ == "__main__":
-    _checks()

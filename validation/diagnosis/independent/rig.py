@@ -1,8 +1,8 @@
 """The independent truth's test machine: the tests, the campaign and the measurement noise.
 
-Part of the independent truths (:mod:`validation.diagnosis.independent_truths`), written from
+Part of the independent truths (:mod:`validation.diagnosis.independent`), written from
 the paper and from physics. Like the rest of them, this module imports only numpy, the
-standard library and its sibling :mod:`validation.diagnosis.independent_bearing` (the bearing
+standard library and its sibling :mod:`validation.diagnosis.independent.bearing` (the bearing
 it drives): it shares no code with ``isolator``, ``structures``, ``dcfpb``, ``groundmotions``
 or ``tests``. It is deliberately plain: one Python loop over the samples.
 
@@ -44,7 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from validation.diagnosis.independent_bearing import (
+from validation.diagnosis.independent.bearing import (
     REFERENCE_TEMPERATURE,
     Bearing,
     Plate,

@@ -1,10 +1,10 @@
 """The tuning panel's records (a test, a case) and its three truth sources.
 
-Each source takes a case of :mod:`validation.diagnosis.cases` and the set of its effects
+Each source takes a case of :mod:`validation.diagnosis.tuning.cases` and the set of its effects
 switched on, and returns per test the clean (noise-free) channels: ``time``, ``displacement``,
 ``velocity``, ``axial_force``, ``force`` and the ``bearing``'s displacement.
 
-- ``independent``: :mod:`validation.diagnosis.plain_truths` (numpy only, written from
+- ``independent``: :mod:`validation.diagnosis.tuning.truths` (numpy only, written from
   the paper and physics; shares no code with the package);
 - ``opensees``: OpenSees singleFPBearing (Coulomb, VelDependent) and FPBearingPTV through
   :func:`structures.diagnosis.truths.opensees_truth`;
@@ -19,7 +19,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from validation.diagnosis import plain_truths as ind
+from validation.diagnosis.tuning import truths as ind
 
 SLIDER = 0.3  # [m]
 RADIUS = 4.5  # [m]

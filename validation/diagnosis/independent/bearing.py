@@ -1,11 +1,11 @@
 """The independent truth's bearing: its friction coefficient, heating and hysteresis.
 
-Part of the independent truths (:mod:`validation.diagnosis.independent_truths`), written from
+Part of the independent truths (:mod:`validation.diagnosis.independent`), written from
 the paper and from physics. Like the rest of them, this module imports only numpy and the
 standard library: it shares no code with ``isolator``, ``structures``, ``dcfpb``,
 ``groundmotions`` or ``tests``, so a mistake in the package cannot be repeated in the data the
 package's diagnosis is judged on. The test machine that drives this bearing is
-:mod:`validation.diagnosis.independent_rig`.
+:mod:`validation.diagnosis.independent.rig`.
 
 Units are SI at every argument (m, s, N, Pa, degC); the paper's N/mm^2 and mm/s appear only
 inside its factors (Nishimoto et al., "SSB part 2: friction models", Eq. 1-8).

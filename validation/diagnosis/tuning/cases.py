@@ -1,101 +1,32 @@
-"""The diagnosis's validation panel: 42 cases from three truth sources, labels kept apart.
+"""The tuning panel's 42 cases in 21 tune/test pairs, and the test histories they use.
 
-Each *scenario* (a set of true effects) is made twice, once for each half: the **tune** half
-is the only one the thresholds are chosen on (``tune.py``), the **test** half is the one
-the scores are reported on (``score.py``). The two cases of a pair differ in their truth
-source and in nuisance: amplitude (0.05-0.4 m), sampling (100-500 Hz), white or coloured
-noise (0.3-1.5 % of the nominal friction force), a channel lag of up to 1.5 samples, the
-pre-sliding transition (rigid-plastic, elastic-plastic 0.1-2 mm, smooth Bouc-Wen), campaigns
-of one to four files, a velocity and an axial-force column or not.
-
-The records and the truth sources are in :mod:`validation.diagnosis.cases_sources` (their
-names are importable from here too); this module holds the case list and writes the panel.
-
-Truth sources:
-
-- ``independent``: :mod:`validation.diagnosis.plain_truths` (numpy only, written from
-  the paper and physics; shares no code with the package);
-- ``opensees``: OpenSees singleFPBearing (Coulomb, VelDependent) and FPBearingPTV through
-  :func:`structures.opensees.bearing.run_opensees_test`;
-- ``package``: our own element (:func:`structures.diagnosis.truths.element_truth`).
-
-Label rule: an effect is labelled when its own contribution to the clean force (the truth
-with it less the truth without it) has an RMS of at least 3 % of the RMS force; physics left
-unlabelled contributes at most 1 % (both are computed and stored with the labels, in
-``design``). A channel lag of up to 1.5 samples and the transition's shape are nuisance,
-never labelled.
-
-Written to ``folder/case_NN/``: ``test_01.csv`` ... (time, displacement, force, and velocity,
-axial_force where the case has them), ``manifest.csv`` (the files in run order with the
-axial load where there is no column, the initial temperature and the rest before each test)
-and ``bearing.json`` (what a user would type: effective radius, slider diameter, baseline,
-``without``, axial load). ``folder/labels.json`` holds the labels; ``folder/panel.json`` the
-seed. Case numbers are shuffled so that neither the number nor the files tell the truth.
-
-    python -m validation.diagnosis.cases FOLDER [--seed 2026] [--half tune|test]
+Each case names its labelled effects, its half, its truth source
+(:mod:`validation.diagnosis.tuning.sources`), a description, its tests and its nuisance (see
+:mod:`validation.diagnosis.tuning` for the ranges). The two cases of a pair share the
+labelled effects and differ in truth source and nuisance.
 """
 
 from __future__ import annotations
 
-import argparse
-import json
 import math
-import time as _time
-from pathlib import Path
 
-import numpy as np
-
-from validation.diagnosis import plain_truths as ind
-from validation.diagnosis.cases_sources import (
-    AREA,
-    LABEL_MIN,
-    MU0,
-    RADIUS,
-    SLIDER,
-    SOURCES,
-    UNLABELLED_MAX,
-    Case,
-    Test,
-    W,
-    independent,
-    opensees,
-    package,
-)
+from validation.diagnosis.tuning.sources import Case, Test, independent, opensees, package
 
 __all__ = [
-    "AREA",
     "BIG",
     "CASES",
     "DAMPER",
     "EXP_VELOCITY",
     "HEAT_SET",
-    "LABEL_MIN",
-    "MU0",
     "ONE",
     "PAIR",
     "PRESSURE_SET",
-    "RADIUS",
     "SINE_SET",
-    "SLIDER",
-    "SOURCES",
-    "UNLABELLED_MAX",
     "VARYING",
     "VARYING_STRONG",
     "VELOCITY_SET",
     "WEAR_SET",
-    "Case",
-    "Test",
-    "W",
-    "contributions",
-    "independent",
-    "main",
-    "measured",
-    "opensees",
-    "opensees_available",
-    "package",
-    "write_panel",
 ]
-
 
 # --- the cases ------------------------------------------------------------------------------
 
@@ -220,116 +151,3 @@ CASES: tuple[Case, ...] = (
     Case(("wear", "breakaway"), "test", "package", "wear S^0.6 (-20 %) and breakaway 35 %",
          SINE_SET, package, noise=0.006),
 )
-
-
-# --- writing --------------------------------------------------------------------------------
-
-
-def _rms(x: np.ndarray) -> float:
-    return float(np.sqrt(np.mean(np.square(x))))
-
-
-def contributions(case: Case, clean: list[dict]) -> dict[str, float]:
-    """Each labelled effect's share of the clean force: RMS(with - without) / RMS(with)."""
-    force = np.concatenate([c["force"] for c in clean])
-    out = {}
-    for effect in case.effects:
-        without = SOURCES[case.source](case, set(case.effects) - {effect})
-        other = np.concatenate([c["force"] for c in without])
-        out[effect] = _rms(force - other) / _rms(force)
-    return out
-
-
-def measured(case: Case, clean: dict, rng: np.random.Generator) -> dict[str, np.ndarray]:
-    """The columns a test machine writes: the clean histories plus measurement noise."""
-    n = clean["time"].size
-    sigma = case.noise * MU0 * W
-    out = {"time": clean["time"],
-           "displacement": clean["displacement"] + rng.normal(0.0, case.displacement_noise, n),
-           "force": clean["force"] + ind.noise(rng, n, sigma, case.colour)}
-    if case.velocity_column:
-        out["velocity"] = clean["velocity"] + rng.normal(0.0, 2.0e-3, n)
-    if case.axial_column:
-        out["axial_force"] = clean["axial_force"] * (1.0 + rng.normal(0.0, 0.005, n))
-    return out
-
-
-def opensees_available() -> bool:
-    """Whether openseespy can be imported (its cases are left out otherwise)."""
-    try:
-        from structures.opensees.runtime import import_opensees
-
-        import_opensees()
-    except ImportError:
-        return False
-    return True
-
-
-def write_panel(folder: str | Path, *, seed: int = 2026, half: str | None = None,
-                opensees: bool | None = None, progress: bool = False) -> Path:
-    """Write the cases (of one ``half``, or all) and the labels; returns the labels file."""
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    if opensees is None:
-        opensees = opensees_available()
-    order = np.random.default_rng(seed).permutation(len(CASES))
-    labels = {}
-    for index in order:
-        case = CASES[index]
-        number = int(np.flatnonzero(order == index)[0]) + 1
-        if (half is not None and case.half != half) or (case.source == "opensees"
-                                                        and not opensees):
-            continue
-        start = _time.perf_counter()
-        name = f"case_{number:02d}"
-        rng = np.random.default_rng([seed, int(index)])
-        clean = SOURCES[case.source](case, set(case.effects))
-        shares = contributions(case, clean)
-        out = folder / name
-        out.mkdir(exist_ok=True)
-        rows = []
-        for k, (test, data) in enumerate(zip(case.tests, clean, strict=True), start=1):
-            columns = measured(case, data, rng)
-            file = f"test_{k:02d}.csv"
-            np.savetxt(out / file, np.column_stack(list(columns.values())), delimiter=",",
-                       header=",".join(columns), comments="", fmt="%.10g")
-            load = "" if case.axial_column else repr(test.load * W)
-            rest = "" if test.rest is None else repr(test.rest)
-            rows.append(f"{file},{load},20.0,{rest}")
-        (out / "manifest.csv").write_text(
-            "file,axial_load,initial_temperature,rest_before\n" + "\n".join(rows) + "\n")
-        told = {"effective_radius": case.radius, "slider_diameter": SLIDER,
-                "baseline": case.baseline, "without": list(case.without)}
-        (out / "bearing.json").write_text(json.dumps(told, indent=2))
-        labels[name] = {
-            "effects": list(case.effects), "truth": case.truth, "source": case.source,
-            "half": case.half, "baseline": case.baseline, "without": list(case.without),
-            "design": {"tests": len(case.tests), "dt": case.dt, "noise": case.noise,
-                       "colour": case.colour, "lag_samples": case.lag_samples,
-                       "amplitudes": [t.amplitude for t in case.tests],
-                       "velocity_column": case.velocity_column,
-                       "axial_column": case.axial_column,
-                       "transition": case.options.get("transition", "elastic-plastic"),
-                       "contribution": shares}}
-        if progress:
-            print(f"{name}: {case.half:4s} {case.source:11s} {','.join(case.effects) or 'none':20s}"
-                  f" {shares} ({_time.perf_counter() - start:.1f} s)", flush=True)
-    path = folder / "labels.json"
-    path.write_text(json.dumps(dict(sorted(labels.items())), indent=2))
-    (folder / "panel.json").write_text(json.dumps({"seed": seed, "cases": len(labels),
-                                                   "half": half or "all"}, indent=2))
-    return path
-
-
-def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description="Write the diagnosis's validation panel.")
-    parser.add_argument("folder")
-    parser.add_argument("--seed", type=int, default=2026)
-    parser.add_argument("--half", choices=("tune", "test"))
-    args = parser.parse_args(argv)
-    write_panel(args.folder, seed=args.seed, half=args.half, progress=True)
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -1,12 +1,12 @@
 """The outside panel's three truth sources: the clean channels of a case's campaign.
 
-Each source takes a case of :mod:`validation.diagnosis.panel_cases` and the set of its
+Each source takes a case of :mod:`validation.diagnosis.outside.cases` and the set of its
 effects switched on, and returns per test the clean (noise-free) channels: ``time``,
 ``displacement``, ``velocity``, ``axial_force``, ``force`` and the ``restoring`` part of the
 force, and, where the truth has physics the labels leave out, its ``unlabelled`` shares.
 
 ``independent``
-    :mod:`validation.diagnosis.independent_truths` (numpy only, written from the paper and from
+    :mod:`validation.diagnosis.independent` (numpy only, written from the paper and from
     physics; it shares no code with the package).
 ``opensees``
     OpenSees ``singleFPBearing`` / ``flatSliderBearing`` (Coulomb, VelDependent) and
@@ -26,8 +26,15 @@ from dataclasses import replace
 
 import numpy as np
 
-from validation.diagnosis import independent_truths as ind
-from validation.diagnosis.panel_cases import NIGHT, SLIDER, Case, Sine, axial_load, rest_before
+from validation.diagnosis import independent as ind
+from validation.diagnosis.outside.cases import (
+    NIGHT,
+    SLIDER,
+    Case,
+    Sine,
+    axial_load,
+    rest_before,
+)
 
 # --- test histories ------------------------------------------------------------------------
 

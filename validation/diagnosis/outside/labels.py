@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from validation.diagnosis.panel_cases import (
+from validation.diagnosis.outside.cases import (
     AXIAL_NOISE,
     LABEL_MIN,
     SLIDER,
@@ -25,7 +25,7 @@ from validation.diagnosis.panel_cases import (
     axial_load,
     rest_before,
 )
-from validation.diagnosis.panel_sources import (
+from validation.diagnosis.outside.sources import (
     SOURCE_FUNCTIONS,
     independent,
     independent_truth_bearing,

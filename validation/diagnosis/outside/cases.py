@@ -2,9 +2,10 @@
 
 Each *scenario* (a set of true effects, possibly none) is made twice: one case goes to the
 **tune** half, the other to the **test** half. The two cases of a pair share the labelled
-effects and differ in their truth source and in nuisance (see :mod:`validation.diagnosis.panel`
-for the ranges). A case names its truth source (:mod:`validation.diagnosis.panel_sources`) and
-gives it its parameters in ``spec``; :func:`check_design` checks the pairing.
+effects and differ in their truth source and in nuisance (see
+:mod:`validation.diagnosis.outside` for the ranges). A case names its truth source
+(:mod:`validation.diagnosis.outside.sources`) and gives it its parameters in ``spec``;
+:func:`check_design` checks the pairing.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
-from validation.diagnosis import independent_truths as ind
+from validation.diagnosis import independent as ind
 
 SLIDER = 0.3  # [m]
 RADIUS = 4.5  # [m]

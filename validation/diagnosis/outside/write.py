@@ -1,46 +1,9 @@
-"""The diagnosis's validation panel: 48 cases in 24 scenario pairs, labels kept apart.
+"""Write the outside panel: the measurement noise, the files and the labels.
 
-Each *scenario* (a set of true effects, possibly none) is made twice: one case goes to the
-**tune** half (the only half thresholds may be chosen on), the other to the **test** half (the
-half scores are reported on). The two cases of a pair share the labelled effects and differ in
-their truth source and in nuisance: amplitudes (0.02-0.4 m), sampling (100-500 Hz), white,
-AR(1) or band-limited noise (0.3-1.5 % of the nominal friction force mu0 W on the force,
-0.01-0.05 mm on the displacement), a channel lag of up to 1.5 samples, the pre-sliding
-transition (rigid-plastic, elastic-plastic 0.1-1.5 mm, smooth Bouc-Wen), campaigns of one to
-four tests (sines at several amplitudes and periods, ASCE-like 3-cycle sines at 4.26 s, a slow
-wind-like test at about 15 mm/s), a velocity column or not, an axial-force column or not.
-
-The panel is written by four modules, whose public names are all importable from this one:
-:mod:`validation.diagnosis.panel_cases` (the records and the 48 cases),
-:mod:`validation.diagnosis.panel_sources` (the three truth sources),
-:mod:`validation.diagnosis.panel_labels` (the label rule and the design record) and this one
-(the measurement noise and the files).
-
-Truth sources
--------------
-``independent``
-    :mod:`validation.diagnosis.independent_truths` (numpy only, written from the paper and from
-    physics; it shares no code with the package).
-``opensees``
-    OpenSees ``singleFPBearing`` / ``flatSliderBearing`` (Coulomb, VelDependent) and
-    ``FPBearingPTV`` through
-    :func:`structures.opensees.bearing.run_opensees_test`; instrument effects (lag, noise) are
-    applied to its output.
-``package``
-    Our own element with the truths' extra physics,
-    :func:`structures.diagnosis.truths.element_truth`.
-
-Label rule
-----------
-An effect is labelled when its own contribution to the clean force, the truth with it less the
-truth without it (everything else equal, no noise), has an RMS of at least 3 % of the RMS
-force over the campaign (``design.contribution``). Physics the truth has but the label and the
-told baseline do not (singleFPBearing's normal-force coupling N = W + F u / R at small u / R,
-FPBearingPTV's spherical restoring law at R = 4.5 m, the independent precise model's
-differences from the package's) contributes at most 1 % (``design.unlabelled``). The share
-left after refitting the friction level of the truth without the effect (what a calibrated
-mu could absorb) is stored too (``design.contribution_refit``). Instrument nuisance (a lag of
-up to 1.5 samples, the noise, the transition's shape) is never labelled.
+:func:`write_panel` makes each case of :mod:`validation.diagnosis.outside.cases` with its
+truth source (:mod:`validation.diagnosis.outside.sources`), adds the measurement noise
+(:func:`measured`), writes the files and stores the labels with their design record
+(:mod:`validation.diagnosis.outside.labels`).
 
 Files
 -----
@@ -54,7 +17,7 @@ baseline, ``without``, and the axial load when the files have no column). ``fold
 holds the labels, ``folder/panel.json`` the seed. Case numbers are a seeded shuffle, so
 neither a name nor a file tells the truth.
 
-    python -m validation.diagnosis.panel FOLDER [--seed 2026] [--no-opensees]
+    python -m validation.diagnosis.outside FOLDER [--seed 2026] [--half tune|test] [--no-opensees]
 """
 
 from __future__ import annotations
@@ -67,101 +30,23 @@ from pathlib import Path
 
 import numpy as np
 
-from validation.diagnosis import independent_truths as ind
-from validation.diagnosis.cases import opensees_available
-from validation.diagnosis.panel_cases import (
-    AREA,
-    ASCE,
+from validation.diagnosis import independent as ind
+from validation.diagnosis.outside.cases import (
     AXIAL_NOISE,
     CASES,
-    DAMPER,
-    EFFECTS,
-    EP,
     HALVES,
-    HEAT,
-    HEAT_SET,
-    LABEL_MIN,
-    MU0,
-    NIGHT,
-    NIGHTS_PRECISE,
-    PAIR,
-    PRECISE_BASE,
-    PRESSURE,
-    PRESSURES,
-    RADIUS,
-    SINE_SET,
     SLIDER,
-    SOURCES,
-    UNLABELLED_MAX,
-    VARYING,
     VELOCITY_NOISE,
-    VELOCITY_SET,
-    WEAR_SET,
     Case,
-    S,
-    Sine,
-    W,
     axial_load,
     check_design,
     rest_before,
 )
-from validation.diagnosis.panel_labels import contributions, design_record
-from validation.diagnosis.panel_sources import (
-    SOURCE_FUNCTIONS,
-    independent,
-    independent_truth_bearing,
-    opensees,
-    package,
-)
+from validation.diagnosis.outside.labels import contributions, design_record
+from validation.diagnosis.outside.sources import SOURCE_FUNCTIONS
+from validation.diagnosis.tuning.write import opensees_available
 
-__all__ = [
-    "AREA",
-    "ASCE",
-    "AXIAL_NOISE",
-    "CASES",
-    "DAMPER",
-    "EFFECTS",
-    "EP",
-    "HALVES",
-    "HEAT",
-    "HEAT_SET",
-    "LABEL_MIN",
-    "MU0",
-    "NIGHT",
-    "NIGHTS_PRECISE",
-    "PAIR",
-    "PRECISE_BASE",
-    "PRESSURE",
-    "PRESSURES",
-    "RADIUS",
-    "SINE_SET",
-    "SLIDER",
-    "SOURCES",
-    "SOURCE_FUNCTIONS",
-    "UNLABELLED_MAX",
-    "VARYING",
-    "VELOCITY_NOISE",
-    "VELOCITY_SET",
-    "WEAR_SET",
-    "Case",
-    "S",
-    "Sine",
-    "W",
-    "axial_load",
-    "check_design",
-    "contributions",
-    "design_record",
-    "independent",
-    "independent_truth_bearing",
-    "load_labels",
-    "main",
-    "measured",
-    "opensees",
-    "opensees_available",
-    "package",
-    "rest_before",
-    "write_panel",
-]
+__all__ = ["load_labels", "main", "measured", "opensees_available", "write_panel"]
 
 # --- measurement and files -------------------------------------------------------------------
 
@@ -261,7 +146,8 @@ def load_labels(folder: str | Path) -> dict:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description="Write the diagnosis's validation panel.")
+    parser = argparse.ArgumentParser(prog="python -m validation.diagnosis.outside",
+                                     description="Write the outside panel of the diagnosis.")
     parser.add_argument("folder")
     parser.add_argument("--seed", type=int, default=2026)
     parser.add_argument("--half", choices=HALVES)
@@ -271,6 +157,3 @@ def main(argv: list[str] | None = None) -> int:
                 opensees=False if args.no_opensees else None, progress=True)
     return 0
 
-
-if __name__ == "__main__":
-    raise SystemExit(main())
