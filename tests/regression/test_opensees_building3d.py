@@ -17,14 +17,21 @@ Measured (openseespy 3.7.1.2):
 - flatSliderBearing 3D + springs N_i / R (our law): every history to 1e-9 of its peak, with a
   vertical component too; the energy balance of the OpenSees histories closes to 1e-12. The
   rigid diaphragms, the masters at the centres of mass and the damping network are ours.
-- singleFPBearing 3D, synthetic pair (Kanai-Tajimi, 8 s, PGA 4 m/s^2, 0.34 m): peak
+- singleFPBearing 3D, synthetic pair (Kanai-Tajimi, 8 s, PGA 4 m/s^2; 0.34 m): peak
   isolator displacement -0.38 %, centre -0.40 %, base shear +0.79 %; NRMSE of the bearing
-  displacement x 0.21 %, y 0.18 %, base rotation 0.71 %.
-- With singleFPBearing's normal force given to ours (:mod:`structures.opensees.singlefp_plan`)
-  the gaps drop tenfold or more (4 s of the pair below).
-- TAP094 (Chi-Chi) scaled to ASCE 7-16 design RotD100 (S_DS = 1 g, S_D1 = 0.6 g) over
-  0.75 ... 1.25 x (3.0, 4.26) s, 10 s around its strongest sample: see
-  docs/opensees_comparison.md.
+  displacement x 0.21 %, y 0.18 %, base rotation 0.71 %. singleFPBearing's normal force is up
+  to 0.89 % above the share (N = P + F . u / R), which is the base-shear gap.
+- The same with a vertical (4 s, ratio 2/3): -0.18 %, +0.46 %, NRMSE 0.16 % / 0.15 %; its
+  normal force less its lift is our axial load to 1e-8.
+- With singleFPBearing's normal force given to ours (:mod:`structures.opensees.singlefp_plan`):
+  peak displacement -0.020 %, base shear +0.055 %, NRMSE 0.013 % / 0.043 % (the crossed radii
+  and the return map are what is left).
+- TAP094 (Chi-Chi, N and E) scaled by scale_pairs to the ASCE 7-16 design spectrum S_DS = 1 g,
+  S_D1 = 0.4 g, T_L = 8 s on RotD100 over (2.25, 5.33) s (factor 2.39), the 10 s from 3 s
+  before its strongest sample (0.24 m): peak displacement -0.074 %, base shear +0.43 %,
+  NRMSE 0.092 % / 0.080 %. Scaled to S_D1 = 0.6 g (factor 3.58, 0.41 m, u / R = 0.092) the
+  base-shear gap reaches +0.996 %, the lift of singleFPBearing's N there (1.0 %); given that N,
+  ours is within 0.094 %. The 1 % criterion on the base shear holds for u / R below about 0.09.
 """
 
 from __future__ import annotations
@@ -46,13 +53,14 @@ from structures.opensees.building3d import run_opensees_3d
 from structures.opensees.comparison3d import compare_3d, run_comparison_3d
 from structures.opensees.runtime import import_opensees
 from structures.opensees.singlefp_plan import run_spatial_singlefp_normal
-from structures.plan import Plan
 from structures.shear_building import ShearBuilding
-from structures.spatial_analysis import run_spatial
-from structures.spatial_building import SpatialBuilding
+from structures.spatial.analysis import run_spatial
+from structures.spatial.building import SpatialBuilding
+from structures.spatial.plan import Plan
 
 SHARED_PAIRS = Path(__file__).resolve().parents[3] / "shared" / "groundmotions" / "pairs"
 DT = 0.005
+S_D1 = 0.4  # [g] of the ASCE 7-16 design spectrum the recorded pair is scaled to (see below)
 BEARINGS = [[-9.0, -6.0], [0.0, -6.0], [9.0, -6.0], [-9.0, 6.0], [0.0, 6.0], [9.0, 6.0]]
 PEAKS = ("peak_isolator_displacement", "peak_corner_displacement", "peak_centre_displacement",
          "peak_base_shear")
@@ -164,7 +172,7 @@ def test_singlefp_normal_force_given_to_ours_closes_most_of_the_gap(ops):
 @functools.cache
 def _recorded_pair() -> GroundMotionPair:
     pair = read_pair(SHARED_PAIRS / "TAP094-N.AT2", SHARED_PAIRS / "TAP094-E.AT2")
-    report = scale_pairs([pair], asce7_design_spectrum(1.0, 0.6, 8.0),
+    report = scale_pairs([pair], asce7_design_spectrum(1.0, S_D1, 8.0),
                          isolated_period_range(3.0, 4.26), n_periods=8, angle_step=5.0)
     scaled = report.pairs[0]
     start = max(int(np.argmax(np.hypot(scaled.x.acceleration, scaled.y.acceleration))
