@@ -35,10 +35,10 @@ _EXPORTS = {
     "run_fixed_base": "structures.fixed_base",
     "ratios_to_fixed_base": "structures.fixed_base",
     "with_floor_spectra": "structures.floor_spectra",
-    "Plan": "structures.plan",
-    "SpatialBuilding": "structures.spatial_building",
-    "SpatialIsolatedBuilding": "structures.spatial_isolated",
-    "run_spatial": "structures.spatial_analysis",
+    "Plan": "structures.spatial.plan",
+    "SpatialBuilding": "structures.spatial.building",
+    "SpatialIsolatedBuilding": "structures.spatial.isolated",
+    "run_spatial": "structures.spatial.analysis",
 }
 __all__ = [
     "HHT",
@@ -74,9 +74,9 @@ if TYPE_CHECKING:
     from structures.floor_spectra import with_floor_spectra
     from structures.integrators import HHT, Newmark, integrate
     from structures.isolated_building import IsolatedShearBuilding
-    from structures.plan import Plan
     from structures.runner import run
     from structures.shear_building import ModalDamping, RayleighDamping, ShearBuilding
-    from structures.spatial_analysis import run_spatial
-    from structures.spatial_building import SpatialBuilding
-    from structures.spatial_isolated import SpatialIsolatedBuilding
+    from structures.spatial.analysis import run_spatial
+    from structures.spatial.building import SpatialBuilding
+    from structures.spatial.isolated import SpatialIsolatedBuilding
+    from structures.spatial.plan import Plan

@@ -22,10 +22,10 @@ from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS, friction_model
 from structures.config_schema import ConfigError, ConfigWarning, check_tables
 from structures.integrators import HHT, Newmark
-from structures.plan import Plan
-from structures.plan_schema import build_plan, check_plan
 from structures.shear_building import ModalDamping, RayleighDamping, ShearBuilding
-from structures.spatial_building import SpatialBuilding
+from structures.spatial.building import SpatialBuilding
+from structures.spatial.plan import Plan
+from structures.spatial.plan_schema import build_plan, check_plan
 
 __all__ = ["BuildingConfig", "ConfigError", "ConfigWarning", "load_config", "read_toml"]
 
@@ -36,7 +36,7 @@ MAX_FILE_BYTES = 10_000_000
 @dataclass(frozen=True)
 class BuildingConfig:
     """Everything a run needs besides the ground motion; ``plan`` (from a ``[plan]`` table,
-    :mod:`structures.plan_schema`) is None for a planar building."""
+    :mod:`structures.spatial.plan_schema`) is None for a planar building."""
 
     name: str
     building: ShearBuilding

@@ -240,7 +240,7 @@ _TABLE = "a table"
 
 SCHEMA: dict[str, dict[str, Any]] = {
     "": {"name": Text(), "building": _TABLE, "bearing": _TABLE, "friction": _TABLE,
-         "analysis": _TABLE, "plan": _TABLE},  # [plan]: structures/plan_schema.py
+         "analysis": _TABLE, "plan": _TABLE},  # [plan]: structures/spatial/plan_schema.py
     "building": {
         "floor_masses": Array(_MASS, what="kg, first floor up"),
         "storey_stiffnesses": Array(Number(low=0.0, low_open=True, high=1e15),

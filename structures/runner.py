@@ -51,7 +51,7 @@ def run(
         The ground acceleration [m/s^2], or a record file (PEER .AT2 or text;
         :func:`groundmotions.readers.read_record`). A pair (x, y and optionally z) runs the
         building in plan of a file with a ``[plan]`` table
-        (:func:`structures.spatial_analysis.run_spatial`, the reference engine; ``engine``
+        (:func:`structures.spatial.analysis.run_spatial`, the reference engine; ``engine``
         and ``floor_spectra`` do not apply).
     model : {"precise", "simplified", "constant"}, optional
         Friction model (default: the building file's).
@@ -74,7 +74,7 @@ def run(
     -------
     xarray.Dataset
         The result of :func:`structures.analysis.run` (of
-        :func:`structures.spatial_analysis.run_spatial` for a pair); ``attrs["building"]``
+        :func:`structures.spatial.analysis.run_spatial` for a pair); ``attrs["building"]``
         names the building.
     """
     from structures.analysis import run as run_building
@@ -111,7 +111,7 @@ def _run_pair(config: BuildingConfig, pair: GroundMotionPair, *, model: str | No
     """:func:`run` for a building in plan under a pair of records."""
     import dataclasses
 
-    from structures.spatial_analysis import run_spatial
+    from structures.spatial.analysis import run_spatial
 
     check_real(scale, "scale", "structures.run", low=0.0, low_open=True)
     if scale != 1.0:

@@ -52,7 +52,7 @@ def run_plan_demo(folder: str | Path) -> int:
     from dcfpb.units import STANDARD_GRAVITY
     from structures.config import load_config
     from structures.runner import run
-    from structures.spatial_peaks import plan_peaks
+    from structures.spatial.peaks import plan_peaks
 
     config = load_config(example_path("five_storey_plan.toml"))
     pair = demo_pair()

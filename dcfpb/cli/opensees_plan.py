@@ -56,7 +56,7 @@ def run_plan_comparison(args: argparse.Namespace) -> int:
     from structures.analysis import default_step
     from structures.config import load_config
     from structures.limits import check_run
-    from structures.spatial_analysis import spatial_fields
+    from structures.spatial.analysis import spatial_fields
 
     command = "dcfpb compare-opensees"
     check_outputs(folders={"--plot": args.plot})

@@ -142,8 +142,6 @@ def _run_building(args: argparse.Namespace) -> int:
     from structures.compiled.ahead import compile_ahead
 
     if args.record_y is not None or args.record_z is not None:
-        from dcfpb.cli.pairs import run_plan
-
         return run_plan(args)
 
     check_outputs(files={"--output": args.output}, folders={"--plot": args.plot})
@@ -190,6 +188,53 @@ def _run_building(args: argparse.Namespace) -> int:
     else:
         print_peaks({model: summary}, f"{config.name} under {motion.name} "
                      f"(scale {args.scale:g}, {integrator!r})")
+        print_failure(summary, result.attrs["message"])
+    return 0 if result.attrs["success"] else 1
+
+
+def run_plan(args: argparse.Namespace) -> int:
+    """``dcfpb run BUILDING.toml --record X --record-y Y [--record-z Z]``: the building in plan
+    under the pair (the reference engine)."""
+    from dcfpb.cli.outputs import check_outputs
+    from dcfpb.cli.pairs import pair_from_args, print_plan_peaks
+    from dcfpb.validation import check_int, check_real
+    from structures.config import load_config
+    from structures.limits import check_run
+    from structures.spatial.analysis import spatial_fields
+    from structures.spatial.peaks import plan_peaks
+
+    command = "dcfpb run"
+    check_outputs(files={"--output": args.output}, folders={"--plot": args.plot})
+    check_real(args.scale, "scale", command, low=0.0, low_open=True)
+    if args.dt is not None:
+        check_real(args.dt, "--dt", command, low=0.0, low_open=True, high=1.0)
+    check_int(args.max_steps, "--max-steps", command, low=1)
+    config = load_config(args.building)
+    integrator = integrator_from_args(config, args.integrator, args.alpha)
+    pair = pair_from_args(args, config, command)
+    from structures.analysis import default_step
+    from structures.runner import run
+
+    dt = args.dt if args.dt is not None else config.dt
+    check_run(pair.x, default_step(pair.dt) if dt is None else dt,
+              spatial_fields(config.building.n_storeys, config.plan.n_bearings),
+              max_steps=args.max_steps, raise_with="--max-steps", owner=command)
+    model = args.model or config.friction["model"]
+    result = run(config, pair, model=model, integrator=integrator, dt=dt,
+                 max_steps=args.max_steps)
+    summary = plan_peaks(result)
+    if args.output:
+        result.to_netcdf(args.output)
+    if args.plot:
+        from dcfpb.plotting.plan import plot_plan_runs
+
+        plot_plan_runs({model: result}, args.plot, title=f"{config.name}: {pair.name}")
+    if args.json:
+        print(json.dumps(summary | {"success": bool(result.attrs["success"]),
+                                    "message": result.attrs["message"]}, indent=2))
+    else:
+        print_plan_peaks({model: summary}, f"{config.name} under the pair {pair.name} "
+                         f"(scale {args.scale:g}, {integrator!r})")
         print_failure(summary, result.attrs["message"])
     return 0 if result.attrs["success"] else 1
 

@@ -2,7 +2,7 @@
 coloured by their contact temperature, the force orbits, the temperature field left on a plate,
 and the roof and drift responses per direction.
 
-Each function takes the Datasets of :func:`structures.spatial_analysis.run_spatial` keyed by
+Each function takes the Datasets of :func:`structures.spatial.analysis.run_spatial` keyed by
 a label (one per friction model, say) and writes one PNG.
 """
 
@@ -196,7 +196,7 @@ def plot_plan_runs(results: dict[str, Any], directory: str | Path, *, title: str
     Parameters
     ----------
     results : dict of str to xarray.Dataset
-        Output of :func:`structures.spatial_analysis.run_spatial`, keyed by a label.
+        Output of :func:`structures.spatial.analysis.run_spatial`, keyed by a label.
     directory : str or Path
         Folder for the PNG files (created if missing).
     title : str

@@ -2,9 +2,9 @@
 
 :func:`run_opensees_3d` builds the building in plan on its bearings in openseespy
 (:mod:`structures.opensees.model3d` describes the model) from the very objects
-:func:`structures.spatial_analysis.run_spatial` takes, drives it with the same ground
+:func:`structures.spatial.analysis.run_spatial` takes, drives it with the same ground
 acceleration samples and the same integrator, and returns the ``xarray.Dataset`` of
-:func:`structures.spatial_results.spatial_dataset` (levels at the centre of stiffness, every
+:func:`structures.spatial.results.spatial_dataset` (levels at the centre of stiffness, every
 bearing, the energy balance computed from the recorded histories with our matrices).
 
 Conventions (those of the planar twin, :mod:`structures.opensees.building`):
@@ -42,9 +42,9 @@ from structures.opensees.building import opensees_integrator
 from structures.opensees.equivalents3d import singlefp3d_restoring
 from structures.opensees.model3d import SpatialModel, build_model_3d
 from structures.opensees.runtime import import_opensees
-from structures.spatial_building import SpatialBuilding
-from structures.spatial_isolated import SpatialIsolatedBuilding
-from structures.spatial_results import spatial_dataset
+from structures.spatial.building import SpatialBuilding
+from structures.spatial.isolated import SpatialIsolatedBuilding
+from structures.spatial.results import spatial_dataset
 
 __all__ = ["run_opensees_3d"]
 
@@ -104,7 +104,7 @@ def run_opensees_3d(
     tolerance: float = 1e-10,
     max_subdivisions: int = 6,
 ):
-    """Run the analysis of :func:`structures.spatial_analysis.run_spatial` in OpenSees.
+    """Run the analysis of :func:`structures.spatial.analysis.run_spatial` in OpenSees.
 
     Parameters
     ----------
@@ -116,9 +116,9 @@ def run_opensees_3d(
     motion : GroundMotionPair
         Ground acceleration x, y and optionally z (positive up) [m/s^2].
     integrator : {"newmark", "hht"} or Newmark or HHT
-        As :func:`~structures.spatial_analysis.run_spatial`.
+        As :func:`~structures.spatial.analysis.run_spatial`.
     dt : float, optional
-        Analysis step [s], as :func:`~structures.spatial_analysis.run_spatial`.
+        Analysis step [s], as :func:`~structures.spatial.analysis.run_spatial`.
     pendulum : {"singlefp", "spring"}
         singleFPBearing 3D, or flatSliderBearing 3D plus linear springs N_i / R (our law);
         see :mod:`structures.opensees.model3d`.
@@ -130,7 +130,7 @@ def run_opensees_3d(
     Returns
     -------
     xarray.Dataset
-        As :func:`~structures.spatial_analysis.run_spatial` without overturning (the
+        As :func:`~structures.spatial.analysis.run_spatial` without overturning (the
         OpenSees model has none), with the attributes ``program``, ``element``,
         ``pendulum``, ``newton_iterations``, ``subdivisions`` and ``wall_time`` [s] (model
         building included).

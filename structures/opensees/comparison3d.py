@@ -1,6 +1,6 @@
 """The building in plan side by side with OpenSees 3D: both runs, the differences, the times.
 
-:func:`run_comparison_3d` runs :func:`structures.spatial_analysis.run_spatial` (ours, the
+:func:`run_comparison_3d` runs :func:`structures.spatial.analysis.run_spatial` (ours, the
 reference engine) and :func:`structures.opensees.building3d.run_opensees_3d` on the same
 building, bearing, pair, integrator and step; :func:`compare_3d` measures them. Ours runs
 without the overturning of the floors' inertia forces unless asked (the OpenSees model has
@@ -9,7 +9,7 @@ zero-length storeys and none); with ``overturning=True`` the gap it makes is mea
 Measures, OpenSees's relative to ours (the histories over their common samples):
 
 - **peak** ``max|x_OS| / max|x_ours| - 1`` of the peaks of
-  :func:`structures.spatial_peaks.plan_peaks` (those of ``dcfpb run``): resultants
+  :func:`structures.spatial.peaks.plan_peaks` (those of ``dcfpb run``): resultants
   ``|x| = hypot(x_x, x_y)`` of the isolator displacement (the largest of any bearing), of
   the base slab at the centre of stiffness (``centre``) and of the corner bearing (ours's
   largest, the same bearing in both runs), and of the base shear; the roof's absolute
@@ -34,9 +34,9 @@ from isolator.bearing import DCFPBearing
 from structures.integrators import HHT, Newmark
 from structures.opensees.building3d import run_opensees_3d
 from structures.opensees.comparison import nrmse
-from structures.spatial_analysis import run_spatial
-from structures.spatial_building import SpatialBuilding
-from structures.spatial_peaks import plan_peaks
+from structures.spatial.analysis import run_spatial
+from structures.spatial.building import SpatialBuilding
+from structures.spatial.peaks import plan_peaks
 
 __all__ = ["SpatialComparison", "compare_3d", "run_comparison_3d"]
 
@@ -53,7 +53,7 @@ class SpatialComparison(NamedTuple):
     Attributes
     ----------
     ours, opensees : xarray.Dataset
-        Results of :func:`~structures.spatial_analysis.run_spatial` and
+        Results of :func:`~structures.spatial.analysis.run_spatial` and
         :func:`~structures.opensees.building3d.run_opensees_3d`: per-bearing
         (``bearing_displacement``, ``bearing_force``, ``axial_load``, ...) and per-floor
         (``displacement``, ``rotation``, ``absolute_acceleration``, ...) histories.
@@ -67,7 +67,7 @@ class SpatialComparison(NamedTuple):
 
 
 def _peaks(ds, corner: int) -> dict[str, Any]:
-    """:func:`~structures.spatial_peaks.plan_peaks` with the resultant displacement of
+    """:func:`~structures.spatial.peaks.plan_peaks` with the resultant displacement of
     bearing ``corner`` besides (``peak_corner_displacement`` [m])."""
     out = plan_peaks(ds)
     reach = np.hypot(*np.moveaxis(ds["bearing_displacement"].values[:, corner], -1, 0))
@@ -84,7 +84,7 @@ def compare_3d(ours, opensees) -> dict[str, Any]:
     dict
         ``{"ours": peaks, "opensees": peaks, "difference": {...}, "corner_bearing": i,
         "wall_time_ratio": r}``: the peaks of
-        :func:`~structures.spatial_peaks.plan_peaks` with ``peak_corner_displacement`` (the
+        :func:`~structures.spatial.peaks.plan_peaks` with ``peak_corner_displacement`` (the
         bearing ``corner_bearing``, ours's largest), ``success`` and ``message``;
         ``difference`` holds ``peak_<name>`` (relative) and ``nrmse_<history>_<component>``.
 
@@ -153,14 +153,14 @@ def run_comparison_3d(
     motion : GroundMotionPair
         x, y and optionally z [m/s^2].
     integrator, dt
-        As :func:`~structures.spatial_analysis.run_spatial`.
+        As :func:`~structures.spatial.analysis.run_spatial`.
     pendulum : {"singlefp", "spring"}
         As :func:`~structures.opensees.building3d.run_opensees_3d`.
     overturning : bool
         Run ours with the overturning of the floors' inertia forces (OpenSees has none, so
         the comparison then measures it too). Default False.
     **run_options
-        Passed to :func:`~structures.spatial_analysis.run_spatial` only (``tolerance``,
+        Passed to :func:`~structures.spatial.analysis.run_spatial` only (``tolerance``,
         ``max_steps``, ...).
     """
     import dataclasses

@@ -1,6 +1,6 @@
 """The building in plan and its bearings built in openseespy (``-ndm 3 -ndf 6``).
 
-:func:`build_model_3d` turns a :class:`~structures.spatial_building.SpatialBuilding` and one
+:func:`build_model_3d` turns a :class:`~structures.spatial.building.SpatialBuilding` and one
 :class:`~isolator.bearing.DCFPBearing` (Coulomb friction, the linear law) into an OpenSees
 model whose every mass, stiffness and damping coefficient is read from our building, and
 returns the tags a time-history driver needs (:class:`SpatialModel`).
@@ -16,12 +16,12 @@ direction Z) of its own:
 - a constrained node of each level at the centre of stiffness ``O`` (the origin): the storey
   ``s`` is one ``zeroLength`` element between the ``O`` nodes of levels s-1 and s with
   ``Elastic`` materials ``k_x``, ``k_y`` (directions 1, 2) and ``k_theta`` (direction 6), the
-  uncoupled storey stiffness of :meth:`structures.plan.Plan.stiffnesses`;
+  uncoupled storey stiffness of :meth:`structures.spatial.plan.Plan.stiffnesses`;
 - the bearings' top nodes: constrained nodes of the base slab at ``(x_i, y_i)``, free
   vertically (massless, carrying the gravity share ``N_i`` as a nodal load on a stiff axial
   material: 1 um shortening), their rocking rotations fixed; their bottom nodes fixed.
 
-Damping of the superstructure only (:mod:`structures.spatial_building`), Rayleigh
+Damping of the superstructure only (:mod:`structures.spatial.building`), Rayleigh
 ``C_fb = a0 M_fb + a1 K_fb`` with our coefficients, as a dashpot network, exact:
 ``a1 k`` in each storey element beside its spring (the ``Elastic`` material's ``eta``), and
 ``a0 M_j`` on floor j's drift from the base slab, which is the dashpot ``(a0 m_j, a0 m_j,
@@ -64,7 +64,7 @@ from dcfpb.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction
 from structures.shear_building import RayleighDamping
-from structures.spatial_building import SpatialBuilding
+from structures.spatial.building import SpatialBuilding
 
 __all__ = ["PENDULUMS_3D", "SpatialModel", "build_model_3d", "rayleigh_coefficients"]
 

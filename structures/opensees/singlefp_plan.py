@@ -27,10 +27,10 @@ from isolator.friction import ConstantFriction
 from structures.analysis import resampled_record
 from structures.integrators import HHT, Newmark, as_method
 from structures.model import RestoringForce
-from structures.spatial_analysis import spatial_history
-from structures.spatial_building import SpatialBuilding
-from structures.spatial_isolated import SpatialIsolatedBuilding
-from structures.spatial_results import spatial_dataset
+from structures.spatial.analysis import spatial_history
+from structures.spatial.building import SpatialBuilding
+from structures.spatial.isolated import SpatialIsolatedBuilding
+from structures.spatial.results import spatial_dataset
 
 __all__ = ["SingleFPNormalForce", "run_spatial_singlefp_normal"]
 
@@ -97,14 +97,14 @@ def run_spatial_singlefp_normal(building: SpatialBuilding, bearing: DCFPBearing,
                                 integrator: str | Newmark | HHT = "newmark", *,
                                 dt: float | None = None, tolerance: float = 1e-8,
                                 max_subdivisions: int = 6):
-    """:func:`structures.spatial_analysis.run_spatial` (no overturning) on
+    """:func:`structures.spatial.analysis.run_spatial` (no overturning) on
     :class:`SingleFPNormalForce`: the Dataset of a run in plan, ``engine`` attribute
     ``"reference, singleFPBearing N"``.
 
     Parameters
     ----------
     building, bearing, motion, integrator, dt, tolerance, max_subdivisions
-        As :func:`~structures.spatial_analysis.run_spatial` (the bearing takes its gravity
+        As :func:`~structures.spatial.analysis.run_spatial` (the bearing takes its gravity
         share).
     """
     model = SingleFPNormalForce(building, dataclasses.replace(bearing, axial_load=None),

@@ -2,8 +2,8 @@
 
 Building files: the example (``examples/five_storey.toml``) with a ``[plan]`` table added,
 one key of it wrong at a time, through :func:`structures.config.load_config` (and, for one
-case, ``dcfpb run``: exit status 2). Objects: :class:`structures.plan.Plan`,
-:class:`structures.spatial_building.SpatialBuilding` and the model, each with one parameter
+case, ``dcfpb run``: exit status 2). Objects: :class:`structures.spatial.plan.Plan`,
+:class:`structures.spatial.building.SpatialBuilding` and the model, each with one parameter
 wrong. A plan whose bearings cannot carry the weight (the centre of mass outside where the
 linear distribution keeps every bearing in compression, or bearings on one line) is refused.
 """
@@ -19,10 +19,10 @@ from dcfpb.errors import InputError
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction
 from structures.config import ConfigError, load_config
-from structures.plan import Plan
 from structures.shear_building import ModalDamping, ShearBuilding
-from structures.spatial_building import SpatialBuilding
-from structures.spatial_isolated import SpatialIsolatedBuilding
+from structures.spatial.building import SpatialBuilding
+from structures.spatial.isolated import SpatialIsolatedBuilding
+from structures.spatial.plan import Plan
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "five_storey.toml"

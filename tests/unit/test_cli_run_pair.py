@@ -1,5 +1,5 @@
 """``dcfpb run --record X --record-y Y``: a building file with a [plan] table under a pair; the
-peaks in plan (structures.spatial_peaks) against the Dataset; the figures; clear errors."""
+peaks in plan (structures.spatial.peaks) against the Dataset; the figures; clear errors."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import structures
 from dcfpb.cli import main
 from dcfpb.errors import InputWarning
 from groundmotions.pair_synthetic import synthetic_pair
-from structures.spatial_peaks import PLAN_PEAK_KEYS, plan_peaks
+from structures.spatial.peaks import PLAN_PEAK_KEYS, plan_peaks
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "five_storey.toml"

@@ -9,9 +9,9 @@ import pytest
 from dcfpb.units import STANDARD_GRAVITY
 from structures.integrators import integrate
 from structures.model import LinearModel
-from structures.plan import Plan, axial_distribution, gravity_shares
 from structures.shear_building import ModalDamping, ShearBuilding
-from structures.spatial_building import SpatialBuilding
+from structures.spatial.building import SpatialBuilding
+from structures.spatial.plan import Plan, axial_distribution, gravity_shares
 
 IRREGULAR = np.array([[-7.0, -4.0], [5.0, -6.0], [8.0, 3.0], [-2.0, 6.0], [1.0, 0.5],
                       [-6.0, 2.0]])

@@ -32,10 +32,10 @@ from groundmotions.synthetic import kanai_tajimi
 from isolator.bearing import DCFPBearing
 from isolator.experiments import friction_model
 from structures.analysis import run
-from structures.plan import Plan
 from structures.shear_building import ModalDamping, ShearBuilding
-from structures.spatial_analysis import run_spatial
-from structures.spatial_building import SpatialBuilding
+from structures.spatial.analysis import run_spatial
+from structures.spatial.building import SpatialBuilding
+from structures.spatial.plan import Plan
 
 SQUARE = [[-6.0, -5.0], [6.0, -5.0], [6.0, 5.0], [-6.0, 5.0]]
 SHARED_PAIRS = Path(__file__).resolve().parents[3] / "shared" / "groundmotions" / "pairs"

@@ -1,7 +1,7 @@
 """The ``[plan]`` table of a building file: the building in plan, checked key by key.
 
 A building file with a ``[plan]`` table describes a building in plan
-(:class:`structures.plan.Plan`); without one it is the planar building, read and run as
+(:class:`structures.spatial.plan.Plan`); without one it is the planar building, read and run as
 before. Every key is checked here before any object is built, with the messages of
 :mod:`structures.config_schema` (file, section, key, what is allowed, the value given)::
 
@@ -36,7 +36,7 @@ from structures.config_schema import (
     Number,
     Where,
 )
-from structures.plan import Plan
+from structures.spatial.plan import Plan
 
 __all__ = ["PLAN_SCHEMA", "build_plan", "check_plan"]
 
@@ -158,5 +158,5 @@ def check_plan(raw: dict[str, Any], n_storeys: int, bearing: dict[str, Any],
 
 
 def build_plan(table: dict[str, Any]) -> Plan:
-    """The :class:`~structures.plan.Plan` of a checked ``[plan]`` table."""
+    """The :class:`~structures.spatial.plan.Plan` of a checked ``[plan]`` table."""
     return Plan(**table)

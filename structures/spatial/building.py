@@ -1,7 +1,7 @@
 """A shear building in plan: floors that translate in x and y and turn about the vertical.
 
 Each level (the base slab, level 0, and the floors 1..n) is a rigid diaphragm with three degrees
-of freedom at the reference point ``O`` of :mod:`structures.plan` (the centre of stiffness),
+of freedom at the reference point ``O`` of :mod:`structures.spatial.plan` (the centre of stiffness),
 relative to the ground: ``(u_x, u_y, theta)`` [m, m, rad], numbered level by level,
 ``[b_x, b_y, b_theta, 1_x, 1_y, 1_theta, ...]`` (:func:`dof`). Rotations are small.
 
@@ -37,7 +37,6 @@ from functools import cached_property
 import numpy as np
 
 from dcfpb.errors import InputError, InputTypeError
-from structures.plan import Plan, axial_distribution, gravity_shares
 from structures.shear_building import (
     ModalDamping,
     ModalProperties,
@@ -46,6 +45,7 @@ from structures.shear_building import (
     modal_analysis,
     shear_stiffness_matrix,
 )
+from structures.spatial.plan import Plan, axial_distribution, gravity_shares
 
 __all__ = [
     "COMPONENTS", "SpatialBuilding", "bearing_stiffness_matrix", "bearing_transformation", "dof",
@@ -109,7 +109,7 @@ class SpatialBuilding:
     InputError
         If the plan does not fit the building (a per-storey field of another length, an
         inertia or torsional stiffness with neither its value nor the plan's dimensions),
-        if the bearings cannot carry the weight (:func:`structures.plan.gravity_shares`), or
+        if the bearings cannot carry the weight (:func:`structures.spatial.plan.gravity_shares`), or
         for per-mode modal damping ratios.
     """
 
@@ -171,7 +171,7 @@ class SpatialBuilding:
 
     @cached_property
     def axial_distribution(self) -> np.ndarray:
-        """``G`` of :func:`structures.plan.axial_distribution`, shape (n_b, 3)."""
+        """``G`` of :func:`structures.spatial.plan.axial_distribution`, shape (n_b, 3)."""
         return _frozen(axial_distribution(self.plan.bearing_coordinates))
 
     @property

@@ -1,6 +1,6 @@
 """A building in plan on DCFPB isolators as a dynamic model (the integrators' protocol).
 
-Degrees of freedom: those of :class:`~structures.spatial_building.SpatialBuilding`, the base
+Degrees of freedom: those of :class:`~structures.spatial.building.SpatialBuilding`, the base
 slab's ``(u_x, u_y, theta)`` first. Bearing ``i`` at ``(x_i, y_i)`` is a
 :class:`~isolator.bidirectional.BidirectionalElement` whose plates move apart by
 ``u_i = T_i q_b = (u_x - theta y_i, u_y + theta x_i)``; its force ``F_i`` acts on the base slab as
@@ -12,13 +12,13 @@ Axial loads, evaluated at every trial (:meth:`SpatialIsolatedBuilding.axial_load
     N_i = N_i,gravity (1 + a_z(t) / g) + G_i1 sum_j H_j F_x,j + G_i2 sum_j H_j F_y,j
 
 - ``N_i,gravity``: the gravity share by the statics of the rigid base
-  (:func:`structures.plan.gravity_shares`);
+  (:func:`structures.spatial.plan.gravity_shares`);
 - ``a_z``: the vertical ground acceleration [m/s^2], positive up, when a vertical component
   is given (the building is rigid vertically, so it scales the weight and its moments alike);
 - overturning: the floors' inertia forces ``F_j = -(M a_abs)_j``, which equal the storey
   forces acting on floor j, ``(K_s u + C v)_j``, at the floor's height ``H_j`` above the
   isolation level; their moments ``sum_j H_j F_j`` are shared linearly over the bearings
-  (``G`` of :func:`structures.plan.axial_distribution`). The base slab's own inertia has no
+  (``G`` of :func:`structures.spatial.plan.axial_distribution`). The base slab's own inertia has no
   lever arm. Being a function of ``(u, v)``, the loads enter the tangent: ``dF_i / dN_i``
   times ``dN_i / du`` and ``dN_i / dv``, with ``dF_i / dN_i = F_i / N_i`` (exact for the
   constant model; the PTV models' pressure dependence of mu is left out of the tangent only,
@@ -43,7 +43,7 @@ from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from isolator.bidirectional import BidirectionalElement, PlanarState
 from structures.model import RestoringForce
-from structures.spatial_building import SpatialBuilding, bearing_transformation, dof
+from structures.spatial.building import SpatialBuilding, bearing_transformation, dof
 
 __all__ = ["SpatialIsolatedBuilding"]
 

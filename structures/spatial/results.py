@@ -1,7 +1,7 @@
 """The result of a run in plan as an ``xarray.Dataset`` with a ``direction`` dimension.
 
-:func:`spatial_dataset` turns the histories of :func:`structures.spatial_analysis.run_spatial`
-into the Dataset it documents, with the energy balance (:mod:`structures.spatial_energy`) and
+:func:`spatial_dataset` turns the histories of :func:`structures.spatial.analysis.run_spatial`
+into the Dataset it documents, with the energy balance (:mod:`structures.spatial.energy`) and
 the displacement-capacity check of every bearing (the planar failure contract: the first
 committed step at which a bearing's displacement, the length of its (x, y) vector, exceeds the
 ``displacement_capacity`` ends the run there).
@@ -17,8 +17,8 @@ from groundmotions.pairs import GroundMotionPair
 from isolator.bearing import beyond_capacity_message
 from structures.integrators import IntegrationResult
 from structures.results import friction_name
-from structures.spatial_energy import spatial_energy_balance
-from structures.spatial_isolated import SpatialIsolatedBuilding
+from structures.spatial.energy import spatial_energy_balance
+from structures.spatial.isolated import SpatialIsolatedBuilding
 
 __all__ = ["BEARING_RECORD", "plate_fields", "spatial_dataset"]
 

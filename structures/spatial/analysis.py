@@ -1,9 +1,9 @@
 """Time-history analysis of a building in plan on DCFPB isolators under a pair of records.
 
-:func:`run_spatial` builds :class:`~structures.spatial_isolated.SpatialIsolatedBuilding`, integrates
+:func:`run_spatial` builds :class:`~structures.spatial.isolated.SpatialIsolatedBuilding`, integrates
 it with Newmark or HHT-alpha (:func:`structures.integrators.integrate`, the ground acceleration
 a vector (x, y) per step), records every bearing at each committed step and returns an
-``xarray.Dataset`` with a ``direction`` dimension (:mod:`structures.spatial_results`). It is
+``xarray.Dataset`` with a ``direction`` dimension (:mod:`structures.spatial.results`). It is
 the readable reference: plain numpy, one Python loop over the bearings per Newton iteration
 (no compiled engine yet). The planar :func:`structures.analysis.run` is untouched.
 """
@@ -21,9 +21,9 @@ from structures.analysis import _compile_kernels, default_step, resampled_record
 from structures.compiled.engine import time_limit_error
 from structures.integrators import HHT, IntegrationResult, Newmark, as_method, integrate
 from structures.limits import DEFAULT_MAX_STEPS, check_run
-from structures.spatial_building import SpatialBuilding
-from structures.spatial_isolated import SpatialIsolatedBuilding
-from structures.spatial_results import BEARING_RECORD, spatial_dataset
+from structures.spatial.building import SpatialBuilding
+from structures.spatial.isolated import SpatialIsolatedBuilding
+from structures.spatial.results import BEARING_RECORD, spatial_dataset
 
 __all__ = ["run_spatial", "spatial_fields", "spatial_history"]
 
@@ -58,7 +58,7 @@ def spatial_history(model: SpatialIsolatedBuilding, acceleration: np.ndarray, st
     -------
     tuple
         The :class:`~structures.integrators.IntegrationResult`, the bearings' histories
-        (:data:`structures.spatial_results.BEARING_RECORD`, first axis time, second the
+        (:data:`structures.spatial.results.BEARING_RECORD`, first axis time, second the
         bearing), the total restoring force (nt, n_dof) [N, N m] and the wall time [s].
     """
     nt, n_b = acceleration.shape[0], model.n_bearings
@@ -135,7 +135,7 @@ def run_spatial(
     Returns
     -------
     xarray.Dataset
-        See :func:`structures.spatial_results.spatial_dataset`.
+        See :func:`structures.spatial.results.spatial_dataset`.
     """
     if not isinstance(motion, GroundMotionPair):
         raise InputTypeError(f"The 'motion' parameter of run_spatial must be a "

@@ -163,7 +163,7 @@ class Plan:
     storey_heights : float or array_like, optional
         Storey heights, one for all or one per storey [m], in (0, 1000]: the lever arms of the
         floors' inertia forces, whose overturning moment loads the bearings. Required when the
-        overturning is modelled (:class:`structures.spatial_isolated.SpatialIsolatedBuilding`).
+        overturning is modelled (:class:`structures.spatial.isolated.SpatialIsolatedBuilding`).
 
     Raises
     ------

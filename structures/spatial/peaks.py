@@ -32,7 +32,7 @@ def plan_peaks(result) -> dict[str, Any]:
     Parameters
     ----------
     result : xarray.Dataset
-        :func:`structures.spatial_analysis.run_spatial`.
+        :func:`structures.spatial.analysis.run_spatial`.
 
     Returns
     -------
