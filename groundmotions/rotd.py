@@ -25,7 +25,7 @@ import numpy as np
 from dcfpb.errors import InputError, InputTypeError
 from dcfpb.validation import check_array, check_real
 from groundmotions.pairs import GroundMotionPair
-from groundmotions.spectra import _recurrence
+from groundmotions.spectra import oscillator_recurrence
 
 __all__ = ["RotDSpectrum", "rotd_peaks", "rotd_spectra"]
 
@@ -194,7 +194,7 @@ def rotd_spectra(
         # both components in one pass of the recurrence (element by element the arithmetic
         # of `sdof_response` of each): u[:, 0] and u[:, 1] are the x and y histories
         u = np.zeros((pair.npts, 2, omega.size))
-        _recurrence(np.column_stack((ax[:, 0], ay[:, 0])), pair.dt, omega, zeta,
+        oscillator_recurrence(np.column_stack((ax[:, 0], ay[:, 0])), pair.dt, omega, zeta,
                     out=(u, np.zeros_like(u)))
         by_angle[~rigid] = omega[:, None] ** 2 * rotd_peaks(u[:, 0], u[:, 1], angles)
     sa = np.array([np.max(by_angle, axis=1) if p == 100.0 else

@@ -10,9 +10,9 @@
     one amplitude factor per record so that the mean spectrum of the scaled suite is nowhere
     below the target in the period range and touches it at its tightest period.
 
-Single horizontal components are scaled (the shear-building models are planar); the SRSS
-spectra of component pairs that ASCE 7-16 17.3.3 uses for three-dimensional analysis are not
-formed here.
+Single horizontal components are scaled here (for the planar building); pairs of components
+for the building in plan are scaled on their maximum-direction (RotD100) spectrum by
+:mod:`groundmotions.pair_scaling`.
 """
 
 from __future__ import annotations

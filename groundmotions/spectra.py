@@ -32,6 +32,7 @@ if TYPE_CHECKING:
 __all__ = [
     "Spectrum",
     "nigam_jennings_coefficients",
+    "oscillator_recurrence",
     "peak_ground_values",
     "response_spectra",
     "response_spectrum",
@@ -138,7 +139,7 @@ def nigam_jennings_coefficients(omega: np.ndarray, damping: float, dt: float) ->
 _CHUNK = 256  # steps whose load terms are formed at once by the recurrence
 
 
-def _recurrence(
+def oscillator_recurrence(
     acceleration: np.ndarray,
     dt: float,
     omega: np.ndarray,
@@ -210,7 +211,7 @@ def sdof_response(
     zeta = _check_damping(damping, owner, t.size)
     u = np.zeros((acc.size, t.size))
     v = np.zeros((acc.size, t.size))
-    _recurrence(acc, step, 2 * np.pi / t, zeta, out=(u, v))
+    oscillator_recurrence(acc, step, 2 * np.pi / t, zeta, out=(u, v))
     return u, v
 
 
@@ -251,7 +252,7 @@ def response_spectrum(
     sa[rigid] = np.max(np.abs(acc))
     if (~rigid).any():
         omega = 2 * np.pi / t[~rigid]
-        sd[~rigid] = _recurrence(acc, step, omega, zeta)
+        sd[~rigid] = oscillator_recurrence(acc, step, omega, zeta)
         sv[~rigid] = omega * sd[~rigid]
         sa[~rigid] = omega**2 * sd[~rigid]
     return Spectrum(t, sd, sv, sa, zeta)
@@ -293,7 +294,7 @@ def response_spectra(
     sa[:, rigid] = np.max(np.abs(acc), axis=0)[:, None]
     if (~rigid).any():
         omega = 2 * np.pi / t[~rigid]
-        sd[:, ~rigid] = _recurrence(acc, step, omega, zeta)
+        sd[:, ~rigid] = oscillator_recurrence(acc, step, omega, zeta)
         sv[:, ~rigid] = omega * sd[:, ~rigid]
         sa[:, ~rigid] = omega**2 * sd[:, ~rigid]
     return Spectrum(t, sd, sv, sa, zeta)

@@ -83,7 +83,7 @@ def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, st
             raise time_limit_error(time_limit, t)
 
     on_commit(0, 0.0, np.zeros(restoring.shape[1]), None, None)
-    compile_time = _compile_kernels()
+    compile_time = compile_kernels()
     start = _time.perf_counter()
     if time_limit is not None:
         deadline = start + time_limit
@@ -96,7 +96,7 @@ def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, st
     return EngineHistory(result, record, restoring[:kept], wall, "reference", compile_time)
 
 
-def _compile_kernels() -> float:
+def compile_kernels() -> float:
     """Compile the friction and heating kernels the reference element calls, unless this
     process has them; the time it took [s] (kept out of the run's ``wall_time``)."""
     from isolator.compiled.kernels import ptv_trial, warm_up

@@ -17,7 +17,7 @@ import numpy as np
 from dcfpb.errors import InputTypeError
 from groundmotions.pairs import GroundMotionPair
 from isolator.bearing import DCFPBearing
-from structures.analysis import _compile_kernels, default_step, resampled_record
+from structures.analysis import compile_kernels, default_step, resampled_record
 from structures.compiled.engine import time_limit_error
 from structures.integrators import HHT, IntegrationResult, Newmark, as_method, integrate
 from structures.limits import DEFAULT_MAX_STEPS, check_run
@@ -78,7 +78,7 @@ def spatial_history(model: SpatialIsolatedBuilding, acceleration: np.ndarray, st
             raise time_limit_error(time_limit, t)
 
     on_commit(0, 0.0, np.zeros(restoring.shape[1]))
-    _compile_kernels()
+    compile_kernels()
     start = _time.perf_counter()
     if time_limit is not None:
         deadline = start + time_limit
