@@ -30,6 +30,9 @@ try:  # pragma: no cover - exercised by whichever environment runs the tests
         raise ImportError("disabled by DCFPB_DISABLE_NUMBA")
     import numba
 
+    from isolator.compiled.freshness import install
+
+    install()  # a cached function is stale when any module of ours it imports changed
     COMPILED = True
 
     def jit(function):
