@@ -71,6 +71,9 @@ def failure_kind(row: dict[str, Any]) -> str:
             return kind
     return "error"
 
+MODEL_COST = {"precise": 2.0, "simplified": 1.5, "constant": 1.0}
+"""Relative cost of a time step per friction model (the order in which runs start)."""
+
 NETCDF_ENGINE = "scipy"
 """xarray engine of the result files: netCDF3 (64-bit offset) written to bytes in memory,
 needing only scipy (netCDF4 and h5netcdf are optional and cannot both write to bytes)."""
@@ -214,6 +217,39 @@ class RunSpec:
                 kind: str = "error") -> dict[str, Any]:
         """The row of a failed run, with its ``reason`` and ``kind`` (:data:`FAILURE_KINDS`)."""
         return (row or self.row()) | {"status": "failed", "reason": reason, "failure": kind}
+
+    # What the Dask side (structures.suites.tasks, .dispatch) asks of any run of a suite.
+
+    @property
+    def source(self) -> str:
+        """The key of the run's ground motion, its record file: the runs of one source share
+        a read and a Dask task."""
+        return self.record_file
+
+    def read(self) -> GroundMotion:
+        """The run's record, unscaled and untruncated (raises if it cannot be read)."""
+        from groundmotions.readers import read_record
+
+        return read_record(self.record_file)
+
+    def execute(self, motion: GroundMotion | None, config: BuildingConfig,
+                time_limit: float | None = None, max_steps: int = DEFAULT_MAX_STEPS,
+                ) -> tuple[dict[str, Any], bytes | None]:
+        """:func:`execute_run` of this run."""
+        return execute_run(self, motion, config, time_limit, max_steps)
+
+    def cost(self, motion: GroundMotion | None, config: BuildingConfig) -> int:
+        """Estimated cost, steps (or, for a record not read here, file bytes) x model weight:
+        the longest runs start first, so fewer workers idle at the end of the suite."""
+        if motion is None:
+            try:
+                return int(os.path.getsize(self.record_file) * MODEL_COST[self.model])
+            except OSError:
+                return 0
+        length = motion.duration if self.duration is None else min(self.duration,
+                                                                  motion.duration)
+        step = analysis_step(self.dt if self.dt is not None else config.dt, motion.dt)
+        return int(length / step * MODEL_COST[self.model])
 
 
 def execute_run(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig,

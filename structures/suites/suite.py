@@ -29,47 +29,33 @@ Example::
 from __future__ import annotations
 
 import csv
-import json
-import sys
 import time
-import uuid
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from contextlib import nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from dcfpb.validation import check_choice, check_int, check_real
+from dcfpb.validation import check_choice, check_real
 from groundmotions.records import GroundMotion
 from isolator.experiments import MODELS
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
+from structures.suites.dispatch import SuiteResult, check_run_options, compute_runs, finish
 from structures.suites.lock import SuiteLock
 from structures.suites.runs import (
     COLUMNS,
     RunSpec,
     config_fingerprint,
-    execute_run,
     file_digest,
     modified_bearing,
 )
-from structures.suites.store import RunStore, atomic_write
-from structures.suites.summary import summarize, write_summary
-from structures.suites.tasks import (
-    BATCH_SIZE,
-    batches,
-    client_for,
-    compute_and_store,
-    cost,
-    local_cluster,
-    run_batch,
-)
+from structures.suites.store import RunStore
+from structures.suites.tasks import local_cluster
 
-if TYPE_CHECKING:
-    import pandas as pd
-
-__all__ = ["Suite", "SuiteResult", "local_cluster", "record_files", "run_suite"]
+__all__ = ["Suite", "SuiteResult", "check_suite_axes", "local_cluster", "record_files",
+           "run_suite"]
 
 RecordFactors = Mapping[str, float] | Callable[[Sequence[GroundMotion]], Any]
 _MANIFEST_HEADERS = {"file", "filename", "file_name", "record", "path"}
@@ -97,6 +83,29 @@ def record_files(source: str | Path) -> tuple[Path, ...]:
     if not files:
         raise ValueError(f"{source}: no record files (*.AT2 in a folder, or rows of a manifest).")
     return tuple(files)
+
+
+def check_suite_axes(suite: Any, owner: str) -> None:
+    """Check and normalise (to tuples) the ``models``, ``scales``, ``property_modifiers``,
+    ``duration`` and ``dt`` of a frozen suite (a :class:`Suite` or
+    :class:`~structures.suites.pair_suite.PairSuite`, named ``owner`` in the messages)."""
+    models = tuple(check_choice(m, "models", owner, MODELS) for m in suite.models)
+    scales = tuple(check_real(s, "scales", owner, low=0.0, low_open=True)
+                   for s in suite.scales)
+    modifiers = tuple(check_real(m, "property_modifiers", owner, low=0.0, low_open=True)
+                      for m in suite.property_modifiers)
+    if not (models and scales and modifiers):
+        raise ValueError(f"{owner}: 'models', 'scales' and 'property_modifiers' must each "
+                         "hold at least one value.")
+    for model in models:  # a modified coefficient outside (0, 1] fails here, not later
+        for modifier in modifiers:
+            modified_bearing(suite.config, model, modifier)
+    for name in ("duration", "dt"):
+        if getattr(suite, name) is not None:
+            check_real(getattr(suite, name), name, owner, low=0.0, low_open=True)
+    object.__setattr__(suite, "models", models)
+    object.__setattr__(suite, "scales", scales)
+    object.__setattr__(suite, "property_modifiers", modifiers)
 
 
 def _lookup(factors: Mapping[str, float], path: Path, name: str) -> float | None:
@@ -151,24 +160,8 @@ class Suite:
         if not records:
             raise ValueError(f"The 'records' parameter of {owner} must name at least one "
                              "record file. Got none.")
-        models = tuple(check_choice(m, "models", owner, MODELS) for m in self.models)
-        scales = tuple(check_real(s, "scales", owner, low=0.0, low_open=True)
-                       for s in self.scales)
-        modifiers = tuple(check_real(m, "property_modifiers", owner, low=0.0, low_open=True)
-                          for m in self.property_modifiers)
-        if not (models and scales and modifiers):
-            raise ValueError(f"{owner}: 'models', 'scales' and 'property_modifiers' must each "
-                             "hold at least one value.")
-        for model in models:  # a modified coefficient outside (0, 1] fails here, not later
-            for modifier in modifiers:
-                modified_bearing(self.config, model, modifier)
-        for name in ("duration", "dt"):
-            if getattr(self, name) is not None:
-                check_real(getattr(self, name), name, owner, low=0.0, low_open=True)
         object.__setattr__(self, "records", records)
-        object.__setattr__(self, "models", models)
-        object.__setattr__(self, "scales", scales)
-        object.__setattr__(self, "property_modifiers", modifiers)
+        check_suite_axes(self, owner)
 
     def read(self) -> tuple[dict[str, GroundMotion], dict[str, str]]:
         """Read the records: ``({file: motion}, {file: reason it cannot be read})``."""
@@ -229,36 +222,6 @@ class Suite:
         return specs, motions, unreadable
 
 
-@dataclass
-class SuiteResult:
-    """What a suite produced.
-
-    Attributes
-    ----------
-    peaks : pandas.DataFrame
-        One row per run, in suite order (columns: :data:`structures.suites.runs.COLUMNS`;
-        SI units, times [s]).
-    failures : list of dict
-        ``{"run": run id, "reason": ...}`` of every failed run.
-    wall_time : float
-        Wall-clock time of this invocation [s].
-    out_dir : Path
-        The result folder.
-    computed, skipped : int
-        Runs computed now, and runs kept from an earlier invocation.
-    summary : pandas.DataFrame
-        :func:`structures.suites.summary.summarize` of the peaks.
-    """
-
-    peaks: pd.DataFrame
-    failures: list[dict[str, str]]
-    wall_time: float
-    out_dir: Path
-    computed: int
-    skipped: int
-    summary: pd.DataFrame
-
-
 def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None,
               scheduler_address: str | None = None, write: str = "workers",
               progress: bool = True, run_timeout: float | None = None, lock: bool = True,
@@ -307,10 +270,7 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
     structures.suites.lock.SuiteLocked
         When another suite writes into ``out_dir``.
     """
-    check_choice(write, "write", "run_suite", ("workers", "client"))
-    if run_timeout is not None:
-        check_real(run_timeout, "run_timeout", "run_suite", low=0.0, low_open=True)
-    check_int(max_steps, "max_steps", "run_suite", low=1)
+    check_run_options(write, run_timeout, max_steps, "run_suite")
     with SuiteLock(out_dir, wait=wait_lock) if lock else nullcontext():
         return _run_suite(suite, out_dir, n_workers, scheduler_address, write, progress,
                           run_timeout, max_steps)
@@ -320,81 +280,13 @@ def _run_suite(suite: Suite, out_dir: str | Path, n_workers: int | None,
                scheduler_address: str | None, write: str, progress: bool,
                run_timeout: float | None, max_steps: int) -> SuiteResult:
     """:func:`run_suite` with the folder locked."""
-    from distributed import as_completed
-    from tqdm import tqdm
-
     start = time.perf_counter()
     store = RunStore(out_dir)
     store.clean_temporary()
     ship = write == "client" or callable(suite.record_factors)  # records read here, sent
     specs, motions, unreadable = suite.plan(read=ship)
-    rows: dict[str, dict[str, Any]] = {}
-    pending = []
-    for spec in specs:
-        row = store.completed_row(spec.run_id)
-        if row is not None:
-            rows[spec.run_id] = row
-        elif spec.record_file in unreadable:
-            rows[spec.run_id] = store.save_failure(spec.failure(unreadable[spec.record_file]))
-        else:
-            pending.append(spec)
-    skipped = sum(row["status"] == "done" for row in rows.values())
-    counts = {"done": skipped, "failed": len(rows) - skipped}
-    bar = tqdm(total=len(specs), initial=len(rows), unit="run", disable=not progress,
-               file=sys.stderr, desc="suite", postfix=counts)
-    try:
-        if pending:
-            with client_for(n_workers, scheduler_address) as client:
-                needed = sorted({s.record_file for s in pending}) if ship else []
-                shared = (dict(zip(needed, client.scatter([motions[f] for f in needed],
-                                                           hash=False), strict=True))
-                          if needed else {})
-                token = uuid.uuid4().hex[:8]
-                task, extra = ((compute_and_store,
-                                (str(store.root.resolve()), run_timeout, max_steps))
-                               if write == "workers" else (execute_run, (run_timeout, max_steps)))
-                futures = {client.submit(run_batch, task, batch,
-                                         shared.get(batch[0].record_file), suite.config,
-                                         *extra, pure=False,
-                                         key=f"dcfpb-{token}-{batch[0].run_id}",
-                                         priority=sum(cost(spec, motions.get(spec.record_file),
-                                                            suite.config) for spec in batch)
-                                         ): batch
-                           for batch in batches(pending, BATCH_SIZE)}
-                for future in as_completed(futures):
-                    batch = futures.pop(future)
-                    try:
-                        outcomes = future.result()
-                    except Exception as error:  # e.g. KilledWorker: a worker kept dying
-                        reason = f"{type(error).__name__}: {error}"  # runs it saved are kept
-                        outcomes = [store.completed_row(spec.run_id)
-                                    or store.save_failure(spec.failure(reason))
-                                    for spec in batch]
-                    future.release()
-                    for spec, outcome in zip(batch, outcomes, strict=True):
-                        if isinstance(outcome, tuple):  # write="client": results came here
-                            row, data = outcome
-                            outcome = (store.save_failure(row) if data is None
-                                       else store.save_done(row, data))
-                        row = rows[spec.run_id] = outcome
-                        counts[row["status"]] += 1
-                    bar.set_postfix(counts, refresh=False)
-                    bar.update(len(batch))
-                bar.close()  # before the cluster shuts down (a second or two)
-    finally:
-        bar.close()
-    return _finish(specs, rows, store, len(pending), skipped, time.perf_counter() - start)
-
-
-def _finish(specs: list[RunSpec], rows: dict[str, dict[str, Any]], store: RunStore,
-            computed: int, skipped: int, wall: float) -> SuiteResult:
-    import pandas as pd
-
-    table = pd.DataFrame([rows[s.run_id] for s in specs], columns=list(COLUMNS))
-    failures = [{"run": r["run_id"], "reason": r["reason"]}
-                for r in table.to_dict("records") if r["status"] != "done"]
-    atomic_write(store.root / "peaks.csv", table.to_csv(index=False).encode())
-    atomic_write(store.root / "failures.json", json.dumps(failures, indent=1).encode())
-    summary = summarize(table)
-    write_summary(summary, store.root)
-    return SuiteResult(table, failures, wall, store.root, computed, skipped, summary)
+    rows, computed, skipped = compute_runs(
+        specs, motions, unreadable, suite.config, store, n_workers=n_workers,
+        scheduler_address=scheduler_address, write=write, progress=progress,
+        run_timeout=run_timeout, max_steps=max_steps, ship=ship)
+    return finish(specs, rows, store, computed, skipped, start, COLUMNS)

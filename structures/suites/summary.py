@@ -34,6 +34,20 @@ QUANTITIES = {
 }
 """Peak responses summarised, with their units."""
 
+PLAN_QUANTITIES = {
+    "peak_isolator_displacement": "m",
+    "peak_centre_displacement": "m",
+    "peak_base_shear": "N",
+    "peak_roof_acceleration_x": "m/s^2",
+    "peak_roof_acceleration_y": "m/s^2",
+    "peak_storey_drift_x": "m",
+    "peak_storey_drift_y": "m",
+    "peak_base_rotation": "rad",
+}
+"""Peak responses of a suite of pairs (:func:`structures.spatial.peaks.plan_peaks`) summarised,
+with their units: the corner bearing's resultant displacement, the centre's, the resultant base
+shear, roof acceleration and storey drift per direction, the base rotation."""
+
 GROUP_KEYS = ("model", "modifier", "multiplier")
 COUNT_COLUMNS = ("n_runs", "n_failed", *(f"n_{kind}" for kind in FAILURE_KINDS))
 """Counts beside the statistics: runs of the group, failed runs, and those by kind."""
@@ -43,13 +57,16 @@ STATISTICS_OVER = "successful runs"
 """What the statistics are over (the label the reports print)."""
 
 
-def summarize(peaks: pd.DataFrame) -> pd.DataFrame:
+def summarize(peaks: pd.DataFrame, quantities: dict[str, str] | None = None) -> pd.DataFrame:
     """Mean, median and 84th percentile of the peak responses, per group of runs.
 
     Parameters
     ----------
     peaks : pandas.DataFrame
         The peaks table of a suite (``SuiteResult.peaks``), one row per run.
+    quantities : dict, optional
+        The columns summarised and their units: :data:`QUANTITIES` (default, a suite of
+        records) or :data:`PLAN_QUANTITIES` (a suite of pairs).
 
     Returns
     -------
@@ -63,13 +80,14 @@ def summarize(peaks: pd.DataFrame) -> pd.DataFrame:
     """
     import pandas as pd
 
+    quantities = QUANTITIES if quantities is None else quantities
     rows = []
     for key, group in peaks.groupby(list(GROUP_KEYS), sort=False):
         done = group[group["status"] == "done"]
         kinds = [failure_kind(row) for row in group.to_dict("records")]
         counts = {"n_runs": len(group), "n_failed": len(group) - len(done)} | {
             f"n_{kind}": kinds.count(kind) for kind in FAILURE_KINDS}
-        for quantity, units in QUANTITIES.items():
+        for quantity, units in quantities.items():
             values = np.asarray(done[quantity], dtype=float)
             statistics = dict.fromkeys(("mean", "median", "p84"), float("nan"))
             if values.size:

@@ -1,5 +1,11 @@
-"""The Dask side of a suite (:func:`structures.suites.suite.run_suite`): the cluster, and the
-tasks, each a batch of runs of one record computed and stored one by one, and their order.
+"""The Dask side of a suite (:func:`structures.suites.suite.run_suite`,
+:func:`structures.suites.pair_suite.run_pair_suite`): the cluster, and the tasks, each a batch
+of runs of one record (or pair) computed and stored one by one, and their order.
+
+A run is anything with the interface of :class:`structures.suites.runs.RunSpec` (and
+:class:`structures.suites.pair_runs.PairRunSpec`): ``run_id``, ``source`` (the key of its
+ground motion), ``read()``, ``execute(motion, config, time_limit, max_steps)``,
+``cost(motion, config)`` and ``failure(reason)``.
 
 A worker lost in the middle of a batch (killed, out of memory) has its task redone by Dask on
 another worker; :func:`compute_and_store` then keeps the runs of the batch that were stored
@@ -14,10 +20,8 @@ from contextlib import contextmanager
 from typing import Any
 
 from dcfpb.validation import check_int
-from groundmotions.records import GroundMotion
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
-from structures.suites.runs import RunSpec, analysis_step, execute_run
 from structures.suites.store import RunStore
 
 
@@ -50,26 +54,26 @@ def client_for(n_workers: int | None, scheduler_address: str | None) -> Iterator
         yield client
 
 
-_MODEL_COST = {"precise": 2.0, "simplified": 1.5, "constant": 1.0}  # relative cost per step
-
 BATCH_SIZE = 6
-"""Runs of one record handed to a worker as one task (see :func:`run_batch`)."""
+"""Runs of one ground motion handed to a worker as one task (see :func:`run_batch`)."""
 
 
-def cost(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig) -> int:
-    """Estimated cost, steps (or, for a record not read here, file bytes) x model weight:
-    the longest runs start first, so fewer workers idle at the end of the suite."""
-    if motion is None:
-        try:
-            return int(os.path.getsize(spec.record_file) * _MODEL_COST[spec.model])
-        except OSError:
-            return 0
-    length = motion.duration if spec.duration is None else min(spec.duration, motion.duration)
-    step = analysis_step(spec.dt if spec.dt is not None else config.dt, motion.dt)
-    return int(length / step * _MODEL_COST[spec.model])
+def cost(spec: Any, motion: Any, config: BuildingConfig) -> int:
+    """Estimated cost of a run (``spec.cost``: steps, or file bytes for a motion not read
+    here, x model weight): the longest runs start first, so fewer workers idle at the end
+    of the suite."""
+    return int(spec.cost(motion, config))
 
 
-def compute_and_store(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig,
+def execute(spec: Any, motion: Any, config: BuildingConfig, time_limit: float | None = None,
+            max_steps: int = DEFAULT_MAX_STEPS) -> tuple[dict[str, Any], bytes | None]:
+    """The task of ``write="client"``: compute a run, its row and netCDF bytes travel back
+    (``spec.execute``: :func:`structures.suites.runs.execute_run` for a record,
+    :func:`structures.suites.pair_runs.execute_pair_run` for a pair)."""
+    return spec.execute(motion, config, time_limit, max_steps)
+
+
+def compute_and_store(spec: Any, motion: Any, config: BuildingConfig,
                        out_dir: str, time_limit: float | None = None,
                        max_steps: int = DEFAULT_MAX_STEPS) -> dict[str, Any]:
     """The task of ``write="workers"``: compute a run and write its files where it ran.
@@ -81,31 +85,32 @@ def compute_and_store(spec: RunSpec, motion: GroundMotion | None, config: Buildi
     row = store.completed_row(spec.run_id)
     if row is not None:
         return row
-    row, data = execute_run(spec, motion, config, time_limit, max_steps)
+    row, data = spec.execute(motion, config, time_limit, max_steps)
     return store.save_failure(row) if data is None else store.save_done(row, data)
 
 
-def run_batch(task: Any, specs: list[RunSpec], motion: GroundMotion | None,
-               config: BuildingConfig, *extra: Any) -> list[Any]:
-    """One Dask task: the runs of one record, in turn, each saved as soon as it is done.
+def run_batch(task: Any, specs: list[Any], motion: Any, config: BuildingConfig,
+              *extra: Any) -> list[Any]:
+    """One Dask task: the runs of one ground motion (a record, or a pair), in turn, each
+    saved as soon as it is done.
 
-    The record is read once for all of them (a record that cannot be read is left to each
-    run, which then fails with the reader's reason). Batching the runs of a record cuts the
-    scheduling overhead per run, which matters for runs of a few tens of milliseconds.
+    The motion is read once for all of them (``specs[0].read()``; one that cannot be read
+    is left to each run, which then fails with the reader's reason). Batching the runs of a
+    motion cuts the scheduling overhead per run, which matters for runs of a few tens of
+    milliseconds.
     """
     if motion is None:
-        from groundmotions.readers import read_record
-
         try:
-            motion = read_record(specs[0].record_file)
+            motion = specs[0].read()
         except Exception:
             motion = None
     return [task(spec, motion, config, *extra) for spec in specs]
 
 
-def batches(pending: list[RunSpec], size: int) -> list[list[RunSpec]]:
-    """The pending runs grouped by record file, in chunks of at most ``size`` runs."""
-    groups: dict[str, list[RunSpec]] = {}
+def batches(pending: list[Any], size: int) -> list[list[Any]]:
+    """The pending runs grouped by ground motion (``spec.source``: a record file, a pair),
+    in chunks of at most ``size`` runs."""
+    groups: dict[str, list[Any]] = {}
     for spec in pending:
-        groups.setdefault(spec.record_file, []).append(spec)
+        groups.setdefault(spec.source, []).append(spec)
     return [group[i:i + size] for group in groups.values() for i in range(0, len(group), size)]

@@ -1,0 +1,191 @@
+"""The run of any suite's runs through Dask, into its folder, and what comes out of it.
+
+Shared by the suites of records (:func:`structures.suites.suite.run_suite`) and of pairs
+(:func:`structures.suites.pair_suite.run_pair_suite`): a suite plans its runs (objects with the
+interface described in :mod:`structures.suites.tasks`) and reads what must be read here;
+:func:`compute_runs` keeps the runs already complete in the folder, records the runs whose
+ground motion cannot be read, computes the others on the cluster (each batch of one ground
+motion a Dask task) and stores each as it finishes; :func:`finish` writes the table of the
+invocation, its failures and its summary.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+import uuid
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from dcfpb.validation import check_choice, check_int, check_real
+from structures.config import BuildingConfig
+from structures.suites.store import RunStore, atomic_write
+from structures.suites.summary import summarize, write_summary
+from structures.suites.tasks import (
+    BATCH_SIZE,
+    batches,
+    client_for,
+    compute_and_store,
+    cost,
+    execute,
+    run_batch,
+)
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+__all__ = ["SuiteResult", "check_run_options", "compute_runs", "finish"]
+
+
+@dataclass
+class SuiteResult:
+    """What a suite produced.
+
+    Attributes
+    ----------
+    peaks : pandas.DataFrame
+        One row per run, in suite order (columns: :data:`structures.suites.runs.COLUMNS`, or
+        :data:`structures.suites.pair_runs.PAIR_COLUMNS` for a suite of pairs; SI units,
+        times [s]).
+    failures : list of dict
+        ``{"run": run id, "reason": ...}`` of every failed run.
+    wall_time : float
+        Wall-clock time of this invocation [s].
+    out_dir : Path
+        The result folder.
+    computed, skipped : int
+        Runs computed now, and runs kept from an earlier invocation.
+    summary : pandas.DataFrame
+        :func:`structures.suites.summary.summarize` of the peaks.
+    """
+
+    peaks: pd.DataFrame
+    failures: list[dict[str, str]]
+    wall_time: float
+    out_dir: Path
+    computed: int
+    skipped: int
+    summary: pd.DataFrame
+
+
+def check_run_options(write: str, run_timeout: float | None, max_steps: int,
+                      owner: str) -> None:
+    """The checks of the options of ``run_suite`` and ``run_pair_suite`` (``owner``)."""
+    check_choice(write, "write", owner, ("workers", "client"))
+    if run_timeout is not None:
+        check_real(run_timeout, "run_timeout", owner, low=0.0, low_open=True)
+    check_int(max_steps, "max_steps", owner, low=1)
+
+
+def compute_runs(specs: Sequence[Any], motions: Mapping[str, Any],
+                 unreadable: Mapping[str, str], config: BuildingConfig, store: RunStore, *,
+                 n_workers: int | None, scheduler_address: str | None, write: str,
+                 progress: bool, run_timeout: float | None, max_steps: int,
+                 ship: bool) -> tuple[dict[str, dict[str, Any]], int, int]:
+    """Compute the runs that are not complete in the folder and store each as it finishes.
+
+    Parameters
+    ----------
+    specs : sequence
+        The suite's runs, in table order.
+    motions : mapping
+        The ground motions read here, by ``spec.source`` (sent to the workers when ``ship``).
+    unreadable : mapping
+        Why each source that could not be read here cannot (its runs fail with it).
+    config : BuildingConfig
+        The building file.
+    store : RunStore
+        The result folder.
+    n_workers, scheduler_address, write, progress, run_timeout, max_steps
+        As :func:`structures.suites.suite.run_suite` (``run_timeout`` [s]).
+    ship : bool
+        Whether the motions read here travel to the workers (else each task reads its own).
+
+    Returns
+    -------
+    rows : dict
+        The row of every run, by run id.
+    computed, skipped : int
+        Runs computed now, runs complete from before.
+    """
+    from distributed import as_completed
+    from tqdm import tqdm
+
+    rows: dict[str, dict[str, Any]] = {}
+    pending = []
+    for spec in specs:
+        row = store.completed_row(spec.run_id)
+        if row is not None:
+            rows[spec.run_id] = row
+        elif spec.source in unreadable:
+            rows[spec.run_id] = store.save_failure(spec.failure(unreadable[spec.source]))
+        else:
+            pending.append(spec)
+    skipped = sum(row["status"] == "done" for row in rows.values())
+    counts = {"done": skipped, "failed": len(rows) - skipped}
+    bar = tqdm(total=len(specs), initial=len(rows), unit="run", disable=not progress,
+               file=sys.stderr, desc="suite", postfix=counts)
+    try:
+        if pending:
+            with client_for(n_workers, scheduler_address) as client:
+                needed = sorted({s.source for s in pending}) if ship else []
+                shared = (dict(zip(needed, client.scatter([motions[f] for f in needed],
+                                                           hash=False), strict=True))
+                          if needed else {})
+                token = uuid.uuid4().hex[:8]
+                task, extra = ((compute_and_store,
+                                (str(store.root.resolve()), run_timeout, max_steps))
+                               if write == "workers" else (execute, (run_timeout, max_steps)))
+                futures = {client.submit(run_batch, task, batch,
+                                         shared.get(batch[0].source), config,
+                                         *extra, pure=False,
+                                         key=f"dcfpb-{token}-{batch[0].run_id}",
+                                         priority=sum(cost(spec, motions.get(spec.source),
+                                                           config) for spec in batch)
+                                         ): batch
+                           for batch in batches(pending, BATCH_SIZE)}
+                for future in as_completed(futures):
+                    batch = futures.pop(future)
+                    try:
+                        outcomes = future.result()
+                    except Exception as error:  # e.g. KilledWorker: a worker kept dying
+                        reason = f"{type(error).__name__}: {error}"  # runs it saved are kept
+                        outcomes = [store.completed_row(spec.run_id)
+                                    or store.save_failure(spec.failure(reason))
+                                    for spec in batch]
+                    future.release()
+                    for spec, outcome in zip(batch, outcomes, strict=True):
+                        if isinstance(outcome, tuple):  # write="client": results came here
+                            row, data = outcome
+                            outcome = (store.save_failure(row) if data is None
+                                       else store.save_done(row, data))
+                        row = rows[spec.run_id] = outcome
+                        counts[row["status"]] += 1
+                    bar.set_postfix(counts, refresh=False)
+                    bar.update(len(batch))
+                bar.close()  # before the cluster shuts down (a second or two)
+    finally:
+        bar.close()
+    return rows, len(pending), skipped
+
+
+def finish(specs: Sequence[Any], rows: dict[str, dict[str, Any]], store: RunStore,
+           computed: int, skipped: int, start: float, columns: Sequence[str],
+           quantities: dict[str, str] | None = None) -> SuiteResult:
+    """Write ``peaks.csv`` (``columns``), ``failures.json`` and the summary (of
+    ``quantities``, :func:`structures.suites.summary.summarize`) and return the result;
+    ``start`` is the invocation's ``time.perf_counter()`` [s]."""
+    import pandas as pd
+
+    wall = time.perf_counter() - start
+    table = pd.DataFrame([rows[s.run_id] for s in specs], columns=list(columns))
+    failures = [{"run": r["run_id"], "reason": r["reason"]}
+                for r in table.to_dict("records") if r["status"] != "done"]
+    atomic_write(store.root / "peaks.csv", table.to_csv(index=False).encode())
+    atomic_write(store.root / "failures.json", json.dumps(failures, indent=1).encode())
+    summary = summarize(table, quantities)
+    write_summary(summary, store.root)
+    return SuiteResult(table, failures, wall, store.root, computed, skipped, summary)
