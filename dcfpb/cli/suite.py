@@ -1,4 +1,5 @@
-"""``dcfpb suite``: a building file under a suite of records, scale factors and friction models.
+"""``dcfpb suite``: a building file under a suite of records, scale factors and friction models,
+or, with ``--pairs``, a building file with a ``[plan]`` table under a suite of pairs.
 
 Registered through ``dcfpb.cli.COMMAND_MODULES``. Runs go through Dask (a local cluster, or
 ``--scheduler ADDRESS``); results, peaks table, per-model statistics and plots go to
@@ -28,19 +29,26 @@ def register(sub: argparse._SubParsersAction) -> None:
         "suite",
         help="run a building under a suite of records x scales x friction models (Dask)",
         description="Run a building file under every record of a folder (*.AT2) or manifest "
-        "CSV, at each scale factor, with each friction model, through Dask. One result file "
-        "per run in OUT/runs; rerun the same command to finish an interrupted suite. Exit "
-        "status 1 when some runs failed (see OUT/failures.json).",
+        "CSV, at each scale factor, with each friction model, through Dask; or, with --pairs, "
+        "a building file with a [plan] table under every pair of a pair manifest. One result "
+        "file per run in OUT/runs; rerun the same command to finish an interrupted suite. "
+        "Exit status 1 when some runs failed (see OUT/failures.json).",
     )
     p.add_argument("building", metavar="BUILDING.toml", help="building file")
-    p.add_argument("--records", required=True, metavar="DIR_OR_MANIFEST",
-                   help="folder of .AT2 files, or a CSV whose first column holds file names "
-                   "relative to it")
+    source = p.add_mutually_exclusive_group(required=True)
+    source.add_argument("--records", metavar="DIR_OR_MANIFEST",
+                        help="folder of .AT2 files, or a CSV whose first column holds file "
+                        "names relative to it")
+    source.add_argument("--pairs", metavar="MANIFEST.csv",
+                        help="pairs of records: a CSV with the columns name, x, y (and "
+                        "optionally z, dt, units), paths relative to it; runs the building "
+                        "in plan of a file with a [plan] table, one row of plan peaks per run")
     p.add_argument("--target", metavar="SPECTRUM",
                    help="target spectrum: a CSV of rows 'period,sa' in [s, g], or "
                    "asce7:S_DS,S_D1,T_L (asce7-mce:... for MCE_R); each record is scaled "
-                   "to it (groundmotions.scaling.scale_suite); --scales then multiplies those "
-                   "factors")
+                   "to it (groundmotions.scaling.scale_suite), each pair on its RotD100 "
+                   "(groundmotions.pair_scaling.scale_pairs, ASCE 7-16); --scales then "
+                   "multiplies those factors")
     p.add_argument("--period-range", metavar="TMIN,TMAX",
                    help="period range of the scaling [s] (default 0.75 and 1.25 times the "
                    "isolated period 2 pi sqrt(R_eff / g))")
@@ -178,12 +186,44 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
     return 0.75 * period, 1.25 * period
 
 
+def _suite(args: argparse.Namespace, config, target, period_range):
+    """The suite of the command line and the function that runs it: of records, or of pairs
+    (``--pairs``), the latter refused before any work on a building file without ``[plan]``."""
+    if args.pairs is None:
+        from structures.suites.suite import Suite, record_files, run_suite
+
+        factors = None if target is None else target_hook(*target, period_range)
+        return Suite(config, record_files(args.records), models=args.models.split(","),
+                     scales=_floats(args.scales, "--scales"),
+                     property_modifiers=_floats(args.modifiers, "--modifiers"),
+                     record_factors=factors, duration=args.duration, dt=args.dt), run_suite
+    from dcfpb.errors import InputError
+    from structures.suites.pair_suite import (
+        PairSuite,
+        pair_sources,
+        rotd100_factors,
+        run_pair_suite,
+    )
+
+    if config.plan is None:
+        raise InputError(f"--pairs runs a building in plan, but the building file "
+                         f"{args.building!r} has no [plan] table (bearing_coordinates, "
+                         "eccentricity, ...; see README, 'A building in plan'). Give --records "
+                         "to run it planar under single records.")
+    factors = None
+    if target is not None:
+        factors = rotd100_factors((target[0], target[1] * STANDARD_GRAVITY), period_range)
+    return PairSuite(config, pair_sources(args.pairs), models=args.models.split(","),
+                     scales=_floats(args.scales, "--scales"),
+                     property_modifiers=_floats(args.modifiers, "--modifiers"),
+                     pair_factors=factors, duration=args.duration, dt=args.dt), run_pair_suite
+
+
 def _run(args: argparse.Namespace) -> int:
     from dcfpb.cli.outputs import check_outputs
     from dcfpb.validation import check_int, check_real
     from structures.config import load_config
     from structures.suites.lock import SuiteLock
-    from structures.suites.suite import Suite, record_files, run_suite
 
     check_outputs(folders={"--out": args.out})
     if args.run_timeout is not None:
@@ -195,15 +235,11 @@ def _run(args: argparse.Namespace) -> int:
     if args.workers is not None and args.scheduler:
         raise ValueError("give --workers (a local cluster) or --scheduler, not both.")
     config = load_config(args.building)
-    factors, target, period_range = None, None, None
+    target, period_range = None, None
     if args.target:
         target = read_target(args.target)
         period_range = _period_range(args.period_range, config)
-        factors = target_hook(*target, period_range)
-    suite = Suite(config, record_files(args.records), models=args.models.split(","),
-                  scales=_floats(args.scales, "--scales"),
-                  property_modifiers=_floats(args.modifiers, "--modifiers"),
-                  record_factors=factors, duration=args.duration, dt=args.dt)
+    suite, run_suite = _suite(args, config, target, period_range)
     with SuiteLock(args.out, wait=args.wait_lock):  # the plots and tables too
         try:
             result = run_suite(suite, args.out, n_workers=args.workers,
@@ -223,9 +259,12 @@ def _plots(result, suite, target, period_range) -> list[Path]:
     from dcfpb.plotting.suite import plot_peak_distributions, plot_scaled_spectra
 
     out = Path(result.out_dir) / "plots"
+    kind = "peaks in plan" if "pair" in result.peaks.columns else "peaks"
     written = [plot_peak_distributions(result.peaks, out / "peak_distributions.png",
-                                       title=f"{suite.config.name}: peaks per friction model")]
-    if target is not None:
+                                       title=f"{suite.config.name}: {kind} per friction model")]
+    if target is not None and "pair" in result.peaks.columns:
+        written.append(_pair_spectra_plot(result, suite, target, period_range, out))
+    elif target is not None:
         first = result.peaks.drop_duplicates("record_file").set_index("record_file")
         motions, _ = suite.read()
         scaled = []
@@ -236,6 +275,22 @@ def _plots(result, suite, target, period_range) -> list[Path]:
         written.append(plot_scaled_spectra(scaled, *target, out / "scaled_spectra.png",
                                            period_range=period_range))
     return written
+
+
+def _pair_spectra_plot(result, suite, target, period_range, out: Path) -> Path:
+    """The RotD100 spectra of the pairs as scaled (and truncated) for the suite."""
+    from dcfpb.plotting.suite import plot_scaled_pair_spectra
+    from structures.suites.pair_runs import truncated_pair
+
+    first = result.peaks.drop_duplicates("pair").set_index("pair")
+    pairs, _ = suite.read()
+    scaled = []
+    for name, pair in pairs.items():
+        if suite.duration is not None:  # the part of the pair that was run
+            pair = truncated_pair(pair, suite.duration)
+        scaled.append(pair.scaled(float(first.loc[name, "record_factor"])))
+    return plot_scaled_pair_spectra(scaled, *target, out / "scaled_spectra.png",
+                                    period_range=period_range)
 
 
 def _report(result, plots: list[Path], as_json: bool) -> None:
@@ -273,25 +328,42 @@ def _kinds(counts: dict[str, int]) -> str:
     return f" ({kinds})" if kinds else ""
 
 
+_COLUMNS = (  # quantity, heading, unit, factor from SI, width, digits
+    ("peak_isolator_displacement", "isol. disp", "[mm]", 1e3, 10, 1),
+    ("peak_base_shear", "base shear", "[kN]", 1e-3, 11, 0),
+    ("peak_roof_acceleration", "roof acc", "[m/s2]", 1.0, 9, 2),
+    ("peak_storey_drift", "drift", "[mm]", 1e3, 7, 2),
+)
+_PLAN_COLUMNS = (  # a suite of pairs: the corner bearing, the centre, per direction
+    ("peak_isolator_displacement", "corner disp", "[mm]", 1e3, 11, 1),
+    ("peak_centre_displacement", "centre disp", "[mm]", 1e3, 11, 1),
+    ("peak_base_shear", "base shear", "[kN]", 1e-3, 11, 0),
+    ("peak_roof_acceleration_x", "roof acc x", "[m/s2]", 1.0, 10, 2),
+    ("peak_roof_acceleration_y", "roof acc y", "[m/s2]", 1.0, 10, 2),
+    ("peak_storey_drift_x", "drift x", "[mm]", 1e3, 7, 2),
+    ("peak_storey_drift_y", "drift y", "[mm]", 1e3, 7, 2),
+)
+
+
 def _print_statistics(summary: dict) -> None:
     """The median and 84th percentile of each group, over its successful runs, with the
     group's runs that finished ('ok'), all its runs and its failures beside them."""
-    from structures.suites.summary import QUANTITIES
-
+    in_plan = any("peak_roof_acceleration_x" in q for q in summary.values())
+    table = _PLAN_COLUMNS if in_plan else _COLUMNS
+    names, headings, units, factors, widths, digits = zip(*table, strict=True)
     print("statistics over the successful runs of each group (ok of all runs):")
-    print(f"{'group':34s} {'':6s} {'isol. disp':>10s} {'base shear':>11s} {'roof acc':>9s} "
-          f"{'drift':>7s} {'ok/all':>8s}  failed")
-    print(f"{'':34s} {'':6s} {'[mm]':>10s} {'[kN]':>11s} {'[m/s2]':>9s} {'[mm]':>7s}")
-    factors = (1e3, 1e-3, 1.0, 1e3)
-    widths = (10, 11, 9, 7)
-    digits = (1, 0, 2, 2)
+    print(f"{'group':34s} {'':6s} "
+          + " ".join(f"{h:>{w}s}" for h, w in zip(headings, widths, strict=True))
+          + f" {'ok/all':>8s}  failed")
+    print(f"{'':34s} {'':6s} "
+          + " ".join(f"{u:>{w}s}" for u, w in zip(units, widths, strict=True)))
     for group, quantities in summary.items():
         first = next(iter(quantities.values()))
         kinds = {k[2:]: v for k, v in first.items()
                  if k.startswith("n_") and k not in ("n_runs", "n_failed")}
         for stat in ("median", "p84"):
             cells = []
-            for f, q, w, d in zip(factors, QUANTITIES, widths, digits, strict=True):
+            for f, q, w, d in zip(factors, names, widths, digits, strict=True):
                 value = quantities[q][stat]
                 cells.append(f"{'-':>{w}s}" if value is None else f"{f * value:{w}.{d}f}")
             tail = ""
