@@ -192,6 +192,15 @@ def _suite(args: argparse.Namespace, config, target, period_range):
     if args.pairs is None:
         from structures.suites.suite import Suite, record_files, run_suite
 
+        if config.plan is not None:
+            import warnings
+
+            from dcfpb.errors import InputWarning
+
+            warnings.warn(InputWarning(
+                "the building file's [plan] table is not used: single records run the planar "
+                "building along x; give --pairs to run it in plan"), stacklevel=1)
+
         factors = None if target is None else target_hook(*target, period_range)
         return Suite(config, record_files(args.records), models=args.models.split(","),
                      scales=_floats(args.scales, "--scales"),

@@ -28,7 +28,7 @@ import pytest
 
 import structures
 from dcfpb import cli
-from dcfpb.errors import InputError
+from dcfpb.errors import InputError, InputWarning
 from dcfpb.units import STANDARD_GRAVITY
 from groundmotions.pair_scaling import scale_pairs
 from groundmotions.pair_synthetic import synthetic_pair
@@ -265,6 +265,18 @@ def test_cli_refuses_pairs_on_a_planar_building_file(files, capsys, tmp_path):
     with pytest.raises(SystemExit) as both:
         cli.main(["suite", str(planar), "--pairs", "a.csv", "--records", "b"])
     assert both.value.code == 2 and "not allowed with" in capsys.readouterr().err
+
+
+def test_cli_records_on_a_plan_file_warn_that_they_run_planar(files, scheduler, capsys,
+                                                              tmp_path):
+    records = tmp_path / "records"
+    records.mkdir()
+    shutil.copy(files / "s1-x.AT2", records / "s1-x.AT2")
+    with pytest.warns(InputWarning, match="--pairs"):
+        code = cli.main(["suite", str(files / "building.toml"), "--records", str(records),
+                         "--models", "constant", "--scheduler", scheduler,
+                         "--out", str(tmp_path / "out"), "--no-progress", "--json"])
+    assert code == 0 and json.loads(capsys.readouterr().out)["done"] == 1
 
 
 def test_a_recorded_pair_equals_its_single_run(config, shared_dir, scheduler, tmp_path):
