@@ -34,7 +34,6 @@ from isolator.compiled import layout as L
 from isolator.compiled.kernels import (
     cold_friction,
     heated_window,
-    jit,
     ptv_friction,
     solve_friction,
 )
@@ -52,6 +51,7 @@ from isolator.compiled.plate_grid import (
     UNTOUCHED,
     WEIGHTS,
     WINDOWS,
+    inlined,
     mark_heated,
     move_grid_window,
     reanchor_grid_window,
@@ -121,7 +121,7 @@ def new_plate_heating(n_bearings: int, points: int, rates: np.ndarray,
             np.zeros((n_bearings, 2, 4), dtype=np.int64))
 
 
-@jit
+@inlined
 def prepare_step(dt, coefficient, min_lag, heat):
     """The slot of the step factors of ``dt`` [s] in the shared table, computed if new; -1
     when ``dt`` is below the kernel's shortest lag (the reference's ValueError)."""
@@ -143,7 +143,7 @@ def prepare_step(dt, coefficient, min_lag, heat):
     return slot
 
 
-@jit
+@inlined
 def _grid_rise(b, sx, sy, vx, vy, dt, slot, parameters, ptv, trial, heat):
     """GridHeating.trial for the slider at (sx, sy) on the plate [m]: (rise, points under the
     slider, inside the grid); the frame goes to ``trial[AXIS_X]``, the window to the
@@ -189,7 +189,7 @@ def _grid_rise(b, sx, sy, vx, vy, dt, slot, parameters, ptv, trial, heat):
     return scalars[RISE], points, True
 
 
-@jit
+@inlined
 def _friction(b, ux, uy, vx, vy, dt, pressure, speed, parameters, ptv, trial, heat):
     """PlateFriction of a loaded trial: (mu, d mu / d|v|, temperature, flux, status)."""
     model = int(parameters[FRICTION_MODEL])
@@ -233,7 +233,7 @@ def _friction(b, ux, uy, vx, vy, dt, pressure, speed, parameters, ptv, trial, he
     return mu, dmu_dspeed, temperature, flux, SUCCESS
 
 
-@jit
+@inlined
 def plate_trial(b, ux, uy, vx, vy, time, load, bearings, ptv, committed, trial, heat):
     """BidirectionalElement.set_trial of bearing ``b`` at the axial ``load`` [N]: fills the
     row ``trial[b]`` (state, tangents ``KXX`` ... ``CYY``); returns the status."""
@@ -293,7 +293,7 @@ def plate_trial(b, ux, uy, vx, vy, time, load, bearings, ptv, committed, trial, 
     return SUCCESS
 
 
-@jit
+@inlined
 def plate_commit(b, bearings, ptv, committed, trial, heat):
     """BidirectionalElement.commit of bearing ``b``: the trial becomes the committed state and
     its heat enters the plate's history."""

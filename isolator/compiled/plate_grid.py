@@ -35,7 +35,20 @@ from __future__ import annotations
 
 import math
 
+from isolator.compiled import kernels
 from isolator.compiled.kernels import jit
+
+if kernels.COMPILED:  # pragma: no cover - depends on the environment
+    import numba
+
+    def inlined(function):
+        """Compiled and inlined into its caller at numba's level: a call that takes the heat
+        tuple otherwise pays a reference count on each of its arrays (~0.2 us a call)."""
+        return numba.njit(cache=True, nogil=True, no_cfunc_wrapper=True,
+                          inline="always")(function)
+else:  # pragma: no cover
+    inlined = jit
+
 
 # The heat history's arrays travel as one tuple (:func:`isolator.compiled.plate.new_plate_heating`),
 # in this order; the per-bearing ones have the bearing first.
@@ -44,16 +57,16 @@ CACHE_KEYS, CACHE_VALUES, CACHE_STATE, SCALARS, FACTORS, DECAYS, SLOTS, TABLE = 
 WINDOWS = 16
 
 UNTOUCHED, PENDING_MARK = -1, -2  # ``marks`` of a point never heated, and of one waiting
+UNDERFLOW = 745.2  # exp(-x) rounds to 0.0 beyond it (libm's underflow path is slow)
 CACHE_SLOTS = 64  # decay vectors kept per move (a power of two)
 # Layout of ``cache_state``: the bearing and the time the cached decay vectors are for.
 CACHE_BEARING, CACHE_TIME = range(2)
 
 
 @jit
-def _decay_vector(stamp, time, bearing, heat):
-    """exp(-s_k (time - stamp)) for this bearing and time: a row of the cache."""
-    rates, cache_keys = heat[RATES], heat[CACHE_KEYS]
-    cache_values, cache_state = heat[CACHE_VALUES], heat[CACHE_STATE]
+def _decay_slot(stamp, time, bearing, rates, cache_keys, cache_values, cache_state):
+    """The row of ``cache_values`` holding exp(-s_k (time - stamp)) for this bearing and
+    time (computed if it is not there)."""
     if cache_state[CACHE_BEARING] != bearing or cache_state[CACHE_TIME] != time:
         for slot in range(cache_keys.shape[0]):
             cache_keys[slot] = -1.0
@@ -62,46 +75,57 @@ def _decay_vector(stamp, time, bearing, heat):
     if cache_keys[slot] != stamp:
         elapsed = time - stamp
         for k in range(rates.shape[0]):
-            cache_values[slot, k] = math.exp(-rates[k] * elapsed)
+            exponent = rates[k] * elapsed  # beyond 745.2, exp(-x) is 0.0: skip libm's
+            cache_values[slot, k] = 0.0 if exponent > UNDERFLOW else math.exp(-exponent)
         cache_keys[slot] = stamp
-    return cache_values[slot]
+    return slot
 
 
 @jit
-def _leave(b, j, time, heat):
-    """Point ``j`` of bearing ``b`` leaves the window at ``time``: it keeps G_j = A + C_j."""
-    rates, states, stamps = heat[RATES], heat[STATES], heat[STAMPS]
-    accumulator, offsets = heat[ACCUMULATORS][b], heat[OFFSETS][b]
-    decay = _decay_vector(stamps[b, j], time, b, heat)
-    for k in range(rates.shape[0]):
-        carried = states[b, j, k] * decay[k]
-        offsets[k] -= carried
-        states[b, j, k] = accumulator[k] + carried
-    stamps[b, j] = time
+def _leave(b, first, count, stride, time, rates, states, stamps, accumulator, offsets,
+           cache_keys, cache_values, cache_state):
+    """Points ``first + m stride``, m < ``count``, of bearing ``b`` (2D ``states`` of that
+    bearing) leave the window at ``time``: each keeps G_j = A + exp(-s (t - tau_j)) C_j."""
+    slot, previous = 0, -2.0
+    for m in range(count):
+        j = first + m * stride
+        if stamps[j] != previous:
+            previous = stamps[j]
+            slot = _decay_slot(previous, time, b, rates, cache_keys, cache_values, cache_state)
+        for k in range(rates.shape[0]):
+            carried = states[j, k] * cache_values[slot, k]
+            offsets[k] -= carried
+            states[j, k] = accumulator[k] + carried
+        stamps[j] = time
 
 
 @jit
-def _enter(b, j, time, heat):
-    """Point ``j`` of bearing ``b`` enters the window at ``time``: it keeps C_j = G_j - A."""
-    rates, states, stamps = heat[RATES], heat[STATES], heat[STAMPS]
-    marks, pending = heat[MARKS], heat[PENDING_LIST]
-    accumulator, offsets = heat[ACCUMULATORS][b], heat[OFFSETS][b]
-    if stamps[b, j] < 0.0:  # never touched: G = 0
-        for k in range(rates.shape[0]):
-            states[b, j, k] = -accumulator[k]
-            offsets[k] -= accumulator[k]
-    else:
-        decay = _decay_vector(stamps[b, j], time, b, heat)
-        for k in range(rates.shape[0]):
-            value = states[b, j, k] * decay[k] - accumulator[k]
-            states[b, j, k] = value
-            offsets[k] += value
-    stamps[b, j] = time
-    if marks[b, j] == UNTOUCHED:  # waits for the next heated commit to be numbered
-        marks[b, j] = PENDING_MARK
-        count = pending[b, 0]
-        pending[b, count + 1] = j
-        pending[b, 0] = count + 1
+def _enter(b, first, count, stride, time, rates, states, stamps, accumulator, offsets,
+           cache_keys, cache_values, cache_state, marks, pending):
+    """Points ``first + m stride``, m < ``count``, of bearing ``b`` enter the window at
+    ``time``: each keeps C_j = G_j - A; those never heated wait on the ``pending`` list."""
+    slot, previous = 0, -2.0
+    for m in range(count):
+        j = first + m * stride
+        if stamps[j] < 0.0:  # never touched: G = 0
+            for k in range(rates.shape[0]):
+                states[j, k] = -accumulator[k]
+                offsets[k] -= accumulator[k]
+        else:
+            if stamps[j] != previous:
+                previous = stamps[j]
+                slot = _decay_slot(previous, time, b, rates, cache_keys, cache_values,
+                                   cache_state)
+            for k in range(rates.shape[0]):
+                value = states[j, k] * cache_values[slot, k] - accumulator[k]
+                states[j, k] = value
+                offsets[k] += value
+        stamps[j] = time
+        if marks[j] == UNTOUCHED:  # waits for the next heated commit to be numbered
+            marks[j] = PENDING_MARK
+            count = pending[0] + 1
+            pending[count] = j
+            pending[0] = count
 
 
 @jit
@@ -111,29 +135,39 @@ def move_grid_window(b, n, old, new, time, heat):
     ``old`` and ``new`` are (i_lo, i_hi, k_lo, k_hi) (either may be empty); ``n`` points per
     axis; ``heat`` is the tuple of :func:`isolator.compiled.plate.new_plate_heating`.
     """
+    rates, states, stamps = heat[RATES], heat[STATES][b], heat[STAMPS][b]
+    accumulator, offsets = heat[ACCUMULATORS][b], heat[OFFSETS][b]
+    keys, values, cache = heat[CACHE_KEYS], heat[CACHE_VALUES], heat[CACHE_STATE]
+    marks, pending = heat[MARKS][b], heat[PENDING_LIST][b]
     a0, a1, b0, b1 = old[0], old[1], old[2], old[3]
     c0, c1, d0, d1 = new[0], new[1], new[2], new[3]
-    for i in range(a0, a1):  # old points not in the new rectangle
-        if i < c0 or i >= c1:
-            for k in range(b0, b1):
-                _leave(b, i * n + k, time, heat)
-        else:
-            for k in range(b0, min(b1, d0)):
-                _leave(b, i * n + k, time, heat)
-            for k in range(max(b0, d1), b1):
-                _leave(b, i * n + k, time, heat)
-    for i in range(c0, c1):  # new points not in the old rectangle
-        if i < a0 or i >= a1:
-            for k in range(d0, d1):
-                _enter(b, i * n + k, time, heat)
-        else:
-            for k in range(d0, min(d1, b0)):
-                _enter(b, i * n + k, time, heat)
-            for k in range(max(d0, b1), d1):
-                _enter(b, i * n + k, time, heat)
+    if a1 <= a0 or b1 <= b0:  # an empty rectangle holds no column
+        a0 = a1 = b0 = b1 = 0
+    # the old points not in the new rectangle: whole columns (contiguous in memory), then
+    # the rows of the columns both hold (strided by a column)
+    both_lo, both_hi = max(a0, c0), min(a1, c1)
+    for i in range(a0, a1):
+        if (i < c0 or i >= c1) and b1 > b0:
+            _leave(b, i * n + b0, b1 - b0, 1, time, rates, states, stamps, accumulator,
+                   offsets, keys, values, cache)
+    if both_hi > both_lo:
+        for k in range(b0, b1):
+            if k < d0 or k >= d1:
+                _leave(b, both_lo * n + k, both_hi - both_lo, n, time, rates, states, stamps,
+                       accumulator, offsets, keys, values, cache)
+    # the new points not in the old rectangle, the same way
+    for i in range(c0, c1):
+        if (i < a0 or i >= a1) and d1 > d0:
+            _enter(b, i * n + d0, d1 - d0, 1, time, rates, states, stamps, accumulator,
+                   offsets, keys, values, cache, marks, pending)
+    if both_hi > both_lo:
+        for k in range(d0, d1):
+            if k < b0 or k >= b1:
+                _enter(b, both_lo * n + k, both_hi - both_lo, n, time, rates, states, stamps,
+                       accumulator, offsets, keys, values, cache, marks, pending)
 
 
-@jit
+@inlined
 def mark_heated(b, n, window, number, heat):
     """The points waiting in bearing ``b``'s pending list that are in ``window`` take the
     mark ``number`` (the heated commit that stores them); the others wait again."""
@@ -152,15 +186,15 @@ def mark_heated(b, n, window, number, heat):
 @jit
 def reanchor_grid_window(b, n, window, time, heat):
     """Re-stamp bearing ``b``'s window points at ``time`` and sum E afresh (bounds drift)."""
-    rates, states, stamps = heat[RATES], heat[STATES], heat[STAMPS]
+    rates, states, stamps = heat[RATES], heat[STATES][b], heat[STAMPS][b]
+    keys, values, cache = heat[CACHE_KEYS], heat[CACHE_VALUES], heat[CACHE_STATE]
     offsets = heat[OFFSETS][b]
     for k in range(rates.shape[0]):
         offsets[k] = 0.0
     for i in range(window[0], window[1]):
-        for kk in range(window[2], window[3]):
-            j = i * n + kk
-            decay = _decay_vector(stamps[b, j], time, b, heat)
+        for j in range(i * n + window[2], i * n + window[3]):
+            slot = _decay_slot(stamps[j], time, b, rates, keys, values, cache)
             for k in range(rates.shape[0]):
-                states[b, j, k] *= decay[k]
-                offsets[k] += states[b, j, k]
-            stamps[b, j] = time
+                states[j, k] *= values[slot, k]
+                offsets[k] += states[j, k]
+            stamps[j] = time

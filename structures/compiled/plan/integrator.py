@@ -12,9 +12,13 @@ predictor, residual, force reference and convergence tests, the same depth-first
 the ground accelerations interpolated linearly and the bearings committed after each sub-step,
 the same trial / commit semantics of every bearing and its heat.
 
-The Newton matrix is the reference's ``c0 M + (1 + alpha)(c1 (C + C_t) + K_t)``, formed in place
-and solved by LAPACK's ``dgesv`` (:mod:`structures.compiled.lapack`): the bearings and the
-overturning fill the base slab's three rows, so the matrix changes at every iteration.
+One thing is done differently, an exact rearrangement: the Newton matrix is the reference's
+``c0 M + (1 + alpha)(c1 (C + C_t) + K_t)``, and the bearings and the overturning change only
+the base slab's three rows of it, so it is ``A + E X`` with ``A = c0 M + (1 + alpha)(c1 C + K)``
+constant for a step size (its inverse formed once per step size and halving depth by LAPACK,
+:mod:`structures.compiled.lapack`) and ``E`` the first three unit columns: each iteration
+solves with the Woodbury formula, a 3 x 3 system and O(n^2), instead of factorising the
+matrix.
 
 It is a numba function of its own, apart from the planar engine
 (:mod:`structures.compiled.integrator`), so that compiling one never compiles the other; the
@@ -33,7 +37,8 @@ import numpy as np
 from dcfpb.units import STANDARD_GRAVITY
 from isolator.compiled import plate as E
 from isolator.compiled.kernels import jit
-from structures.compiled.lapack import solve
+from isolator.compiled.plate import inlined
+from structures.compiled.lapack import invert, solve
 from structures.compiled.plan import workspace as W
 from structures.compiled.workspace import (
     ALPHA,
@@ -85,11 +90,12 @@ def _norm(row):
     return math.sqrt(total)
 
 
-@jit
+@inlined
 def _restoring(time, model, settings, ws, heat):
     """SpatialIsolatedBuilding.restoring_force at the trial rows U, V of ``dofs``: the force
-    row FORCE, the storey forces STOREY, the base slab's tangent rows TOP_STIFFNESS and
-    TOP_DAMPING; returns (status, failing bearing)."""
+    row FORCE, C v (VISCOUS), the storey forces STOREY, and what the bearings and the
+    overturning add to the tangent's rows of the base slab (TOP_STIFFNESS, TOP_DAMPING);
+    returns (status, failing bearing)."""
     stiffness, damping = model.stiffness, model.damping
     bearings, ptv, flags = settings.bearings, settings.ptv, settings.flags
     dofs, loads = ws[W.DOFS], ws[W.LOADS]
@@ -104,10 +110,11 @@ def _restoring(time, model, settings, ws, heat):
             spring += stiffness[i, j] * dofs[W.U, j]
             viscous += damping[i, j] * dofs[W.V, j]
         dofs[W.FORCE, i] = spring
+        dofs[W.VISCOUS, i] = viscous
         dofs[W.STOREY, i] = spring + viscous
     for r in range(3):
         for j in range(n):
-            top_k[r, j] = stiffness[r, j]
+            top_k[r, j] = 0.0
             top_c[r, j] = 0.0
     vertical = 0.0
     if flags[W.VERTICAL] != 0.0:
@@ -168,15 +175,79 @@ def _add_block(top, kxx, kxy, kyx, kyy, x, y):
 
 
 @jit
-def _newton(h, time, ground_x, ground_y, model, settings, ws, heat, info):
+def _effective_inverse(h, model, method, inverse, ws):
+    """inverse <- (c0 M + (1 + alpha)(c1 C + K))^-1 for a step ``h`` [s]: the Newton matrix
+    without the bearings and the overturning."""
+    c0, c1 = 1.0 / (method[BETA] * h * h), method[GAMMA] / (method[BETA] * h)
+    weight = 1.0 + method[ALPHA]
+    matrix = ws[W.TANGENT]
+    n = matrix.shape[0]
+    for i in range(n):
+        for j in range(n):
+            matrix[i, j] = c0 * model.mass[i, j] + weight * (c1 * model.damping[i, j]
+                                                             + model.stiffness[i, j])
+    invert(matrix, inverse, ws[W.LAPACK_WORK], ws[W.PIVOTS])
+
+
+@jit
+def _woodbury(inverse, top_k, top_c, weight, c1, residual, du, update):
+    """du <- (A + E X)^-1 residual, A^-1 = ``inverse``, E the first three unit columns and
+    X = (1 + alpha)(c1 top_c + top_k) the base slab's rows the bearings add (Woodbury:
+    y - A^-1 E (I + X A^-1 E)^-1 X y, y = A^-1 r). ``update`` is a (3, n) work array. False
+    when I + X A^-1 E is singular (the reference's singular Newton matrix)."""
+    n = inverse.shape[0]
+    for j in range(n):
+        for r in range(3):
+            update[r, j] = weight * (c1 * top_c[r, j] + top_k[r, j])
+    for i in range(n):
+        total = 0.0
+        for j in range(n):
+            total += inverse[i, j] * residual[j]
+        du[i] = total
+    s00 = s01 = s02 = s10 = s11 = s12 = s20 = s21 = s22 = 0.0
+    r0 = r1 = r2 = 0.0
+    for j in range(n):
+        x0, x1, x2 = update[0, j], update[1, j], update[2, j]
+        g0, g1, g2 = inverse[j, 0], inverse[j, 1], inverse[j, 2]
+        s00 += x0 * g0
+        s01 += x0 * g1
+        s02 += x0 * g2
+        s10 += x1 * g0
+        s11 += x1 * g1
+        s12 += x1 * g2
+        s20 += x2 * g0
+        s21 += x2 * g1
+        s22 += x2 * g2
+        r0 += x0 * du[j]
+        r1 += x1 * du[j]
+        r2 += x2 * du[j]
+    s00 += 1.0
+    s11 += 1.0
+    s22 += 1.0
+    c00, c01, c02 = s11 * s22 - s12 * s21, s02 * s21 - s01 * s22, s01 * s12 - s02 * s11
+    c10, c11, c12 = s12 * s20 - s10 * s22, s00 * s22 - s02 * s20, s02 * s10 - s00 * s12
+    c20, c21, c22 = s10 * s21 - s11 * s20, s01 * s20 - s00 * s21, s00 * s11 - s01 * s10
+    determinant = s00 * c00 + s01 * c10 + s02 * c20
+    if determinant == 0.0 or not math.isfinite(determinant):
+        return False
+    z0 = (c00 * r0 + c01 * r1 + c02 * r2) / determinant
+    z1 = (c10 * r0 + c11 * r1 + c12 * r2) / determinant
+    z2 = (c20 * r0 + c21 * r1 + c22 * r2) / determinant
+    for i in range(n):
+        du[i] -= inverse[i, 0] * z0 + inverse[i, 1] * z1 + inverse[i, 2] * z2
+    return True
+
+
+@inlined
+def _newton(h, time, ground_x, ground_y, depth, model, settings, ws, heat, info):
     """NewmarkStepper._solve on a (sub-)step of ``h`` [s] to ``time``; on success the
     committed rows move to the new state (the bearings are committed by the caller).
 
     Returns converged, iterations, residual norm [N], force reference [N], status.
     """
     method = settings.method
-    mass, damping = model.mass, model.damping
-    dofs, tangent = ws[W.DOFS], ws[W.TANGENT]
+    mass = model.mass
+    dofs, inverse = ws[W.DOFS], ws[W.INVERSES][depth]
     top_k, top_c, mass_influence = ws[W.TOP_STIFFNESS], ws[W.TOP_DAMPING], ws[W.MASS_INFLUENCE]
     gamma, beta, alpha = method[GAMMA], method[BETA], method[ALPHA]
     tolerance = method[TOLERANCE]
@@ -205,25 +276,17 @@ def _newton(h, time, ground_x, ground_y, model, settings, ws, heat, info):
             inertia = 0.0
             for j in range(n):
                 inertia += mass[i, j] * dofs[W.A, j]
-            viscous = 0.0
-            for j in range(n):
-                viscous += damping[i, j] * dofs[W.V, j]
-            q = viscous + dofs[W.FORCE, i]
+            q = dofs[W.VISCOUS, i] + dofs[W.FORCE, i]
             dofs[W.Q, i] = q
             residual = dofs[W.LOAD, i] - inertia - weight * q
             dofs[W.RESIDUAL, i] = residual
             inertia_squared += inertia * inertia
             q_squared += q * q
             r_squared += residual * residual
-            for j in range(n):
-                if i < 3:
-                    k_ij, c_ij = top_k[i, j], damping[i, j] + top_c[i, j]
-                else:
-                    k_ij, c_ij = model.stiffness[i, j], damping[i, j]
-                tangent[i, j] = c0 * mass[i, j] + weight * (c1 * c_ij + k_ij)
         r_norm = math.sqrt(r_squared)
         reference = max(previous, math.sqrt(inertia_squared), math.sqrt(q_squared), p_norm)
-        if solve(tangent, dofs[W.RESIDUAL], dofs[W.DU], ws[W.LAPACK_WORK], ws[W.PIVOTS]) != 0:
+        if not _woodbury(inverse, top_k, top_c, weight, c1, dofs[W.RESIDUAL], dofs[W.DU],
+                         ws[W.UPDATE]):
             return False, iteration, r_norm, reference, E.SUCCESS
         du_squared = u_squared = 0.0
         finite = True
@@ -248,7 +311,7 @@ def _newton(h, time, ground_x, ground_y, model, settings, ws, heat, info):
     return False, max_iterations, r_norm, reference, E.SUCCESS
 
 
-@jit
+@inlined
 def _record(k, model, settings, ws, outputs):
     """Step ``k`` of the outputs: the committed rows and every bearing's committed state."""
     dofs, committed = ws[W.DOFS], ws[W.COMMITTED]
@@ -289,6 +352,7 @@ def integrate_plan(model, motion, settings, state, outputs, steps):
     method, info = settings.method, outputs.info
     ground, time = motion.ground, motion.time
     dofs, committed, trial = ws[W.DOFS], ws[W.COMMITTED], ws[W.TRIAL]
+    inverse_steps = ws[W.INVERSE_STEPS]
     stack_start, stack_end, stack_depth = ws[W.STACK_START], ws[W.STACK_END], ws[W.STACK_DEPTH]
     mass, influence, mass_influence = model.mass, model.influence, ws[W.MASS_INFLUENCE]
     n, n_bearings, nt = mass.shape[0], committed.shape[0], ground.shape[0]
@@ -328,8 +392,11 @@ def integrate_plan(model, motion, settings, state, outputs, steps):
                 t_end = start + s1 * span
                 gx, gy = gx0 + s1 * (gx1 - gx0), gy0 + s1 * (gy1 - gy0)
             h = (s1 - s0) * span
+            if abs(h - inverse_steps[depth]) > 1e-9 * h:
+                _effective_inverse(h, model, method, ws[W.INVERSES][depth], ws)
+                inverse_steps[depth] = h
             converged, spent, r_norm, reference, status = _newton(
-                h, t_end, gx, gy, model, settings, ws, heat, info)
+                h, t_end, gx, gy, depth, model, settings, ws, heat, info)
             step_iterations += spent
             if converged:
                 for b in range(n_bearings):

@@ -19,9 +19,9 @@ __all__ = ["PlanModel", "PlanMotion", "PlanOutputs", "PlanSettings", "PlanState"
            "new_plan_workspace"]
 
 # Rows of the ``dofs`` work array: committed and trial u, v, a, p, q, the Newton work, the
-# restoring force f and the storey forces K u + C v of the trial.
-U_C, V_C, A_C, P_C, Q_C, U, V, A, P, Q, LOAD, RESIDUAL, DU, FORCE, STOREY = range(15)
-DOF_ROWS = 15
+# restoring force f, C v and the storey forces K u + C v of the trial.
+U_C, V_C, A_C, P_C, Q_C, U, V, A, P, Q, LOAD, RESIDUAL, DU, FORCE, VISCOUS = range(15)
+STOREY, DOF_ROWS = 15, 16
 
 # ``info`` beyond the planar engine's first nine fields (STATUS ... FAIL_VALUE): the bearing
 # whose trial failed, its trial displacement (x, y) [m] and the grid frame of that trial.
@@ -34,6 +34,7 @@ OVERTURNING, VERTICAL = range(2)
 # The work arrays of ``workspace`` (see :func:`new_plan_workspace`), in this order.
 COMMITTED, TRIAL, STACK_START, STACK_END, STACK_DEPTH, DOFS, TANGENT = range(7)
 LAPACK_WORK, PIVOTS, MASS_INFLUENCE, TOP_STIFFNESS, TOP_DAMPING, LOADS = range(7, 13)
+INVERSES, INVERSE_STEPS, UPDATE = range(13, 16)
 
 
 class PlanModel(NamedTuple):
@@ -133,10 +134,13 @@ def new_plan_workspace(n: int, n_bearings: int, max_subdivisions: int) -> tuple:
     ``max_subdivisions`` halvings, indexed by ``COMMITTED`` ... ``LOADS``: the bearings'
     committed and trial states (n_b, PLATE_STATE_SIZE), the halving stack, the ``dofs`` rows,
     the Newton matrix and LAPACK's work (n, n) and pivots (int32), M r (n, 2), the tangent's
-    rows of the base slab (3, n) in stiffness and damping, and the trial's axial loads."""
+    rows of the base slab (3, n) the bearings add in stiffness and damping, the trial's axial
+    loads, ``A^-1`` per halving depth (depth + 1, n, n) with the step it was formed for (-1:
+    none yet), and the Woodbury update's work (3, n)."""
     depths = max_subdivisions + 2
     return (np.zeros((n_bearings, PLATE_STATE_SIZE)), np.zeros((n_bearings, PLATE_STATE_SIZE)),
             np.zeros(depths), np.zeros(depths), np.zeros(depths, dtype=np.int64),
             np.zeros((DOF_ROWS, n)), np.zeros((n, n)), np.zeros((n, n)),
             np.zeros(n, dtype=np.int32), np.zeros((n, 2)), np.zeros((3, n)), np.zeros((3, n)),
-            np.zeros(n_bearings))
+            np.zeros(n_bearings), np.zeros((depths, n, n)), np.full(depths, -1.0),
+            np.zeros((3, n)))
