@@ -103,6 +103,7 @@ def run_spatial(
     time_limit: float | None = None,
     max_steps: int = DEFAULT_MAX_STEPS,
     grid_orientation: float | None = None,
+    engine: str = "reference",
 ):
     """Run a time-history analysis of a building in plan.
 
@@ -131,6 +132,10 @@ def run_spatial(
         Most time steps the run may take (:func:`structures.limits.check_run`).
     grid_orientation : float, optional
         The precise model's monitor grid orientation [deg] (None: follows the motion).
+    engine : {"reference", "compiled", "auto"}
+        ``"reference"`` (the default): this module's integration on the model objects;
+        ``"compiled"``: the numba engine of :mod:`structures.compiled.plan`, the same
+        histories to round-off; ``"auto"``: the compiled one when numba is there.
 
     Returns
     -------
@@ -153,11 +158,25 @@ def run_spatial(
     y, _ = resampled_record(motion.y, step)
     acceleration = np.column_stack([x, y])
     method = as_method(integrator)
-    result, record, restoring, wall = spatial_history(
-        model, acceleration, step, method, tolerance=tolerance,
-        max_subdivisions=max_subdivisions, time_limit=time_limit)
+    from structures.compiled.plan.engine import (
+        plan_history,
+        select_plan_engine,
+        with_plate_field,
+    )
+
+    chosen = select_plan_engine(engine, model, method)
+    plate = None
+    if chosen == "compiled":
+        result, record, restoring, wall, plate, _ = plan_history(
+            model, acceleration, step, method, tolerance=tolerance,
+            max_subdivisions=max_subdivisions, time_limit=time_limit)
+    else:
+        result, record, restoring, wall = spatial_history(
+            model, acceleration, step, method, tolerance=tolerance,
+            max_subdivisions=max_subdivisions, time_limit=time_limit)
     attrs = {"newton_iterations": int(result.iterations.sum()),
              "subdivisions": int(result.subdivisions.sum()), "wall_time": wall,
-             "engine": "reference"}
-    return spatial_dataset(model, motion, step, acceleration[:result.time.size], result,
-                           record, restoring, attrs=attrs)
+             "engine": chosen}
+    dataset = spatial_dataset(model, motion, step, acceleration[:result.time.size], result,
+                              record, restoring, attrs=attrs)
+    return dataset if plate is None else with_plate_field(dataset, plate)

@@ -367,3 +367,43 @@ def warm_up_plan() -> float:
     finally:
         _WARMING_UP = False
     return _time.perf_counter() - start
+
+
+PLAN_ENGINES = ("auto", "compiled", "reference")
+
+
+def select_plan_engine(engine: str, model: object, method: object) -> str:
+    """The engine that runs a building in plan: ``"compiled"`` or ``"reference"``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``engine``, or ``"compiled"`` for a model it cannot run.
+    """
+    from dcfpb.validation import check_choice
+
+    check_choice(engine, "engine", "run_spatial", PLAN_ENGINES)
+    reason = plan_unsupported(model, method)
+    if engine == "compiled" and reason is not None:
+        raise ValueError(f"The 'engine' parameter of run_spatial is 'compiled' but {reason}; "
+                         "use engine='reference' or 'auto'.")
+    if engine == "auto":
+        return "compiled" if reason is None and kernels.COMPILED else "reference"
+    return engine
+
+
+def with_plate_field(dataset, plate: tuple[np.ndarray, np.ndarray]):
+    """``dataset`` with its plate temperature field replaced by the engine's ``plate``
+    (positions, temperatures), in the variables and coordinates
+    :func:`structures.spatial.results.spatial_dataset` gives the reference's."""
+    names = [name for name in ("plate_temperature", "plate_point_x", "plate_point_y")
+             if name in dataset.variables]
+    dataset = dataset.drop_vars(names)
+    positions, temperatures = plate
+    dataset["plate_temperature"] = (("bearing", "plate_point"), temperatures,
+                                    {"units": "degC", "long_name": "temperature of the plate's "
+                                     "monitor points at the end"})
+    for axis, name in enumerate(("plate_point_x", "plate_point_y")):
+        dataset = dataset.assign_coords({name: (("bearing", "plate_point"),
+                                                positions[..., axis], {"units": "m"})})
+    return dataset
