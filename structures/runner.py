@@ -51,8 +51,7 @@ def run(
         The ground acceleration [m/s^2], or a record file (PEER .AT2 or text;
         :func:`groundmotions.readers.read_record`). A pair (x, y and optionally z) runs the
         building in plan of a file with a ``[plan]`` table
-        (:func:`structures.spatial.analysis.run_spatial`, the reference engine; ``engine``
-        and ``floor_spectra`` do not apply).
+        (:func:`structures.spatial.analysis.run_spatial`; ``floor_spectra`` does not apply).
     model : {"precise", "simplified", "constant"}, optional
         Friction model (default: the building file's).
     integrator : Newmark or HHT or {"newmark", "hht"}, optional
@@ -82,13 +81,12 @@ def run(
     if not isinstance(config, BuildingConfig):
         config = load_config(config)
     if isinstance(motion, GroundMotionPair):
-        if engine not in ("auto", "reference") or floor_spectra:
+        if floor_spectra:
             raise InputError(
-                "A building in plan runs on the reference engine without floor spectra: "
-                f"engine must be 'auto' or 'reference' and floor_spectra False. Got "
-                f"engine={engine!r}, floor_spectra={floor_spectra!r} instead.")
+                "A building in plan runs without floor spectra: floor_spectra must be False. "
+                f"Got floor_spectra={floor_spectra!r} instead.")
         return _run_pair(config, motion, model=model, integrator=integrator, dt=dt,
-                         scale=scale, **options)
+                         scale=scale, engine=engine, **options)
     if not isinstance(motion, GroundMotion):
         from groundmotions.readers import read_record
 

@@ -205,12 +205,19 @@ def test_rotd100_factors_are_those_of_scale_pairs(files, config):
     assert factors[("missing", 1.0)][0] == 1.0  # its runs fail with the reason
 
 
-def test_run_timeout_and_max_steps_reach_a_run(files, config):
-    suite = PairSuite(config, pair_sources(files / "good.csv"), models=("simplified",))
-    spec = suite.plan(read=False)[0][0]
-    row, data = execute_pair_run(spec, None, config, time_limit=1e-3)
+def test_run_timeout_and_max_steps_reach_a_run(files, config, tmp_path):
+    # the compiled engine looks at the clock every CHUNK_STEPS (1024) steps: a pair of 12 s
+    long_pair = synthetic_pair("kanai-tajimi", 7, duration=12.0, dt=0.01, target_pga=2.0,
+                               ground_frequency=15.0, ground_damping=0.6)
+    _write_record(long_pair.x, tmp_path / "long-x.AT2")
+    _write_record(long_pair.y, tmp_path / "long-y.AT2")
+    (tmp_path / "long.csv").write_text("name,x,y\nlong,long-x.AT2,long-y.AT2\n")
+    suite = PairSuite(config, pair_sources(tmp_path / "long.csv"), models=("simplified",))
+    row, data = execute_pair_run(suite.plan(read=False)[0][0], None, config, time_limit=1e-3)
     assert data is None and row["failure"] == "timeout"
     assert row["reason"].startswith("timeout after 0.001 s: the run was stopped at t = ")
+    suite = PairSuite(config, pair_sources(files / "good.csv"), models=("simplified",))
+    spec = suite.plan(read=False)[0][0]
     row, data = execute_pair_run(spec, None, config, max_steps=50)
     assert data is None and row["status"] == "failed" and "150 steps" in row["reason"]
 
