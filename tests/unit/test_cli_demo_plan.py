@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from dcfpb.cli import demo_plan, main
+from dcfpb.cli import demo, main
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -18,18 +18,18 @@ def test_the_plan_example_shipped_in_the_package_is_the_documented_one():
 
 
 def test_the_demo_pair_has_its_stated_peaks():
-    pair = demo_plan.demo_pair()
-    assert pair.x.pga == pytest.approx(demo_plan.PGA_X, rel=1e-12)
-    assert pair.y.pga == pytest.approx(demo_plan.PGA_Y, rel=1e-12)
-    assert pair.duration == pytest.approx(demo_plan.PAIR["duration"], abs=0.02)
+    pair = demo.plan_demo_pair()
+    assert pair.x.pga == pytest.approx(demo.PLAN_PGA_X, rel=1e-12)
+    assert pair.y.pga == pytest.approx(demo.PLAN_PGA_Y, rel=1e-12)
+    assert pair.duration == pytest.approx(demo.PLAN_PAIR["duration"], abs=0.02)
 
 
 def test_demo_plan_prints_the_table_and_writes_its_figures(tmp_path, capsys, monkeypatch):
-    monkeypatch.setitem(demo_plan.PAIR, "duration", 2.0)
+    monkeypatch.setitem(demo.PLAN_PAIR, "duration", 2.0)
     folder = tmp_path / "plan"
     assert main(["demo", "--plan", "--plot", str(folder)]) == 0
     out = capsys.readouterr().out
-    for model in demo_plan.MODELS:
+    for model in demo.MODELS:
         assert f"{model}: the corner bearing" in out
     assert "6 bearings, eccentricity (1.2, 0.6) m" in out
     assert {p.name for p in folder.iterdir()} == {
