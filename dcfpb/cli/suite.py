@@ -207,7 +207,7 @@ def _suite(args: argparse.Namespace, config, target, period_range):
                      property_modifiers=_floats(args.modifiers, "--modifiers"),
                      record_factors=factors, duration=args.duration, dt=args.dt), run_suite
     from dcfpb.errors import InputError
-    from structures.suites.pair_suite import (
+    from structures.suites.pairs.suite import (
         PairSuite,
         pair_sources,
         rotd100_factors,
@@ -289,7 +289,7 @@ def _plots(result, suite, target, period_range) -> list[Path]:
 def _pair_spectra_plot(result, suite, target, period_range, out: Path) -> Path:
     """The RotD100 spectra of the pairs as scaled (and truncated) for the suite."""
     from dcfpb.plotting.suite import plot_scaled_pair_spectra
-    from structures.suites.pair_runs import truncated_pair
+    from structures.suites.pairs.runs import truncated_pair
 
     first = result.peaks.drop_duplicates("pair").set_index("pair")
     pairs, _ = suite.read()

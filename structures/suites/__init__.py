@@ -1,7 +1,7 @@
 """Ground-motion suites: records x scale factors x friction models through Dask, one result
 file per run (:mod:`~structures.suites.suite`, :mod:`~structures.suites.runs`,
 :mod:`~structures.suites.store`), the same for a building in plan under pairs of records
-(:mod:`~structures.suites.pair_suite`, :mod:`~structures.suites.pair_runs`) and the
+(:mod:`~structures.suites.pairs.suite`, :mod:`~structures.suites.pairs.runs`) and the
 statistics of their peaks (:mod:`~structures.suites.summary`)."""
 
 from __future__ import annotations
@@ -13,9 +13,9 @@ _EXPORTS = {
     "run_suite": "structures.suites.suite",
     "record_files": "structures.suites.suite",
     "summarize": "structures.suites.summary",
-    "PairSuite": "structures.suites.pair_suite",
-    "pair_sources": "structures.suites.pair_suite",
-    "run_pair_suite": "structures.suites.pair_suite",
+    "PairSuite": "structures.suites.pairs.suite",
+    "pair_sources": "structures.suites.pairs.suite",
+    "run_pair_suite": "structures.suites.pairs.suite",
 }
 __all__ = [
     "PairSuite",

@@ -1,7 +1,7 @@
 """The run of any suite's runs through Dask, into its folder, and what comes out of it.
 
 Shared by the suites of records (:func:`structures.suites.suite.run_suite`) and of pairs
-(:func:`structures.suites.pair_suite.run_pair_suite`): a suite plans its runs (objects with the
+(:func:`structures.suites.pairs.suite.run_pair_suite`): a suite plans its runs (objects with the
 interface described in :mod:`structures.suites.tasks`) and reads what must be read here;
 :func:`compute_runs` keeps the runs already complete in the folder, records the runs whose
 ground motion cannot be read, computes the others on the cluster (each batch of one ground
@@ -48,7 +48,7 @@ class SuiteResult:
     ----------
     peaks : pandas.DataFrame
         One row per run, in suite order (columns: :data:`structures.suites.runs.COLUMNS`, or
-        :data:`structures.suites.pair_runs.PAIR_COLUMNS` for a suite of pairs; SI units,
+        :data:`structures.suites.pairs.runs.PAIR_COLUMNS` for a suite of pairs; SI units,
         times [s]).
     failures : list of dict
         ``{"run": run id, "reason": ...}`` of every failed run.

@@ -88,7 +88,7 @@ def record_files(source: str | Path) -> tuple[Path, ...]:
 def check_suite_axes(suite: Any, owner: str) -> None:
     """Check and normalise (to tuples) the ``models``, ``scales``, ``property_modifiers``,
     ``duration`` and ``dt`` of a frozen suite (a :class:`Suite` or
-    :class:`~structures.suites.pair_suite.PairSuite`, named ``owner`` in the messages)."""
+    :class:`~structures.suites.pairs.suite.PairSuite`, named ``owner`` in the messages)."""
     models = tuple(check_choice(m, "models", owner, MODELS) for m in suite.models)
     scales = tuple(check_real(s, "scales", owner, low=0.0, low_open=True)
                    for s in suite.scales)

@@ -1,9 +1,9 @@
 """The Dask side of a suite (:func:`structures.suites.suite.run_suite`,
-:func:`structures.suites.pair_suite.run_pair_suite`): the cluster, and the tasks, each a batch
+:func:`structures.suites.pairs.suite.run_pair_suite`): the cluster, and the tasks, each a batch
 of runs of one record (or pair) computed and stored one by one, and their order.
 
 A run is anything with the interface of :class:`structures.suites.runs.RunSpec` (and
-:class:`structures.suites.pair_runs.PairRunSpec`): ``run_id``, ``source`` (the key of its
+:class:`structures.suites.pairs.runs.PairRunSpec`): ``run_id``, ``source`` (the key of its
 ground motion), ``read()``, ``execute(motion, config, time_limit, max_steps)``,
 ``cost(motion, config)`` and ``failure(reason)``.
 
@@ -69,7 +69,7 @@ def execute(spec: Any, motion: Any, config: BuildingConfig, time_limit: float | 
             max_steps: int = DEFAULT_MAX_STEPS) -> tuple[dict[str, Any], bytes | None]:
     """The task of ``write="client"``: compute a run, its row and netCDF bytes travel back
     (``spec.execute``: :func:`structures.suites.runs.execute_run` for a record,
-    :func:`structures.suites.pair_runs.execute_pair_run` for a pair)."""
+    :func:`structures.suites.pairs.runs.execute_pair_run` for a pair)."""
     return spec.execute(motion, config, time_limit, max_steps)
 
 

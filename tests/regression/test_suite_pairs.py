@@ -37,8 +37,8 @@ from groundmotions.records import GroundMotion
 from groundmotions.scaling import asce7_design_spectrum
 from structures.config import load_config
 from structures.spatial.peaks import PLAN_PEAK_KEYS, plan_peaks
-from structures.suites.pair_runs import PLAN_PEAK_COLUMNS, execute_pair_run, truncated_pair
-from structures.suites.pair_suite import (
+from structures.suites.pairs.runs import PLAN_PEAK_COLUMNS, execute_pair_run, truncated_pair
+from structures.suites.pairs.suite import (
     PairSuite,
     pair_sources,
     rotd100_factors,

@@ -3,7 +3,7 @@ x property modifiers, run as suites of single records are (:mod:`structures.suit
 
 A building file with a ``[plan]`` table (:mod:`structures.spatial.plan_schema`) runs under each
 pair of a manifest (:func:`pair_sources`: the CSV of :func:`groundmotions.read_pair_manifest`,
-columns ``name, x, y[, z, dt, units]``). Each run is a :class:`~structures.suites.pair_runs.
+columns ``name, x, y[, z, dt, units]``). Each run is a :class:`~structures.suites.pairs.runs.
 PairRunSpec` whose row holds the peaks of :func:`structures.spatial.peaks.plan_peaks`. The same
 machinery as the single records: Dask (a local cluster or a scheduler address), each run's files
 written atomically, reruns keep complete runs, a pair that cannot be read or run is recorded with
@@ -42,7 +42,7 @@ from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
 from structures.suites.dispatch import SuiteResult, check_run_options, compute_runs, finish
 from structures.suites.lock import SuiteLock
-from structures.suites.pair_runs import PAIR_COLUMNS, PairRunSpec, plan_fingerprint
+from structures.suites.pairs.runs import PAIR_COLUMNS, PairRunSpec, plan_fingerprint
 from structures.suites.runs import file_digest
 from structures.suites.store import RunStore
 from structures.suites.suite import check_suite_axes
@@ -310,7 +310,7 @@ def run_pair_suite(suite: PairSuite, out_dir: str | Path, *, n_workers: int | No
     Returns
     -------
     SuiteResult
-        ``peaks`` with the columns :data:`structures.suites.pair_runs.PAIR_COLUMNS`, the
+        ``peaks`` with the columns :data:`structures.suites.pairs.runs.PAIR_COLUMNS`, the
         ``summary`` of :data:`structures.suites.summary.PLAN_QUANTITIES`. Also written:
         ``peaks.csv``, ``failures.json``, ``summary.csv``, ``summary.parquet``.
 
