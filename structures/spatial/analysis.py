@@ -161,11 +161,7 @@ def run_spatial(
     y, _ = resampled_record(motion.y, step)
     acceleration = np.column_stack([x, y])
     method = as_method(integrator)
-    from structures.compiled.plan.engine import (
-        plan_history,
-        select_plan_engine,
-        with_plate_field,
-    )
+    from structures.compiled.plan.engine import plan_history, select_plan_engine
 
     chosen = select_plan_engine(engine, model, method)
     plate = None
@@ -180,6 +176,5 @@ def run_spatial(
     attrs = {"newton_iterations": int(result.iterations.sum()),
              "subdivisions": int(result.subdivisions.sum()), "wall_time": wall,
              "engine": chosen}
-    dataset = spatial_dataset(model, motion, step, acceleration[:result.time.size], result,
-                              record, restoring, attrs=attrs)
-    return dataset if plate is None else with_plate_field(dataset, plate)
+    return spatial_dataset(model, motion, step, acceleration[:result.time.size], result,
+                           record, restoring, attrs=attrs, plate=plate)

@@ -67,7 +67,7 @@ def spatial_energy_balance(
     """
     load = -(ground_acceleration @ (mass @ influence).T)
     energy_input = _work(load, displacement)
-    kinetic = 0.5 * np.einsum("ti,ij,tj->t", velocity, mass, velocity)
+    kinetic = 0.5 * np.sum((velocity @ mass.T) * velocity, axis=1)  # v . M v per step
     damping_work = _work(velocity @ damping.T, displacement)
     friction = _work(friction_force, bearing_displacement)
     strain = _work(restoring_force, displacement) - friction

@@ -143,11 +143,35 @@ class SpatialIsolatedBuilding:
         """Each bearing's share of the weight at rest, shape (n_b,) [N]."""
         return self._gravity
 
+    @property
+    def overturning_matrix(self) -> np.ndarray:
+        """``G H``: the axial loads' share of the storey forces ``K_s u + C v``, shape
+        (n_b, n_dof) [m] (zeros without overturning)."""
+        return self._overturning
+
+    @property
+    def load_du(self) -> np.ndarray:
+        """dN / du of the axial loads through the overturning, shape (n_b, n_dof) [N/m]."""
+        return self._load_du
+
+    @property
+    def load_dv(self) -> np.ndarray:
+        """dN / dv of the axial loads through the overturning, shape (n_b, n_dof) [N s/m]."""
+        return self._load_dv
+
     def vertical_acceleration(self, time: float) -> float:
         """Vertical ground acceleration at ``time`` [m/s^2] (0 without a vertical)."""
         if self.vertical is None:
             return 0.0
         return float(np.interp(time, self.vertical.time, self.vertical.acceleration))
+
+    def vertical_accelerations(self, times: np.ndarray) -> np.ndarray:
+        """Vertical ground acceleration at each of ``times`` [s], one interpolation for all
+        (the values of :meth:`vertical_acceleration`), shape of ``times`` [m/s^2]."""
+        times = np.asarray(times, dtype=float)
+        if self.vertical is None:
+            return np.zeros_like(times)
+        return np.interp(times, self.vertical.time, self.vertical.acceleration)
 
     def axial_loads(self, u: np.ndarray, v: np.ndarray, time: float) -> np.ndarray:
         """Axial load of each bearing at a trial state (module docstring), (n_b,) [N];

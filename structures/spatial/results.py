@@ -65,7 +65,8 @@ def plate_fields(model: SpatialIsolatedBuilding) -> tuple[np.ndarray, np.ndarray
 def spatial_dataset(model: SpatialIsolatedBuilding, motion: GroundMotionPair, step: float,
                     ground_acceleration: np.ndarray, result: IntegrationResult,
                     record: dict[str, np.ndarray], restoring: np.ndarray, *,
-                    attrs: dict[str, Any]):
+                    attrs: dict[str, Any],
+                    plate: tuple[np.ndarray, np.ndarray] | None = None):
     """Assemble the Dataset of a run in plan.
 
     Parameters
@@ -86,6 +87,10 @@ def spatial_dataset(model: SpatialIsolatedBuilding, motion: GroundMotionPair, st
         Total restoring force, shape (nt, n_dof) [N, N m].
     attrs : dict
         Producer-specific attributes (iterations, wall time, engine).
+    plate : tuple of numpy.ndarray, optional
+        The precise model's plate field (positions (n_bearings, m, 2) [m], temperatures
+        (n_bearings, m) [degC], NaN-padded) when the run kept it outside the model (the
+        compiled engine's); None: read from the model's elements (:func:`plate_fields`).
 
     Returns
     -------
@@ -169,9 +174,10 @@ def spatial_dataset(model: SpatialIsolatedBuilding, motion: GroundMotionPair, st
     time = step * np.arange(nt)
     if model.vertical is not None:
         data["vertical_ground_acceleration"] = var(
-            "time", [model.vertical_acceleration(t) for t in time], "m/s^2",
+            "time", model.vertical_accelerations(time), "m/s^2",
             "vertical ground acceleration (positive up)")
-    plate = plate_fields(model)
+    if plate is None:
+        plate = plate_fields(model)
     if plate is not None:
         data["plate_temperature"] = var(("bearing", "plate_point"), plate[1], "degC",
                                         "temperature of the plate's monitor points at the end")

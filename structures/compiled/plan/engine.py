@@ -176,7 +176,9 @@ def plate_field(heat: tuple, ptv: np.ndarray,
         points, i, k = points[order], i[order], k[order]
         scalars, held = heat[G.SCALARS][b], heat[G.WINDOWS][b, E.HELD]
         now = scalars[E.HEAT_TIME]
-        decay = np.exp(-np.multiply.outer(now - heat[G.STAMPS][b, points], rates))
+        exponent = -np.multiply.outer(now - heat[G.STAMPS][b, points], rates)
+        # exp below -746 is 0.0 exactly; skipping it avoids libm's slow underflow path
+        decay = np.exp(exponent, out=np.zeros_like(exponent), where=exponent > -746.0)
         histories = heat[G.STATES][b, points] * decay
         inside = (i >= held[0]) & (i < held[1]) & (k >= held[2]) & (k < held[3])
         histories[inside] += heat[G.ACCUMULATORS][b]
@@ -282,7 +284,7 @@ def plan_history(model, acceleration: np.ndarray, step: float, method: Newmark |
     # the model's overturning arrays, as its axial_loads and restoring_force use them
     matrices = W.PlanModel(*(np.array(m, dtype=float, order="C") for m in (
         model.mass_matrix, model.damping_matrix, model.superstructure_stiffness,
-        model.influence, model._overturning, model._load_du, model._load_dv,
+        model.influence, model.overturning_matrix, model.load_du, model.load_dv,
         *vertical_arrays)))
     flags = np.array([float(model.overturning), float(vertical is not None)])
     n_b = model.n_bearings
@@ -390,20 +392,3 @@ def select_plan_engine(engine: str, model: object, method: object) -> str:
     if engine == "auto":
         return "compiled" if reason is None and kernels.COMPILED else "reference"
     return engine
-
-
-def with_plate_field(dataset, plate: tuple[np.ndarray, np.ndarray]):
-    """``dataset`` with its plate temperature field replaced by the engine's ``plate``
-    (positions, temperatures), in the variables and coordinates
-    :func:`structures.spatial.results.spatial_dataset` gives the reference's."""
-    names = [name for name in ("plate_temperature", "plate_point_x", "plate_point_y")
-             if name in dataset.variables]
-    dataset = dataset.drop_vars(names)
-    positions, temperatures = plate
-    dataset["plate_temperature"] = (("bearing", "plate_point"), temperatures,
-                                    {"units": "degC", "long_name": "temperature of the plate's "
-                                     "monitor points at the end"})
-    for axis, name in enumerate(("plate_point_x", "plate_point_y")):
-        dataset = dataset.assign_coords({name: (("bearing", "plate_point"),
-                                                positions[..., axis], {"units": "m"})})
-    return dataset
