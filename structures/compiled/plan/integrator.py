@@ -38,8 +38,15 @@ from dcfpb.units import STANDARD_GRAVITY
 from isolator.compiled import plate as E
 from isolator.compiled.kernels import jit
 from isolator.compiled.plate import inlined
-from structures.compiled.lapack import invert, solve
+from structures.compiled.lapack import solve
 from structures.compiled.plan import workspace as W
+from structures.compiled.plan.linear import (
+    add_block,
+    effective_inverse,
+    interpolate,
+    norm,
+    woodbury,
+)
 from structures.compiled.plan.unmanaged import unmanaged
 from structures.compiled.workspace import (
     ALPHA,
@@ -60,35 +67,6 @@ from structures.compiled.workspace import (
 )
 
 __all__ = ["integrate_plan"]
-
-
-@jit
-def interpolate(x, xp, fp):
-    """``numpy.interp(x, xp, fp)`` for one ``x`` (held at the ends), as numpy computes it."""
-    size = xp.shape[0]
-    if x < xp[0]:
-        return fp[0]
-    if x >= xp[size - 1]:
-        return fp[size - 1]
-    lo, hi = 0, size - 1  # xp[lo] <= x < xp[hi]
-    while hi - lo > 1:
-        middle = (lo + hi) // 2
-        if xp[middle] <= x:
-            lo = middle
-        else:
-            hi = middle
-    if xp[lo] == x:
-        return fp[lo]
-    slope = (fp[lo + 1] - fp[lo]) / (xp[lo + 1] - xp[lo])
-    return slope * (x - xp[lo]) + fp[lo]
-
-
-@jit
-def _norm(row):
-    total = 0.0
-    for i in range(row.shape[0]):
-        total += row[i] * row[i]
-    return math.sqrt(total)
 
 
 @inlined
@@ -143,8 +121,8 @@ def _restoring(time, model, settings, ws, heat):
         dofs[W.FORCE, 0] += fx
         dofs[W.FORCE, 1] += fy
         dofs[W.FORCE, 2] += -y * fx + x * fy
-        _add_block(top_k, t[E.KXX], t[E.KXY], t[E.KYX], t[E.KYY], x, y)
-        _add_block(top_c, t[E.CXX], t[E.CXY], t[E.CYX], t[E.CYY], x, y)
+        add_block(top_k, t[E.KXX], t[E.KXY], t[E.KYX], t[E.KYY], x, y)
+        add_block(top_c, t[E.CXX], t[E.CXY], t[E.CYX], t[E.CYY], x, y)
         if overturning and loads[b] > 0.0:  # d(T^T F) / dN times dN / du, dN / dv
             px, py = fx / loads[b], fy / loads[b]
             per_load_2 = -y * px + x * py
@@ -157,86 +135,6 @@ def _restoring(time, model, settings, ws, heat):
                 top_c[1, j] += py * dv
                 top_c[2, j] += per_load_2 * dv
     return E.SUCCESS, -1
-
-
-@jit
-def _add_block(top, kxx, kxy, kyx, kyy, x, y):
-    """top[:3, :3] += T^T k T with T = [[1, 0, -y], [0, 1, x]]."""
-    rx = -y * kxx + x * kyx  # row 2 of T^T k
-    ry = -y * kxy + x * kyy
-    top[0, 0] += kxx
-    top[0, 1] += kxy
-    top[0, 2] += kxx * -y + kxy * x
-    top[1, 0] += kyx
-    top[1, 1] += kyy
-    top[1, 2] += kyx * -y + kyy * x
-    top[2, 0] += rx
-    top[2, 1] += ry
-    top[2, 2] += rx * -y + ry * x
-
-
-@jit
-def _effective_inverse(h, model, method, inverse, ws):
-    """inverse <- (c0 M + (1 + alpha)(c1 C + K))^-1 for a step ``h`` [s]: the Newton matrix
-    without the bearings and the overturning."""
-    c0, c1 = 1.0 / (method[BETA] * h * h), method[GAMMA] / (method[BETA] * h)
-    weight = 1.0 + method[ALPHA]
-    matrix = ws[W.TANGENT]
-    n = matrix.shape[0]
-    for i in range(n):
-        for j in range(n):
-            matrix[i, j] = c0 * model.mass[i, j] + weight * (c1 * model.damping[i, j]
-                                                             + model.stiffness[i, j])
-    invert(matrix, inverse, ws[W.LAPACK_WORK], ws[W.PIVOTS])
-
-
-@jit
-def _woodbury(inverse, top_k, top_c, weight, c1, residual, du, update):
-    """du <- (A + E X)^-1 residual, A^-1 = ``inverse``, E the first three unit columns and
-    X = (1 + alpha)(c1 top_c + top_k) the base slab's rows the bearings add (Woodbury:
-    y - A^-1 E (I + X A^-1 E)^-1 X y, y = A^-1 r). ``update`` is a (3, n) work array. False
-    when I + X A^-1 E is singular (the reference's singular Newton matrix)."""
-    n = inverse.shape[0]
-    for j in range(n):
-        for r in range(3):
-            update[r, j] = weight * (c1 * top_c[r, j] + top_k[r, j])
-    for i in range(n):
-        total = 0.0
-        for j in range(n):
-            total += inverse[i, j] * residual[j]
-        du[i] = total
-    s00 = s01 = s02 = s10 = s11 = s12 = s20 = s21 = s22 = 0.0
-    r0 = r1 = r2 = 0.0
-    for j in range(n):
-        x0, x1, x2 = update[0, j], update[1, j], update[2, j]
-        g0, g1, g2 = inverse[j, 0], inverse[j, 1], inverse[j, 2]
-        s00 += x0 * g0
-        s01 += x0 * g1
-        s02 += x0 * g2
-        s10 += x1 * g0
-        s11 += x1 * g1
-        s12 += x1 * g2
-        s20 += x2 * g0
-        s21 += x2 * g1
-        s22 += x2 * g2
-        r0 += x0 * du[j]
-        r1 += x1 * du[j]
-        r2 += x2 * du[j]
-    s00 += 1.0
-    s11 += 1.0
-    s22 += 1.0
-    c00, c01, c02 = s11 * s22 - s12 * s21, s02 * s21 - s01 * s22, s01 * s12 - s02 * s11
-    c10, c11, c12 = s12 * s20 - s10 * s22, s00 * s22 - s02 * s20, s02 * s10 - s00 * s12
-    c20, c21, c22 = s10 * s21 - s11 * s20, s01 * s20 - s00 * s21, s00 * s11 - s01 * s10
-    determinant = s00 * c00 + s01 * c10 + s02 * c20
-    if determinant == 0.0 or not math.isfinite(determinant):
-        return False
-    z0 = (c00 * r0 + c01 * r1 + c02 * r2) / determinant
-    z1 = (c10 * r0 + c11 * r1 + c12 * r2) / determinant
-    z2 = (c20 * r0 + c21 * r1 + c22 * r2) / determinant
-    for i in range(n):
-        du[i] -= inverse[i, 0] * z0 + inverse[i, 1] * z1 + inverse[i, 2] * z2
-    return True
 
 
 @inlined
@@ -262,9 +160,9 @@ def _newton(h, time, ground_x, ground_y, depth, model, settings, ws, heat, info)
         dofs[W.A, i] = dofs[W.A_C, i]
         dofs[W.U, i] = dofs[W.U_C, i] + h * dofs[W.V_C, i] + half_h2 * dofs[W.A, i]
         dofs[W.V, i] = dofs[W.V_C, i] + h * dofs[W.A, i]
-    previous = max(_norm(dofs[W.P_C]), _norm(dofs[W.Q_C]))
-    u_norm = _norm(dofs[W.U_C])
-    p_norm = _norm(dofs[W.P])
+    previous = max(norm(dofs[W.P_C]), norm(dofs[W.Q_C]))
+    u_norm = norm(dofs[W.U_C])
+    p_norm = norm(dofs[W.P])
     r_norm = reference = np.inf
     max_iterations = int(method[MAX_ITERATIONS])
     for iteration in range(1, max_iterations + 1):
@@ -286,7 +184,7 @@ def _newton(h, time, ground_x, ground_y, depth, model, settings, ws, heat, info)
             r_squared += residual * residual
         r_norm = math.sqrt(r_squared)
         reference = max(previous, math.sqrt(inertia_squared), math.sqrt(q_squared), p_norm)
-        if not _woodbury(inverse, top_k, top_c, weight, c1, dofs[W.RESIDUAL], dofs[W.DU],
+        if not woodbury(inverse, top_k, top_c, weight, c1, dofs[W.RESIDUAL], dofs[W.DU],
                          ws[W.UPDATE]):
             return False, iteration, r_norm, reference, E.SUCCESS
         du_squared = u_squared = 0.0
@@ -396,7 +294,7 @@ def integrate_plan(model, motion, settings, state, outputs, steps):
                 gx, gy = gx0 + s1 * (gx1 - gx0), gy0 + s1 * (gy1 - gy0)
             h = (s1 - s0) * span
             if abs(h - inverse_steps[depth]) > 1e-9 * h:
-                _effective_inverse(h, model, method, ws[W.INVERSES][depth], ws)
+                effective_inverse(h, model, method, ws[W.INVERSES][depth], ws)
                 inverse_steps[depth] = h
             converged, spent, r_norm, reference, status = _newton(
                 h, t_end, gx, gy, depth, model, settings, ws, heat, info)
