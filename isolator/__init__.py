@@ -36,14 +36,14 @@ _EXPORTS = {
     "BearingTestResult": "isolator.testrig",
     "CycleCharacteristics": "isolator.characteristics",
     "cycle_characteristics": "isolator.characteristics",
-    "BidirectionalElement": "isolator.bidirectional",
-    "bidirectional_element": "isolator.bidirectional",
-    "MonitorGrid": "isolator.plate_heating",
-    "Orbit": "isolator.orbits",
-    "orbit": "isolator.orbits",
-    "OrbitTestResult": "isolator.testrig2d",
-    "run_orbit": "isolator.testrig2d",
-    "run_orbit_test": "isolator.testrig2d",
+    "BidirectionalElement": "isolator.bidirectional.element",
+    "bidirectional_element": "isolator.bidirectional.element",
+    "MonitorGrid": "isolator.bidirectional.heating",
+    "Orbit": "isolator.bidirectional.orbits",
+    "orbit": "isolator.bidirectional.orbits",
+    "OrbitTestResult": "isolator.bidirectional.testrig",
+    "run_orbit": "isolator.bidirectional.testrig",
+    "run_orbit_test": "isolator.bidirectional.testrig",
 }
 __all__ = [
     "AxialLoadHistory",
@@ -80,14 +80,14 @@ __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
 
 if TYPE_CHECKING:
     from isolator.bearing import AxialLoadHistory, BearingElement, DCFPBearing
-    from isolator.bidirectional import BidirectionalElement, bidirectional_element
+    from isolator.bidirectional.element import BidirectionalElement, bidirectional_element
+    from isolator.bidirectional.heating import MonitorGrid
+    from isolator.bidirectional.orbits import Orbit, orbit
+    from isolator.bidirectional.testrig import OrbitTestResult, run_orbit, run_orbit_test
     from isolator.characteristics import CycleCharacteristics, cycle_characteristics
     from isolator.experiments import friction_model, protocol_bearing
     from isolator.factors import KumarFactors, PaperFactors
     from isolator.friction import ConstantFriction, PTVFriction, eq7
     from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
-    from isolator.orbits import Orbit, orbit
-    from isolator.plate_heating import MonitorGrid
     from isolator.protocols import ImposedHistory, asce7_prototype_sequence, sine, wind_cycles
     from isolator.testrig import BearingTestResult, run_test
-    from isolator.testrig2d import OrbitTestResult, run_orbit, run_orbit_test

@@ -1,10 +1,11 @@
 """One bearing in OpenSees 3D under an imposed orbit in the horizontal plane.
 
-:func:`run_opensees_orbit` is the OpenSees twin of :func:`isolator.testrig2d.run_orbit_test`:
+:func:`run_opensees_orbit` is the OpenSees twin of
+:func:`isolator.bidirectional.testrig.run_orbit_test`:
 it builds one 3D element (``ndm 3``, ``ndf 6``, two coincident nodes) from a
 :class:`~isolator.bearing.DCFPBearing`, loads it with the bearing's constant axial load, drives
 the top node's X and Y through the orbit and returns an
-:class:`~isolator.testrig2d.OrbitTestResult`. Elements:
+:class:`~isolator.bidirectional.testrig.OrbitTestResult`. Elements:
 
 ``"coulomb"``
     ``singleFPBearing`` (3D, ``SingleFPSimple3d``) with ``frictionModel Coulomb`` for a
@@ -24,7 +25,8 @@ Conventions read in ``SingleFPSimple3d.cpp`` and ``FPBearingPTV.cpp`` (``update(
 - Both run one coupled return map on the two shear components: a trial force
   ``q* = k0 (u - u_p)`` per axis, ``k0_i = kInit - N / R_i``; if ``|q*| > mu N`` it is
   projected on the circle of radius mu N (radial return). With k0 = mu N / u_y this is our
-  :func:`~isolator.bidirectional.isotropic_return_map`, except that k0 is fixed by kInit while
+  :func:`~isolator.bidirectional.element.isotropic_return_map`, except that k0 is fixed by kInit
+  while
   ours, mu N z with z moving by du / u_y, follows N and mu; and k0_x != k0_y off the axes.
 - singleFPBearing: ``R_x = sqrt(R^2 - u_Y^2)``, ``R_y = sqrt(R^2 - u_X^2)``; restoring force
   ``(N u_X / R_x, N u_Y / R_y)`` (:func:`singlefp3d_restoring`; in 1D our linear law N u / R);
@@ -52,9 +54,9 @@ from numpy.typing import ArrayLike
 
 from dcfpb.validation import check_choice
 from isolator.bearing import DCFPBearing
+from isolator.bidirectional.orbits import Orbit
+from isolator.bidirectional.testrig import OrbitTestResult
 from isolator.friction import ConstantFriction
-from isolator.orbits import Orbit
-from isolator.testrig2d import OrbitTestResult
 from structures.opensees.equivalents import (
     FPBEARINGPTV_AMBIENT,
     check_ptv_friction,
@@ -110,7 +112,8 @@ def run_opensees_orbit(
         Imposed relative displacement (x, y) [m], starting at (0, 0).
     velocity : array_like, shape (n, 2), optional
         Imposed velocity [m/s]; by default ``numpy.gradient`` of the displacement (as
-        :func:`~isolator.testrig2d.run_orbit_test`). Give the analytic velocity where known.
+        :func:`~isolator.bidirectional.testrig.run_orbit_test`). Give the analytic velocity where
+        known.
     element : {"coulomb", "ptv"}
         Which OpenSees element (see the module docstring).
     name : str
@@ -195,7 +198,8 @@ def run_opensees_orbit(
 
 def opensees_orbit(bearing: DCFPBearing, orbit: Orbit, *,
                    element: str = "coulomb") -> OrbitTestResult:
-    """:func:`run_opensees_orbit` on an :class:`~isolator.orbits.Orbit` (its exact velocity)."""
+    """:func:`run_opensees_orbit` on an :class:`~isolator.bidirectional.orbits.Orbit` (its exact
+    velocity)."""
     return run_opensees_orbit(bearing, orbit.time, orbit.displacement, orbit.velocity,
                               element=element, name=orbit.name)
 

@@ -1,7 +1,7 @@
 """Our bidirectional element side by side with OpenSees 3D, one bearing under one orbit.
 
 :func:`run_orbit_comparison` drives the same orbit through our element
-(:func:`isolator.testrig2d.run_orbit`) and through the OpenSees 3D element
+(:func:`isolator.bidirectional.testrig.run_orbit`) and through the OpenSees 3D element
 (:func:`structures.opensees.bearing3d.opensees_orbit`); :func:`compare_orbit_results`
 measures the differences. Both runs share the orbit's samples, so the force histories (x, y)
 are compared sample by sample. Differences are OpenSees's relative to ours:
@@ -29,8 +29,8 @@ import numpy as np
 
 from dcfpb.validation import check_choice
 from isolator.bearing import DCFPBearing
-from isolator.orbits import Orbit
-from isolator.testrig2d import OrbitTestResult, path_integral, run_orbit
+from isolator.bidirectional.orbits import Orbit
+from isolator.bidirectional.testrig import OrbitTestResult, path_integral, run_orbit
 from structures.opensees.bearing3d import ELEMENTS_3D, opensees_orbit, singlefp3d_normal_force
 
 __all__ = ["OrbitComparison", "compare_orbit_results", "orbit_cycles", "run_orbit_comparison"]
@@ -146,7 +146,7 @@ def run_orbit_comparison(
         a ConstantFriction for ``"coulomb"``, a PTVFriction shaped by
         :func:`~structures.opensees.equivalents.fpbearingptv_equivalent` for ``"ptv"``).
     orbit : Orbit
-        The imposed orbit (:mod:`isolator.orbits`), starting at the centre.
+        The imposed orbit (:mod:`isolator.bidirectional.orbits`), starting at the centre.
     element : {"coulomb", "ptv"}
         singleFPBearing 3D with Coulomb friction, or FPBearingPTV.
     ours_bearing : DCFPBearing, optional

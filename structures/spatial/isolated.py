@@ -2,7 +2,7 @@
 
 Degrees of freedom: those of :class:`~structures.spatial.building.SpatialBuilding`, the base
 slab's ``(u_x, u_y, theta)`` first. Bearing ``i`` at ``(x_i, y_i)`` is a
-:class:`~isolator.bidirectional.BidirectionalElement` whose plates move apart by
+:class:`~isolator.bidirectional.element.BidirectionalElement` whose plates move apart by
 ``u_i = T_i q_b = (u_x - theta y_i, u_y + theta x_i)``; its force ``F_i`` acts on the base slab as
 ``T_i^T F_i`` (force x, force y, torque about O) and its 2x2 tangents as ``T_i^T K_i T_i``.
 No viscous damping acts on the isolation level.
@@ -41,7 +41,7 @@ from dcfpb.errors import InputTypeError, InputWarning
 from dcfpb.units import STANDARD_GRAVITY
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
-from isolator.bidirectional import BidirectionalElement, PlanarState
+from isolator.bidirectional.element import BidirectionalElement, PlanarState
 from structures.model import RestoringForce
 from structures.spatial.building import SpatialBuilding, bearing_transformation, dof
 

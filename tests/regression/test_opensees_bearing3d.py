@@ -43,10 +43,10 @@ import numpy as np
 import pytest
 
 from isolator.bearing import DCFPBearing
+from isolator.bidirectional.orbits import circle, figure_eight, line, square
 from isolator.factors import KumarFactors
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import MonitorLine
-from isolator.orbits import circle, figure_eight, line, square
 from isolator.protocols import sine
 from structures.opensees.bearing import run_opensees_test
 from structures.opensees.bearing3d import (

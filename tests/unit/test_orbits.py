@@ -7,10 +7,19 @@ import math
 import numpy as np
 import pytest
 
+from isolator.bidirectional.orbits import (
+    ORBITS,
+    Orbit,
+    circle,
+    figure_eight,
+    line,
+    orbit,
+    rotation,
+    square,
+)
+from isolator.bidirectional.testrig import run_orbit_test
 from isolator.experiments import protocol_bearing
-from isolator.orbits import ORBITS, Orbit, circle, figure_eight, line, orbit, rotation, square
 from isolator.protocols import sine
-from isolator.testrig2d import run_orbit_test
 
 
 def test_circle_keeps_its_radius_and_speed():

@@ -17,13 +17,13 @@ import numpy as np
 import pytest
 
 from isolator.bearing import DCFPBearing
-from isolator.bidirectional import BidirectionalElement, isotropic_return_map
+from isolator.bidirectional.element import BidirectionalElement, isotropic_return_map
+from isolator.bidirectional.orbits import circle, line
+from isolator.bidirectional.testrig import path_integral, run_orbit
 from isolator.experiments import protocol_bearing
 from isolator.friction import ConstantFriction
-from isolator.orbits import circle, line
 from isolator.protocols import sine
 from isolator.testrig import run_test
-from isolator.testrig2d import path_integral, run_orbit
 
 N = 60e6 * math.pi * 0.15**2  # 60 N/mm^2 on a 300 mm slider [N]
 MODELS = ("constant", "simplified", "precise")

@@ -20,12 +20,12 @@ import math
 import numpy as np
 import pytest
 
-from isolator.bidirectional import BidirectionalElement
+from isolator.bidirectional.element import BidirectionalElement
+from isolator.bidirectional.heating import GridHeating, MonitorGrid
+from isolator.bidirectional.orbits import circle, figure_eight, line
+from isolator.bidirectional.testrig import run_orbit
 from isolator.experiments import protocol_bearing
 from isolator.heating import ThermalProperties, exact_rise, sum_of_exponentials
-from isolator.orbits import circle, figure_eight, line
-from isolator.plate_heating import GridHeating, MonitorGrid
-from isolator.testrig2d import run_orbit
 
 SLIDER = 0.2  # [m]: a 35 x 35 window of 5 mm points
 HALF_SIDE = 0.5 * math.sqrt(math.pi) * 0.5 * SLIDER  # Eq. 5

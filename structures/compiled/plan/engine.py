@@ -20,13 +20,13 @@ import numpy as np
 
 from dcfpb.errors import CapacityExceeded
 from isolator.bearing import trial_failure
+from isolator.bidirectional.heating import GridHeating
 from isolator.compiled import kernels
 from isolator.compiled import layout as L
-from isolator.compiled import plate as E
-from isolator.compiled import plate_grid as G
+from isolator.compiled.bidirectional import bearing as E
+from isolator.compiled.bidirectional import grid as G
 from isolator.compiled.layout import pack_ptv
 from isolator.friction import ConstantFriction, PTVFriction
-from isolator.plate_heating import GridHeating
 from structures.compiled.engine import CHUNK_STEPS, time_limit_error
 from structures.compiled.plan import integrator as compiled
 from structures.compiled.plan import workspace as W

@@ -6,7 +6,8 @@ the Newmark / HHT-alpha Newton step of :mod:`structures.integrators` with a grou
 of two components, the model of :class:`~structures.spatial.isolated.SpatialIsolatedBuilding`
 (storey springs and dampers, every bearing at its plan position with its axial load per trial
 from the gravity share, the vertical record and the overturning of the storey forces, and
-their consistent tangent) and the bidirectional elements of :mod:`isolator.compiled.plate`. It
+their consistent tangent) and the bidirectional elements of
+:mod:`isolator.compiled.bidirectional.bearing`. It
 mirrors the reference operation for operation, so the two agree to round-off: the same
 predictor, residual, force reference and convergence tests, the same depth-first halving with
 the ground accelerations interpolated linearly and the bearings committed after each sub-step,
@@ -35,9 +36,9 @@ import math
 import numpy as np
 
 from dcfpb.units import STANDARD_GRAVITY
-from isolator.compiled import plate as E
+from isolator.compiled.bidirectional import bearing as E
+from isolator.compiled.bidirectional.bearing import inlined
 from isolator.compiled.kernels import jit
-from isolator.compiled.plate import inlined
 from structures.compiled.lapack import solve
 from structures.compiled.plan import workspace as W
 from structures.compiled.plan.linear import (

@@ -13,7 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from isolator.compiled.plate import PLATE_STATE_SIZE
+from isolator.compiled.bidirectional.bearing import PLATE_STATE_SIZE
 
 __all__ = ["PlanModel", "PlanMotion", "PlanOutputs", "PlanSettings", "PlanState",
            "new_plan_workspace"]
@@ -80,7 +80,7 @@ class PlanSettings(NamedTuple):
     method : ndarray, shape (6,)
         As the planar engine's (``structures.compiled.workspace.GAMMA`` ...).
     bearings : ndarray, shape (n_b, PLATE_PARAMETERS)
-        One row per bearing (:mod:`isolator.compiled.plate`), SI units.
+        One row per bearing (:mod:`isolator.compiled.bidirectional.bearing`), SI units.
     ptv : ndarray, shape (PTV_PARAMETERS,)
         The friction constants (:func:`isolator.compiled.layout.pack_ptv`).
     flags : ndarray, shape (2,)
@@ -95,7 +95,7 @@ class PlanSettings(NamedTuple):
 
 class PlanState(NamedTuple):
     """What the engine carries from step to step and from call to call (changed in place):
-    ``heat`` (:func:`isolator.compiled.plate.new_plate_heating`) and ``workspace``
+    ``heat`` (:func:`isolator.compiled.bidirectional.bearing.new_plate_heating`) and ``workspace``
     (:func:`new_plan_workspace`)."""
 
     heat: tuple
@@ -110,7 +110,7 @@ class PlanOutputs(NamedTuple):
     displacement, velocity, acceleration : ndarray, shape (nt, n)
         Relative response [m, rad], [m/s, rad/s], [m/s^2, rad/s^2].
     record : ndarray, shape (nt, n_b, PLATE_STATE_SIZE)
-        Each bearing's committed state (:mod:`isolator.compiled.plate` columns).
+        Each bearing's committed state (:mod:`isolator.compiled.bidirectional.bearing` columns).
     restoring : ndarray, shape (nt, n)
         Storey springs plus all bearings on the base slab [N, N m].
     iterations, subdivisions : ndarray of int64, shape (nt - 1,)

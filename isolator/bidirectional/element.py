@@ -9,8 +9,8 @@ the unit circle while sliding; :func:`isotropic_return_map`), so the friction fo
 magnitude mu N and the direction of the sliding. The restoring law is the planar element's
 (``"linear"`` N u / R_eff or ``"spherical"`` N u / sqrt(R_eff^2 - |u|^2)), the slider sits at
 u / 2 on each plate and mu, the temperature and the heat flux come from the 2D friction
-evaluators (:mod:`isolator.plate_friction`, the precise model on a monitor grid,
-:mod:`isolator.plate_heating`).
+evaluators (:mod:`isolator.bidirectional.friction`, the precise model on a monitor grid,
+:mod:`isolator.bidirectional.heating`).
 
 The element takes the parameters of the planar one (:class:`~isolator.bearing.DCFPBearing`;
 ``displacement_capacity`` is then a radius) and keeps its contract: ``set_trial(u, v, time)``
@@ -30,8 +30,8 @@ from numpy.typing import ArrayLike
 
 from dcfpb.errors import CapacityExceeded
 from isolator.bearing import DCFPBearing, trial_failure
+from isolator.bidirectional.friction import PlateFriction, bind_plate_friction
 from isolator.friction import PTVFriction
-from isolator.plate_friction import PlateFriction, bind_plate_friction
 
 _IDENTITY = np.eye(2)
 
@@ -123,7 +123,7 @@ class BidirectionalElement:
         The bearing's parameters (those of the planar element).
     grid_orientation : float or None
         Orientation of the precise model's monitor grid [deg]; None (the default) follows the
-        motion (:class:`~isolator.plate_heating.MonitorGrid`). Ignored by the other models.
+        motion (:class:`~isolator.bidirectional.heating.MonitorGrid`). Ignored by the other models.
     """
 
     def __init__(self, bearing: DCFPBearing, grid_orientation: float | None = None) -> None:

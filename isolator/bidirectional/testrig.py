@@ -1,7 +1,8 @@
 """The virtual bearing test machine in 2D: a bearing driven through an imposed orbit.
 
 Each sample of the orbit is one trial of the bidirectional element
-(:class:`~isolator.bidirectional.BidirectionalElement`) followed by a commit, as the planar rig
+(:class:`~isolator.bidirectional.element.BidirectionalElement`) followed by a commit, as the planar
+rig
 (:func:`isolator.testrig.run_test`) does along one axis. The result holds the force (n, 2), mu,
 temperature and heat-flux histories, the per-cycle characteristics along each axis
 (:func:`isolator.characteristics.cycle_characteristics` on each component) and the energies:
@@ -19,9 +20,9 @@ from numpy.typing import ArrayLike
 
 from dcfpb.validation import check_array
 from isolator.bearing import DCFPBearing
-from isolator.bidirectional import BidirectionalElement
+from isolator.bidirectional.element import BidirectionalElement
+from isolator.bidirectional.orbits import Orbit
 from isolator.friction import PTVFriction
-from isolator.orbits import Orbit
 
 AXES = ("x", "y")
 
@@ -94,7 +95,8 @@ class OrbitTestResult:
 
     def dissipated_energy(self, samples: slice = slice(None)) -> float:
         """Work of the force along the orbit, integral of F . du [J] (trapezoid), over the
-        ``samples`` (e.g. one block of :meth:`isolator.orbits.Orbit.segment_slices`). Over a
+        ``samples`` (e.g. one block of :meth:`isolator.bidirectional.orbits.Orbit.segment_slices`).
+        Over a
         closed path the restoring part cancels and this is the energy dissipated."""
         return path_integral(self.displacement[samples], self.force[samples])
 
@@ -204,6 +206,7 @@ def run_orbit_test(
 
 def run_orbit(bearing: DCFPBearing, orbit: Orbit, *,
               grid_orientation: float | None = None) -> OrbitTestResult:
-    """:func:`run_orbit_test` on an :class:`~isolator.orbits.Orbit` (its exact velocity)."""
+    """:func:`run_orbit_test` on an :class:`~isolator.bidirectional.orbits.Orbit` (its exact
+    velocity)."""
     return run_orbit_test(bearing, orbit.time, orbit.displacement, orbit.velocity,
                           name=orbit.name, grid_orientation=grid_orientation)

@@ -2,11 +2,11 @@
 engine of the building in plan.
 
 :func:`plate_trial` and :func:`plate_commit` are ``BidirectionalElement.set_trial`` (with the
-trial's axial load) and ``commit`` of :mod:`isolator.bidirectional` for bearing ``b`` of a
+trial's axial load) and ``commit`` of :mod:`isolator.bidirectional.element` for bearing ``b`` of a
 building, its state a row of the ``committed`` / ``trial`` arrays (``TIME`` ... ``AXIAL_LOAD``,
 then the trial's tangents and pending heat), operation for operation: the isotropic return map,
 the linear / spherical / flat restoring law, uplift (no load: no force, no heat), and the
-friction of :mod:`isolator.plate_friction` through the planar kernels (``cold_friction``,
+friction of :mod:`isolator.bidirectional.friction` through the planar kernels (``cold_friction``,
 ``solve_friction``, ``heated_window``, ``ptv_friction``; the step factors of
 :func:`isolator.heating.step_factors`, exact for every step size):
 
@@ -14,8 +14,9 @@ friction of :mod:`isolator.plate_friction` through the planar kernels (``cold_fr
 - PTV without heating: Eq. 7 at the initial temperature, with the trial's pressure;
 - simplified (Eq. 6): the centre point at the distance |u| / surfaces, its history updated as
   ``advance_states`` does, bit for bit;
-- precise: the monitor grid, held as a group under the slider (:mod:`isolator.compiled.plate_grid`),
-  an exact rearrangement of :class:`~isolator.plate_heating.GridHeating` (round-off apart),
+- precise: the monitor grid, held as a group under the slider
+  (:mod:`isolator.compiled.bidirectional.grid`),
+  an exact rearrangement of :class:`~isolator.bidirectional.heating.GridHeating` (round-off apart),
   with its frame fixed by the motion at the first heated commit as the reference's.
 
 Each heated bearing has its own heat clock (``HEAT_TIME``), advanced by the committed steps
@@ -31,13 +32,7 @@ import math
 import numpy as np
 
 from isolator.compiled import layout as L
-from isolator.compiled.kernels import (
-    cold_friction,
-    heated_window,
-    ptv_friction,
-    solve_friction,
-)
-from isolator.compiled.plate_grid import (
+from isolator.compiled.bidirectional.grid import (
     ACCUMULATORS,
     CACHE_SLOTS,
     DECAYS,
@@ -55,6 +50,12 @@ from isolator.compiled.plate_grid import (
     mark_heated,
     move_grid_window,
     reanchor_grid_window,
+)
+from isolator.compiled.kernels import (
+    cold_friction,
+    heated_window,
+    ptv_friction,
+    solve_friction,
 )
 from isolator.contact_window import advance_window, window_history
 from isolator.heating import step_factors
@@ -102,7 +103,7 @@ SUCCESS, NOT_CONVERGED, LEFT_MONITOR_LINE, STEP_BELOW_MIN_LAG, BEYOND_RADIUS = r
 def new_plate_heating(n_bearings: int, points: int, rates: np.ndarray,
                       weights: np.ndarray) -> tuple[np.ndarray, ...]:
     """The heat history of ``n_bearings`` plates as one tuple indexed by ``RATES`` ...
-    ``WINDOWS`` of :mod:`isolator.compiled.plate_grid`.
+    ``WINDOWS`` of :mod:`isolator.compiled.bidirectional.grid`.
 
     ``points`` monitor points per plate (n x n for the grid, 1 for the centre point), ``rates``
     [1/s] and ``weights`` [s^-0.5] of the kernel, shape (K,). Zero history, unheated, no frame.

@@ -13,7 +13,7 @@ enters the monitor points under the slider, which sits at u / surfaces on each p
   centre point and kernel (:func:`~isolator.compiled.kernels.ptv_trial`) are driven with that
   distance (exact in any direction).
 - The precise model (Eq. 5, 7) reads the contact temperature from a grid over the plate
-  (:class:`~isolator.plate_heating.GridHeating`) and solves Eq. 7 with the planar kernel
+  (:class:`~isolator.bidirectional.heating.GridHeating`) and solves Eq. 7 with the planar kernel
   :func:`~isolator.compiled.kernels.ptv_friction`, the newest interval's flux included.
 
 Both heated models are :class:`PTVPlateState`, which calls the kernels itself rather than the
@@ -32,11 +32,11 @@ from typing import NamedTuple
 
 import numpy as np
 
+from isolator.bidirectional.heating import GridHeating, MonitorGrid
 from isolator.compiled.kernels import cold_friction, ptv_friction, ptv_trial, solve_friction
 from isolator.compiled.layout import pack_ptv
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import MonitorLine, SurfaceHeating, sum_of_exponentials
-from isolator.plate_heating import GridHeating, MonitorGrid
 
 
 class PlateFriction(NamedTuple):
@@ -92,7 +92,8 @@ class PTVPlateState:
     """The precise and simplified models (Eq. 4-7) for a slider moving in 2D.
 
     The precise model reads the contact temperature from a monitor grid on each plate
-    (:class:`~isolator.plate_heating.GridHeating`); the simplified one from the planar centre
+    (:class:`~isolator.bidirectional.heating.GridHeating`); the simplified one from the planar
+    centre
     point (:class:`~isolator.heating.SurfaceHeating`) at the distance |u| / surfaces; a model
     without heating stays at its initial temperature. Eq. 7 is solved by the planar kernels with
     the newest interval's flux included, so d mu / d|v| keeps its sign (it is negative where
@@ -108,7 +109,7 @@ class PTVPlateState:
         Largest relative displacement of the plates [m].
     orientation : float or None
         Fixed angle of the grid's first axis from x [deg]; None follows the motion
-        (:class:`~isolator.plate_heating.MonitorGrid`).
+        (:class:`~isolator.bidirectional.heating.MonitorGrid`).
     """
 
     def __init__(self, model: PTVFriction, contact_radius: float, travel: float,

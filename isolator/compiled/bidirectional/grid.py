@@ -1,6 +1,6 @@
 """The precise model's monitor grid over a plate, held for the compiled engine in array form.
 
-:class:`~isolator.plate_heating.GridHeating` stores a history G_j (K exponential terms) for
+:class:`~isolator.bidirectional.heating.GridHeating` stores a history G_j (K exponential terms) for
 every point ever heated and, per trial, decays and sums the points under the slider (about
 2,800 for a 300 mm slider at 5 mm spacing: 140,000 terms per trial). Here the points under the
 slider are carried as one group, as :mod:`isolator.contact_window` does on a line, so a trial
@@ -50,7 +50,8 @@ else:  # pragma: no cover
     inlined = jit
 
 
-# The heat history's arrays travel as one tuple (:func:`isolator.compiled.plate.new_plate_heating`),
+# The heat history's arrays travel as one tuple
+# (:func:`isolator.compiled.bidirectional.bearing.new_plate_heating`),
 # in this order; the per-bearing ones have the bearing first.
 RATES, WEIGHTS, STATES, STAMPS, MARKS, PENDING_LIST, ACCUMULATORS, OFFSETS = range(8)
 CACHE_KEYS, CACHE_VALUES, CACHE_STATE, SCALARS, FACTORS, DECAYS, SLOTS, TABLE = range(8, 16)
@@ -133,7 +134,8 @@ def move_grid_window(b, n, old, new, time, heat):
     """Make the rectangle ``new`` the window of bearing ``b`` in place of ``old`` at ``time``.
 
     ``old`` and ``new`` are (i_lo, i_hi, k_lo, k_hi) (either may be empty); ``n`` points per
-    axis; ``heat`` is the tuple of :func:`isolator.compiled.plate.new_plate_heating`.
+    axis; ``heat`` is the tuple of
+    :func:`isolator.compiled.bidirectional.bearing.new_plate_heating`.
     """
     rates, states, stamps = heat[RATES], heat[STATES][b], heat[STAMPS][b]
     accumulator, offsets = heat[ACCUMULATORS][b], heat[OFFSETS][b]
