@@ -57,8 +57,8 @@ def bearing(model: str, weight: float):
 def pair(duration: float):
     """The synthetic 10 s pair with a vertical at ``DT``, repeated to ``duration`` [s] (so
     that every length sees the same shaking)."""
-    from groundmotions.pair_synthetic import synthetic_pair
     from groundmotions.pairs import GroundMotionPair
+    from groundmotions.pairs.synthetic import synthetic_pair
     from groundmotions.records import GroundMotion
 
     base = synthetic_pair("kanai-tajimi", 11, duration=10.0, dt=DT, target_pga=4.0,

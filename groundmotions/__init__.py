@@ -9,9 +9,10 @@ the package at run time, and the readers (`groundmotions.readers`, `groundmotion
 """
 
 from groundmotions.bundled import bundled_names, load_bundled
-from groundmotions.pair_scaling import PairScalingReport, scale_pairs
-from groundmotions.pair_synthetic import synthetic_pair
 from groundmotions.pairs import GroundMotionPair, read_pair, read_pair_manifest
+from groundmotions.pairs.rotd import RotDSpectrum, rotd_spectra
+from groundmotions.pairs.scaling import PairScalingReport, scale_pairs
+from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.processing import (
     arias_intensity,
     baseline_corrected,
@@ -23,7 +24,6 @@ from groundmotions.processing import (
 )
 from groundmotions.readers import read_peer_at2, read_record, read_text_record
 from groundmotions.records import GroundMotion, RecordFormatError
-from groundmotions.rotd import RotDSpectrum, rotd_spectra
 from groundmotions.scaling import (
     ScalingReport,
     TargetSpectrum,

@@ -12,7 +12,7 @@
 
 Single horizontal components are scaled here (for the planar building); pairs of components
 for the building in plan are scaled on their maximum-direction (RotD100) spectrum by
-:mod:`groundmotions.pair_scaling`.
+:mod:`groundmotions.pairs.scaling`.
 """
 
 from __future__ import annotations

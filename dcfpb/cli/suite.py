@@ -47,7 +47,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="target spectrum: a CSV of rows 'period,sa' in [s, g], or "
                    "asce7:S_DS,S_D1,T_L (asce7-mce:... for MCE_R); each record is scaled "
                    "to it (groundmotions.scaling.scale_suite), each pair on its RotD100 "
-                   "(groundmotions.pair_scaling.scale_pairs, ASCE 7-16); --scales then "
+                   "(groundmotions.pairs.scaling.scale_pairs, ASCE 7-16); --scales then "
                    "multiplies those factors")
     p.add_argument("--period-range", metavar="TMIN,TMAX",
                    help="period range of the scaling [s] (default 0.75 and 1.25 times the "

@@ -171,7 +171,7 @@ def plot_scaled_pair_spectra(
     title : str
         Figure title.
     """
-    from groundmotions.rotd import rotd_spectra
+    from groundmotions.pairs.rotd import rotd_spectra
 
     plt = _pyplot()
     t_target = np.asarray(target_periods, dtype=float)

@@ -42,9 +42,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from groundmotions.pair_scaling import scale_pairs
-from groundmotions.pair_synthetic import synthetic_pair
 from groundmotions.pairs import GroundMotionPair, read_pair
+from groundmotions.pairs.scaling import scale_pairs
+from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion
 from groundmotions.scaling import asce7_design_spectrum, isolated_period_range
 from isolator.bearing import DCFPBearing

@@ -30,9 +30,9 @@ import structures
 from dcfpb import cli
 from dcfpb.errors import InputError, InputWarning
 from dcfpb.units import STANDARD_GRAVITY
-from groundmotions.pair_scaling import scale_pairs
-from groundmotions.pair_synthetic import synthetic_pair
 from groundmotions.pairs import read_pair
+from groundmotions.pairs.scaling import scale_pairs
+from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion
 from groundmotions.scaling import asce7_design_spectrum
 from structures.config import load_config

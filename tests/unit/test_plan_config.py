@@ -10,7 +10,7 @@ import pytest
 
 import structures
 from dcfpb.errors import InputError
-from groundmotions.pair_synthetic import synthetic_pair
+from groundmotions.pairs.synthetic import synthetic_pair
 
 PLAN_FILE = """
 name = "three storeys in plan"

@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 from dcfpb.units import STANDARD_GRAVITY
-from groundmotions.pair_synthetic import synthetic_pair
 from groundmotions.pairs import GroundMotionPair
+from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from isolator.experiments import friction_model

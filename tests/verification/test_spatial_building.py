@@ -25,8 +25,8 @@ import numpy as np
 import pytest
 
 from dcfpb.units import STANDARD_GRAVITY
-from groundmotions.pair_synthetic import synthetic_pair
 from groundmotions.pairs import GroundMotionPair, read_pair
+from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion
 from groundmotions.synthetic import kanai_tajimi
 from isolator.bearing import DCFPBearing

@@ -12,7 +12,7 @@ suite per folder (:mod:`structures.suites.lock`).
 
 Scale factors: per pair, a mapping by pair name, or a hook given the readable pairs in order,
 e.g. :func:`rotd100_factors`, the ASCE 7-16 scaling of the suite on RotD100
-(:func:`groundmotions.pair_scaling.scale_pairs`); ``scales`` multiplies them.
+(:func:`groundmotions.pairs.scaling.scale_pairs`); ``scales`` multiplies them.
 
 Example::
 
@@ -157,10 +157,10 @@ def rotd100_factors(target: Any, period_range: tuple[float, float],
     period_range : (float, float)
         ``(T_min, T_max)`` [s], e.g. 0.75 T_M to 1.25 T_M.
     **options
-        Further keywords of :func:`groundmotions.pair_scaling.scale_pairs` (``damping``,
+        Further keywords of :func:`groundmotions.pairs.scaling.scale_pairs` (``damping``,
         ``method``, ``fraction``, ...).
     """
-    from groundmotions.pair_scaling import scale_pairs
+    from groundmotions.pairs.scaling import scale_pairs
 
     def hook(pairs: Sequence[GroundMotionPair]) -> list[float]:
         report = scale_pairs(pairs, target, period_range, **options)

@@ -26,7 +26,7 @@ import numpy as np
 from dcfpb.errors import InputError, InputTypeError
 from dcfpb.validation import check_choice, check_int, check_real
 from groundmotions.pairs import GroundMotionPair
-from groundmotions.rotd import rotd_spectra
+from groundmotions.pairs.rotd import rotd_spectra
 from groundmotions.scaling import TargetSpectrum
 
 __all__ = ["PairScalingReport", "scale_pairs"]

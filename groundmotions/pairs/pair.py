@@ -11,8 +11,9 @@
     the pairs listed in a CSV file with the columns ``name, x, y`` and optionally ``z``,
     ``dt`` (for one-column text records) and ``units``; paths relative to the manifest.
 
-Synthetic pairs are made by `groundmotions.pair_synthetic.synthetic_pair`, RotD spectra by
-`groundmotions.rotd`, the ASCE 7-16 scaling of a suite of pairs by `groundmotions.pair_scaling`.
+Synthetic pairs are made by `groundmotions.pairs.synthetic.synthetic_pair`, RotD spectra by
+`groundmotions.pairs.rotd`, the ASCE 7-16 scaling of a suite of pairs by
+`groundmotions.pairs.scaling`.
 A bad pair is refused, never repaired: components of different time steps or lengths raise
 `dcfpb.errors.InputError` naming both components and the way to make them agree.
 """
