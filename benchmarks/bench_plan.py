@@ -24,6 +24,7 @@ Markdown table on stdout: ``benchmarks/PLAN.md`` holds a measured one.
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 
 import numpy as np
@@ -127,8 +128,8 @@ def measure(repeats: int, with_opensees: bool, with_reference: bool) -> dict:
     return best
 
 
-def main() -> None:
-    """Measure, print the table and the ratios."""
+def main() -> int:
+    """Measure, print the table and the ratios; 1 when a target is missed."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--no-opensees", action="store_true")
@@ -150,16 +151,25 @@ def main() -> None:
         print(f"| {name} | {whole * 1e3:.1f} | {wall * 1e3:.2f} | {wall / steps * 1e6:.2f} |")
     a, b = best["a planar precise 30 s"], best["b plan precise 30 s"]
     c = best["c plan constant 30 s"]
+    missed = []
     print(f"\n(b)/(a) precise plan over precise planar: run {b[0] / a[0]:.2f}, integration "
           f"{b[1] / a[1]:.2f} (target <= 3)")
+    if b[0] / a[0] > 3.0:
+        missed.append("(b)/(a) <= 3")
     if "d OpenSees singleFPBearing 3D 30 s" in best:
         d = best["d OpenSees singleFPBearing 3D 30 s"]
         print(f"(d)/(c) OpenSees over plan constant: run {d[0] / c[0]:.1f} (target >= 20)")
+        if d[0] / c[0] < 20.0:
+            missed.append("(d)/(c) >= 20")
     for tag, model in (("b", "precise"), ("c", "constant")):
         long, short = best[f"{tag} plan {model} 30 s"], best[f"{tag} plan {model} 10 s"]
         growth = (long[1] / long[2]) / (short[1] / short[2])
-        print(f"(e) {model}: per step 30 s / 10 s = {growth:.2f} (target: flat)")
+        print(f"(e) {model}: per step 30 s / 10 s = {growth:.2f} (target: flat, <= 1.2)")
+        if growth > 1.2:
+            missed.append(f"(e) {model} flat")
+    print("targets: " + ("MISSED " + ", ".join(missed) if missed else "all met"))
+    return 1 if missed else 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -12,6 +12,9 @@ Each benchmark prints its own table of ratios measured side by side in one proce
   (>= 20 x), memory of a 64,000-step run (< 200 MB);
 * ``bench_suite.py``: the 60-record suite x 3 friction models, 2 / 1 worker speed-up (>= 1.8);
   it needs ``../shared/groundmotions`` and is skipped (with a note) without it;
+* ``bench_plan.py``: the building in plan's compiled engine: precise in plan / precise planar
+  (<= 3), OpenSees singleFPBearing 3D / constant in plan (>= 20), per-step cost flat from 10 to
+  30 s (benchmarks/PLAN.md);
 * ``bench_cold_start.py``: a user's first ``dcfpb demo`` with an empty numba cache (< 8 s) and a
   later one (not with ``--quick``).
 """
@@ -30,6 +33,7 @@ def main() -> int:
     quick = "--quick" in sys.argv[1:]
     commands = [["bench_isolator.py"],
                 ["bench_building.py", "--opensees", *(["--skip-compile"] if quick else [])]]
+    commands.append(["bench_plan.py", "--repeats", "3" if quick else "5"])
     if not quick:
         commands.append(["bench_cold_start.py"])
     if SHARED.is_dir():
