@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from dcfpb.errors import InputTypeError
 from dcfpb.units import STANDARD_GRAVITY
 from dcfpb.validation import check_array, check_choice, check_int, check_real
 from groundmotions.records import GroundMotion
@@ -34,6 +35,8 @@ __all__ = [
     "asce7_design_spectrum",
     "isolated_period_range",
     "scale_suite",
+    "scaling_grid",
+    "suite_factors",
 ]
 
 MCE_FACTOR = 1.5
@@ -248,6 +251,61 @@ class ScalingReport:
                              "ratio": self.ratio}, index=pd.Index(self.periods, name="period"))
 
 
+def scaling_grid(target: object, period_range: object, n_periods: object, owner: str,
+                 ) -> tuple[TargetSpectrum, np.ndarray, tuple[float, float]]:
+    """The target and the log-spaced period grid a suite is scaled on, checked for ``owner``.
+
+    Returns
+    -------
+    target : TargetSpectrum
+        ``target``, or the one made of a (periods [s], sa [m/s^2]) pair.
+    periods : numpy.ndarray
+        ``n_periods`` periods from T_min to T_max, log-spaced (one when they are equal) [s].
+    period_range : tuple of float
+        (T_min, T_max) [s], within the target's periods.
+    """
+    if isinstance(target, tuple) and len(target) == 2:
+        target = TargetSpectrum(*target)
+    if not isinstance(target, TargetSpectrum):
+        raise InputTypeError(f"The 'target' parameter of {owner} must be a TargetSpectrum or a "
+                             f"(periods, sa) pair. Got {target!r} instead.")
+    try:
+        t_min, t_max = (float(t) for t in period_range)
+    except (TypeError, ValueError):
+        raise InputTypeError(f"The 'period_range' parameter of {owner} must be a pair of "
+                             f"floats (T_min, T_max). Got {period_range!r} instead.") from None
+    t_min = check_real(t_min, "period_range[0]", owner, low=target.periods[0],
+                       high=target.periods[-1])
+    t_max = check_real(t_max, "period_range[1]", owner, low=t_min, high=target.periods[-1])
+    n = check_int(n_periods, "n_periods", owner, low=2, high=1000) if t_max > t_min else 1
+    return target, np.geomspace(t_min, t_max, n), (t_min, t_max)
+
+
+def suite_factors(spectra: np.ndarray, target_sa: np.ndarray, method: str,
+                  ) -> tuple[np.ndarray, float, np.ndarray]:
+    """The two steps of :func:`scale_suite` on spectra of shape (records, periods).
+
+    Step 1: each record's geometric-mean factor to the target over the grid; step 2: one
+    common factor so that the mean of the scaled spectra touches the target at one period
+    (``"mean"``), or a factor per record so that each does (``"individual"``).
+
+    Returns
+    -------
+    individual : numpy.ndarray
+        The step-1 factors [-].
+    common : float
+        The step-2 factor [-] (1 for ``"individual"``).
+    factors : numpy.ndarray
+        The scale factor of each record [-].
+    """
+    individual = np.exp(np.mean(np.log(target_sa / spectra), axis=1))
+    scaled = individual[:, None] * spectra
+    if method == "mean":
+        common = 1.0 / float(np.min(scaled.mean(axis=0) / target_sa))
+        return individual, common, common * individual
+    return individual, 1.0, individual / np.min(scaled / target_sa, axis=1)
+
+
 def scale_suite(
     motions: Sequence[GroundMotion],
     target: TargetSpectrum | tuple[Any, Any],
@@ -297,23 +355,9 @@ def scale_suite(
     if not records or not all(isinstance(m, GroundMotion) for m in records):
         raise TypeError(f"The 'motions' parameter of {owner} must be a non-empty sequence of "
                         f"GroundMotion. Got {motions!r} instead.")
-    if isinstance(target, tuple) and len(target) == 2:
-        target = TargetSpectrum(*target)
-    if not isinstance(target, TargetSpectrum):
-        raise TypeError(f"The 'target' parameter of {owner} must be a TargetSpectrum or a "
-                        f"(periods, sa) pair. Got {target!r} instead.")
+    target, periods, (t_min, t_max) = scaling_grid(target, period_range, n_periods, owner)
     kind = check_choice(method, "method", owner, ("mean", "individual"))
     zeta = check_real(damping, "damping", owner, low=0.0, high=1.0, high_open=True)
-    try:
-        t_min, t_max = (float(t) for t in period_range)
-    except (TypeError, ValueError):
-        raise TypeError(f"The 'period_range' parameter of {owner} must be a pair of floats "
-                        f"(T_min, T_max). Got {period_range!r} instead.") from None
-    t_min = check_real(t_min, "period_range[0]", owner, low=target.periods[0],
-                       high=target.periods[-1])
-    t_max = check_real(t_max, "period_range[1]", owner, low=t_min, high=target.periods[-1])
-    n = check_int(n_periods, "n_periods", owner, low=2, high=1000) if t_max > t_min else 1
-    periods = np.geomspace(t_min, t_max, n)
     target_sa = target.sa_at(periods)
     spectra = np.array([spectrum(m, periods, zeta).sa for m in records])
     empty = np.flatnonzero(~(spectra > 0.0).all(axis=1))
@@ -321,14 +365,7 @@ def scale_suite(
         raise ValueError(f"The 'motions' parameter of {owner} must hold records with a "
                          f"non-zero spectrum over the range. Got {records[empty[0]]!r} at "
                          f"index {empty[0]} instead.")
-    individual = np.exp(np.mean(np.log(target_sa / spectra), axis=1))
-    scaled = individual[:, None] * spectra
-    if kind == "mean":
-        common = 1.0 / float(np.min(scaled.mean(axis=0) / target_sa))
-        factors = common * individual
-    else:
-        common = 1.0
-        factors = individual / np.min(scaled / target_sa, axis=1)
+    individual, common, factors = suite_factors(spectra, target_sa, kind)
     out = tuple(m.scaled(float(k)) for m, k in zip(records, factors, strict=True))
     mean_sa = (factors[:, None] * spectra).mean(axis=0)
     ratio = mean_sa / target_sa

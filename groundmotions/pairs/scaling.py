@@ -24,10 +24,10 @@ from typing import Any
 import numpy as np
 
 from dcfpb.errors import InputError, InputTypeError
-from dcfpb.validation import check_choice, check_int, check_real
+from dcfpb.validation import check_choice, check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.pairs.rotd import rotd_spectra
-from groundmotions.scaling import TargetSpectrum
+from groundmotions.scaling import TargetSpectrum, scaling_grid, suite_factors
 
 __all__ = ["PairScalingReport", "scale_pairs"]
 
@@ -166,24 +166,10 @@ def scale_pairs(
     if not suite or not all(isinstance(p, GroundMotionPair) for p in suite):
         raise InputTypeError(f"The 'pairs' parameter of {owner} must be a non-empty sequence of "
                          f"GroundMotionPair. Got {pairs!r} instead.")
-    if isinstance(target, tuple) and len(target) == 2:
-        target = TargetSpectrum(*target)
-    if not isinstance(target, TargetSpectrum):
-        raise InputTypeError(f"The 'target' parameter of {owner} must be a TargetSpectrum or a "
-                         f"(periods, sa) pair. Got {target!r} instead.")
+    target, periods, (t_min, t_max) = scaling_grid(target, period_range, n_periods, owner)
     kind = check_choice(method, "method", owner, ("mean", "individual"))
     zeta = check_real(damping, "damping", owner, low=0.0, high=1.0, high_open=True)
     share = check_real(fraction, "fraction", owner, low=0.0, high=1.0, low_open=True)
-    try:
-        t_min, t_max = (float(t) for t in period_range)
-    except (TypeError, ValueError):
-        raise InputTypeError(f"The 'period_range' parameter of {owner} must be a pair of floats "
-                         f"(T_min, T_max). Got {period_range!r} instead.") from None
-    t_min = check_real(t_min, "period_range[0]", owner, low=target.periods[0],
-                       high=target.periods[-1])
-    t_max = check_real(t_max, "period_range[1]", owner, low=t_min, high=target.periods[-1])
-    n = check_int(n_periods, "n_periods", owner, low=2, high=1000) if t_max > t_min else 1
-    periods = np.geomspace(t_min, t_max, n)
     target_sa = share * target.sa_at(periods)
     spectra = [rotd_spectra(p, periods, zeta, (50, 100), angle_step=angle_step) for p in suite]
     rotd100 = np.array([s.rotd100 for s in spectra])
@@ -193,14 +179,7 @@ def scale_pairs(
         raise InputError(f"The 'pairs' parameter of {owner} must hold pairs with a non-zero "
                          f"RotD100 spectrum over the range. Got {suite[empty[0]]!r} at index "
                          f"{empty[0]} instead.")
-    individual = np.exp(np.mean(np.log(target_sa / rotd100), axis=1))
-    scaled = individual[:, None] * rotd100
-    if kind == "mean":
-        common = 1.0 / float(np.min(scaled.mean(axis=0) / target_sa))
-        factors = common * individual
-    else:
-        common = 1.0
-        factors = individual / np.min(scaled / target_sa, axis=1)
+    individual, common, factors = suite_factors(rotd100, target_sa, kind)
     out = tuple(p.scaled(float(k)) for p, k in zip(suite, factors, strict=True))
     rotd100, rotd50 = factors[:, None] * rotd100, factors[:, None] * rotd50
     mean100 = rotd100.mean(axis=0)
