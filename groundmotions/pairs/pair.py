@@ -25,6 +25,7 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -33,7 +34,7 @@ from dcfpb.validation import check_real
 from groundmotions.readers import read_record
 from groundmotions.records import GroundMotion, PathLike
 
-__all__ = ["GroundMotionPair", "read_pair", "read_pair_manifest"]
+__all__ = ["GroundMotionPair", "ManifestRow", "manifest_rows", "read_pair", "read_pair_manifest"]
 
 MANIFEST_COLUMNS = ("name", "x", "y", "z", "dt", "units")
 """Columns a pair manifest may have; ``name``, ``x`` and ``y`` are required."""
@@ -283,29 +284,42 @@ def _read_pair(paths: dict[str, Path], name: str, dt: float | None, units: str |
         raise InputError(f"{where}: {error}") from error
 
 
-def read_pair_manifest(path: PathLike) -> tuple[GroundMotionPair, ...]:
-    """Read every pair listed in a CSV manifest.
+class ManifestRow(NamedTuple):
+    """One pair of a manifest, checked but not read (:func:`manifest_rows`).
 
-    Parameters
+    Attributes
     ----------
-    path : str or path-like
-        A CSV file with a header row naming its columns: ``name``, ``x``, ``y`` (required),
-        ``z`` (vertical, may be left empty), ``dt`` (time step of one-column text records
-        [s], may be empty) and ``units`` (of files whose header states none, may be empty).
-        File paths are relative to the manifest's folder. Blank lines and lines starting with
-        ``#`` are skipped.
+    name : str
+        The pair's name.
+    files : dict of str to Path
+        The component files by role (``x``, ``y`` and ``z`` when given), relative to the
+        current folder.
+    dt : float or None
+        Time step of one-column text records [s].
+    units : str or None
+        Units of files whose header states none.
+    where : str
+        ``"<manifest>, line <n>"``, to start the messages about this row.
+    """
 
-    Returns
-    -------
-    tuple of GroundMotionPair
-        In the order of the rows.
+    name: str
+    files: dict[str, Path]
+    dt: float | None
+    units: str | None
+    where: str
+
+
+def manifest_rows(path: PathLike) -> tuple[ManifestRow, ...]:
+    """The rows of a pair manifest (see :func:`read_pair_manifest`), checked, without
+    reading a component file.
 
     Raises
     ------
     InputError
-        A missing or unknown column, an empty required cell, a repeated pair name, a bad
-        ``dt``, a missing or unreadable file, a bad pair: the message starts with
-        ``"<manifest>, line <n>"`` and names the column or the component.
+        No such file, an empty manifest, an unknown, missing or repeated column, a row of the
+        wrong number of cells, an empty required cell, a repeated pair name, a bad ``dt``, no
+        rows: the message starts with ``"<manifest>, line <n>"`` (the header's messages go on
+        with ``"the header"``) and names the column.
     """
     path = Path(path)
     if not path.is_file():
@@ -318,11 +332,11 @@ def read_pair_manifest(path: PathLike) -> tuple[GroundMotionPair, ...]:
                          f"naming the columns name, x, y (and optionally z, dt, units).")
     rows = list(csv.reader(line for _, line in lines))
     header_line, header = lines[0][0], [cell.strip() for cell in rows[0]]
-    where = f"{path.name}, line {header_line}"
+    where = f"{path.name}, line {header_line}: the header"
     for column in header:
         if column not in MANIFEST_COLUMNS:
-            raise InputError(f"{where}: unknown column {column!r}; the columns of a pair "
-                             f"manifest are {', '.join(MANIFEST_COLUMNS)}.")
+            raise InputError(f"{where} names an unknown column {column!r}; the columns of a "
+                             f"pair manifest are {', '.join(MANIFEST_COLUMNS)}.")
     for column in ("name", "x", "y"):
         if column not in header:
             raise InputError(f"{where}: the required column {column!r} is missing (found "
@@ -331,7 +345,7 @@ def read_pair_manifest(path: PathLike) -> tuple[GroundMotionPair, ...]:
     if len(set(header)) != len(header):
         repeated = next(c for c in header if header.count(c) > 1)
         raise InputError(f"{where}: the column {repeated!r} appears twice.")
-    pairs: list[GroundMotionPair] = []
+    found: list[ManifestRow] = []
     seen: dict[str, int] = {}
     for (number, _), cells in zip(lines[1:], rows[1:], strict=True):
         where = f"{path.name}, line {number}"
@@ -356,8 +370,35 @@ def read_pair_manifest(path: PathLike) -> tuple[GroundMotionPair, ...]:
                 raise InputError(f"{where}, column 'dt': the time step must be a number in "
                                  f"(0, inf) [s]. Got {row['dt']!r} instead.")
         files = {role: path.parent / row[role] for role in ("x", "y", "z") if row.get(role)}
-        pairs.append(_read_pair(files, row["name"], step, row.get("units") or None, None,
-                                False, where))
-    if not pairs:
+        found.append(ManifestRow(row["name"], files, step, row.get("units") or None, where))
+    if not found:
         raise InputError(f"{path.name}: the pair manifest lists no pairs (only a header).")
-    return tuple(pairs)
+    return tuple(found)
+
+
+def read_pair_manifest(path: PathLike) -> tuple[GroundMotionPair, ...]:
+    """Read every pair listed in a CSV manifest.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A CSV file with a header row naming its columns: ``name``, ``x``, ``y`` (required),
+        ``z`` (vertical, may be left empty), ``dt`` (time step of one-column text records
+        [s], may be empty) and ``units`` (of files whose header states none, may be empty).
+        File paths are relative to the manifest's folder. Blank lines and lines starting with
+        ``#`` are skipped.
+
+    Returns
+    -------
+    tuple of GroundMotionPair
+        In the order of the rows.
+
+    Raises
+    ------
+    InputError
+        A missing or unknown column, an empty required cell, a repeated pair name, a bad
+        ``dt``, a missing or unreadable file, a bad pair: the message starts with
+        ``"<manifest>, line <n>"`` and names the column or the component.
+    """
+    return tuple(_read_pair(row.files, row.name, row.dt, row.units, None, False, row.where)
+                 for row in manifest_rows(path))

@@ -24,8 +24,6 @@ Example::
 
 from __future__ import annotations
 
-import csv
-import math
 import time
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
@@ -36,7 +34,8 @@ from typing import Any
 
 from dcfpb.errors import InputError
 from dcfpb.validation import check_real
-from groundmotions.pairs import MANIFEST_COLUMNS, GroundMotionPair
+from groundmotions.pairs import GroundMotionPair
+from groundmotions.pairs.pair import manifest_rows
 from isolator.experiments import MODELS
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
@@ -82,7 +81,8 @@ class PairSource:
 def pair_sources(manifest: str | Path) -> tuple[PairSource, ...]:
     """The pairs listed in a manifest CSV, without reading their files.
 
-    The manifest of :func:`groundmotions.pairs.read_pair_manifest`: a header row naming the
+    The manifest of :func:`groundmotions.pairs.read_pair_manifest`, read by
+    :func:`groundmotions.pairs.pair.manifest_rows`: a header row naming the
     columns ``name``, ``x``, ``y`` (required), ``z``, ``dt`` [s] and ``units``; paths relative
     to the manifest's folder; blank lines and lines starting with ``#`` skipped. A manifest
     that cannot be understood is an error before any work; a component that is missing or
@@ -96,53 +96,11 @@ def pair_sources(manifest: str | Path) -> tuple[PairSource, ...]:
         wrong number of cells, an empty required cell, a repeated pair name, a bad ``dt``;
         the message starts with ``"<manifest>, line <n>"``.
     """
-    path = Path(manifest)
-    if not path.is_file():
-        raise InputError(f"The pair manifest {str(path)!r} does not exist.")
-    with open(path, newline="", encoding="utf-8-sig") as handle:
-        lines = [(n, line) for n, line in enumerate(handle.read().splitlines(), start=1)
-                 if line.strip() and not line.lstrip().startswith("#")]
-    if not lines:
-        raise InputError(f"{path.name}: the pair manifest is empty; it needs a header row "
-                         "naming the columns name, x, y (and optionally z, dt, units).")
-    rows = list(csv.reader(line for _, line in lines))
-    header = [cell.strip() for cell in rows[0]]
-    where = f"{path.name}, line {lines[0][0]}"
-    unknown = [c for c in header if c not in MANIFEST_COLUMNS]
-    missing = [c for c in ("name", "x", "y") if c not in header]
-    if unknown or missing or len(set(header)) != len(header):
-        raise InputError(f"{where}: the header must name the columns name, x, y and "
-                         f"optionally z, dt, units, each once. Got {', '.join(header)}.")
-    sources: list[PairSource] = []
-    seen: dict[str, int] = {}
-    folder = path.parent.absolute()  # workers may be elsewhere
-    for (number, _), cells in zip(lines[1:], rows[1:], strict=True):
-        where = f"{path.name}, line {number}"
-        if len(cells) != len(header):
-            raise InputError(f"{where}: expected {len(header)} cells ({', '.join(header)}) "
-                             f"but found {len(cells)}.")
-        row = {column: cell.strip() for column, cell in zip(header, cells, strict=True)}
-        for column in ("name", "x", "y"):
-            if not row[column]:
-                raise InputError(f"{where}, column {column!r}: the cell is empty.")
-        if row["name"] in seen:
-            raise InputError(f"{where}, column 'name': the pair {row['name']!r} is already "
-                             f"named on line {seen[row['name']]}.")
-        seen[row["name"]] = number
-        step = None
-        if row.get("dt"):
-            try:
-                step = float(row["dt"])
-            except ValueError:
-                step = math.nan
-            if not (step > 0.0 and math.isfinite(step)):
-                raise InputError(f"{where}, column 'dt': the time step must be a number in "
-                                 f"(0, inf) [s]. Got {row['dt']!r} instead.")
-        sources.append(PairSource(row["name"], str(folder / row["x"]), str(folder / row["y"]),
-                                  str(folder / row["z"]) if row.get("z") else None, step,
-                                  row.get("units") or None))
-    if not sources:
-        raise InputError(f"{path.name}: the pair manifest lists no pairs (only a header).")
+    sources = []
+    for row in manifest_rows(manifest):
+        paths = {role: str(file.absolute()) for role, file in row.files.items()}  # for workers
+        sources.append(PairSource(row.name, paths["x"], paths["y"], paths.get("z"), row.dt,
+                                  row.units))
     return tuple(sources)
 
 
