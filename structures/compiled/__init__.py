@@ -10,7 +10,7 @@ from dcfpb.lazy import lazy_exports
 
 _EXPORTS = {
     "compiled_history": "structures.compiled.engine",
-    "select_engine": "structures.compiled.engine",
+    "select_engine": "structures.compiled.choice",
     "compile_engine": "structures.compiled.engine",
     "warm_up": "structures.compiled.engine",
     "compile_ahead": "structures.compiled.ahead",

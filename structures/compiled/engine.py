@@ -23,24 +23,21 @@ from typing import NamedTuple
 import numpy as np
 
 from dcfpb.errors import CapacityExceeded, TimeLimitExceeded
-from dcfpb.validation import check_choice
-from isolator.bearing import AxialLoadHistory, trial_failure
+from isolator.bearing import trial_failure
 from isolator.compiled import bearing as cb
 from isolator.compiled import kernels
 from isolator.compiled.bearing import BEARING_FIELDS
 from isolator.compiled.layout import pack_ptv
 from isolator.contact_window import window_history
 from isolator.friction import ConstantFriction, PTVFriction, PTVFrictionState
-from isolator.heating import CentrePoint, MonitorLine
 from structures.compiled import integrator as compiled
 from structures.compiled import workspace
+from structures.compiled.choice import ENGINES, choose_engine, select_engine, unsupported
 from structures.integrators import HHT, IntegrationResult, Newmark
 from structures.isolated_building import IsolatedShearBuilding
 
-ENGINES = ("auto", "compiled", "reference")
-
-__all__ = ["BEARING_FIELDS", "ENGINES", "EngineHistory", "compiled_history", "select_engine",
-           "unsupported", "warm_up", "warm_up_late"]
+__all__ = ["BEARING_FIELDS", "ENGINES", "EngineHistory", "choose_engine", "compiled_history",
+           "select_engine", "unsupported", "warm_up", "warm_up_late"]
 
 
 class EngineHistory(NamedTuple):
@@ -69,45 +66,6 @@ class EngineHistory(NamedTuple):
     wall_time: float
     engine: str
     compile_time: float = 0.0
-
-
-def unsupported(model: object, method: object) -> str | None:
-    """Why the compiled engine cannot run ``model`` with ``method``, or None when it can."""
-    if type(model) is not IsolatedShearBuilding:
-        return f"the model is a {type(model).__name__}, not an IsolatedShearBuilding"
-    if not isinstance(method, Newmark | HHT):
-        return f"the method {method!r} is not a Newmark or HHT instance"
-    bearing = model.bearing
-    if isinstance(bearing.axial_load, AxialLoadHistory):
-        return "the axial load varies in time"
-    if bearing.restoring not in ("linear", "spherical"):
-        return f"the restoring law {bearing.restoring!r} is unknown to it"
-    friction = bearing.friction
-    if type(friction) is ConstantFriction:
-        return None
-    if type(friction) is not PTVFriction:
-        return f"the friction model {type(friction).__name__} is unknown to it"
-    if friction.heating is not None and type(friction.heating) not in (MonitorLine, CentrePoint):
-        return f"the heating layout {type(friction.heating).__name__} is unknown to it"
-    return None
-
-
-def select_engine(engine: str, model: object, method: object) -> str:
-    """The engine that runs: ``"compiled"`` or ``"reference"``.
-
-    Raises
-    ------
-    ValueError
-        For an unknown ``engine``, or ``"compiled"`` for a configuration it cannot run.
-    """
-    check_choice(engine, "engine", "run", ENGINES)
-    reason = unsupported(model, method)
-    if engine == "compiled" and reason is not None:
-        raise ValueError(f"The 'engine' parameter of run is 'compiled' but {reason}; use "
-                         "engine='reference' or 'auto'.")
-    if engine == "auto":
-        return "compiled" if reason is None and kernels.COMPILED else "reference"
-    return engine
 
 
 def _bearing_arrays(model: IsolatedShearBuilding):

@@ -27,7 +27,7 @@ from isolator.compiled.bidirectional import bearing as E
 from isolator.compiled.bidirectional import grid as G
 from isolator.compiled.layout import pack_ptv
 from isolator.friction import ConstantFriction, PTVFriction
-from structures.compiled.engine import CHUNK_STEPS, time_limit_error
+from structures.compiled.engine import CHUNK_STEPS, choose_engine, time_limit_error
 from structures.compiled.plan import integrator as compiled
 from structures.compiled.plan import workspace as W
 from structures.compiled.workspace import (
@@ -371,24 +371,7 @@ def warm_up_plan() -> float:
     return _time.perf_counter() - start
 
 
-PLAN_ENGINES = ("auto", "compiled", "reference")
-
-
 def select_plan_engine(engine: str, model: object, method: object) -> str:
-    """The engine that runs a building in plan: ``"compiled"`` or ``"reference"``.
-
-    Raises
-    ------
-    ValueError
-        For an unknown ``engine``, or ``"compiled"`` for a model it cannot run.
-    """
-    from dcfpb.validation import check_choice
-
-    check_choice(engine, "engine", "run_spatial", PLAN_ENGINES)
-    reason = plan_unsupported(model, method)
-    if engine == "compiled" and reason is not None:
-        raise ValueError(f"The 'engine' parameter of run_spatial is 'compiled' but {reason}; "
-                         "use engine='reference' or 'auto'.")
-    if engine == "auto":
-        return "compiled" if reason is None and kernels.COMPILED else "reference"
-    return engine
+    """The engine of :func:`structures.spatial.analysis.run_spatial`:
+    :func:`structures.compiled.engine.choose_engine` on :func:`plan_unsupported`."""
+    return choose_engine(engine, plan_unsupported(model, method), "run_spatial")
