@@ -147,8 +147,62 @@ def _safe(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9._-]+", "-", text).strip("-") or "record"
 
 
+class SuiteRun:
+    """What a run of a suite of records (:class:`RunSpec`) and of pairs
+    (:class:`structures.suites.pairs.runs.PairRunSpec`) share: the scale, the form of the id,
+    the row of a failure and the cost estimate. A run has the fields ``record_factor``,
+    ``multiplier``, ``model``, ``modifier``, ``duration`` and ``dt``, and its ground motion's
+    ``files``."""
+
+    record_factor: float
+    multiplier: float
+    model: str
+    modifier: float
+    duration: float | None
+    dt: float | None
+
+    @property
+    def scale(self) -> float:
+        """Amplitude scale factor of the ground motion, ``record_factor * multiplier`` [-]."""
+        return self.record_factor * self.multiplier
+
+    @property
+    def files(self) -> tuple[str, ...]:
+        """The files of the run's ground motion."""
+        raise NotImplementedError
+
+    def _run_id(self, name: str, key: dict[str, Any]) -> str:
+        """``<name>_x<scale>_<model>_m<modifier>-<hash>``, the hash that of ``key`` (JSON)."""
+        digest = hashlib.sha256(json.dumps(key, sort_keys=True).encode()).hexdigest()[:10]
+        return (f"{_safe(name)}_x{self.scale:.4g}_{self.model}_m{self.modifier:.4g}"
+                f"-{digest}")
+
+    def row(self) -> dict[str, Any]:
+        """The peaks-table row of this run before it runs (peaks and status empty)."""
+        raise NotImplementedError
+
+    def failure(self, reason: str, row: dict[str, Any] | None = None,
+                kind: str = "error") -> dict[str, Any]:
+        """The row of a failed run, with its ``reason`` and ``kind`` (:data:`FAILURE_KINDS`)."""
+        return (row or self.row()) | {"status": "failed", "reason": reason, "failure": kind}
+
+    def cost(self, motion, config: BuildingConfig) -> int:
+        """Estimated cost, steps (or, for a motion not read here, its files' bytes) x model
+        weight: the longest runs start first, so fewer workers idle at the end of the suite."""
+        if motion is None:
+            try:
+                size = sum(os.path.getsize(f) for f in self.files)
+            except OSError:
+                return 0
+            return int(size * MODEL_COST[self.model])
+        length = motion.duration if self.duration is None else min(self.duration,
+                                                                  motion.duration)
+        step = analysis_step(self.dt if self.dt is not None else config.dt, motion.dt)
+        return int(length / step * MODEL_COST[self.model])
+
+
 @dataclass(frozen=True)
-class RunSpec:
+class RunSpec(SuiteRun):
     """One run of a suite.
 
     Parameters
@@ -184,9 +238,9 @@ class RunSpec:
     settings: str = ""
 
     @property
-    def scale(self) -> float:
-        """Amplitude scale factor of the record, ``record_factor * multiplier`` [-]."""
-        return self.record_factor * self.multiplier
+    def files(self) -> tuple[str, ...]:
+        """The record file."""
+        return (self.record_file,)
 
     @property
     def record(self) -> str:
@@ -200,9 +254,7 @@ class RunSpec:
         folder), the exact scale and modifier, the truncation, the step and the building."""
         key = {f.name: getattr(self, f.name) for f in fields(self)}
         key["record_file"] = Path(self.record_file).name
-        digest = hashlib.sha256(json.dumps(key, sort_keys=True).encode()).hexdigest()[:10]
-        return (f"{_safe(self.record)}_x{self.scale:.4g}_{self.model}_m{self.modifier:.4g}"
-                f"-{digest}")
+        return self._run_id(self.record, key)
 
     def row(self) -> dict[str, Any]:
         """The peaks-table row of this run before it runs (peaks and status empty)."""
@@ -212,11 +264,6 @@ class RunSpec:
                    record_factor=self.record_factor, multiplier=self.multiplier,
                    model=self.model, modifier=self.modifier, duration=self.duration)
         return row
-
-    def failure(self, reason: str, row: dict[str, Any] | None = None,
-                kind: str = "error") -> dict[str, Any]:
-        """The row of a failed run, with its ``reason`` and ``kind`` (:data:`FAILURE_KINDS`)."""
-        return (row or self.row()) | {"status": "failed", "reason": reason, "failure": kind}
 
     # What the Dask side (structures.suites.tasks, .dispatch) asks of any run of a suite.
 
@@ -237,19 +284,6 @@ class RunSpec:
                 ) -> tuple[dict[str, Any], bytes | None]:
         """:func:`execute_run` of this run."""
         return execute_run(self, motion, config, time_limit, max_steps)
-
-    def cost(self, motion: GroundMotion | None, config: BuildingConfig) -> int:
-        """Estimated cost, steps (or, for a record not read here, file bytes) x model weight:
-        the longest runs start first, so fewer workers idle at the end of the suite."""
-        if motion is None:
-            try:
-                return int(os.path.getsize(self.record_file) * MODEL_COST[self.model])
-            except OSError:
-                return 0
-        length = motion.duration if self.duration is None else min(self.duration,
-                                                                  motion.duration)
-        step = analysis_step(self.dt if self.dt is not None else config.dt, motion.dt)
-        return int(length / step * MODEL_COST[self.model])
 
 
 def execute_run(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig,

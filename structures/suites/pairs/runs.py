@@ -33,9 +33,8 @@ from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
 from structures.spatial.peaks import PLAN_PEAK_KEYS
 from structures.suites.runs import (
-    MODEL_COST,
     NETCDF_ENGINE,
-    _safe,
+    SuiteRun,
     analysis_step,
     config_fingerprint,
     failure_kind,
@@ -79,7 +78,7 @@ def truncated_pair(pair: GroundMotionPair, duration: float) -> GroundMotionPair:
 
 
 @dataclass(frozen=True)
-class PairRunSpec:
+class PairRunSpec(SuiteRun):
     """One run of a suite of pairs.
 
     Parameters
@@ -130,11 +129,6 @@ class PairRunSpec:
     settings: str = ""
 
     @property
-    def scale(self) -> float:
-        """Amplitude scale factor of the pair, ``record_factor * multiplier`` [-]."""
-        return self.record_factor * self.multiplier
-
-    @property
     def files(self) -> tuple[str, ...]:
         """The component files, x, y (and z)."""
         return (self.x_file, self.y_file) + (() if self.z_file is None else (self.z_file,))
@@ -148,9 +142,7 @@ class PairRunSpec:
         key: dict[str, Any] = {f.name: getattr(self, f.name) for f in fields(self)}
         for name in ("x_file", "y_file", "z_file"):
             key[name] = None if key[name] is None else Path(key[name]).name
-        digest = hashlib.sha256(json.dumps(key, sort_keys=True).encode()).hexdigest()[:10]
-        return (f"{_safe(self.pair)}_x{self.scale:.4g}_{self.model}_m{self.modifier:.4g}"
-                f"-{digest}")
+        return self._run_id(self.pair, key)
 
     def row(self) -> dict[str, Any]:
         """The peaks-table row of this run before it runs (peaks and status empty)."""
@@ -162,12 +154,6 @@ class PairRunSpec:
                    multiplier=self.multiplier, model=self.model, modifier=self.modifier,
                    duration=self.duration)
         return row
-
-    def failure(self, reason: str, row: dict[str, Any] | None = None,
-                kind: str = "error") -> dict[str, Any]:
-        """The row of a failed run, with its ``reason`` and ``kind``
-        (:data:`structures.suites.runs.FAILURE_KINDS`)."""
-        return (row or self.row()) | {"status": "failed", "reason": reason, "failure": kind}
 
     # The interface the Dask side asks of a run (structures.suites.tasks).
 
@@ -190,20 +176,6 @@ class PairRunSpec:
                 ) -> tuple[dict[str, Any], bytes | None]:
         """:func:`execute_pair_run` of this run."""
         return execute_pair_run(self, motion, config, time_limit, max_steps)
-
-    def cost(self, motion: GroundMotionPair | None, config: BuildingConfig) -> int:
-        """Estimated cost, steps (or, for a pair not read here, its files' bytes) x model
-        weight: the longest runs start first."""
-        if motion is None:
-            try:
-                size = sum(os.path.getsize(f) for f in self.files)
-            except OSError:
-                return 0
-            return int(size * MODEL_COST[self.model])
-        length = motion.duration if self.duration is None else min(self.duration,
-                                                                  motion.duration)
-        step = analysis_step(self.dt if self.dt is not None else config.dt, motion.dt)
-        return int(length / step * MODEL_COST[self.model])
 
 
 def execute_pair_run(spec: PairRunSpec, motion: GroundMotionPair | None,
