@@ -56,7 +56,6 @@ from __future__ import annotations
 
 import math
 import time as _time
-import warnings
 
 import numpy as np
 
@@ -65,13 +64,16 @@ from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction
 from isolator.testrig import HISTORY_FIELDS, BearingTestResult, imposed_history
 from structures.opensees.equivalents import (
+    ELEMENT_ITERATIONS,
+    ELEMENT_TOLERANCE,
     FPBEARINGPTV_AMBIENT,
     VelDependentParameters,
-    check_ptv_friction,
+    add_fpbearingptv,
     constant_axial_load,
     fpbearingptv_equivalent,
     singlefp_normal_force,
     velocity_dependent_parameters,
+    warn_if_steps_vary,
 )
 from structures.opensees.runtime import import_opensees
 
@@ -86,12 +88,8 @@ __all__ = [
 ]
 
 ELEMENTS = ("coulomb", "velocity", "ptv")
-_SI_UNITS = 1  # FPBearingPTV unit code: N, m, s, degC
 _AXIAL_SHORTENING = 1.0e-6  # [m] shortening of the stiff axial spring under the axial load
 _BOTTOM, _TOP = 1, 2  # node tags
-_UNIFORM_STEP = 1.0e-9  # relative spread of the steps below which they count as uniform
-_ELEMENT_ITERATIONS = 100  # element-level iterations (N = W + F u / R in singleFPBearing)
-_ELEMENT_TOLERANCE = 1.0e-12  # their force tolerance relative to W (the default is 1e-12 N)
 
 
 def run_opensees_test(
@@ -150,10 +148,7 @@ def run_opensees_test(
     t, u, v = _history(time, displacement, velocity, owner)
     weight = constant_axial_load(bearing, owner)
     steps = np.diff(t)
-    if element == "ptv" and np.ptp(steps) > _UNIFORM_STEP * np.max(steps):
-        warnings.warn(f"FPBearingPTV in {owner} takes the times as heating lags and applies the "
-                      "current step to its whole flux history: its temperature is only "
-                      "meaningful for a uniform time step.", UserWarning, stacklevel=2)
+    warn_if_steps_vary(element, t, owner)
     build = _build_fpbearingptv if element == "ptv" else _build_singlefp
     ops = import_opensees()
     start = _time.perf_counter()
@@ -229,10 +224,10 @@ def _build_singlefp(ops, bearing: DCFPBearing, element: str, weight: float):
     k_initial = mu * weight / bearing.yield_displacement + pendulum
     if flat:
         ops.element("flatSliderBearing", 1, _BOTTOM, _TOP, 1, k_initial, "-P", 1, "-Mz", 2,
-                    "-iter", _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * weight)
+                    "-iter", ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * weight)
     else:
         ops.element("singleFPBearing", 1, _BOTTOM, _TOP, 1, radius, k_initial,
-                    "-P", 1, "-Mz", 2, "-iter", _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * weight)
+                    "-P", 1, "-Mz", 2, "-iter", ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * weight)
     ops.timeSeries("Constant", 1)
     ops.pattern("Plain", 1, 1)
     ops.load(_TOP, 0.0, -weight, 0.0)
@@ -251,20 +246,7 @@ def _build_singlefp(ops, bearing: DCFPBearing, element: str, weight: float):
 
 def _build_fpbearingptv(ops, bearing: DCFPBearing, element: str, weight: float):
     """FPBearingPTV in 3D (x vertical, y = global X); return the recorder."""
-    owner = "run_opensees_test"
-    friction = check_ptv_friction(bearing.friction, owner)
-    if bearing.restoring != "spherical" or math.isinf(bearing.effective_radius):
-        raise ValueError(f"Element 'ptv' of {owner} has the spherical restoring law "
-                         "N u / sqrt(R^2 - u^2) with a finite R. Got a bearing with "
-                         f"{bearing.restoring!r} and R = {bearing.effective_radius!r} instead.")
-    if friction.heating is None and "temperature" in friction.dependencies:
-        raise ValueError(f"Element 'ptv' of {owner} always heats its surface; a temperature "
-                         "dependent PTVFriction without heating has no OpenSees twin.")
     radius = bearing.effective_radius
-    factors = friction.factors
-    flag = {name: int(name in friction.dependencies)
-            for name in ("pressure", "temperature", "velocity")}
-    k_initial = friction.mu_t0 * weight / bearing.yield_displacement + weight / radius
     ops.model("basic", "-ndm", 3, "-ndf", 6)
     ops.node(_BOTTOM, 0.0, 0.0, 0.0)
     ops.node(_TOP, 0.0, 0.0, 0.0)  # zero length: the orientation vectors below hold
@@ -272,17 +254,7 @@ def _build_fpbearingptv(ops, bearing: DCFPBearing, element: str, weight: float):
     ops.fix(_TOP, 0, 1, 0, 1, 1, 1)
     ops.uniaxialMaterial("Elastic", 1, weight / _AXIAL_SHORTENING)
     ops.uniaxialMaterial("Elastic", 2, weight / _AXIAL_SHORTENING)
-    ops.element(
-        "FPBearingPTV", 1, _BOTTOM, _TOP, friction.mu_t0,
-        flag["pressure"], factors.reference_pressure,
-        flag["temperature"], friction.thermal.diffusivity, friction.thermal.conductivity,
-        flag["velocity"], factors.rate_parameter,
-        radius, bearing.contact_radius, k_initial,
-        1, 2, 2, 2,  # materials: axial, torsion, rocking about local y and z
-        0.0, 0.0, 1.0, 1.0, 0.0, 0.0,  # local x = global Z (axial), local y = global X
-        0.0, 0, 0.0,  # shearDist, doRayleigh, mass
-        _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * weight, _SI_UNITS,
-    )
+    add_fpbearingptv(ops, _BOTTOM, _TOP, bearing, weight, "run_opensees_test")
     ops.timeSeries("Constant", 1)
     ops.pattern("Plain", 1, 1)
     ops.load(_TOP, 0.0, 0.0, -weight, 0.0, 0.0, 0.0)

@@ -47,7 +47,6 @@ from __future__ import annotations
 
 import math
 import time as _time
-import warnings
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -58,9 +57,12 @@ from isolator.bidirectional.orbits import Orbit
 from isolator.bidirectional.testrig import OrbitTestResult
 from isolator.friction import ConstantFriction
 from structures.opensees.equivalents import (
+    ELEMENT_ITERATIONS,
+    ELEMENT_TOLERANCE,
     FPBEARINGPTV_AMBIENT,
-    check_ptv_friction,
+    add_fpbearingptv,
     constant_axial_load,
+    warn_if_steps_vary,
 )
 from structures.opensees.equivalents3d import (
     check_orbit,
@@ -80,12 +82,8 @@ __all__ = [
 ]
 
 ELEMENTS_3D = ("coulomb", "ptv")
-_SI_UNITS = 1  # FPBearingPTV unit code: N, m, s, degC
 _AXIAL_SHORTENING = 1.0e-6  # [m] shortening of the stiff axial spring under the axial load
 _BOTTOM, _TOP = 1, 2  # node tags
-_UNIFORM_STEP = 1.0e-9  # relative spread of the steps below which they count as uniform
-_ELEMENT_ITERATIONS = 100  # element-level iterations (N = W + q . u / R in singleFPBearing)
-_ELEMENT_TOLERANCE = 1.0e-12  # their force tolerance relative to W
 _ORIENTATION = (0.0, 0.0, 1.0, 1.0, 0.0, 0.0)  # local x = global Z, local y = global X
 _TOP_X, _TOP_Y = 6, 7  # global X and Y force of the top node in the element's force vector
 
@@ -147,10 +145,7 @@ def run_opensees_orbit(
     t, u, v = check_orbit(time, displacement, velocity, owner)
     weight = constant_axial_load(bearing, owner)
     steps = np.diff(t)
-    if element == "ptv" and np.ptp(steps) > _UNIFORM_STEP * np.max(steps):
-        warnings.warn(f"FPBearingPTV in {owner} takes the times as heating lags and applies the "
-                      "current step to its whole flux history: its temperature is only "
-                      "meaningful for a uniform time step.", UserWarning, stacklevel=2)
+    warn_if_steps_vary(element, t, owner)
     build = _build_fpbearingptv if element == "ptv" else _build_singlefp
     ops = import_opensees()
     start = _time.perf_counter()
@@ -238,7 +233,7 @@ def _build_singlefp(ops, bearing: DCFPBearing, weight: float):
     ops.frictionModel("Coulomb", 1, mu)
     k_initial = mu * weight / bearing.yield_displacement + (0.0 if flat else weight / radius)
     materials = ("-P", 1, "-T", 2, "-My", 2, "-Mz", 2, "-orient", *_ORIENTATION,
-                 "-iter", _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * weight)
+                 "-iter", ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * weight)
     if flat:
         ops.element("flatSliderBearing", 1, _BOTTOM, _TOP, 1, k_initial, *materials)
     else:
@@ -258,32 +253,8 @@ def _build_singlefp(ops, bearing: DCFPBearing, weight: float):
 
 def _build_fpbearingptv(ops, bearing: DCFPBearing, weight: float):
     """FPBearingPTV in 3D; return the recorder."""
-    owner = "run_opensees_orbit"
-    friction = check_ptv_friction(bearing.friction, owner)
-    if bearing.restoring != "spherical" or math.isinf(bearing.effective_radius):
-        raise ValueError(f"Element 'ptv' of {owner} has the spherical restoring law with a "
-                         f"finite R. Got a bearing with {bearing.restoring!r} and R = "
-                         f"{bearing.effective_radius!r} instead.")
-    if friction.heating is None and "temperature" in friction.dependencies:
-        raise ValueError(f"Element 'ptv' of {owner} always heats its surface; a temperature "
-                         "dependent PTVFriction without heating has no OpenSees twin.")
-    radius, factors = bearing.effective_radius, friction.factors
-    flag = {key: int(key in friction.dependencies)
-            for key in ("pressure", "temperature", "velocity")}
-    # kInit from MuRef as in structures.opensees.bearing (the planar bearing test)
-    k_initial = friction.mu_t0 * weight / bearing.yield_displacement + weight / radius
     _base_model(ops, weight)
-    ops.element(
-        "FPBearingPTV", 1, _BOTTOM, _TOP, friction.mu_t0,
-        flag["pressure"], factors.reference_pressure,
-        flag["temperature"], friction.thermal.diffusivity, friction.thermal.conductivity,
-        flag["velocity"], factors.rate_parameter,
-        radius, bearing.contact_radius, k_initial,
-        1, 2, 2, 2,  # materials: axial, torsion, rocking about local y and z
-        *_ORIENTATION,
-        0.0, 0, 0.0,  # shearDist, doRayleigh, mass
-        _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * weight, _SI_UNITS,
-    )
+    add_fpbearingptv(ops, _BOTTOM, _TOP, bearing, weight, "run_opensees_orbit")
     _axial_load(ops, weight)
 
     def record(ops) -> dict[str, object]:

@@ -10,6 +10,7 @@ the elements these functions describe.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import replace
 from typing import NamedTuple
 
@@ -187,4 +188,62 @@ def check_ptv_friction(friction, owner: str) -> PTVFriction:
             f"{FPBEARINGPTV_AMBIENT:g} degC (hard-coded in FPBearingPTV). Got "
             f"{friction.thermal.initial_temperature!r} instead."
         )
+    return friction
+
+
+ELEMENT_ITERATIONS = 100
+"""Element-level iterations of the OpenSees friction pendulum elements (N = W + F u / R in
+singleFPBearing)."""
+ELEMENT_TOLERANCE = 1.0e-12
+"""Their force tolerance, relative to the axial load W [-] (the default is 1e-12 N)."""
+_UNIFORM_STEP = 1.0e-9  # relative spread of the steps below which they count as uniform
+
+
+def warn_if_steps_vary(element: str, time: np.ndarray, owner: str) -> None:
+    """Warn (``UserWarning``) when ``element`` is ``"ptv"`` and the steps of ``time`` [s]
+    are not uniform: FPBearingPTV takes the times as heating lags and applies the current step
+    to its whole flux history."""
+    steps = np.diff(time)
+    if element == "ptv" and np.ptp(steps) > _UNIFORM_STEP * np.max(steps):
+        warnings.warn(f"FPBearingPTV in {owner} takes the times as heating lags and applies the "
+                      "current step to its whole flux history: its temperature is only "
+                      "meaningful for a uniform time step.", UserWarning, stacklevel=3)
+
+
+def add_fpbearingptv(ops, bottom: int, top: int, bearing: DCFPBearing, weight: float,
+                     owner: str) -> PTVFriction:
+    """Add our bearing as FPBearingPTV element 1 between the nodes ``bottom`` and ``top`` of a
+    3D model (local x along global Z, the axis; local y along global X), with kInit from the
+    reference friction (mu_t0 W / u_y + W / R) and uniaxial materials 1 (axial) and 2 (torsion
+    and rocking) defined by the caller; return the friction.
+
+    Raises
+    ------
+    ValueError
+        For a bearing FPBearingPTV cannot be: not the spherical law with a finite R, friction
+        not :func:`check_ptv_friction`'s, or a temperature-dependent one without heating.
+    """
+    friction = check_ptv_friction(bearing.friction, owner)
+    if bearing.restoring != "spherical" or math.isinf(bearing.effective_radius):
+        raise ValueError(f"Element 'ptv' of {owner} has the spherical restoring law "
+                         "N u / sqrt(R^2 - u^2) with a finite R. Got a bearing with "
+                         f"{bearing.restoring!r} and R = {bearing.effective_radius!r} instead.")
+    if friction.heating is None and "temperature" in friction.dependencies:
+        raise ValueError(f"Element 'ptv' of {owner} always heats its surface; a temperature "
+                         "dependent PTVFriction without heating has no OpenSees twin.")
+    radius, factors = bearing.effective_radius, friction.factors
+    flag = {name: int(name in friction.dependencies)
+            for name in ("pressure", "temperature", "velocity")}
+    k_initial = friction.mu_t0 * weight / bearing.yield_displacement + weight / radius
+    ops.element(
+        "FPBearingPTV", 1, bottom, top, friction.mu_t0,
+        flag["pressure"], factors.reference_pressure,
+        flag["temperature"], friction.thermal.diffusivity, friction.thermal.conductivity,
+        flag["velocity"], factors.rate_parameter,
+        radius, bearing.contact_radius, k_initial,
+        1, 2, 2, 2,  # materials: axial, torsion, rocking about local y and z
+        0.0, 0.0, 1.0, 1.0, 0.0, 0.0,  # local x = global Z (axial), local y = global X
+        0.0, 0, 0.0,  # shearDist, doRayleigh, mass
+        ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * weight, 1,  # units: N, m, s, degC
+    )
     return friction

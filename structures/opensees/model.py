@@ -59,7 +59,12 @@ import numpy as np
 from dcfpb.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction, PTVFriction
-from structures.opensees.equivalents import fpbearingptv_equivalent, velocity_dependent_parameters
+from structures.opensees.equivalents import (
+    ELEMENT_ITERATIONS,
+    ELEMENT_TOLERANCE,
+    fpbearingptv_equivalent,
+    velocity_dependent_parameters,
+)
 from structures.shear_building import ShearBuilding
 
 __all__ = ["PENDULUMS", "BearingRecord", "OpenSeesModel", "build_model", "element_kind",
@@ -69,8 +74,6 @@ PENDULUMS = ("singlefp", "spring")
 GROUND, BASE = 1, 2
 _FLOOR_NODE = 3  # first floor's node tag
 _AXIAL_SHORTENING = 1.0e-6  # [m] of the stiff axial spring under its load
-_ELEMENT_ITERATIONS = 100  # element-level iterations (singleFPBearing's N = W + F u / R)
-_ELEMENT_TOLERANCE = 1.0e-12  # their force tolerance relative to the element's load
 _PAIR_CUTOFF = 1.0e-12  # pair coefficients below this share of the largest are round-off
 _SI_UNITS = 1  # FPBearingPTV unit code: N, m, s, degC
 _FIRST_NETWORK_TAG = 100  # first material and element tag of the storey network
@@ -283,7 +286,7 @@ def _pendulum_2d(ops, bearing: DCFPBearing, kind: str, n_bearings: int, weight: 
     stiffness = 0.0 if math.isinf(radius) else weight / radius
     k_initial = mu * weight / bearing.yield_displacement + (0.0 if flat else stiffness)
     options = ("-P", 1, "-Mz", 2, "-orient", *_ORIENT_2D,
-               "-iter", _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * weight)
+               "-iter", ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * weight)
     if flat:
         ops.element("flatSliderBearing", 1, GROUND, BASE, 1, k_initial, *options)
         name = "flatSliderBearing"
@@ -337,7 +340,7 @@ def _fpbearingptv(ops, bearing: DCFPBearing, n_bearings: int, weight: float):
             radius, bearing.contact_radius, k_initial,
             1, 2, 2, 2,  # materials: axial, torsion, rocking about local y and z
             *_ORIENT_3D, 0.0, 0, 0.0,  # orientation, shearDist, doRayleigh, mass
-            _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * load, _SI_UNITS,
+            ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * load, _SI_UNITS,
         )
 
     def record(ops) -> BearingRecord:

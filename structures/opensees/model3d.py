@@ -63,6 +63,7 @@ import numpy as np
 from dcfpb.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction
+from structures.opensees.equivalents import ELEMENT_ITERATIONS, ELEMENT_TOLERANCE
 from structures.shear_building import RayleighDamping
 from structures.spatial.building import SpatialBuilding
 
@@ -70,8 +71,6 @@ __all__ = ["PENDULUMS_3D", "SpatialModel", "build_model_3d", "rayleigh_coefficie
 
 PENDULUMS_3D = ("singlefp", "spring")
 _AXIAL_SHORTENING = 1.0e-6  # [m] of the stiff axial material under the gravity share
-_ELEMENT_ITERATIONS = 100  # singleFPBearing's iterations on N = W + q . u / R
-_ELEMENT_TOLERANCE = 1.0e-12  # their force tolerance relative to the bearing's load
 _ORIENTATION = (0.0, 0.0, 1.0, 1.0, 0.0, 0.0)  # local x = global Z, local y = global X
 _TOP_X, _TOP_Y = 6, 7  # global X and Y force on the top node in the element's force vector
 _FIXED, _FREE = 1, 0
@@ -250,7 +249,7 @@ def _bearings(ops, bearing: DCFPBearing, mu: float, shares: np.ndarray, bottoms:
             0.0 if flat else pendulum_stiffness)
         options = ("-P", axial, "-T", zero, "-My", axial, "-Mz", axial,
                    "-orient", *_ORIENTATION,
-                   "-iter", _ELEMENT_ITERATIONS, _ELEMENT_TOLERANCE * float(share))
+                   "-iter", ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * float(share))
         tags.append(element())
         if flat:
             ops.element("flatSliderBearing", tags[-1], bottom, top, friction, k_initial,
