@@ -80,6 +80,29 @@ def plot_peak_distributions(peaks: pd.DataFrame, path: str | Path, *, title: str
     return path
 
 
+def _finish_spectra(plt, fig, ax, target_periods: np.ndarray, target_sa: np.ndarray,
+                    period_range: tuple[float, float] | None, damping: float, title: str,
+                    path: str | Path) -> Path:
+    """Add the target [g] and the shaded period range to spectra drawn on ``ax``, label the
+    log-log axes, save the figure to ``path`` and close it."""
+    ax.plot(target_periods, np.asarray(target_sa, dtype=float), color="tab:red", lw=2.0,
+            ls="--", label="target")
+    if period_range is not None:
+        ax.axvspan(*period_range, color="tab:orange", alpha=0.15, label="scaling period range")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("period [s]")
+    ax.set_ylabel(f"pseudo-spectral acceleration ({100 * damping:g} % damping) [g]")
+    ax.set_title(title)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
 def plot_scaled_spectra(
     motions: Sequence[GroundMotion],
     target_periods: np.ndarray,
@@ -124,22 +147,8 @@ def plot_scaled_spectra(
     if curves:
         ax.plot(periods, np.mean(curves, axis=0), color="k", lw=2.0,
                 label=f"mean of {len(curves)} records")
-    ax.plot(t_target, np.asarray(target_sa, dtype=float), color="tab:red", lw=2.0, ls="--",
-            label="target")
-    if period_range is not None:
-        ax.axvspan(*period_range, color="tab:orange", alpha=0.15, label="scaling period range")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("period [s]")
-    ax.set_ylabel(f"pseudo-spectral acceleration ({100 * damping:g} % damping) [g]")
-    ax.set_title(title or "scaled records against the target spectrum")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return _finish_spectra(plt, fig, ax, t_target, target_sa, period_range, damping,
+                           title or "scaled records against the target spectrum", path)
 
 
 def plot_scaled_pair_spectra(
@@ -190,19 +199,5 @@ def plot_scaled_pair_spectra(
                 label=f"mean RotD100 of {len(rotd100)} pairs")
         ax.plot(periods, np.mean(rotd50, axis=0), color="k", lw=1.2, ls=":",
                 label="mean RotD50")
-    ax.plot(t_target, np.asarray(target_sa, dtype=float), color="tab:red", lw=2.0, ls="--",
-            label="target")
-    if period_range is not None:
-        ax.axvspan(*period_range, color="tab:orange", alpha=0.15, label="scaling period range")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("period [s]")
-    ax.set_ylabel(f"pseudo-spectral acceleration ({100 * damping:g} % damping) [g]")
-    ax.set_title(title or "scaled pairs (RotD100) against the target spectrum")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return _finish_spectra(plt, fig, ax, t_target, target_sa, period_range, damping,
+                           title or "scaled pairs (RotD100) against the target spectrum", path)
