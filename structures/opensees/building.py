@@ -46,7 +46,7 @@ from structures.opensees.runtime import import_opensees
 from structures.results import response_dataset
 from structures.shear_building import ShearBuilding
 
-__all__ = ["opensees_integrator", "run_opensees"]
+__all__ = ["halving_step", "opensees_integrator", "run_opensees", "transient_analysis"]
 
 
 def opensees_integrator(method: str | Newmark | HHT) -> tuple:
@@ -72,8 +72,12 @@ def opensees_integrator(method: str | Newmark | HHT) -> tuple:
                     f"or a Newmark or HHT instance. Got {method!r} instead.")
 
 
-def _analysis(ops, integrator: tuple, tolerance: float) -> None:
-    ops.constraints("Plain")
+def transient_analysis(ops, integrator: tuple, tolerance: float,
+                       constraints: str = "Plain") -> None:
+    """Set up the transient analysis of a twin: ``constraints`` handler, plain numbering, a
+    full system, Newton on ``NormDispIncr`` to ``tolerance`` [m] in 50 iterations, the
+    ``integrator`` of :func:`opensees_integrator`."""
+    ops.constraints(constraints)
     ops.numberer("Plain")
     ops.system("FullGeneral")
     ops.test("NormDispIncr", tolerance, 50)
@@ -82,7 +86,7 @@ def _analysis(ops, integrator: tuple, tolerance: float) -> None:
     ops.analysis("Transient")
 
 
-def _step(ops, dt: float, depth: int, limit: int, counts: list[int]) -> bool:
+def halving_step(ops, dt: float, depth: int, limit: int, counts: list[int]) -> bool:
     """One step of ``dt`` [s], halved recursively on failure; counts = [iterations, halvings]."""
     if ops.analyze(1, dt) == 0:
         counts[0] += ops.testIter()
@@ -92,8 +96,8 @@ def _step(ops, dt: float, depth: int, limit: int, counts: list[int]) -> bool:
         return False
     counts[1] += 1
     half = 0.5 * dt
-    return (_step(ops, half, depth + 1, limit, counts)
-            and _step(ops, half, depth + 1, limit, counts))
+    return (halving_step(ops, half, depth + 1, limit, counts)
+            and halving_step(ops, half, depth + 1, limit, counts))
 
 
 def run_opensees(
@@ -162,7 +166,7 @@ def run_opensees(
         ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
         for tag in model.nodes:  # a_0 = -r a_g(0), as our integrator starts
             ops.setNodeAccel(tag, 1, -float(acceleration[0]), "-commit")
-        _analysis(ops, arguments, tolerance)
+        transient_analysis(ops, arguments, tolerance)
         histories, records, counts, message = _integrate(ops, model, step, acceleration.size,
                                                          max_subdivisions)
         wall = _time.perf_counter() - start
@@ -193,7 +197,7 @@ def _integrate(ops, model, step: float, nt: int, max_subdivisions: int):
     counts = [0, 0]
     message = "The integration reached the end of the record."
     for k in range(1, nt):
-        if not _step(ops, step, 0, max_subdivisions, counts):
+        if not halving_step(ops, step, 0, max_subdivisions, counts):
             message = (f"Step {k}: OpenSees did not converge in the step to t = {k * step:.6g} s "
                        f"after {max_subdivisions} halvings.")
             break

@@ -38,7 +38,7 @@ from groundmotions.pairs import GroundMotionPair
 from isolator.bearing import DCFPBearing
 from structures.analysis import resampled_record
 from structures.integrators import HHT, IntegrationResult, Newmark, as_method
-from structures.opensees.building import opensees_integrator
+from structures.opensees.building import halving_step, opensees_integrator, transient_analysis
 from structures.opensees.equivalents3d import singlefp3d_restoring
 from structures.opensees.model3d import SpatialModel, build_model_3d
 from structures.opensees.runtime import import_opensees
@@ -50,30 +50,6 @@ __all__ = ["run_opensees_3d"]
 
 _LEVEL_DOFS = (1, 2, 6)  # X, Y and the rotation about Z: our (u_x, u_y, theta)
 _FIRST_SERIES = 10  # time-series and pattern tags of the ground motion
-
-
-def _analysis(ops, integrator: tuple, tolerance: float) -> None:
-    ops.constraints("Transformation")
-    ops.numberer("Plain")
-    ops.system("FullGeneral")
-    ops.test("NormDispIncr", tolerance, 50)
-    ops.algorithm("Newton")
-    ops.integrator(*integrator)
-    ops.analysis("Transient")
-
-
-def _step(ops, dt: float, depth: int, limit: int, counts: list[int]) -> bool:
-    """One step of ``dt`` [s], halved recursively on failure; counts = [iterations, halvings]."""
-    if ops.analyze(1, dt) == 0:
-        counts[0] += ops.testIter()
-        return True
-    counts[0] += ops.testIter()
-    if depth >= limit:
-        return False
-    counts[1] += 1
-    half = 0.5 * dt
-    return (_step(ops, half, depth + 1, limit, counts)
-            and _step(ops, half, depth + 1, limit, counts))
 
 
 def _ground_motion(ops, model: SpatialModel, acceleration: np.ndarray, step: float,
@@ -165,7 +141,7 @@ def run_opensees_3d(
         for tag in (*model.masters, *model.centres, *model.tops):
             ops.setNodeAccel(tag, 1, -float(acceleration[0, 0]), "-commit")
             ops.setNodeAccel(tag, 2, -float(acceleration[0, 1]), "-commit")
-        _analysis(ops, arguments, tolerance)
+        transient_analysis(ops, arguments, tolerance, constraints="Transformation")
         histories, bearings, counts, message = _integrate(ops, model, step, x.size,
                                                           max_subdivisions, bearing)
         wall = _time.perf_counter() - start
@@ -206,7 +182,7 @@ def _integrate(ops, model: SpatialModel, step: float, nt: int, max_subdivisions:
     message = "The integration reached the end of the record."
     kept = nt
     for k in range(1, nt):
-        if not _step(ops, step, 0, max_subdivisions, counts):
+        if not halving_step(ops, step, 0, max_subdivisions, counts):
             message = (f"Step {k}: OpenSees did not converge in the step to t = {k * step:.6g} s "
                        f"after {max_subdivisions} halvings.")
             kept = k
