@@ -162,19 +162,21 @@ def _model_error(info: np.ndarray, model: IsolatedShearBuilding, heating) -> Cap
     return trial_failure(model.bearing, value, float(info[workspace.FAIL_TIME]), detail)
 
 
-def _integrate(function, arguments: tuple, nt: int, start: float,
-               time_limit: float | None) -> bool:
-    """Run the engine through the record: in one call, or, with a ``time_limit`` [s] from
-    ``start`` (``perf_counter``), in calls of ``CHUNK_STEPS`` steps with a look at the clock
-    between them (the same arithmetic: see ``integrate_building``'s ``steps``). True when
-    the limit stopped it. ``arguments`` are the engine's groups, ``outputs`` last."""
+def run_in_chunks(function, arguments: tuple, nt: int, start: float,
+                  time_limit: float | None, compile_first=None) -> bool:
+    """Run a compiled engine (the planar one or the plan one) through the record: in one
+    call, or, with a ``time_limit`` [s] from ``start`` (``perf_counter``), in calls of
+    ``CHUNK_STEPS`` steps with a look at the clock between them (the same arithmetic: see
+    ``integrate_building``'s ``steps``). True when the limit stopped it. ``arguments`` are
+    the engine's groups, ``outputs`` (with its ``info``) last; ``compile_first``, if given, is
+    called when ``function`` is not compiled yet, so that the limit is the run's own time."""
     info = arguments[-1].info
     steps = np.array([1, nt if time_limit is None else 1], dtype=np.int64)
     if time_limit is None:
         function(*arguments, steps)
         return False
-    if hasattr(function, "signatures") and not function.signatures:
-        warm_up()  # compile (or load) first: the limit is the run's own time
+    if compile_first is not None and hasattr(function, "signatures") and not function.signatures:
+        compile_first()
         start = _time.perf_counter()
     while steps[1] < nt:
         steps[0], steps[1] = steps[1], min(int(steps[1]) + CHUNK_STEPS, nt)
@@ -267,8 +269,8 @@ def compiled_history(
     start = _time.perf_counter()
     state = workspace.State(cb.new_heating(rates, weights, states),
                             workspace.new_workspace(n, max_subdivisions))
-    timed_out = _integrate(function, (matrices, motion, settings, state, outputs), nt, start,
-                           time_limit)
+    timed_out = run_in_chunks(function, (matrices, motion, settings, state, outputs), nt,
+                              start, time_limit, warm_up)
     wall = _time.perf_counter() - start
     status = int(info[workspace.STATUS])
     last = int(info[workspace.LAST_STEP])

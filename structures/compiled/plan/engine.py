@@ -27,7 +27,7 @@ from isolator.compiled.bidirectional import bearing as E
 from isolator.compiled.bidirectional import grid as G
 from isolator.compiled.layout import pack_ptv
 from isolator.friction import ConstantFriction, PTVFriction
-from structures.compiled.engine import CHUNK_STEPS, choose_engine, time_limit_error
+from structures.compiled.engine import choose_engine, run_in_chunks, time_limit_error
 from structures.compiled.plan import integrator as compiled
 from structures.compiled.plan import workspace as W
 from structures.compiled.workspace import (
@@ -222,25 +222,6 @@ def _failure_message(info: np.ndarray, tolerance: float) -> str:
             f"tolerance {tolerance:g}).")
 
 
-def _integrate(function, arguments: tuple, nt: int, start: float,
-               time_limit: float | None) -> bool:
-    """The whole record in one call, or in calls of ``CHUNK_STEPS`` steps with a look at the
-    clock between them (the same arithmetic); True when the limit stopped it."""
-    info = arguments[-1].info
-    steps = np.array([1, nt if time_limit is None else 1], dtype=np.int64)
-    if time_limit is None:
-        function(*arguments, steps)
-        return False
-    while steps[1] < nt:
-        steps[0], steps[1] = steps[1], min(int(steps[1]) + CHUNK_STEPS, nt)
-        function(*arguments, steps)
-        if int(info[STATUS]) != E.SUCCESS:
-            return False
-        if steps[1] < nt and _time.perf_counter() - start > time_limit:
-            return True
-    return False
-
-
 def plan_history(model, acceleration: np.ndarray, step: float, method: Newmark | HHT, *,
                  tolerance: float, max_iterations: int = 25, max_subdivisions: int,
                  time_limit: float | None = None, python: bool = False) -> PlanHistory:
@@ -301,9 +282,10 @@ def plan_history(model, acceleration: np.ndarray, step: float, method: Newmark |
     workspace = W.new_plan_workspace(n, n_b, max_subdivisions)
     workspace[W.COMMITTED][:] = _committed_rows(model)
     state = W.PlanState(heat, workspace)
-    timed_out = _integrate(function, (matrices, W.PlanMotion(acceleration, time),
-                                      W.PlanSettings(method_array, bearings, ptv, flags), state,
-                                      outputs), nt, start, time_limit)
+    timed_out = run_in_chunks(function, (matrices, W.PlanMotion(acceleration, time),
+                                         W.PlanSettings(method_array, bearings, ptv, flags),
+                                         state, outputs), nt, start, time_limit,
+                              warm_up_plan)
     wall = _time.perf_counter() - start
     status, last = int(info[STATUS]), int(info[LAST_STEP])
     success = status == E.SUCCESS and not timed_out
