@@ -227,14 +227,22 @@ def peaks(result) -> dict[str, Any]:
     for a run that finished) and ``failure`` (the reason's kind, ``""`` for none) say.
     """
     roof = result["absolute_acceleration"].isel(floor=-1)
-    failed = not result.attrs["success"]
-    failed_at = result.attrs.get("failed_at")
     return {
         "peak_isolator_displacement": float(np.abs(result["isolator_displacement"]).max()),
         "peak_base_shear": float(np.abs(result["base_shear"]).max()),
         "peak_roof_acceleration": float(np.abs(roof).max()),
         "peak_storey_drift": float(np.abs(result["storey_drift"]).max()),
         "max_temperature": float(result["temperature"].max()),
+    } | run_bookkeeping(result)
+
+
+def run_bookkeeping(result) -> dict[str, Any]:
+    """What every run's peaks carry besides the peaks (a planar run's or one in plan):
+    ``energy_balance_error``, ``steps``, ``wall_time`` [s], ``peaks_up_to_failure``,
+    ``failed_at`` [s] (None for a run that finished) and ``failure`` (``""`` for none)."""
+    failed = not result.attrs["success"]
+    failed_at = result.attrs.get("failed_at")
+    return {
         "energy_balance_error": float(result.attrs["energy_balance_error"]),
         "steps": int(result.attrs["steps"]),
         "wall_time": float(result.attrs["wall_time"]),

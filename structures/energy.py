@@ -38,11 +38,12 @@ class EnergyBalance(NamedTuple):
         return float(np.max(np.abs(self.error)) / scale) if scale > 0 else 0.0
 
 
-def _trapezoid_work(force: np.ndarray, displacement: np.ndarray) -> np.ndarray:
-    """Cumulative sum over steps of du . (f_n + f_n+1) / 2 for (nt, n) or (nt,) arrays."""
+def trapezoid_work(force: np.ndarray, displacement: np.ndarray) -> np.ndarray:
+    """Cumulative sum over the steps of du . (f_n + f_n+1) / 2 [J], for arrays of shape
+    (nt,) or (nt, ...) (the dot product over every axis but the first)."""
     du = np.diff(displacement, axis=0)
     mean = 0.5 * (force[1:] + force[:-1])
-    step = (du * mean).sum(axis=1) if du.ndim == 2 else du * mean
+    step = (du * mean).reshape(du.shape[0], -1).sum(axis=1)
     return np.concatenate([[0.0], np.cumsum(step)])
 
 
@@ -77,11 +78,11 @@ def energy_balance(
         Degree of freedom of the isolators.
     """
     load = -np.outer(ground_acceleration, mass @ influence)
-    energy_input = _trapezoid_work(load, displacement)
+    energy_input = trapezoid_work(load, displacement)
     kinetic = 0.5 * np.einsum("ti,ij,tj->t", velocity, mass, velocity)
-    damping_work = _trapezoid_work(velocity @ damping.T, displacement)
-    restoring = _trapezoid_work(restoring_force, displacement)
-    friction = _trapezoid_work(friction_force, displacement[:, friction_dof])
+    damping_work = trapezoid_work(velocity @ damping.T, displacement)
+    restoring = trapezoid_work(restoring_force, displacement)
+    friction = trapezoid_work(friction_force, displacement[:, friction_dof])
     strain = restoring - friction
     error = energy_input - (kinetic + damping_work + strain + friction)
     return EnergyBalance(energy_input, kinetic, damping_work, strain, friction, error)

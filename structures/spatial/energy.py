@@ -19,17 +19,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from structures.energy import EnergyBalance
+from structures.energy import EnergyBalance, trapezoid_work
 
 __all__ = ["spatial_energy_balance"]
-
-
-def _work(force: np.ndarray, displacement: np.ndarray) -> np.ndarray:
-    """Cumulative sum over the steps of ``du . (f_n + f_n+1) / 2``; arrays (nt, ...)."""
-    du = np.diff(displacement, axis=0)
-    mean = 0.5 * (force[1:] + force[:-1])
-    step = (du * mean).reshape(du.shape[0], -1).sum(axis=1)
-    return np.concatenate([[0.0], np.cumsum(step)])
 
 
 def spatial_energy_balance(
@@ -66,10 +58,10 @@ def spatial_energy_balance(
         The cumulative energies [J] and the closure error.
     """
     load = -(ground_acceleration @ (mass @ influence).T)
-    energy_input = _work(load, displacement)
+    energy_input = trapezoid_work(load, displacement)
     kinetic = 0.5 * np.sum((velocity @ mass.T) * velocity, axis=1)  # v . M v per step
-    damping_work = _work(velocity @ damping.T, displacement)
-    friction = _work(friction_force, bearing_displacement)
-    strain = _work(restoring_force, displacement) - friction
+    damping_work = trapezoid_work(velocity @ damping.T, displacement)
+    friction = trapezoid_work(friction_force, bearing_displacement)
+    strain = trapezoid_work(restoring_force, displacement) - friction
     error = energy_input - (kinetic + damping_work + strain + friction)
     return EnergyBalance(energy_input, kinetic, damping_work, strain, friction, error)

@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from structures.analysis import run_bookkeeping
+
 __all__ = ["PLAN_PEAK_KEYS", "plan_peaks"]
 
 PLAN_PEAK_KEYS = (
@@ -49,8 +51,6 @@ def plan_peaks(result) -> dict[str, Any]:
     bearing_reach = _resultant(result["bearing_displacement"].values).max(axis=0)
     roof = np.abs(result["absolute_acceleration"].isel(floor=-1).values).max(axis=0)
     drift = np.abs(result["storey_drift"].values).max(axis=(0, 1))
-    failed = not result.attrs["success"]
-    failed_at = result.attrs.get("failed_at")
     return {
         "peak_isolator_displacement": float(bearing_reach.max()),
         "peak_centre_displacement": float(
@@ -63,10 +63,4 @@ def plan_peaks(result) -> dict[str, Any]:
         "peak_storey_drift_y": float(drift[1]),
         "peak_base_rotation": float(np.abs(result["rotation"].isel(floor=0).values).max()),
         "max_temperature": float(result["temperature"].max()),
-        "energy_balance_error": float(result.attrs["energy_balance_error"]),
-        "steps": int(result.attrs["steps"]),
-        "wall_time": float(result.attrs["wall_time"]),
-        "peaks_up_to_failure": failed,
-        "failed_at": float(failed_at) if failed and failed_at is not None else None,
-        "failure": str(result.attrs.get("failure", "error" if failed else "")),
-    }
+    } | run_bookkeeping(result)
