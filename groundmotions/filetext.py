@@ -49,7 +49,8 @@ __all__ = ["RecordUnits", "check_finite", "check_plausible", "check_step", "firs
 
 _OTHER_QUANTITY = re.compile(r"\b(VELOCITY|DISPLACEMENT)\s+TIME\s+(HISTORY|SERIES)", re.IGNORECASE)
 _STATEMENT = re.compile(
-    r"\bunits?\s*(?:of|are|is|in|=|:)\s*(?:of\s+)?[(\[]?\s*"
+    r"\bunits?\s*(?:(?:used\s+)?in\s+(?:the|this)\s+(?:file|record|data)(?:\s+(?:are|is)|\s*:)"
+    r"|of|are|is|in|=|:)\s*(?:of\s+)?[(\[]?\s*"
     r"(?P<unit>[^\s,;()\[\]]+(?:\s*[*.·]?\s*s\s*\^?\s*-\s*2)?)",
     re.IGNORECASE,
 )

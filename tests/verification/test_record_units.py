@@ -82,6 +82,9 @@ def test_spellings(written, name):
         ("ACCELERATION TIME HISTORY IN UNITS OF IN/S/S", 0.0254),
         ("Units: in/sec/sec", 0.0254),
         ("Acceleration in ft/s2", 0.3048),
+        ("UNITS IN THE FILE ARE G", STANDARD_GRAVITY),
+        ("Units used in this record are cm/s/s", 0.01),
+        ("units in the data: m/s^2", 1.0),
     ],
 )
 def test_copies_in_other_units_read_as_the_g_original(tmp_path, units_line, to_unit):
@@ -90,7 +93,8 @@ def test_copies_in_other_units_read_as_the_g_original(tmp_path, units_line, to_u
     assert motion.pga == pytest.approx(original.pga, rel=1e-9)
     np.testing.assert_allclose(motion.acceleration, original.acceleration, rtol=1e-9, atol=0)
     assert motion.metadata["units_in_file"] == parse_units(
-        {0.01: "gal", 1.0: "m/s^2", 0.001: "mm/s^2", 0.0254: "in/s^2", 0.3048: "ft/s^2"}[to_unit])
+        {STANDARD_GRAVITY: "g", 0.01: "gal", 1.0: "m/s^2", 0.001: "mm/s^2", 0.0254: "in/s^2",
+         0.3048: "ft/s^2"}[to_unit])
 
 
 def test_the_g_and_cm_paths_keep_their_digits(tmp_path):
