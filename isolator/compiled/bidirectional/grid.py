@@ -200,3 +200,24 @@ def reanchor_grid_window(b, n, window, time, heat):
                 states[j, k] *= values[slot, k]
                 offsets[k] += states[j, k]
             stamps[j] = time
+
+
+@jit
+def field_temperatures(b, points, inside, time, initial_temperature, coefficient, heat, out):
+    """Temperatures [degC] of bearing ``b``'s stored ``points`` (flat indices) at the heat
+    clock's ``time`` into ``out``: T0 + coefficient sum_k w_k G_jk, with G_j = exp(-s (t -
+    tau_j)) B_j for a point out of the window and that plus the accumulator A for one in it
+    (``inside``); the plate field of a run, one pass over the points."""
+    rates, weights, states, stamps = heat[RATES], heat[WEIGHTS], heat[STATES][b], heat[STAMPS][b]
+    accumulator = heat[ACCUMULATORS][b]
+    for m in range(points.shape[0]):
+        j = points[m]
+        elapsed = time - stamps[j]
+        total = 0.0
+        for k in range(rates.shape[0]):
+            exponent = elapsed * rates[k]
+            history = 0.0 if exponent > UNDERFLOW else states[j, k] * math.exp(-exponent)
+            if inside[m]:
+                history += accumulator[k]
+            total += history * weights[k]
+        out[m] = initial_temperature + coefficient * total

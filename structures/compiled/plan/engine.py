@@ -164,7 +164,6 @@ def plate_field(heat: tuple, ptv: np.ndarray,
     (n_b, m, 2) [m] on the plate and temperatures (n_b, m) [degC], NaN-padded."""
     n, first, spacing = int(ptv[L.N_POINTS]), ptv[L.FIRST_POINT], ptv[L.SPACING]
     coefficient = ptv[L.FLUX_COEFFICIENT]
-    rates, weights = heat[G.RATES], heat[G.WEIGHTS]
     marks = heat[G.MARKS]
     n_b = marks.shape[0]
     chosen = [np.flatnonzero(marks[b] >= 0) for b in range(n_b)]
@@ -175,14 +174,9 @@ def plate_field(heat: tuple, ptv: np.ndarray,
         order = np.lexsort((k, i, marks[b, points]))
         points, i, k = points[order], i[order], k[order]
         scalars, held = heat[G.SCALARS][b], heat[G.WINDOWS][b, E.HELD]
-        now = scalars[E.HEAT_TIME]
-        exponent = -np.multiply.outer(now - heat[G.STAMPS][b, points], rates)
-        # exp below -746 is 0.0 exactly; skipping it avoids libm's slow underflow path
-        decay = np.exp(exponent, out=np.zeros_like(exponent), where=exponent > -746.0)
-        histories = heat[G.STATES][b, points] * decay
         inside = (i >= held[0]) & (i < held[1]) & (k >= held[2]) & (k < held[3])
-        histories[inside] += heat[G.ACCUMULATORS][b]
-        temperatures[b, :points.size] = initial_temperature + coefficient * (histories @ weights)
+        G.field_temperatures(b, points, inside, scalars[E.HEAT_TIME], initial_temperature,
+                             coefficient, heat, temperatures[b, :points.size])
         local = first + spacing * np.column_stack([i, k]).astype(float)
         e1x, e1y = scalars[E.E1X], scalars[E.E1Y]
         positions[b, :points.size] = local @ np.array([[e1x, e1y], [-e1y, e1x]])
