@@ -24,7 +24,7 @@ import numpy as np
 
 from dcfpb.errors import CapacityExceeded, InputError
 from dcfpb.validation import check_array, check_choice, check_real
-from isolator.friction import ConstantFriction, Friction, PTVFriction
+from isolator.friction import ConstantFriction, PTVFriction
 
 
 @dataclass(frozen=True)
@@ -311,17 +311,17 @@ class BearingElement:
         dz_du = 1.0 / self._yield
         if abs(z) >= 1.0:
             z, dz_du = math.copysign(1.0, z), 0.0
-        if n <= 0.0:  # uplift: no contact, no force, no heat
-            self._friction.revert()
-            friction = Friction(0.0, 0.0, c.temperature, 0.0)
-            restoring = stiffness = 0.0
-            n = 0.0
-        else:
-            try:
+        try:
+            if n <= 0.0:  # uplift: no contact, no force, no heat; the plates cool
+                friction = self._friction.lifted(displacement, dt)
+            else:
                 friction = self._friction.trial(displacement, velocity,
                                                 n / self.bearing.contact_area, dt)
-            except CapacityExceeded as error:
-                raise trial_failure(self.bearing, displacement, time, str(error)) from None
+        except CapacityExceeded as error:
+            raise trial_failure(self.bearing, displacement, time, str(error)) from None
+        if n <= 0.0:
+            restoring = stiffness = n = 0.0
+        else:
             restoring, stiffness = self._restoring(displacement, n, time)
         friction_force = friction.mu * n * z
         force = restoring + friction_force

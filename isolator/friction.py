@@ -12,7 +12,9 @@ A model is a frozen parameter object; :meth:`bind` gives the stateful evaluator 
 bearing geometry (contact radius, travel). An evaluator follows the element contract:
 ``trial(position, velocity, pressure, dt) -> Friction`` is a pure function of the committed
 history and the trial, ``commit()`` accepts the last trial (and only then adds its heat), and
-``revert()`` forgets it.
+``revert()`` forgets it. ``lifted(position, dt) -> Friction`` is the trial of a slider out of
+contact (uplift): no friction and no heat, but the step still counts, so a heated plate cools
+over it as it does under a slider at rest.
 
 The newest interval's flux enters the current temperature, q_n = mu_n p |v| / surfaces, so
 mu_n solves the scalar equation mu = mu_t0 gamma alpha beta(T_base + b q(mu)) by Newton's
@@ -73,6 +75,11 @@ class FrictionState(Protocol):
 
     def trial(self, position: float, velocity: float, pressure: float, dt: float) -> Friction:
         """Friction at a trial displacement [m], velocity [m/s], pressure [Pa], step [s]."""
+        ...
+
+    def lifted(self, position: float, dt: float) -> Friction:
+        """The trial of a slider out of contact at ``position`` [m] for ``dt`` [s]: mu = 0,
+        no heat flux, the contact temperature after the plates cooled over ``dt``."""
         ...
 
     def commit(self) -> None:
@@ -151,6 +158,10 @@ class ConstantFrictionState:
     def trial(self, position: float, velocity: float, pressure: float, dt: float) -> Friction:
         """The constant mu; heat flux is not tracked."""
         return self._friction
+
+    def lifted(self, position: float, dt: float) -> Friction:
+        """Out of contact: mu = 0 at the model's temperature."""
+        return Friction(0.0, 0.0, self._friction.temperature, 0.0)
 
     def commit(self) -> None:
         """Nothing to commit."""
@@ -359,6 +370,18 @@ class PTVFrictionState:
         # d mu / d v = d mu / d|v| sign(v); d mu / d|v| is negative on a hot plate at speed
         return Friction(mu, math.copysign(1.0, velocity) * dmu_dspeed if velocity else 0.0,
                         temperature, flux)
+
+    def lifted(self, position: float, dt: float) -> Friction:
+        """Out of contact at ``position`` [m] for ``dt`` [s]: mu = 0 and no heat flux; the
+        step is staged with zero flux, so the commit advances the heat history by ``dt`` and
+        the plates cool as under a slider at rest (the contact temperature returned is theirs
+        at the window under ``position``). Evaluated as the trial at zero speed, where the flux
+        mu p |v| is zero whatever mu and the temperature does not depend on the pressure,
+        which is therefore taken as the reference one."""
+        friction = self.trial(position, 0.0, REFERENCE_PRESSURE, dt)
+        if self._pending is not None:
+            self._pending = (*self._pending[:2], 0.0)
+        return Friction(0.0, 0.0, friction.temperature, 0.0)
 
     def commit(self) -> None:
         """Add the last trial's heat to the history."""

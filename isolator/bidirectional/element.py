@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike
 
 from dcfpb.errors import CapacityExceeded
 from isolator.bearing import DCFPBearing, trial_failure
-from isolator.bidirectional.friction import PlateFriction, bind_plate_friction
+from isolator.bidirectional.friction import bind_plate_friction
 from isolator.friction import PTVFriction
 
 _IDENTITY = np.eye(2)
@@ -202,15 +202,16 @@ class BidirectionalElement:
                              f"before the last committed time {c.time!r} s.")
         n = self.bearing.axial_load_at(time) if axial_load is None else float(axial_load)
         z, dz_du = isotropic_return_map(c.z, u - c.displacement, self._yield)
-        if n <= 0.0:  # uplift: no contact, no force, no heat
-            self._friction.revert()
-            friction = PlateFriction(0.0, np.zeros(2), c.temperature, 0.0)
+        try:
+            if n <= 0.0:  # uplift: no contact, no force, no heat; the plates cool
+                friction = self._friction.lifted(u, dt)
+            else:
+                friction = self._friction.trial(u, v, n / self.bearing.contact_area, dt)
+        except CapacityExceeded as error:
+            raise trial_failure(self.bearing, math.hypot(*u), time, str(error)) from None
+        if n <= 0.0:
             restoring, stiffness, n = np.zeros(2), np.zeros((2, 2)), 0.0
         else:
-            try:
-                friction = self._friction.trial(u, v, n / self.bearing.contact_area, dt)
-            except CapacityExceeded as error:
-                raise trial_failure(self.bearing, math.hypot(*u), time, str(error)) from None
             restoring, stiffness = self._restoring(u, n, time)
         friction_force = friction.mu * n * z
         force = restoring + friction_force

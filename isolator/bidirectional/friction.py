@@ -35,7 +35,7 @@ import numpy as np
 from isolator.bidirectional.heating import GridHeating, MonitorGrid
 from isolator.compiled.kernels import cold_friction, ptv_friction, ptv_trial, solve_friction
 from isolator.compiled.layout import pack_ptv
-from isolator.friction import ConstantFriction, PTVFriction
+from isolator.friction import REFERENCE_PRESSURE, ConstantFriction, PTVFriction
 from isolator.heating import MonitorLine, SurfaceHeating, sum_of_exponentials
 
 
@@ -78,6 +78,11 @@ class RadialFrictionState:
         friction = self.planar.trial(math.hypot(position[0], position[1]), speed, pressure, dt)
         return PlateFriction(friction.mu, friction.dmu_dvelocity * _direction(velocity, speed),
                              friction.temperature, friction.heat_flux)
+
+    def lifted(self, position: np.ndarray, dt: float) -> PlateFriction:
+        """Out of contact: mu = 0 at the model's temperature."""
+        friction = self.planar.lifted(math.hypot(position[0], position[1]), dt)
+        return PlateFriction(0.0, np.zeros(2), friction.temperature, 0.0)
 
     def commit(self) -> None:
         """Accept the last trial."""
@@ -174,6 +179,17 @@ class PTVPlateState:
                 heating.newest_coefficient, pressure, speed)
             self._pending = (dt, (lo, hi), flux)
         return PlateFriction(mu, dmu_dspeed * _direction(velocity, speed), temperature, flux)
+
+    def lifted(self, position: np.ndarray, dt: float) -> PlateFriction:
+        """Out of contact at ``position`` [m] for ``dt`` [s]: mu = 0 and no heat flux; the
+        step is staged with zero flux, so the commit advances the plates' heat clock by ``dt``
+        and they cool as under a slider at rest (the temperature returned is the contact
+        temperature under ``position``). As the planar evaluator's ``lifted``: the trial at
+        zero speed and the reference pressure, where no heat enters whatever mu."""
+        friction = self.trial(position, np.zeros(2), REFERENCE_PRESSURE, dt)
+        if self._pending is not None:
+            self._pending = (*self._pending[:2], 0.0)
+        return PlateFriction(0.0, np.zeros(2), friction.temperature, 0.0)
 
     def commit(self) -> None:
         """Add the last trial's heat to the plates' history."""

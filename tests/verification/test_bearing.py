@@ -112,3 +112,39 @@ def test_negative_time_step_is_refused():
     el.commit()
     with pytest.raises(ValueError, match="before the last committed time"):
         el.set_trial(0.02, 0.1, 0.5)
+
+
+def _cycle_hold_cycle(amplitude=0.1, period=1.0, hold=1.0, dt=0.005):
+    """A sine cycle, a hold at u = 0 (v = 0) for ``hold`` [s], another cycle: t, u, v."""
+    t = np.round(np.arange(0.0, 2 * period + hold + dt / 2, dt) / dt) * dt
+    phase = np.where(t < period, t, np.where(t <= period + hold, period, t - hold))
+    omega = 2 * math.pi / period
+    moving = (t < period) | (t > period + hold)
+    return t, amplitude * np.sin(omega * phase), np.where(moving, amplitude * omega
+                                                          * np.cos(omega * phase), 0.0)
+
+
+@pytest.mark.parametrize("model", ["simplified", "precise"])
+def test_a_lifted_bearing_cools_as_one_at_rest(model):
+    """Uplift stops the heat, not the clock: held still for 1 s between two heating cycles,
+    a bearing lifted off (N = 0) and one still loaded both take no heat (zero speed), so
+    their plates cool alike and the next cycle starts from the same temperature. (The lifted
+    plates used to keep their temperature and lose the hold's time.)"""
+    from dataclasses import replace
+
+    from isolator.experiments import protocol_bearing
+
+    loaded = protocol_bearing(model, slider_diameter=0.3, design_velocity=0.63)
+    n = loaded.axial_load_at(0.0)
+    lifted = replace(loaded, axial_load=AxialLoadHistory(
+        np.array([0.0, 1.0, 1.001, 1.999, 2.0, 3.0]), np.array([n, n, 0.0, 0.0, n, n])))
+    t, u, v = _cycle_hold_cycle()
+    a, b = run_test(loaded, t, u, v), run_test(lifted, t, u, v)
+    hold = (t > 1.0) & (t < 2.0)
+    assert np.all(b.axial_load[hold] == 0.0) and np.all(b.force[hold] == 0.0)
+    assert np.all(b.heat_flux[hold] == 0.0)
+    np.testing.assert_allclose(b.temperature, a.temperature, rtol=1e-12, atol=0.0)
+    at_lift, at_landing = np.searchsorted(t, [1.0, 1.995])
+    assert b.temperature[at_lift] - b.temperature[at_landing] > 2.0  # it did cool
+    after = t > 2.0
+    np.testing.assert_allclose(b.mu[after], a.mu[after], rtol=1e-12, atol=0.0)

@@ -202,3 +202,33 @@ def test_trials_are_pure_and_revert_is_exact(model):
         twin.commit()
         assert np.array_equal(a.force, b.force)
         assert element.committed.temperature == twin.committed.temperature
+
+
+@pytest.mark.parametrize("model", ["simplified", "precise"])
+def test_a_lifted_bearing_cools_as_one_at_rest(model):
+    """Uplift stops the heat, not the heat clock: an orbit, a 1 s hold at its start (zero
+    speed), the orbit again; lifted off (N = 0) during the hold or still loaded, the plates
+    take no heat and cool alike, and the second orbit starts from the same temperatures."""
+    from dataclasses import replace
+
+    from isolator.bearing import AxialLoadHistory
+
+    loaded = protocol_bearing(model, slider_diameter=0.3, design_velocity=0.63)
+    n = loaded.axial_load_at(0.0)
+    lifted = replace(loaded, axial_load=AxialLoadHistory(
+        np.array([0.0, 1.0, 1.001, 1.999, 2.0, 3.0]), np.array([n, n, 0.0, 0.0, n, n])))
+    dt, amplitude, omega = 0.005, 0.1, 2 * math.pi
+    temperatures = []
+    for bearing in (loaded, lifted):
+        element, history = BidirectionalElement(bearing), []
+        for time in np.arange(1, 601) * dt:
+            tau = time - 1.0 if time > 2.0 else min(time, 1.0)
+            moving = time < 1.0 or time > 2.0
+            u = amplitude * np.array([math.sin(omega * tau), math.cos(omega * tau) - 1.0])
+            v = amplitude * omega * np.array([math.cos(omega * tau), -math.sin(omega * tau)])
+            element.set_trial(u, v if moving else np.zeros(2), time)
+            element.commit()
+            history.append(element.committed.temperature)
+        temperatures.append(np.array(history))
+    np.testing.assert_allclose(temperatures[1], temperatures[0], rtol=1e-12, atol=0.0)
+    assert temperatures[1][199] - temperatures[1][397] > 2.0  # from t = 1.0 to 1.99 s: cooled

@@ -146,8 +146,8 @@ def test_slider_off_the_grid_fails_as_the_reference(half_length):
 
 
 def test_uplift_under_a_vertical_pulse_as_the_reference():
-    """A downward pulse beyond 1 g lifts every bearing: no load, no force, no heat (the heat
-    clock of the precise model stops with the reference's), then the run goes on."""
+    """A downward pulse beyond 1 g lifts every bearing: no load, no force, no heat (the plates
+    cool over the uplift as the reference's do), then the run goes on."""
     pair = _pair()
     time = pair.x.time
     pulse = np.where((time >= 1.0) & (time <= 1.2), -1.5 * STANDARD_GRAVITY, 0.0)

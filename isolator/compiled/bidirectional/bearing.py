@@ -58,6 +58,7 @@ from isolator.compiled.kernels import (
     solve_friction,
 )
 from isolator.contact_window import advance_window, window_history
+from isolator.friction import REFERENCE_PRESSURE
 from isolator.heating import step_factors
 
 # Layout of a row of the ``bearings`` parameter array (one row per bearing; floats).
@@ -255,8 +256,13 @@ def plate_trial(b, ux, uy, vx, vy, time, load, bearings, ptv, committed, trial, 
     t[PENDING] = 0.0
     n = load
     rx = ry = kxx = kxy = kyx = kyy = 0.0
-    if n <= 0.0:  # uplift: no contact, no force, no heat
-        mu, dmu_dspeed, temperature, flux, n = 0.0, 0.0, c[TEMPERATURE], 0.0, 0.0
+    if n <= 0.0:  # uplift: no contact, no force, no heat; the plates cool (``lifted``)
+        _, _, temperature, _, status = _friction(
+            b, ux, uy, 0.0, 0.0, dt, REFERENCE_PRESSURE, 0.0, parameters, ptv, t, heat)
+        if status != SUCCESS:
+            t[UX], t[UY] = ux, uy
+            return status
+        mu, dmu_dspeed, flux, n = 0.0, 0.0, 0.0, 0.0
         ex = ey = 0.0
     else:
         speed = math.hypot(vx, vy)
