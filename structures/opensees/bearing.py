@@ -147,7 +147,6 @@ def run_opensees_test(
     element = check_choice(element, "element", owner, ELEMENTS)
     t, u, v = _history(time, displacement, velocity, owner)
     weight = constant_axial_load(bearing, owner)
-    steps = np.diff(t)
     warn_if_steps_vary(element, t, owner)
     build = _build_fpbearingptv if element == "ptv" else _build_singlefp
     ops = import_opensees()
@@ -156,24 +155,13 @@ def run_opensees_test(
     try:
         record = build(ops, bearing, element, weight)
         _impose(ops, t - t[0], u, v, dof=1)
-        ops.constraints("Transformation")
-        ops.numberer("Plain")
-        ops.system("FullGeneral")
-        ops.test("NormDispIncr", 1.0e-12, 25)
-        ops.algorithm("Newton")
-        ops.integrator("Newmark", 0.5, 0.25)
-        ops.analysis("Transient")
+        imposed_analysis(ops)
         out = {n: np.full(t.size, np.nan) for n in HISTORY_FIELDS}
         out["force"][0] = out["friction_force"][0] = 0.0
         out["displacement"][0], out["velocity"][0], out["axial_load"][0] = u[0], v[0], weight
         if element == "ptv":
             out["temperature"][0], out["heat_flux"][0] = FPBEARINGPTV_AMBIENT, 0.0
-        for k, dt in enumerate(steps, start=1):
-            if ops.analyze(1, float(dt)) != 0:
-                raise RuntimeError(f"OpenSees failed at step {k} (t = {t[k] - t[0]:g} s) of "
-                                   f"{owner} with element {element!r}.")
-            for field, value in record(ops).items():
-                out[field][k] = value
+        record_steps(ops, t, record, out, owner, element)
     finally:
         ops.wipe()
     out["time"] = t
@@ -181,6 +169,29 @@ def run_opensees_test(
              "ptv": "FPBearingPTV"}[element]
     return BearingTestResult(**out, bearing=bearing, name=f"OpenSees {label}: {name}",
                              wall_time=_time.perf_counter() - start)
+
+
+def imposed_analysis(ops) -> None:
+    """The transient analysis of a test with imposed displacements (planar or 3D): Newmark
+    (1/2, 1/4), Newton on the displacement increment to 1e-12 in at most 25 iterations."""
+    ops.constraints("Transformation")
+    ops.numberer("Plain")
+    ops.system("FullGeneral")
+    ops.test("NormDispIncr", 1.0e-12, 25)
+    ops.algorithm("Newton")
+    ops.integrator("Newmark", 0.5, 0.25)
+    ops.analysis("Transient")
+
+
+def record_steps(ops, t: np.ndarray, record, out: dict, owner: str, element: str) -> None:
+    """Analyse one step per interval of the times ``t`` [s], writing what ``record(ops)``
+    returns into row k of ``out``; RuntimeError naming the step where OpenSees fails."""
+    for k, dt in enumerate(np.diff(t), start=1):
+        if ops.analyze(1, float(dt)) != 0:
+            raise RuntimeError(f"OpenSees failed at step {k} (t = {t[k] - t[0]:g} s) of "
+                               f"{owner} with element {element!r}.")
+        for field, value in record(ops).items():
+            out[field][k] = value
 
 
 def _history(time, displacement, velocity, owner):

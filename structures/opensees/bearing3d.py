@@ -56,6 +56,7 @@ from isolator.bearing import DCFPBearing
 from isolator.bidirectional.orbits import Orbit
 from isolator.bidirectional.testrig import OrbitTestResult
 from isolator.friction import ConstantFriction
+from structures.opensees.bearing import imposed_analysis, record_steps
 from structures.opensees.equivalents import (
     ELEMENT_ITERATIONS,
     ELEMENT_TOLERANCE,
@@ -144,7 +145,6 @@ def run_opensees_orbit(
     element = check_choice(element, "element", owner, ELEMENTS_3D)
     t, u, v = check_orbit(time, displacement, velocity, owner)
     weight = constant_axial_load(bearing, owner)
-    steps = np.diff(t)
     warn_if_steps_vary(element, t, owner)
     build = _build_fpbearingptv if element == "ptv" else _build_singlefp
     ops = import_opensees()
@@ -153,13 +153,7 @@ def run_opensees_orbit(
     try:
         record = build(ops, bearing, weight)
         _impose_orbit(ops, t - t[0], u, v)
-        ops.constraints("Transformation")
-        ops.numberer("Plain")
-        ops.system("FullGeneral")
-        ops.test("NormDispIncr", 1.0e-12, 25)
-        ops.algorithm("Newton")
-        ops.integrator("Newmark", 0.5, 0.25)
-        ops.analysis("Transient")
+        imposed_analysis(ops)
         out = {key: np.full((t.size, 2), np.nan) for key in ("displacement", "velocity",
                                                              "force", "friction_force", "z")}
         out |= {key: np.full(t.size, np.nan) for key in ("mu", "temperature", "heat_flux",
@@ -169,12 +163,7 @@ def run_opensees_orbit(
         out["displacement"][0], out["velocity"][0], out["axial_load"][0] = u[0], v[0], weight
         if element == "ptv":
             out["temperature"][0], out["heat_flux"][0] = FPBEARINGPTV_AMBIENT, 0.0
-        for k, dt in enumerate(steps, start=1):
-            if ops.analyze(1, float(dt)) != 0:
-                raise RuntimeError(f"OpenSees failed at step {k} (t = {t[k] - t[0]:g} s) of "
-                                   f"{owner} with element {element!r}.")
-            for key, value in record(ops).items():
-                out[key][k] = value
+        record_steps(ops, t, record, out, owner, element)
     finally:
         ops.wipe()
     restoring = (fpbearingptv_restoring if element == "ptv" else singlefp3d_restoring)(
