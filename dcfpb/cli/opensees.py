@@ -305,10 +305,7 @@ def run_plan_comparison(args: argparse.Namespace) -> int:
                                    pendulum=args.pendulum, overturning=args.overturning,
                                    max_steps=args.max_steps)
     except ImportError as error:
-        import sys
-
-        print(f"{command}: error: {error}", file=sys.stderr)
-        return 2
+        return _import_error("compare-opensees", error)
     summary = result.summary
     if args.plot:
         from dcfpb.plotting.plan import plot_plan_runs
