@@ -188,7 +188,32 @@ def run_in_chunks(function, arguments: tuple, nt: int, start: float,
     return False
 
 
-def _failure_message(info: np.ndarray, tolerance: float) -> str:
+def run_outcome(info: np.ndarray, time: np.ndarray, timed_out: bool, time_limit: float | None,
+                tolerance: float, model_error) -> tuple[int, bool, str, float | None, str]:
+    """How a compiled run (planar or in plan) ended, from its ``info`` row: ``(last step,
+    success, failure kind, failed_at [s] or None, message)``, the reference integrator's.
+
+    ``model_error()`` gives the element's error (a ``CapacityExceeded``) when the status is
+    one of the model's (the bearing codes, shared by both engines, beyond ``NOT_CONVERGED``).
+    """
+    status, last = int(info[workspace.STATUS]), int(info[workspace.LAST_STEP])
+    success = status == cb.SUCCESS and not timed_out
+    failure, failed_at = "", None
+    message = "The integration reached the end of the record."
+    if timed_out:
+        failure, failed_at = "timeout", float(time[last])
+        message = f"Step {last}: {time_limit_error(time_limit, failed_at)}"
+    elif not success:
+        failed_at = float(time[last + 1])
+        if status == cb.NOT_CONVERGED:
+            failure, message = "convergence", failure_message(info, tolerance)
+        else:
+            error = model_error()
+            failure, message = error.kind, f"Step {last + 1}: {error}"
+    return last, success, failure, failed_at, message
+
+
+def failure_message(info: np.ndarray, tolerance: float) -> str:
     """The reference integrator's message for a step that did not converge."""
     t_end, h = info[workspace.FAIL_TIME], info[workspace.FAIL_SUBSTEP]
     residual, reference = info[workspace.FAIL_RESIDUAL], info[workspace.FAIL_REFERENCE]
@@ -272,21 +297,9 @@ def compiled_history(
     timed_out = run_in_chunks(function, (matrices, motion, settings, state, outputs), nt,
                               start, time_limit, warm_up)
     wall = _time.perf_counter() - start
-    status = int(info[workspace.STATUS])
-    last = int(info[workspace.LAST_STEP])
-    success = status == cb.SUCCESS and not timed_out
-    failure, failed_at = "", None
-    message = "The integration reached the end of the record."
-    if timed_out:
-        failure, failed_at = "timeout", float(time[last])
-        message = f"Step {last}: {time_limit_error(time_limit, failed_at)}"
-    elif not success:
-        failed_at = float(time[last + 1])
-        if status == cb.NOT_CONVERGED:
-            failure, message = "convergence", _failure_message(info, tolerance)
-        else:
-            error = _model_error(info, model, heating)
-            failure, message = error.kind, f"Step {last + 1}: {error}"
+    last, success, failure, failed_at, message = run_outcome(
+        info, time, timed_out, time_limit, tolerance,
+        lambda: _model_error(info, model, heating))
     kept = slice(0, last + 1)
     absolute = a[kept] + acceleration[kept, None] * np.asarray(model.influence, dtype=float)
     arrays = [time[kept], u[kept], v[kept], a[kept], absolute, iterations[:last],

@@ -27,18 +27,12 @@ from isolator.compiled.bidirectional import bearing as E
 from isolator.compiled.bidirectional import grid as G
 from isolator.compiled.layout import pack_ptv
 from isolator.friction import ConstantFriction, PTVFriction
-from structures.compiled.engine import choose_engine, run_in_chunks, time_limit_error
+from structures.compiled.engine import choose_engine, run_in_chunks, run_outcome
 from structures.compiled.plan import integrator as compiled
 from structures.compiled.plan import workspace as W
 from structures.compiled.workspace import (
-    FAIL_DEPTH,
-    FAIL_ITERATIONS,
-    FAIL_REFERENCE,
-    FAIL_RESIDUAL,
-    FAIL_SUBSTEP,
     FAIL_TIME,
     FAIL_VALUE,
-    LAST_STEP,
     STATUS,
 )
 from structures.integrators import HHT, IntegrationResult, Newmark
@@ -205,17 +199,6 @@ def _model_error(info: np.ndarray, model):
     return trial_failure(element.bearing, math.hypot(*u), float(info[FAIL_TIME]), detail)
 
 
-def _failure_message(info: np.ndarray, tolerance: float) -> str:
-    t_end, h = info[FAIL_TIME], info[FAIL_SUBSTEP]
-    residual, reference = info[FAIL_RESIDUAL], info[FAIL_REFERENCE]
-    relative = residual / reference if reference > 0.0 else np.inf
-    return (f"Step {int(info[LAST_STEP]) + 1}: Newton iteration did not converge in the step "
-            f"to t = {t_end:.6g} s (sub-step of {h:.3g} s after {int(info[FAIL_DEPTH])} "
-            f"halvings): after {int(info[FAIL_ITERATIONS])} iterations the residual norm was "
-            f"{residual:.3e} N ({relative:.3e} of the force reference {reference:.3e} N; "
-            f"tolerance {tolerance:g}).")
-
-
 def plan_history(model, acceleration: np.ndarray, step: float, method: Newmark | HHT, *,
                  tolerance: float, max_iterations: int = 25, max_subdivisions: int,
                  time_limit: float | None = None, python: bool = False) -> PlanHistory:
@@ -281,20 +264,8 @@ def plan_history(model, acceleration: np.ndarray, step: float, method: Newmark |
                                          state, outputs), nt, start, time_limit,
                               warm_up_plan)
     wall = _time.perf_counter() - start
-    status, last = int(info[STATUS]), int(info[LAST_STEP])
-    success = status == E.SUCCESS and not timed_out
-    failure, failed_at = "", None
-    message = "The integration reached the end of the record."
-    if timed_out:
-        failure, failed_at = "timeout", float(time[last])
-        message = f"Step {last}: {time_limit_error(time_limit, failed_at)}"
-    elif not success:
-        failed_at = float(time[last + 1])
-        if status == E.NOT_CONVERGED:
-            failure, message = "convergence", _failure_message(info, tolerance)
-        else:
-            error = _model_error(info, model)
-            failure, message = error.kind, f"Step {last + 1}: {error}"
+    last, success, failure, failed_at, message = run_outcome(
+        info, time, timed_out, time_limit, tolerance, lambda: _model_error(info, model))
     kept = slice(0, last + 1)
     absolute = a[kept] + acceleration[kept] @ np.asarray(model.influence, dtype=float).T
     arrays = [time[kept], u[kept], v[kept], a[kept], absolute, iterations[:last],
