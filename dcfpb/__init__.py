@@ -6,9 +6,9 @@ The distribution has four top-level packages:
   foundation modules below);
 - ``isolator``: friction laws, frictional heating, the DCFPB element, the virtual test machine;
 - ``structures``: shear building, integrators, analyses and workflows;
-- ``dcfpb``: the command line (``dcfpb.cli``) and two foundation modules that import nothing:
-  ``dcfpb.units`` (physical constants and unit factors) and ``dcfpb.validation``
-  (the one error template for bad parameters).
+- ``dcfpb``: the command line (``dcfpb.cli``) and its figures (``dcfpb.plotting``) at the top,
+  and at the bottom ``dcfpb.common``, what every layer builds on and which imports nothing of
+  ours: errors, units, parameter checks and lazy imports.
 """
 
 __version__ = "0.1.0"

@@ -2,7 +2,7 @@
 
 Everything listed in ``__all__`` is importable from the package itself
 (``from groundmotions import read_record, spectrum``). The package imports nothing of the
-project but the lowest layer (``dcfpb.errors``, ``dcfpb.units``, ``dcfpb.validation``); within
+project but the lowest layer (``dcfpb.common``: errors, units, validation); within
 it, `groundmotions.records` (`GroundMotion`, `RecordFormatError`) imports no other module of
 the package at run time, and the readers (`groundmotions.readers`, `groundmotions.peer`,
 `groundmotions.text_records`) and the bundled records (`groundmotions.bundled`) import it.

@@ -6,7 +6,7 @@ from __future__ import annotations
 from importlib import resources
 from typing import Any
 
-from dcfpb.validation import check_choice
+from dcfpb.common.validation import check_choice
 from groundmotions.peer import read_peer_at2
 from groundmotions.records import GroundMotion
 

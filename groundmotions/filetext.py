@@ -27,9 +27,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.errors import InputError
-from dcfpb.units import STANDARD_GRAVITY
-from dcfpb.validation import check_real
+from dcfpb.common.errors import InputError
+from dcfpb.common.units import STANDARD_GRAVITY
+from dcfpb.common.validation import check_real
 from groundmotions.records import RecordFormatError
 from groundmotions.units import (
     DEFAULT_UNITS,
@@ -121,7 +121,7 @@ def check_finite(path: Path, values: np.ndarray, line_ends: Sequence[tuple[int, 
 
 def check_step(dt: object, owner: str) -> float:
     """A time step given by the caller [s], > 0 and finite; `InputError` otherwise (the
-    message of `dcfpb.validation.check_real`)."""
+    message of `dcfpb.common.validation.check_real`)."""
     try:
         return check_real(dt, "dt", owner, low=0.0, low_open=True)
     except ValueError as error:

@@ -222,7 +222,7 @@ def read_peer_at2(
     -------
     GroundMotion
         Acceleration converted from the file's units to [m/s^2]
-        (`groundmotions.units.TO_M_PER_S2`, with ``dcfpb.units.STANDARD_GRAVITY`` for g).
+        (`groundmotions.units.TO_M_PER_S2`, with ``dcfpb.common.units.STANDARD_GRAVITY`` for g).
 
     Raises
     ------

@@ -22,15 +22,13 @@ acceleration between samples, and the integrals below are exact for that interpr
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from collections.abc import Mapping
+from typing import Protocol
 
 import numpy as np
 
-from dcfpb.units import STANDARD_GRAVITY
-from dcfpb.validation import check_int, check_real
-
-if TYPE_CHECKING:  # records imports this module for GroundMotion's methods: no import back
-    from groundmotions.records import GroundMotion
+from dcfpb.common.units import STANDARD_GRAVITY
+from dcfpb.common.validation import check_int, check_real
 
 __all__ = [
     "arias_intensity",
@@ -50,6 +48,30 @@ ANTI_ALIAS_ORDER = 8
 
 
 _MOTION_FIELDS = ("acceleration", "dt", "name", "metadata", "processing")
+
+
+class GroundMotion(Protocol):
+    """What the processing reads of a record (:class:`groundmotions.records.GroundMotion`, whose
+    methods call these functions): the acceleration [m/s^2] every ``dt`` [s], its name, metadata
+    and processing steps, and a constructor taking them in that order."""
+
+    acceleration: np.ndarray
+    dt: float
+    name: str
+    metadata: Mapping
+    processing: tuple[str, ...]
+
+    def __init__(self, acceleration: np.ndarray, dt: float, name: str, metadata: dict,
+                 processing: tuple[str, ...]) -> None: ...
+
+    @property
+    def time(self) -> np.ndarray: ...
+
+    @property
+    def npts(self) -> int: ...
+
+    @property
+    def duration(self) -> float: ...
 
 
 def _new(motion: GroundMotion, acceleration: np.ndarray, dt: float, step: str) -> GroundMotion:
@@ -334,7 +356,7 @@ def arias_intensity(motion: GroundMotion) -> tuple[np.ndarray, np.ndarray]:
     Notes
     -----
     The integral of a^2 over a step is exact for the piecewise-linear record:
-    ``dt (a_i^2 + a_i a_{i+1} + a_{i+1}^2) / 3``; g is ``dcfpb.units.STANDARD_GRAVITY``.
+    ``dt (a_i^2 + a_i a_{i+1} + a_{i+1}^2) / 3``; g is ``dcfpb.common.units.STANDARD_GRAVITY``.
     """
     motion = _check_motion(motion, "arias_intensity")
     a = motion.acceleration

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from dcfpb.errors import InputError
+from dcfpb.common.errors import InputError
 from groundmotions.filetext import check_step, read_lines
 from groundmotions.peer import has_npts_line, parse_peer, read_peer_at2
 from groundmotions.records import GroundMotion, PathLike

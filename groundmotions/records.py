@@ -22,8 +22,9 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.errors import InputError
-from dcfpb.validation import check_array, check_real
+from dcfpb.common.errors import InputError
+from dcfpb.common.validation import check_array, check_real
+from groundmotions.processing import baseline_corrected, filtered, resampled
 
 __all__ = ["GroundMotion", "RecordFormatError"]
 
@@ -157,20 +158,14 @@ class GroundMotion:
 
     def baseline_corrected(self, order: int = 1) -> GroundMotion:
         """`groundmotions.processing.baseline_corrected` of this record."""
-        from groundmotions.processing import baseline_corrected
-
         return baseline_corrected(self, order)
 
     def filtered(
         self, low: float | None = None, high: float | None = None, order: int = 4
     ) -> GroundMotion:
         """`groundmotions.processing.filtered` of this record (corners [Hz])."""
-        from groundmotions.processing import filtered
-
         return filtered(self, low, high, order)
 
     def resampled(self, dt: float, *, anti_alias: bool = True) -> GroundMotion:
         """`groundmotions.processing.resampled` of this record (new time step ``dt`` [s])."""
-        from groundmotions.processing import resampled
-
         return resampled(self, dt, anti_alias=anti_alias)

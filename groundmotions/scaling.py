@@ -23,9 +23,9 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.errors import InputTypeError
-from dcfpb.units import STANDARD_GRAVITY
-from dcfpb.validation import check_array, check_choice, check_int, check_real
+from dcfpb.common.errors import InputTypeError
+from dcfpb.common.units import STANDARD_GRAVITY
+from dcfpb.common.validation import check_array, check_choice, check_int, check_real
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import spectrum
 

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from dcfpb.validation import check_array, check_real
+from dcfpb.common.validation import check_array, check_real
 
 if TYPE_CHECKING:
     from groundmotions.records import GroundMotion

@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.validation import check_choice, check_int, check_real
+from dcfpb.common.validation import check_choice, check_int, check_real
 from groundmotions.records import GroundMotion
 
 __all__ = [

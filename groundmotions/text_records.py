@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.errors import InputError
+from dcfpb.common.errors import InputError
 from groundmotions.filetext import (
     check_finite,
     check_plausible,

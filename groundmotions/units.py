@@ -1,8 +1,8 @@
 """Units of ground acceleration in record files: the table, their spellings, plausibility.
 
 Every reader converts the values of a file to [m/s^2] with :data:`TO_M_PER_S2`; the conversion
-constants come from `dcfpb.units` (``STANDARD_GRAVITY`` = 9.80665 m/s^2, the inch 0.0254 m and
-the foot 0.3048 m exactly).
+constants come from `dcfpb.common.units` (``STANDARD_GRAVITY`` = 9.80665 m/s^2, the inch
+0.0254 m and the foot 0.3048 m exactly).
 
 =========  ===================  ================================================================
 name       factor to m/s^2      spellings recognised (any case, blanks around ``/ ^ *`` ignored)
@@ -25,8 +25,8 @@ from __future__ import annotations
 import math
 import re
 
-from dcfpb.errors import InputError
-from dcfpb.units import M_PER_FOOT, M_PER_INCH, STANDARD_GRAVITY
+from dcfpb.common.errors import InputError
+from dcfpb.common.units import M_PER_FOOT, M_PER_INCH, STANDARD_GRAVITY
 
 __all__ = [
     "DEFAULT_UNITS",

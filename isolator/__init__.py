@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from dcfpb.lazy import lazy_exports
+from dcfpb.common.lazy import lazy_exports
 
 _EXPORTS = {
     "DCFPBearing": "isolator.bearing",

@@ -22,8 +22,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.errors import CapacityExceeded, InputError
-from dcfpb.validation import check_array, check_choice, check_real
+from dcfpb.common.errors import CapacityExceeded, InputError
+from dcfpb.common.validation import check_array, check_choice, check_real
 from isolator.friction import ConstantFriction, PTVFriction
 
 
@@ -294,7 +294,7 @@ class BearingElement:
         ------
         ValueError
             If ``time`` is before the last committed time.
-        dcfpb.errors.CapacityExceeded
+        dcfpb.common.errors.CapacityExceeded
             If the model cannot evaluate the displacement (the slider off the precise
             model's monitor line, at the spherical law's radius); an integration ends there
             with ``success=False`` (:func:`trial_failure`).

@@ -22,7 +22,7 @@ from itertools import pairwise
 
 import numpy as np
 
-from dcfpb.validation import check_array, check_choice, check_real
+from dcfpb.common.validation import check_array, check_choice, check_real
 
 _AT_MID_LEVEL = 1e-9  # |u0 - mid| below this fraction of the largest excursion: "at" the level
 

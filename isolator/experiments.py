@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 
-from dcfpb.validation import check_choice, check_real
+from dcfpb.common.validation import check_choice, check_real
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import CentrePoint, MonitorLine, ThermalProperties

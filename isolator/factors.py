@@ -26,8 +26,8 @@ from typing import Protocol
 
 import numpy as np
 
-from dcfpb.units import MM_PER_M, PA_PER_N_PER_MM2
-from dcfpb.validation import check_choice, check_real
+from dcfpb.common.units import MM_PER_M, PA_PER_N_PER_MM2
+from dcfpb.common.validation import check_choice, check_real
 
 ArrayLike = float | np.ndarray
 

@@ -30,7 +30,7 @@ from typing import NamedTuple, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from dcfpb.validation import check_choice, check_int, check_real
+from dcfpb.common.validation import check_choice, check_int, check_real
 from isolator.compiled.kernels import cold_friction, ptv_trial, solve_friction
 from isolator.compiled.layout import pack_ptv
 from isolator.factors import KumarFactors, PaperFactors, factor_set

@@ -26,8 +26,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from dcfpb.errors import CapacityExceeded
-from dcfpb.validation import check_real
+from dcfpb.common.errors import CapacityExceeded
+from dcfpb.common.validation import check_real
 from isolator.compiled.kernels import advance_states, contact_history, heated_window, jit
 
 

@@ -20,7 +20,7 @@ import math
 import sys
 from pathlib import Path
 
-from dcfpb.errors import InputError
+from dcfpb.common.errors import InputError
 
 DEFAULT_MAX_STEPS = 2_000_000
 """Most time steps a run may take unless the caller raises the limit."""

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dcfpb.validation import check_array, check_choice, check_int, check_real
+from dcfpb.common.validation import check_array, check_choice, check_int, check_real
 from isolator.limits import DEFAULT_MAX_STEPS, history_steps
 
 WIND_PEAK_VELOCITY = 0.015

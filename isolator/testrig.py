@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dcfpb.validation import check_array
+from dcfpb.common.validation import check_array
 from isolator.bearing import DCFPBearing
 
 HISTORY_FIELDS = (

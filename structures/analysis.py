@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.validation import check_real
+from dcfpb.common.validation import check_real
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from structures.compiled.engine import (

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.validation import check_choice
+from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS, friction_model
 from structures.config_schema import ConfigError, ConfigWarning, check_tables
@@ -164,7 +164,7 @@ def load_config(path: str | Path) -> BuildingConfig:
     Raises
     ------
     ConfigError
-        (an :class:`~dcfpb.errors.InputError`) for anything wrong with the file: missing,
+        (an :class:`~dcfpb.common.errors.InputError`) for anything wrong with the file: missing,
         not UTF-8, not TOML, an unknown or missing key, a value of the wrong type or outside
         its range (the file, section and key named with what is allowed), or a combination
         the model objects refuse.

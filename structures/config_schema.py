@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from dcfpb.errors import InputError, InputWarning
+from dcfpb.common.errors import InputError, InputWarning
 
 MAX_STOREYS = 1000
 """Most floors a building file may describe (the tallest buildings have about 160)."""

@@ -83,7 +83,8 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float |
     ------
     ValueError
         For a ``dt`` outside (0, record dt], or a damping that is not classical; an
-        :class:`~dcfpb.errors.InputError` for a run past ``max_steps`` or the memory available.
+        :class:`~dcfpb.common.errors.InputError` for a run past ``max_steps`` or the memory
+        available.
     """
     import xarray as xr
 

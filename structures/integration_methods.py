@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dcfpb.validation import check_choice, check_real
+from dcfpb.common.validation import check_choice, check_real
 
 __all__ = ["HHT", "METHODS", "Newmark", "as_method"]
 

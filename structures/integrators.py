@@ -11,7 +11,7 @@ parameter sets (``gamma``, ``beta``, ``alpha``) and
 :class:`NewmarkStepper` is the one Newton step that uses them. :func:`integrate` is the entry
 point; ``method`` is a name from :data:`METHODS` or an instance. Misuse raises; a numerical
 failure ends the run with ``success=False`` and a message, keeping the steps already taken,
-and so does a :class:`dcfpb.errors.RunFailure` raised by the model (a bearing beyond its
+and so does a :class:`dcfpb.common.errors.RunFailure` raised by the model (a bearing beyond its
 displacement capacity) or by the ``on_commit`` hook (a time limit).
 
 The step from ``t_n`` to ``t_{n+1} = t_n + h`` solves for ``u_{n+1}`` (Hilber, Hughes & Taylor
@@ -46,8 +46,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dcfpb.errors import RunFailure
-from dcfpb.validation import check_array, check_int, check_real
+from dcfpb.common.errors import RunFailure
+from dcfpb.common.validation import check_array, check_int, check_real
 from structures.integration_methods import HHT, METHODS, Newmark, as_method
 from structures.model import DynamicModel
 
@@ -81,7 +81,8 @@ class IntegrationResult:
         The method used.
     failure : str
         Why the run ended early: ``""`` (it did not), ``"convergence"``, or the ``kind`` of
-        the :class:`dcfpb.errors.RunFailure` that ended it (``"capacity"``, ``"timeout"``...).
+        the :class:`dcfpb.common.errors.RunFailure` that ended it (``"capacity"``,
+        ``"timeout"``...).
     failed_at : float or None
         Time of the step that failed [s] (None on success).
     """
@@ -306,7 +307,7 @@ def integrate(
     on_commit : callable, optional
         ``on_commit(step_index, time, u, v, a)`` after each committed full step (index >= 1),
         e.g. to record the bearing state; the arrays are rows of the result and must not be
-        modified. It may end the run by raising :class:`dcfpb.errors.RunFailure` (e.g. a
+        modified. It may end the run by raising :class:`dcfpb.common.errors.RunFailure` (e.g. a
         time limit): that step is kept.
 
     Returns

@@ -14,8 +14,8 @@ import warnings
 
 import numpy as np
 
-from dcfpb.errors import InputWarning
-from dcfpb.validation import check_int
+from dcfpb.common.errors import InputWarning
+from dcfpb.common.validation import check_int
 from isolator.bearing import AxialLoadHistory, BearingElement, DCFPBearing
 from structures.model import RestoringForce
 from structures.shear_building import ShearBuilding
@@ -43,7 +43,7 @@ class IsolatedShearBuilding:
         One bearing of the isolation level, best described without an axial load
         (``axial_load=None``): its load is the building's weight shared equally by the
         bearings, W / n_bearings. A load given on the bearing that differs from it is replaced,
-        with an :class:`~dcfpb.errors.InputWarning`.
+        with an :class:`~dcfpb.common.errors.InputWarning`.
     n_bearings : int
         Number of identical bearings under the base slab.
     """

@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 import sys
 
-from dcfpb.validation import check_real
+from dcfpb.common.validation import check_real
 from groundmotions.records import GroundMotion
 from isolator.limits import DEFAULT_MAX_STEPS, check_steps
 

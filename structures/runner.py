@@ -20,8 +20,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from dcfpb.errors import InputError
-from dcfpb.validation import check_real
+from dcfpb.common.errors import InputError
+from dcfpb.common.validation import check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from structures.config import BuildingConfig, load_config

@@ -18,8 +18,8 @@ from typing import NamedTuple
 import numpy as np
 import scipy.linalg
 
-from dcfpb.units import STANDARD_GRAVITY
-from dcfpb.validation import check_array, check_choice, check_int, check_real
+from dcfpb.common.units import STANDARD_GRAVITY
+from dcfpb.common.validation import check_array, check_choice, check_int, check_real
 from structures.model import LinearModel
 
 __all__ = [

@@ -14,10 +14,10 @@ it does not import the others' modules (``dcfpb diagnose`` alone costs about 2 s
 ``dcfpb --help`` and the other commands see them all.
 
 Exit status: 0 for success, 1 for a run that failed on its own terms
-(:class:`dcfpb.errors.RunFailure`, or a run that stopped early), 2 for bad input. Errors print
-as one line ``dcfpb <command>: error: <message>`` on stderr, and warnings (e.g. a building-file
-setting without effect, :class:`dcfpb.errors.InputWarning`) as ``dcfpb <command>: warning:
-<message>``.
+(:class:`dcfpb.common.errors.RunFailure`, or a run that stopped early), 2 for bad input.
+Errors print as one line ``dcfpb <command>: error: <message>`` on stderr, and warnings (e.g.
+a building-file setting without effect, :class:`dcfpb.common.errors.InputWarning`) as
+``dcfpb <command>: warning: <message>``.
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ import warnings
 from collections.abc import Sequence
 
 from dcfpb import __version__
-from dcfpb.errors import RunFailure
+from dcfpb.common.errors import RunFailure
 
 __all__ = ["build_parser", "console", "main"]
 
@@ -115,7 +115,7 @@ def _warning_line(command: str):
     <message>``, the category named unless it is one of ours (an ``InputWarning``)."""
 
     def line(message, category, filename, lineno, text=None) -> str:
-        from dcfpb.errors import InputWarning
+        from dcfpb.common.errors import InputWarning
 
         kind = "" if issubclass(category, InputWarning) else f" ({category.__name__})"
         return f"dcfpb {command}: warning: {message}{kind}\n"

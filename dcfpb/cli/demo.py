@@ -25,7 +25,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 
 MODELS = ("precise", "simplified", "constant")
 """The friction models the demo compares."""
@@ -144,8 +144,8 @@ def run_plan_demo(folder: str | Path) -> int:
     exit status."""
     from dcfpb.cli.pairs import print_plan_peaks
     from dcfpb.cli.run import example_path, print_failure
+    from dcfpb.common.units import STANDARD_GRAVITY
     from dcfpb.plotting.plan import plot_plan_runs
-    from dcfpb.units import STANDARD_GRAVITY
     from structures.config import load_config
     from structures.runner import run
     from structures.spatial.peaks import plan_peaks

@@ -107,7 +107,7 @@ def run_building(args: argparse.Namespace) -> int:
     if args.record_y is not None or args.record_z is not None:
         return run_plan_comparison(args)
     if args.overturning:
-        from dcfpb.errors import InputError
+        from dcfpb.common.errors import InputError
 
         raise InputError("--overturning applies to a building in plan under a pair: give "
                          "--record-y (and a building file with a [plan] table).")
@@ -269,8 +269,8 @@ def run_plan_comparison(args: argparse.Namespace) -> int:
     from dcfpb.cli.outputs import check_outputs
     from dcfpb.cli.pairs import pair_from_args, print_plan_peaks
     from dcfpb.cli.run import integrator_from_args, print_failure
-    from dcfpb.errors import InputError
-    from dcfpb.validation import check_int, check_real
+    from dcfpb.common.errors import InputError
+    from dcfpb.common.validation import check_int, check_real
     from structures.analysis import default_step
     from structures.config import load_config
     from structures.limits import check_run

@@ -35,8 +35,8 @@ def run_orbit_protocol(args: argparse.Namespace,
     check of the shared flags (:func:`dcfpb.cli.protocol.check_sine_flags`, passed in: this
     module does not import the command that calls it)."""
     from dcfpb.cli.outputs import check_outputs
-    from dcfpb.errors import InputError
-    from dcfpb.validation import check_real
+    from dcfpb.common.errors import InputError
+    from dcfpb.common.validation import check_real
     from isolator.bidirectional.orbits import orbit
     from isolator.bidirectional.testrig import run_orbit
     from isolator.experiments import protocol_bearing

@@ -15,7 +15,7 @@ its inputs or starts the analysis). A file (``--output``, ``--plot FILE.png``) o
 
 A folder asked for is not made here (its writer makes it, with the results); the missing
 folders above a file are, once checked, since the file writers (netCDF, CSV, a figure) do
-not make them. A bad path is an :class:`dcfpb.errors.InputError` naming the flag and the
+not make them. A bad path is an :class:`dcfpb.common.errors.InputError` naming the flag and the
 path (exit status 2).
 """
 
@@ -27,7 +27,7 @@ import stat
 import tempfile
 from pathlib import Path
 
-from dcfpb.errors import InputError
+from dcfpb.common.errors import InputError
 
 __all__ = ["FIGURE_FORMATS", "check_output_dir", "check_output_file", "check_outputs"]
 
@@ -116,7 +116,7 @@ def check_output_dir(path: str | os.PathLike, flag: str) -> Path:
 
     Raises
     ------
-    dcfpb.errors.InputError
+    dcfpb.common.errors.InputError
         Naming ``flag`` and ``path``: a file in its place, under a file, not writable,
         a name too long.
     """
@@ -146,7 +146,7 @@ def check_output_file(path: str | os.PathLike, flag: str, *, figure: bool = Fals
 
     Raises
     ------
-    dcfpb.errors.InputError
+    dcfpb.common.errors.InputError
         Naming ``flag`` and ``path``: a folder in its place, its folder a file or not
         writable, a read-only file, a name too long, a figure format not known.
 

@@ -33,7 +33,7 @@ def pair_from_args(args: argparse.Namespace, config, command: str):
     -------
     GroundMotionPair
     """
-    from dcfpb.errors import InputError
+    from dcfpb.common.errors import InputError
     from groundmotions.pairs import read_pair
 
     if args.record_y is None:

@@ -66,7 +66,7 @@ _FLAGS = {  # flag: (low, high, low_open); None: unbounded; finite but for a fla
 def check_sine_flags(args: argparse.Namespace, command: str) -> None:
     """Check the flags of a sine test (``dcfpb protocol``, ``dcfpb compare-opensees-bearing``)
     by their names and ranges, and its length against ``--max-steps``, before any work."""
-    from dcfpb.validation import check_int, check_real
+    from dcfpb.common.validation import check_int, check_real
     from isolator.limits import DEFAULT_MAX_STEPS, history_steps
 
     for name, (low, high, low_open) in _FLAGS.items():

@@ -121,7 +121,7 @@ def building_run_inputs(args: argparse.Namespace, command: str):
     integrator : Newmark or HHT
     motion : GroundMotion
     """
-    from dcfpb.validation import check_int, check_real
+    from dcfpb.common.validation import check_int, check_real
     from structures.config import load_config
 
     check_real(args.scale, "scale", command, low=0.0, low_open=True)
@@ -152,7 +152,7 @@ def _run_building(args: argparse.Namespace) -> int:
         if config.plan is not None:
             import warnings
 
-            from dcfpb.errors import InputWarning
+            from dcfpb.common.errors import InputWarning
 
             warnings.warn(InputWarning(
                 "the building file's [plan] table is not used: one record runs the planar "
@@ -197,7 +197,7 @@ def run_plan(args: argparse.Namespace) -> int:
     under the pair (the reference engine)."""
     from dcfpb.cli.outputs import check_outputs
     from dcfpb.cli.pairs import pair_from_args, print_plan_peaks
-    from dcfpb.validation import check_int, check_real
+    from dcfpb.common.validation import check_int, check_real
     from structures.config import load_config
     from structures.limits import check_run
     from structures.spatial.analysis import spatial_fields

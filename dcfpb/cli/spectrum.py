@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from dcfpb.cli.run import add_record_options, read_record_from_args
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 
 STANDARD_PERIODS = (0.0, 0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0)
 """Periods of the printed table when ``--periods`` is not given [s]."""

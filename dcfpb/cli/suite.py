@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 
 _FACTOR_ATTRIBUTES = ("scale_factors", "factors")
 _FACTOR_COLUMNS = ("scale_factor", "factor")
@@ -103,7 +103,7 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     """
     text = str(path)
     if text.lower().startswith(("asce7:", "asce7-mce:")):
-        from dcfpb.units import STANDARD_GRAVITY
+        from dcfpb.common.units import STANDARD_GRAVITY
         from groundmotions.scaling import asce7_design_spectrum
 
         kind, _, values = text.partition(":")
@@ -195,7 +195,7 @@ def _suite(args: argparse.Namespace, config, target, period_range):
         if config.plan is not None:
             import warnings
 
-            from dcfpb.errors import InputWarning
+            from dcfpb.common.errors import InputWarning
 
             warnings.warn(InputWarning(
                 "the building file's [plan] table is not used: single records run the planar "
@@ -206,7 +206,7 @@ def _suite(args: argparse.Namespace, config, target, period_range):
                      scales=_floats(args.scales, "--scales"),
                      property_modifiers=_floats(args.modifiers, "--modifiers"),
                      record_factors=factors, duration=args.duration, dt=args.dt), run_suite
-    from dcfpb.errors import InputError
+    from dcfpb.common.errors import InputError
     from structures.suites.pairs.suite import (
         PairSuite,
         pair_sources,
@@ -230,7 +230,7 @@ def _suite(args: argparse.Namespace, config, target, period_range):
 
 def _run(args: argparse.Namespace) -> int:
     from dcfpb.cli.outputs import check_outputs
-    from dcfpb.validation import check_int, check_real
+    from dcfpb.common.validation import check_int, check_real
     from structures.config import load_config
     from structures.suites.lock import SuiteLock
 

@@ -13,8 +13,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.plotting.base import PNG_OPTIONS, pyplot
-from dcfpb.units import STANDARD_GRAVITY
 
 FIXED_BASE_COLOUR = "0.25"
 PERIOD_TICKS = (0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0)  # [s], labelled as plain numbers

@@ -12,8 +12,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.plotting.base import pyplot as _pyplot
-from dcfpb.units import STANDARD_GRAVITY
 
 if TYPE_CHECKING:
     import pandas as pd

@@ -15,7 +15,7 @@ Synthetic pairs are made by `groundmotions.pairs.synthetic.synthetic_pair`, RotD
 `groundmotions.pairs.rotd`, the ASCE 7-16 scaling of a suite of pairs by
 `groundmotions.pairs.scaling`.
 A bad pair is refused, never repaired: components of different time steps or lengths raise
-`dcfpb.errors.InputError` naming both components and the way to make them agree.
+`dcfpb.common.errors.InputError` naming both components and the way to make them agree.
 """
 
 from __future__ import annotations
@@ -29,8 +29,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.errors import InputError, InputTypeError
-from dcfpb.validation import check_real
+from dcfpb.common.errors import InputError, InputTypeError
+from dcfpb.common.validation import check_real
 from groundmotions.readers import read_record
 from groundmotions.records import GroundMotion, PathLike
 

@@ -22,8 +22,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.errors import InputError, InputTypeError
-from dcfpb.validation import check_array, check_real
+from dcfpb.common.errors import InputError, InputTypeError
+from dcfpb.common.validation import check_array, check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.spectra import oscillator_recurrence
 

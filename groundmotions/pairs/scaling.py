@@ -23,8 +23,8 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.errors import InputError, InputTypeError
-from dcfpb.validation import check_choice, check_real
+from dcfpb.common.errors import InputError, InputTypeError
+from dcfpb.common.validation import check_choice, check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.pairs.rotd import rotd_spectra
 from groundmotions.scaling import TargetSpectrum, scaling_grid, suite_factors

@@ -14,8 +14,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from dcfpb.errors import InputTypeError
-from dcfpb.validation import check_choice, check_int, check_real
+from dcfpb.common.errors import InputTypeError
+from dcfpb.common.validation import check_choice, check_int, check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from groundmotions.synthetic import clough_penzien, kanai_tajimi

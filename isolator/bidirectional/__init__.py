@@ -9,7 +9,7 @@ element is :mod:`isolator.compiled.bidirectional`.
 
 from __future__ import annotations
 
-from dcfpb.lazy import lazy_exports
+from dcfpb.common.lazy import lazy_exports
 
 _EXPORTS = {
     "BidirectionalElement": "isolator.bidirectional.element",

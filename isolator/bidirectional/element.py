@@ -28,7 +28,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from dcfpb.errors import CapacityExceeded
+from dcfpb.common.errors import CapacityExceeded
 from isolator.bearing import DCFPBearing, trial_failure
 from isolator.bidirectional.friction import bind_plate_friction
 from isolator.friction import PTVFriction
@@ -189,7 +189,7 @@ class BidirectionalElement:
         ------
         ValueError
             If ``time`` is before the last committed time, or a vector is not a finite pair.
-        dcfpb.errors.CapacityExceeded
+        dcfpb.common.errors.CapacityExceeded
             If the model cannot evaluate the displacement (the slider off the monitor grid,
             at the spherical law's radius).
         """

@@ -41,8 +41,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.errors import CapacityExceeded
-from dcfpb.validation import check_real
+from dcfpb.common.errors import CapacityExceeded
+from dcfpb.common.validation import check_real
 from isolator.compiled.kernels import heated_window
 from isolator.heating import MonitorLine, SumOfExponentials, ThermalProperties, step_factors
 
@@ -203,7 +203,7 @@ class GridHeating:
 
         Raises
         ------
-        dcfpb.errors.CapacityExceeded
+        dcfpb.common.errors.CapacityExceeded
             When the square under the slider reaches past the grid's edge.
         """
         along = float(axes[0, 0] * position[0] + axes[0, 1] * position[1])

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dcfpb.validation import check_array, check_choice, check_int, check_real
+from dcfpb.common.validation import check_array, check_choice, check_int, check_real
 from isolator.limits import DEFAULT_MAX_STEPS, HISTORY_FIELDS, check_steps
 from isolator.protocols import sine
 

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from dcfpb.validation import check_array
+from dcfpb.common.validation import check_array
 from isolator.bearing import DCFPBearing
 from isolator.bidirectional.element import BidirectionalElement
 from isolator.bidirectional.orbits import Orbit

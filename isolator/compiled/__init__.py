@@ -6,7 +6,7 @@ and the named layout of the friction constants with its one packer
 
 from __future__ import annotations
 
-from dcfpb.lazy import lazy_exports
+from dcfpb.common.lazy import lazy_exports
 
 _EXPORTS = {
     "pack_ptv": "isolator.compiled.layout",

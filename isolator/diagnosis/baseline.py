@@ -22,7 +22,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from dcfpb.validation import check_choice, check_real
+from dcfpb.common.validation import check_choice, check_real
 from isolator.bearing import AxialLoadHistory, DCFPBearing
 from isolator.diagnosis.data import Campaign, check_plausible
 from isolator.diagnosis.features import (

@@ -25,8 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from dcfpb.errors import InputError
-from dcfpb.validation import check_real
+from dcfpb.common.errors import InputError
+from dcfpb.common.validation import check_real
 
 REQUIRED_COLUMNS = ("time", "displacement", "force")
 OPTIONAL_COLUMNS = ("axial_force", "velocity", "temperature")

@@ -21,15 +21,11 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from isolator.diagnosis.summary import effect_parameters
+from isolator.diagnosis.summary import Diagnosis, effect_parameters
 from isolator.diagnosis.where import DIMENSIONS
-
-if TYPE_CHECKING:
-    from isolator.diagnosis.pipeline import Diagnosis
 
 _MAX_LOOPS = 9
 

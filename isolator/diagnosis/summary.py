@@ -1,4 +1,5 @@
-"""The diagnosis as plain JSON types: the documented summary of ``dcfpb diagnose --json``.
+"""What the diagnosis found (:class:`Diagnosis`) and its summary as plain JSON types, the
+documented output of ``dcfpb diagnose --json``.
 
 Keys: ``baseline`` (model and calibrated parameters), ``gap`` (``metric`` = "force_nrmse",
 ``value`` on held-out data, the noise on the same scale, the hold-out scheme and the per-cycle
@@ -12,15 +13,16 @@ verdict, with the gap and the per-cycle EDC and Keff errors before and after), `
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from isolator.diagnosis.baseline import BaselineFit
+from isolator.diagnosis.data import Campaign
+from isolator.diagnosis.decision import Problem
+from isolator.diagnosis.selection import Assessment, Selection, Workspace
+from isolator.diagnosis.transition import TransitionFinding
 from isolator.diagnosis.where import QUANTITIES, CycleErrors, Where
-
-if TYPE_CHECKING:
-    from isolator.diagnosis.pipeline import Diagnosis
-    from isolator.diagnosis.selection import Assessment
 
 
 def _number(x: float) -> float | None:
@@ -191,3 +193,85 @@ def summary(d: Diagnosis) -> dict:
         "force_rms": float(np.sqrt(np.mean(f.force**2))),
         "wall_time": d.wall_time,
     }
+
+
+@dataclass(frozen=True)
+class Diagnosis:
+    """Everything the diagnosis found; :meth:`to_json` gives the documented summary.
+
+    Attributes
+    ----------
+    campaign : Campaign
+        The data.
+    baseline : BaselineFit
+        The calibrated baseline.
+    problem : Problem
+        Features, folds, constants, noise and the candidates' fits, shared by every decision.
+    selection : Selection
+        Candidates, chosen effects and verdict.
+    where : Where
+        Where the baseline's held-out residual lies.
+    cycles_before, cycles_after : CycleErrors
+        Per-cycle characteristic errors of the baseline and of the chosen effects (held out).
+    remaining : Where or None
+        Where the residual left after the chosen effects lies, when a real gap remains.
+    looks_like : list of str
+        What the remaining gap looks like, when a real gap remains.
+    wall_time : float
+        Seconds the diagnosis took.
+    excluded : tuple of str
+        Effects withheld from the library.
+    transition : TransitionFinding or None
+        What the baseline leaves inside the transition window after each reversal.
+    confidence : dict
+        ``{effect: share}``: how often a named effect still earns its place over block
+        resamples (:mod:`isolator.diagnosis.uncertainty`).
+    intervals : dict
+        ``{effect: {parameter: [low, high]}}``: 5-95 % bootstrap intervals of the named
+        effects' parameters.
+    """
+
+    campaign: Campaign
+    baseline: BaselineFit
+    problem: Problem
+    selection: Selection
+    where: Where
+    cycles_before: CycleErrors
+    cycles_after: CycleErrors | None
+    remaining: Where | None
+    looks_like: list[str]
+    wall_time: float = 0.0
+    excluded: tuple[str, ...] = field(default=())
+    transition: TransitionFinding | None = None
+    confidence: dict[str, float] = field(default_factory=dict)
+    intervals: dict[str, dict] = field(default_factory=dict)
+
+    @property
+    def work(self) -> Workspace:
+        """The samples the verdict was decided on (the sliding phase) and their fits."""
+        return self.selection.stage.work
+
+    @property
+    def verdict(self) -> list[str]:
+        """The verdict (see :mod:`isolator.diagnosis.selection`)."""
+        return self.selection.verdict
+
+    @property
+    def gap_before(self) -> float:
+        """Held-out force NRMSE of the calibrated baseline [-]."""
+        return self.work.nrmse(self.selection.baseline.prediction)
+
+    @property
+    def gap_after(self) -> float:
+        """Held-out force NRMSE with the chosen effects (the baseline's when none) [-]."""
+        chosen = self.selection.chosen
+        return self.gap_before if chosen is None else self.work.nrmse(chosen.prediction)
+
+    @property
+    def noise_nrmse(self) -> float:
+        """The measurement noise on the same scale as the gap [-]."""
+        return self.work.noise_nrmse
+
+    def to_json(self) -> dict:
+        """The summary as plain JSON types (:func:`summary`)."""
+        return summary(self)

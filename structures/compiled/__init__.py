@@ -6,7 +6,7 @@ result back (:mod:`~structures.compiled.engine`), the two dense LAPACK solves
 
 from __future__ import annotations
 
-from dcfpb.lazy import lazy_exports
+from dcfpb.common.lazy import lazy_exports
 
 _EXPORTS = {
     "compiled_history": "structures.compiled.engine",

@@ -9,7 +9,7 @@ compiled engine cannot run a model (None when it can) into ``"compiled"`` or
 
 from __future__ import annotations
 
-from dcfpb.validation import check_choice
+from dcfpb.common.validation import check_choice
 from isolator.bearing import AxialLoadHistory
 from isolator.compiled import kernels
 from isolator.friction import ConstantFriction, PTVFriction

@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.errors import CapacityExceeded, TimeLimitExceeded
+from dcfpb.common.errors import CapacityExceeded, TimeLimitExceeded
 from isolator.bearing import trial_failure
 from isolator.compiled import bearing as cb
 from isolator.compiled import kernels

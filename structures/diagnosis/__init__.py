@@ -4,7 +4,7 @@ reads them (:mod:`~structures.diagnosis.adapter`) and the truth models of its va
 
 from __future__ import annotations
 
-from dcfpb.lazy import lazy_exports
+from dcfpb.common.lazy import lazy_exports
 
 _EXPORTS = {
     "bearing_records": "structures.diagnosis.adapter",

@@ -7,7 +7,7 @@ is imported when a model is built (:mod:`~structures.opensees.runtime`)."""
 
 from __future__ import annotations
 
-from dcfpb.lazy import lazy_exports
+from dcfpb.common.lazy import lazy_exports
 
 _EXPORTS = {
     "run_opensees": "structures.opensees.building",

@@ -59,7 +59,7 @@ import time as _time
 
 import numpy as np
 
-from dcfpb.validation import check_choice
+from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction
 from isolator.testrig import HISTORY_FIELDS, BearingTestResult, imposed_history

@@ -51,7 +51,7 @@ import time as _time
 import numpy as np
 from numpy.typing import ArrayLike
 
-from dcfpb.validation import check_choice
+from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.bidirectional.orbits import Orbit
 from isolator.bidirectional.testrig import OrbitTestResult

@@ -35,7 +35,7 @@ import time as _time
 
 import numpy as np
 
-from dcfpb.validation import check_int, check_real
+from dcfpb.common.validation import check_int, check_real
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from structures.analysis import resampled_record

@@ -31,9 +31,9 @@ import time as _time
 
 import numpy as np
 
-from dcfpb.errors import InputTypeError
-from dcfpb.units import STANDARD_GRAVITY
-from dcfpb.validation import check_int, check_real
+from dcfpb.common.errors import InputTypeError
+from dcfpb.common.units import STANDARD_GRAVITY
+from dcfpb.common.validation import check_int, check_real
 from groundmotions.pairs import GroundMotionPair
 from isolator.bearing import DCFPBearing
 from structures.analysis import resampled_record

@@ -32,7 +32,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from dcfpb.validation import check_choice
+from dcfpb.common.validation import check_choice
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from isolator.factors import KumarFactors

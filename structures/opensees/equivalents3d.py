@@ -13,7 +13,7 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import ArrayLike
 
-from dcfpb.validation import check_array
+from dcfpb.common.validation import check_array
 from isolator.bearing import AxialLoadHistory, DCFPBearing
 from isolator.bidirectional.testrig import run_orbit_test
 from structures.opensees.equivalents import constant_axial_load

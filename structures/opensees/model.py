@@ -56,7 +56,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.validation import check_choice
+from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction, PTVFriction
 from structures.opensees.equivalents import (

@@ -60,7 +60,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.validation import check_choice
+from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction
 from structures.opensees.equivalents import ELEMENT_ITERATIONS, ELEMENT_TOLERANCE

@@ -27,7 +27,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from dcfpb.validation import check_choice
+from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.bidirectional.orbits import Orbit
 from isolator.bidirectional.testrig import OrbitTestResult, path_integral, run_orbit

@@ -16,7 +16,7 @@ The planar building (:mod:`structures.analysis`) does not depend on any of it.
 
 from __future__ import annotations
 
-from dcfpb.lazy import lazy_exports
+from dcfpb.common.lazy import lazy_exports
 
 _EXPORTS = {
     "Plan": "structures.spatial.plan",

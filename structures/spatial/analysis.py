@@ -17,7 +17,7 @@ import time as _time
 
 import numpy as np
 
-from dcfpb.errors import InputTypeError
+from dcfpb.common.errors import InputTypeError
 from groundmotions.pairs import GroundMotionPair
 from isolator.bearing import DCFPBearing
 from structures.analysis import compile_kernels, default_step, resampled_record

@@ -36,7 +36,7 @@ from functools import cached_property
 
 import numpy as np
 
-from dcfpb.errors import InputError, InputTypeError
+from dcfpb.common.errors import InputError, InputTypeError
 from structures.shear_building import (
     ModalDamping,
     ModalProperties,

@@ -37,8 +37,8 @@ import warnings
 
 import numpy as np
 
-from dcfpb.errors import InputTypeError, InputWarning
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.errors import InputTypeError, InputWarning
+from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from isolator.bidirectional.element import BidirectionalElement, PlanarState
@@ -58,7 +58,7 @@ class SpatialIsolatedBuilding:
     bearing : DCFPBearing
         The bearing of every position, best without an axial load (``axial_load=None``): each
         takes its gravity share (a load given on the bearing is replaced, with an
-        :class:`~dcfpb.errors.InputWarning`).
+        :class:`~dcfpb.common.errors.InputWarning`).
     overturning : bool
         Add the overturning moment of the floors' inertia forces to the axial loads (needs
         the plan's ``storey_heights``). Default True.

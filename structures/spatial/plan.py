@@ -22,9 +22,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dcfpb.errors import InputError
-from dcfpb.units import STANDARD_GRAVITY
-from dcfpb.validation import check_array, check_real
+from dcfpb.common.errors import InputError
+from dcfpb.common.units import STANDARD_GRAVITY
+from dcfpb.common.validation import check_array, check_real
 
 __all__ = ["Plan", "axial_distribution", "gravity_shares"]
 

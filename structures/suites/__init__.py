@@ -6,7 +6,7 @@ statistics of their peaks (:mod:`~structures.suites.summary`)."""
 
 from __future__ import annotations
 
-from dcfpb.lazy import lazy_exports
+from dcfpb.common.lazy import lazy_exports
 
 _EXPORTS = {
     "Suite": "structures.suites.suite",

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from dcfpb.validation import check_choice, check_int, check_real
+from dcfpb.common.validation import check_choice, check_int, check_real
 from structures.config import BuildingConfig
 from structures.suites.store import RunStore, atomic_write
 from structures.suites.summary import summarize, write_summary

@@ -8,7 +8,7 @@ would remove the first's temporary files as strays (:meth:`RunStore.clean_tempor
   file system grants to one process only, and writes the holder in it (pid, host, start time
   in UTC, the process's own start time, the command);
 - a second suite finds the file and refuses at once (:class:`SuiteLocked`, an
-  :class:`~dcfpb.errors.InputError`: exit status 2), naming the folder and the holder; with
+  :class:`~dcfpb.common.errors.InputError`: exit status 2), naming the folder and the holder; with
   ``wait`` it polls until the lock is free or the wait is over;
 - a lock whose holder is gone (its pid no longer runs on this host, or runs a process that
   started after the lock was taken: a pid reused) is stale: it is taken over with a
@@ -37,7 +37,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-from dcfpb.errors import InputError
+from dcfpb.common.errors import InputError
 
 __all__ = ["LOCK_NAME", "SuiteLock", "SuiteLocked"]
 

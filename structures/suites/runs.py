@@ -29,7 +29,7 @@ from functools import cached_property
 from pathlib import Path
 from typing import Any
 
-from dcfpb.validation import check_choice, check_real
+from dcfpb.common.validation import check_choice, check_real
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS

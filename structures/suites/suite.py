@@ -37,7 +37,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from dcfpb.validation import check_choice, check_real
+from dcfpb.common.validation import check_choice, check_real
 from groundmotions.records import GroundMotion
 from isolator.experiments import MODELS
 from isolator.limits import DEFAULT_MAX_STEPS

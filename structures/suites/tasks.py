@@ -19,7 +19,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
 
-from dcfpb.validation import check_int
+from dcfpb.common.validation import check_int
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
 from structures.suites.store import RunStore

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dcfpb.errors import InputError
+from dcfpb.common.errors import InputError
 from groundmotions import (
     GroundMotion,
     GroundMotionPair,

@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from dcfpb.cli import main
-from dcfpb.errors import InputError
+from dcfpb.common.errors import InputError
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction
 from structures.config import ConfigError, load_config

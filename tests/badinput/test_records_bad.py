@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from dcfpb.cli import main
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 
 EXIT_BAD_INPUT = 2
 ELCENTRO = Path(str(resources.files("groundmotions").joinpath("data", "elcentro_1940_ns.at2")))

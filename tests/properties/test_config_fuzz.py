@@ -1,5 +1,5 @@
 """Fuzzing the building-file loader: whatever the file holds, :func:`structures.config.load_config`
-either loads it or raises :class:`dcfpb.errors.InputError` (a message naming the file), never
+either loads it or raises :class:`dcfpb.common.errors.InputError` (a message naming the file), never
 another exception.
 
 Two sources of files: the example building (``examples/five_storey.toml``) with some of its
@@ -19,7 +19,7 @@ from pathlib import Path
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from dcfpb.errors import InputError
+from dcfpb.common.errors import InputError
 from structures.config import BuildingConfig, load_config
 
 REPO = Path(__file__).resolve().parents[2]

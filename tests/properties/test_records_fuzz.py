@@ -18,8 +18,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from dcfpb.errors import InputError
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.errors import InputError
+from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.readers import read_peer_at2, read_record, read_text_record
 from groundmotions.records import GroundMotion
 from groundmotions.units import PGA_LIMITS_G, UNIT_NAMES

@@ -28,8 +28,8 @@ import pytest
 
 import structures
 from dcfpb import cli
-from dcfpb.errors import InputError, InputWarning
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.errors import InputError, InputWarning
+from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.pairs import read_pair
 from groundmotions.pairs.scaling import scale_pairs
 from groundmotions.pairs.synthetic import synthetic_pair

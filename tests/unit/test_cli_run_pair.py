@@ -11,7 +11,7 @@ import pytest
 
 import structures
 from dcfpb.cli import main
-from dcfpb.errors import InputWarning
+from dcfpb.common.errors import InputWarning
 from groundmotions.pairs.synthetic import synthetic_pair
 from structures.spatial.peaks import PLAN_PEAK_KEYS, plan_peaks
 

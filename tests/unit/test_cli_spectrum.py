@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from dcfpb.cli import main
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.bundled import load_bundled
 from groundmotions.processing import arias_intensity, significant_duration
 from groundmotions.spectra import peak_ground_values, spectrum

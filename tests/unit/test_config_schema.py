@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from dcfpb.errors import InputError, InputWarning
+from dcfpb.common.errors import InputError, InputWarning
 from structures.config import ConfigError, ConfigWarning, load_config
 from structures.config_schema import Array, Choice, Either, Integer, Number, Where
 from structures.integrators import HHT, Newmark

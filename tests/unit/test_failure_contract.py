@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from dcfpb.cli import main
-from dcfpb.errors import CapacityExceeded
+from dcfpb.common.errors import CapacityExceeded
 from groundmotions.bundled import load_bundled
 from structures.analysis import peaks, run
 from structures.config import load_config

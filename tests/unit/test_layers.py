@@ -27,8 +27,8 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("structures",),
     ("isolator",),
     ("groundmotions",),
-    ("dcfpb.validation",),
-    ("dcfpb", "dcfpb.errors", "dcfpb.units", "dcfpb.lazy"),
+    ("dcfpb.common.validation",),
+    ("dcfpb", "dcfpb.common.errors", "dcfpb.common.units", "dcfpb.common.lazy"),
 )
 """From the top down; names on one line are independent siblings (neither imports the other)."""
 

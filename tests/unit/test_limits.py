@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dcfpb.errors import InputError
+from dcfpb.common.errors import InputError
 from groundmotions.records import GroundMotion
 from isolator.limits import DEFAULT_MAX_STEPS, available_memory, check_steps, history_steps
 from isolator.protocols import hold, sine

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 from structures.integrators import integrate
 from structures.model import LinearModel
 from structures.shear_building import ModalDamping, ShearBuilding

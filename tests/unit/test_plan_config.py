@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import structures
-from dcfpb.errors import InputError
+from dcfpb.common.errors import InputError
 from groundmotions.pairs.synthetic import synthetic_pair
 
 PLAN_FILE = """

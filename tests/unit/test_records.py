@@ -10,7 +10,7 @@ from importlib import resources
 import numpy as np
 import pytest
 
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.bundled import bundled_names, load_bundled
 from groundmotions.readers import read_peer_at2, read_record, read_text_record
 from groundmotions.records import GroundMotion, RecordFormatError

@@ -18,7 +18,7 @@ import functools
 import numpy as np
 import pytest
 
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion

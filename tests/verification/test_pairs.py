@@ -10,7 +10,7 @@ import re
 import numpy as np
 import pytest
 
-from dcfpb.units import STANDARD_GRAVITY as G
+from dcfpb.common.units import STANDARD_GRAVITY as G
 from groundmotions import (
     GroundMotion,
     GroundMotionPair,

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.bundled import load_bundled
 from groundmotions.processing import (
     arias_intensity,

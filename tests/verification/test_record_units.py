@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from dcfpb.cli import main
-from dcfpb.errors import InputError
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.errors import InputError
+from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.bundled import load_bundled
 from groundmotions.readers import read_peer_at2, read_record, read_text_record
 from groundmotions.records import RecordFormatError

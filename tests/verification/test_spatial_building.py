@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.pairs import GroundMotionPair, read_pair
 from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion

@@ -18,7 +18,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.errors import CapacityExceeded
+from dcfpb.common.errors import CapacityExceeded
 from isolator.bearing import trial_failure
 from isolator.bidirectional.heating import GridHeating
 from isolator.compiled import kernels

@@ -35,7 +35,7 @@ import math
 
 import numpy as np
 
-from dcfpb.units import STANDARD_GRAVITY
+from dcfpb.common.units import STANDARD_GRAVITY
 from isolator.compiled.bidirectional import bearing as E
 from isolator.compiled.bidirectional.bearing import inlined
 from isolator.compiled.kernels import jit

@@ -32,8 +32,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from dcfpb.errors import InputError
-from dcfpb.validation import check_real
+from dcfpb.common.errors import InputError
+from dcfpb.common.validation import check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.pairs.pair import manifest_rows
 from isolator.experiments import MODELS

@@ -1,7 +1,8 @@
 """Parameter validation with one error template.
 
-Every bad parameter raises :class:`dcfpb.errors.InputError`, a ``ValueError`` (or
-:class:`~dcfpb.errors.InputTypeError`, also a ``TypeError``, for a wrong kind), with the message
+Every bad parameter raises :class:`dcfpb.common.errors.InputError`, a ``ValueError`` (or
+:class:`~dcfpb.common.errors.InputTypeError`, also a ``TypeError``, for a wrong kind), with the
+message
 
     The 'mu0' parameter of ConstantFriction must be a float in (0, 1]. Got -0.1 instead.
 
@@ -15,7 +16,7 @@ from numbers import Integral, Real
 
 import numpy as np
 
-from dcfpb.errors import InputError, InputTypeError
+from dcfpb.common.errors import InputError, InputTypeError
 
 
 def _interval(low: float | None, high: float | None, low_open: bool, high_open: bool) -> str:

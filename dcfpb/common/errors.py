@@ -5,12 +5,13 @@ Every error a user can cause derives from :class:`InputError`, itself a ``ValueE
 code written against the standard exceptions keeps working: records
 (:class:`groundmotions.records.RecordFormatError`), building files
 (:class:`structures.config.ConfigError`), bearing-test data
-(:class:`isolator.diagnosis.data.DataError`) and parameters checked by :mod:`dcfpb.validation`.
+(:class:`isolator.diagnosis.data.DataError`) and parameters checked by
+:mod:`dcfpb.common.validation`.
 A run that was given good input but cannot finish (a bearing pushed past its displacement
 capacity, a run past its time limit) raises :class:`RunFailure`.
 
-This module sits in the lowest layer with :mod:`dcfpb.validation` and :mod:`dcfpb.units`: every
-package may import it, and it imports nothing of the project.
+This module sits in the lowest layer with :mod:`dcfpb.common.validation` and
+:mod:`dcfpb.common.units`: every package may import it, and it imports nothing of the project.
 """
 
 from __future__ import annotations
