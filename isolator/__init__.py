@@ -1,6 +1,7 @@
-"""Isolator layer: friction laws, frictional heating, the DCFPB element, bearing tests, the
-force-deflection characteristics and the diagnosis of the sim-to-real gap
-(:mod:`isolator.diagnosis`); the compiled element and its kernels in :mod:`isolator.compiled`.
+"""Isolator layer: friction laws, frictional heating, the DCFPB element in one or two
+directions, bearing tests (imposed histories and orbits), the force-deflection characteristics
+and the diagnosis of the sim-to-real gap (:mod:`isolator.diagnosis`); the compiled element and
+its kernels in :mod:`isolator.compiled`.
 
 The names in ``__all__`` are importable from the package (on first use: the element's kernels
 import numba)::
@@ -36,42 +37,38 @@ _EXPORTS = {
     "BearingTestResult": "isolator.testrig",
     "CycleCharacteristics": "isolator.characteristics",
     "cycle_characteristics": "isolator.characteristics",
-    "BidirectionalElement": "isolator.bidirectional.element",
-    "bidirectional_element": "isolator.bidirectional.element",
-    "MonitorGrid": "isolator.bidirectional.heating",
-    "Orbit": "isolator.bidirectional.orbits",
-    "orbit": "isolator.bidirectional.orbits",
-    "OrbitTestResult": "isolator.bidirectional.testrig",
-    "run_orbit": "isolator.bidirectional.testrig",
-    "run_orbit_test": "isolator.bidirectional.testrig",
+    "BearingState": "isolator.bearing",
+    "FrictionModel": "isolator.friction",
+    "MonitorGrid": "isolator.monitor_grid",
+    "Orbit": "isolator.orbits",
+    "orbit": "isolator.orbits",
+    "run_orbit": "isolator.testrig",
 }
 __all__ = [
     "AxialLoadHistory",
     "BearingElement",
+    "BearingState",
     "BearingTestResult",
-    "BidirectionalElement",
     "CentrePoint",
     "ConstantFriction",
     "CycleCharacteristics",
     "DCFPBearing",
+    "FrictionModel",
     "ImposedHistory",
     "KumarFactors",
     "MonitorGrid",
     "MonitorLine",
     "Orbit",
-    "OrbitTestResult",
     "PTVFriction",
     "PaperFactors",
     "ThermalProperties",
     "asce7_prototype_sequence",
-    "bidirectional_element",
     "cycle_characteristics",
     "eq7",
     "friction_model",
     "orbit",
     "protocol_bearing",
     "run_orbit",
-    "run_orbit_test",
     "run_test",
     "sine",
     "wind_cycles",
@@ -79,15 +76,13 @@ __all__ = [
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
 
 if TYPE_CHECKING:
-    from isolator.bearing import AxialLoadHistory, BearingElement, DCFPBearing
-    from isolator.bidirectional.element import BidirectionalElement, bidirectional_element
-    from isolator.bidirectional.heating import MonitorGrid
-    from isolator.bidirectional.orbits import Orbit, orbit
-    from isolator.bidirectional.testrig import OrbitTestResult, run_orbit, run_orbit_test
+    from isolator.bearing import AxialLoadHistory, BearingElement, BearingState, DCFPBearing
     from isolator.characteristics import CycleCharacteristics, cycle_characteristics
     from isolator.experiments import friction_model, protocol_bearing
     from isolator.factors import KumarFactors, PaperFactors
-    from isolator.friction import ConstantFriction, PTVFriction, eq7
+    from isolator.friction import ConstantFriction, FrictionModel, PTVFriction, eq7
     from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
+    from isolator.monitor_grid import MonitorGrid
+    from isolator.orbits import Orbit, orbit
     from isolator.protocols import ImposedHistory, asce7_prototype_sequence, sine, wind_cycles
-    from isolator.testrig import BearingTestResult, run_test
+    from isolator.testrig import BearingTestResult, run_orbit, run_test

@@ -1,17 +1,25 @@
-"""The double concave friction pendulum bearing (DCFPB) element.
+"""The double concave friction pendulum bearing (DCFPB) element, in one or two directions.
 
-Horizontal force for a relative displacement u and velocity v of the two concave plates:
+Horizontal force for a relative displacement u and velocity v of the two concave plates
+(scalars along x for a bearing in one direction, (x, y) vectors in the plane):
 
-    F = N u / R_eff + mu(p, v, T) N z,
+    F = N u / R_eff + mu(p, |v|, T) N z,
 
 with N the axial load, R_eff the effective radius, p = N / (pi r^2) the contact pressure and z
-in [-1, 1] the hysteretic variable of an elastic-plastic return map with a small yield
-displacement u_y (rigid-plastic sliding as u_y -> 0).
+the hysteretic variable of an isotropic elastic-plastic return map with a small yield
+displacement u_y (:func:`isotropic_return_map`: |z| <= 1, on the unit circle while sliding,
+so the friction force has the magnitude mu N and the direction of the sliding; in one
+direction it is the clip of z to +-1). The restoring law is ``"linear"`` N u / R_eff (the
+paper's) or ``"spherical"`` N u / sqrt(R_eff^2 - |u|^2) (OpenSees FPBearingPTV's). mu, the
+contact temperature and the heat flux come from the bearing's friction model, a strategy
+(:class:`isolator.friction.FrictionModel`) the element asks at every trial.
 
 :class:`DCFPBearing` holds the frozen parameters; :meth:`DCFPBearing.element` gives a
 :class:`BearingElement` with the state contract of OpenSees elements: ``set_trial(u, v, time)``
-returns the force and the consistent tangent (d F / d u and d F / d v, the latter from
-d mu / d v), ``commit()`` accepts the trial (and only then adds its heat), ``revert()`` drops it.
+returns the force and the consistent tangents d F / d u and d F / d v (the latter from
+d mu / d|v|), ``commit()`` accepts the trial (and only then adds its heat), ``revert()`` drops
+it. Along any fixed direction through the centre the element in two directions gives the
+force, mu and temperature of the element in one (``tests/verification/test_bidirectional.py``).
 """
 
 from __future__ import annotations
@@ -22,9 +30,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.common.errors import CapacityExceeded, InputError
-from dcfpb.common.validation import check_array, check_choice, check_real
-from isolator.friction import ConstantFriction, PTVFriction
+from numpy.typing import ArrayLike
+
+from dcfpb.common.errors import CapacityExceeded, InputError, InputTypeError
+from dcfpb.common.validation import check_array, check_choice, check_int, check_real
+from isolator.friction import FrictionModel, FrictionState
 
 
 @dataclass(frozen=True)
@@ -62,36 +72,76 @@ class AxialLoadHistory:
 
 
 class BearingTrial(NamedTuple):
-    """Force and consistent tangent of a trial state.
+    """Force and consistent tangents of a trial state: floats for a bearing in one direction,
+    a (2,) vector and (2, 2) matrices for one in two.
 
     Attributes
     ----------
-    force : float
+    force : float or ndarray
         Horizontal force F [N].
-    stiffness : float
+    stiffness : float or ndarray
         d F / d u [N/m].
-    damping : float
+    damping : float or ndarray
         d F / d v [N s/m], from the velocity dependence of mu.
     """
 
-    force: float
-    stiffness: float
-    damping: float
+    force: float | np.ndarray
+    stiffness: float | np.ndarray
+    damping: float | np.ndarray
 
 
 class BearingState(NamedTuple):
-    """Everything worth recording about a (trial or committed) state of the element."""
+    """Everything worth recording about a (trial or committed) state of the element.
+
+    displacement [m], velocity [m/s], force and friction_force [N] and z [-] are floats for a
+    bearing in one direction and (x, y) arrays of shape (2,) for one in two; the rest are
+    floats: time [s], mu [-], temperature [degC], heat_flux [W/m^2], axial_load [N].
+    """
 
     time: float
-    displacement: float
-    velocity: float
-    force: float
-    friction_force: float
-    z: float
+    displacement: float | np.ndarray
+    velocity: float | np.ndarray
+    force: float | np.ndarray
+    friction_force: float | np.ndarray
+    z: float | np.ndarray
     mu: float
     temperature: float
     heat_flux: float
     axial_load: float
+
+
+def isotropic_return_map(zx: float, zy: float, dux: float, duy: float,
+                         yield_displacement: float) -> tuple[float, ...]:
+    """The hysteretic variable after a displacement increment, and its tangent.
+
+    The elastic predictor z* = z_c + du / u_y is returned when |z*| < 1, else its projection
+    on the unit circle z* / |z*| (radial return; along one axis, the clip of z to +-1).
+
+    Parameters
+    ----------
+    zx, zy : float
+        Committed hysteretic variable [-], |z| <= 1.
+    dux, duy : float
+        Displacement increment since the commit [m].
+    yield_displacement : float
+        u_y [m].
+
+    Returns
+    -------
+    tuple of float
+        The trial z (x, y) [-] and the consistent tangent d z / d u row by row (xx, xy, yx,
+        yy) [1/m]: I / u_y when elastic, (I - z z^T) / (u_y |z*|) when sliding.
+    """
+    px = zx + dux / yield_displacement
+    py = zy + duy / yield_displacement
+    size = abs(px) if py == 0.0 else math.hypot(px, py)
+    if size >= 1.0:
+        zx, zy = px / size, py / size
+        scale = yield_displacement * size
+        return (zx, zy, (1.0 - zx * zx) / scale, -zx * zy / scale, -zy * zx / scale,
+                (1.0 - zy * zy) / scale)
+    elastic = 1.0 / yield_displacement
+    return px, py, elastic, 0.0, 0.0, elastic
 
 
 @dataclass(frozen=True)
@@ -108,13 +158,15 @@ class DCFPBearing:
         Compressive axial load N [N], constant or varying in time. None (the default) for a
         bearing placed in a building, whose weight shared by its bearings is the load
         (:class:`structures.isolated_building.IsolatedShearBuilding`); a bearing test needs one.
-    friction : ConstantFriction or PTVFriction
-        Friction model of the sliding surfaces (required).
+    friction : FrictionModel
+        Friction model of the sliding surfaces (required): :class:`~isolator.friction.
+        ConstantFriction`, :class:`~isolator.friction.PTVFriction` or any object with
+        their ``bind``, ``name`` and ``initial_temperature``.
     yield_displacement : float
         Yield displacement u_y of the return map [m]; default 0.5 mm.
     displacement_capacity : float
-        Largest relative displacement of the plates [m]; sizes the precise model's monitor
-        line. Default 0.6 m.
+        Largest relative displacement of the plates [m] (a radius in the plane); sizes the
+        precise model's monitor points. Default 0.6 m.
     restoring : str
         Restoring force law: ``"linear"`` N u / R_eff (the paper's), or ``"spherical"``
         N u / sqrt(R_eff^2 - u^2) (OpenSees FPBearingPTV's).
@@ -123,7 +175,7 @@ class DCFPBearing:
     effective_radius: float
     slider_diameter: float
     axial_load: float | AxialLoadHistory | None = None
-    friction: ConstantFriction | PTVFriction | None = None
+    friction: FrictionModel | None = None
     yield_displacement: float = 5.0e-4
     displacement_capacity: float = 0.6
     restoring: str = "linear"
@@ -136,10 +188,12 @@ class DCFPBearing:
                    high=10.0)
         if self.axial_load is not None and not isinstance(self.axial_load, AxialLoadHistory):
             check_real(self.axial_load, "axial_load", owner, low=0.0, low_open=True)
-        if not isinstance(self.friction, ConstantFriction | PTVFriction):
-            raise TypeError(
-                f"The 'friction' parameter of {owner} must be a ConstantFriction or a "
-                f"PTVFriction. Got {self.friction!r} instead."
+        if not all(hasattr(self.friction, name) for name in ("bind", "name",
+                                                             "initial_temperature")):
+            raise InputTypeError(
+                f"The 'friction' parameter of {owner} must be a friction model (a "
+                "ConstantFriction, a PTVFriction or another FrictionModel with bind, name and "
+                f"initial_temperature). Got {self.friction!r} instead."
             )
         check_real(self.yield_displacement, "yield_displacement", owner, low=0.0,
                    low_open=True, high=0.1)
@@ -185,9 +239,11 @@ class DCFPBearing:
         """Post-yield stiffness N / R_eff at the initial axial load [N/m]."""
         return self.axial_load_at(0.0) / self.effective_radius
 
-    def element(self) -> BearingElement:
-        """A new element at rest (u = 0, z = 0, t = 0) with an unheated surface."""
-        return BearingElement(self)
+    def element(self, dimension: int = 1,
+                grid_orientation: float | None = None) -> BearingElement:
+        """A new element at rest (u = 0, z = 0, t = 0) with unheated plates, moving in
+        ``dimension`` 1 (along x) or 2 directions; see :class:`BearingElement`."""
+        return BearingElement(self, dimension, grid_orientation)
 
 
 def beyond_capacity_message(displacement: float, time: float, capacity: float, *,
@@ -236,28 +292,58 @@ def trial_failure(bearing: DCFPBearing, displacement: float, time: float,
         f"range: {detail}", kind="model")
 
 
+def _pair(value: ArrayLike, name: str) -> tuple[float, float]:
+    array = np.asarray(value, dtype=float)
+    if array.shape != (2,) or not np.all(np.isfinite(array)):
+        raise ValueError(f"The {name!r} parameter of BearingElement.set_trial must be a finite "
+                         f"(x, y) pair for a bearing in two directions. Got {value!r} instead.")
+    return float(array[0]), float(array[1])
+
+
 class BearingElement:
-    """Stateful DCFPB element: set_trial / commit / revert.
+    """Stateful DCFPB element: set_trial / commit / revert, in one or two directions.
 
     A trial is a pure function of the committed state and the trial arguments, so Newton
     iterations may call :meth:`set_trial` as often as they like.
+
+    Parameters
+    ----------
+    bearing : DCFPBearing
+        The bearing's parameters (``displacement_capacity`` is a radius in two directions).
+    dimension : int
+        1: displacement, velocity and force are floats along x; 2: (x, y) vectors.
+    grid_orientation : float or None
+        Orientation of the precise model's monitor grid in two directions [deg]; None (the
+        default) follows the motion (:class:`~isolator.monitor_grid.MonitorGrid`).
     """
 
-    def __init__(self, bearing: DCFPBearing) -> None:
+    def __init__(self, bearing: DCFPBearing, dimension: int = 1,
+                 grid_orientation: float | None = None) -> None:
+        if not isinstance(bearing, DCFPBearing):
+            raise InputTypeError(f"The 'bearing' parameter of BearingElement must be a "
+                                 f"DCFPBearing. Got {bearing!r} instead.")
         self.bearing = bearing
-        self._friction = bearing.friction.bind(bearing.contact_radius,
-                                               bearing.displacement_capacity)
+        self.dimension = check_int(dimension, "dimension", "BearingElement", low=1, high=2)
+        self._friction: FrictionState = bearing.friction.bind(
+            bearing.contact_radius, bearing.displacement_capacity, self.dimension,
+            grid_orientation)
         self._radius = bearing.effective_radius
         self._spherical = bearing.restoring == "spherical"
         self._yield = bearing.yield_displacement
-        t0 = bearing.friction.thermal.initial_temperature if isinstance(
-            bearing.friction, PTVFriction) else bearing.friction.initial_temperature
+        self._area = bearing.contact_area
+        self._constant_load = (None if isinstance(bearing.axial_load, AxialLoadHistory)
+                               else bearing.axial_load)
         n0 = bearing.axial_load_at(0.0)
         # at rest: mu at zero speed and the initial temperature (a trial of zero length adds
         # no heat and leaves nothing to commit)
-        mu0 = self._friction.trial(0.0, 0.0, n0 / bearing.contact_area, 0.0).mu if n0 > 0 else 0.0
+        zero = (0.0, 0.0)
+        mu0 = (self._friction.trial(zero, zero, n0 / bearing.contact_area, 0.0).mu
+               if n0 > 0 else 0.0)
         self._friction.revert()
-        self._committed = BearingState(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, mu0, t0, 0.0, n0)
+        self._floats = (0.0, 0.0, 0.0, 0.0, 0.0)  # committed time, u (x, y), z (x, y)
+        self._trial_floats = self._floats
+        self._committed = self._state(0.0, zero, zero, zero, zero, zero, mu0,
+                                      bearing.friction.initial_temperature, 0.0, n0)
         self._trial = self._committed
 
     @property
@@ -271,71 +357,119 @@ class BearingElement:
         return self._trial
 
     @property
-    def friction_state(self):
-        """The bound friction evaluator (gives access to the heating model)."""
+    def friction_state(self) -> FrictionState:
+        """The bound friction evaluator (its ``temperature_field`` reads the plates)."""
         return self._friction
 
-    def _restoring(self, u: float, n: float, time: float) -> tuple[float, float]:
-        if math.isinf(self._radius):
-            return 0.0, 0.0
-        if self._spherical:
-            squared = self._radius**2 - u * u
-            if not squared > 0.0:
-                raise trial_failure(self.bearing, u, time, f"at the effective radius "
-                                    f"{self._radius!r} m of the spherical law")
-            root = math.sqrt(squared)
-            return n * u / root, n * self._radius**2 / root**3
-        return n * u / self._radius, n / self._radius
+    def _state(self, time: float, u: tuple, v: tuple, force: tuple, friction_force: tuple,
+               z: tuple, mu: float, temperature: float, heat_flux: float,
+               load: float) -> BearingState:
+        if self.dimension == 1:
+            return BearingState(time, u[0], v[0], force[0], friction_force[0], z[0], mu,
+                                temperature, heat_flux, load)
+        return BearingState(time, np.array(u), np.array(v), np.array(force),
+                            np.array(friction_force), np.array(z), mu, temperature, heat_flux,
+                            load)
 
-    def set_trial(self, displacement: float, velocity: float, time: float) -> BearingTrial:
-        """Force and tangent at a trial displacement [m], velocity [m/s] and time [s].
+    def _restoring(self, ux: float, uy: float, n: float,
+                   time: float) -> tuple[float, float, float, float, float]:
+        """Restoring force (x, y) [N] and its stiffness (xx, xy, yy) [N/m]."""
+        if math.isinf(self._radius):
+            return 0.0, 0.0, 0.0, 0.0, 0.0
+        if self._spherical:
+            squared = self._radius**2 - (ux * ux + uy * uy)
+            if not squared > 0.0:
+                raise trial_failure(self.bearing, math.hypot(ux, uy), time, f"at the effective "
+                                    f"radius {self._radius!r} m of the spherical law")
+            root = math.sqrt(squared)
+            cube = root**3
+            return (n * ux / root, n * uy / root, n * (1.0 / root + ux * ux / cube),
+                    n * ux * uy / cube, n * (1.0 / root + uy * uy / cube))
+        return n * ux / self._radius, n * uy / self._radius, n / self._radius, 0.0, \
+            n / self._radius
+
+    def set_trial(self, displacement: float | ArrayLike, velocity: float | ArrayLike,
+                  time: float, axial_load: float | None = None) -> BearingTrial:
+        """Force and tangents at a trial displacement [m], velocity [m/s] and time [s].
+
+        Displacement and velocity are floats for a bearing in one direction, (x, y) pairs for
+        one in two. ``axial_load`` [N], when given, is the compressive load of this trial
+        instead of the bearing's own (``DCFPBearing.axial_load_at(time)``): a building computes
+        it per bearing and per trial (gravity share, vertical motion, overturning). Zero or
+        negative is uplift: no contact, no force, no heat, and the plates cool. The tangents
+        are taken at fixed load.
 
         Raises
         ------
         ValueError
-            If ``time`` is before the last committed time.
+            If ``time`` is before the last committed time, or a vector is not a finite pair.
         dcfpb.common.errors.CapacityExceeded
-            If the model cannot evaluate the displacement (the slider off the precise
-            model's monitor line, at the spherical law's radius); an integration ends there
-            with ``success=False`` (:func:`trial_failure`).
+            If the model cannot evaluate the displacement (the slider off the monitor points,
+            at the spherical law's radius); an integration ends there with ``success=False``
+            (:func:`trial_failure`).
         """
-        c = self._committed
-        dt = time - c.time
+        if self.dimension == 1:
+            ux, uy, vx, vy = float(displacement), 0.0, float(velocity), 0.0
+        else:
+            (ux, uy), (vx, vy) = _pair(displacement, "displacement"), _pair(velocity, "velocity")
+        committed_time, cux, cuy, czx, czy = self._floats
+        dt = time - committed_time
         if dt < 0.0:
             raise ValueError(
                 f"The trial time {time!r} s of BearingElement.set_trial is before the last "
-                f"committed time {c.time!r} s."
+                f"committed time {committed_time!r} s."
             )
-        n = self.bearing.axial_load_at(time)
-        z = c.z + (displacement - c.displacement) / self._yield
-        dz_du = 1.0 / self._yield
-        if abs(z) >= 1.0:
-            z, dz_du = math.copysign(1.0, z), 0.0
+        if axial_load is not None:
+            n = float(axial_load)
+        else:
+            n = self._constant_load
+            if n is None:
+                n = self.bearing.axial_load_at(time)
+        zx, zy, dxx, dxy, dyx, dyy = isotropic_return_map(czx, czy, ux - cux, uy - cuy,
+                                                           self._yield)
         try:
             if n <= 0.0:  # uplift: no contact, no force, no heat; the plates cool
-                friction = self._friction.lifted(displacement, dt)
+                friction = self._friction.lifted((ux, uy), dt)
             else:
-                friction = self._friction.trial(displacement, velocity,
-                                                n / self.bearing.contact_area, dt)
+                friction = self._friction.trial((ux, uy), (vx, vy), n / self._area, dt)
         except CapacityExceeded as error:
-            raise trial_failure(self.bearing, displacement, time, str(error)) from None
+            raise trial_failure(self.bearing, math.hypot(ux, uy), time, str(error)) from None
         if n <= 0.0:
-            restoring = stiffness = n = 0.0
+            n = rx = ry = kxx = kxy = kyy = 0.0
         else:
-            restoring, stiffness = self._restoring(displacement, n, time)
-        friction_force = friction.mu * n * z
-        force = restoring + friction_force
-        self._trial = BearingState(time, displacement, velocity, force, friction_force, z,
-                                   friction.mu, friction.temperature, friction.heat_flux, n)
-        return BearingTrial(force, stiffness + friction.mu * n * dz_du,
-                            n * z * friction.dmu_dvelocity)
+            rx, ry, kxx, kxy, kyy = self._restoring(ux, uy, n, time)
+        mu_n = friction.mu * n
+        ffx, ffy = mu_n * zx, mu_n * zy
+        fx, fy = rx + ffx, ry + ffy
+        self._trial_floats = (time, ux, uy, zx, zy)
+        if self.dimension == 1:
+            self._trial = BearingState(time, ux, vx, fx, ffx, zx, friction.mu,
+                                       friction.temperature, friction.heat_flux, n)
+        else:
+            self._trial = self._state(time, (ux, uy), (vx, vy), (fx, fy), (ffx, ffy),
+                                      (zx, zy), friction.mu, friction.temperature,
+                                      friction.heat_flux, n)
+        speed = abs(vx) if vy == 0.0 else math.hypot(vx, vy)
+        # d mu / d v = d mu / d|v| v / |v|; d mu / d|v| is negative on a hot plate at speed
+        gx = gy = 0.0
+        if speed > 0.0:
+            gx, gy = friction.dmu_dspeed * (vx / speed), friction.dmu_dspeed * (vy / speed)
+        nzx, nzy = n * zx, n * zy
+        if self.dimension == 1:
+            return BearingTrial(fx, kxx + mu_n * dxx, nzx * gx)
+        return BearingTrial(
+            np.array([fx, fy]),
+            np.array([[kxx + mu_n * dxx, kxy + mu_n * dxy], [kxy + mu_n * dyx, kyy + mu_n * dyy]]),
+            np.array([[nzx * gx, nzx * gy], [nzy * gx, nzy * gy]]))
 
     def commit(self) -> None:
         """Accept the last trial: its state becomes the committed state, its heat is added."""
         self._friction.commit()
         self._committed = self._trial
+        self._floats = self._trial_floats
 
     def revert(self) -> None:
         """Drop the last trial and return to the committed state exactly."""
         self._friction.revert()
         self._trial = self._committed
+        self._trial_floats = self._floats

@@ -1,24 +1,27 @@
-"""Friction models of the sliding surfaces behind one small protocol.
+"""Friction models of the sliding surfaces: a strategy the bearing element asks for mu.
 
 ``ConstantFriction``
     The paper's constant model (Eq. 8): mu_c = mu_0 gamma(sigma_d) alpha(v_d) beta(T_0).
 ``PTVFriction``
-    The precise and simplified models (Eq. 7): mu_t = mu_t0 gamma(p) alpha(v) beta(T), with the
-    contact temperature T from a heating model (:class:`~isolator.heating.MonitorLine` for the
-    precise model, :class:`~isolator.heating.CentrePoint` for the simplified one) and a factor
-    set (the paper's Eq. 1-3 or Kumar's).
+    The precise and simplified models (Eq. 7): mu_t = mu_t0 gamma(p) alpha(|v|) beta(T), with
+    the contact temperature T from a layout of monitor points (:class:`~isolator.heating.
+    MonitorLine` for the precise model, :class:`~isolator.heating.CentrePoint` for the
+    simplified one) and a factor set (the paper's Eq. 1-3 or Kumar's).
 
-A model is a frozen parameter object; :meth:`bind` gives the stateful evaluator for one
-bearing geometry (contact radius, travel). An evaluator follows the element contract:
-``trial(position, velocity, pressure, dt) -> Friction`` is a pure function of the committed
-history and the trial, ``commit()`` accepts the last trial (and only then adds its heat), and
-``revert()`` forgets it. ``lifted(position, dt) -> Friction`` is the trial of a slider out of
-contact (uplift): no friction and no heat, but the step still counts, so a heated plate cools
-over it as it does under a slider at rest.
+A model is a frozen parameter object with a ``name`` and an ``initial_temperature`` [degC];
+:meth:`bind` gives the stateful evaluator for one bearing geometry (contact radius, travel)
+in one or two horizontal dimensions, as an OpenSees ``FrictionModel`` serves its bearing. An
+evaluator (:class:`FrictionState`) keeps the element contract: ``trial(position, velocity,
+pressure, dt) -> Friction`` (vectors as (x, y) pairs; a one-dimensional bearing moves along x)
+is a pure function of the committed history and the trial, ``commit()`` accepts the last trial
+(and only then adds its heat), ``revert()`` forgets it, and ``lifted(position, dt)`` is the
+trial of a slider out of contact: no friction and no heat, while the plates cool over the
+step as under a slider at rest. Eq. 7 and 8 take the speed |v|; the element forms the
+gradient d mu / d v = d mu / d|v| v / |v|.
 
 The newest interval's flux enters the current temperature, q_n = mu_n p |v| / surfaces, so
 mu_n solves the scalar equation mu = mu_t0 gamma alpha beta(T_base + b q(mu)) by Newton's
-method. The velocity derivative includes that coupling.
+method, and d mu / d|v| includes that coupling (it is negative on a hot plate at speed).
 """
 
 from __future__ import annotations
@@ -31,18 +34,21 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from dcfpb.common.validation import check_choice, check_int, check_real
-from isolator.compiled.kernels import cold_friction, ptv_trial, solve_friction
+from isolator.compiled.kernels import cold_friction, solve_friction
 from isolator.compiled.layout import pack_ptv
 from isolator.factors import KumarFactors, PaperFactors, factor_set
 from isolator.heating import (
     CentrePoint,
     HeatingLayout,
     MonitorLine,
-    SumOfExponentials,
     SurfaceHeating,
     ThermalProperties,
     sum_of_exponentials,
 )
+from isolator.monitor_grid import GridHeating, MonitorGrid
+
+Pair = tuple[float, float]
+"""An (x, y) vector [m] or [m/s]."""
 
 DEPENDENCIES = ("pressure", "velocity", "temperature")
 REFERENCE_PRESSURE = 60.0e6  # [Pa] 60 N/mm^2, the paper's reference condition
@@ -56,8 +62,8 @@ class Friction(NamedTuple):
     ----------
     mu : float
         Friction coefficient [-].
-    dmu_dvelocity : float
-        Derivative of mu with respect to the signed relative velocity [s/m].
+    dmu_dspeed : float
+        Derivative of mu with respect to the sliding speed |v| [s/m].
     temperature : float
         Contact temperature [degC] (the initial temperature for models without heating).
     heat_flux : float
@@ -65,19 +71,20 @@ class Friction(NamedTuple):
     """
 
     mu: float
-    dmu_dvelocity: float
+    dmu_dspeed: float
     temperature: float
     heat_flux: float
 
 
 class FrictionState(Protocol):
-    """A bound friction model with trial / commit / revert."""
+    """A bound friction model with trial / commit / revert (see the module docstring)."""
 
-    def trial(self, position: float, velocity: float, pressure: float, dt: float) -> Friction:
-        """Friction at a trial displacement [m], velocity [m/s], pressure [Pa], step [s]."""
+    def trial(self, position: Pair, velocity: Pair, pressure: float, dt: float) -> Friction:
+        """Friction at a trial relative displacement [m] and velocity [m/s] of the plates,
+        contact pressure [Pa] and step since the last commit [s]."""
         ...
 
-    def lifted(self, position: float, dt: float) -> Friction:
+    def lifted(self, position: Pair, dt: float) -> Friction:
         """The trial of a slider out of contact at ``position`` [m] for ``dt`` [s]: mu = 0,
         no heat flux, the contact temperature after the plates cooled over ``dt``."""
         ...
@@ -89,6 +96,38 @@ class FrictionState(Protocol):
     def revert(self) -> None:
         """Forget trials back to the last commit."""
         ...
+
+    def temperature_field(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """Positions (m, 2) [m] on a plate and temperatures (m,) [degC] of the monitor
+        points after the last commit; None for a model without monitor points."""
+        ...
+
+
+class FrictionModel(Protocol):
+    """The friction strategy a :class:`~isolator.bearing.DCFPBearing` takes: frozen
+    parameters that bind to an evaluator."""
+
+    @property
+    def name(self) -> str:
+        """What the model is called in results and tables."""
+        ...
+
+    @property
+    def initial_temperature(self) -> float:
+        """Temperature of the plates before any sliding [degC]."""
+        ...
+
+    def bind(self, contact_radius: float, travel: float, dimension: int = 1,
+             orientation: float | None = None) -> FrictionState:
+        """The evaluator for a slider of ``contact_radius`` [m] whose plates move up to
+        ``travel`` [m] apart, in ``dimension`` 1 or 2 directions."""
+        ...
+
+
+def speed_of(velocity: Pair) -> float:
+    """|v| of an (x, y) velocity [m/s] (exactly |v_x| when v_y = 0)."""
+    vx, vy = velocity
+    return abs(vx) if vy == 0.0 else math.hypot(vx, vy)
 
 
 @dataclass(frozen=True)
@@ -136,6 +175,11 @@ class ConstantFriction:
         return cls(**{"mu0": mu0, **kwargs})
 
     @property
+    def name(self) -> str:
+        """The model's name: ``"constant"``."""
+        return "constant"
+
+    @property
     def mu(self) -> float:
         """The constant friction coefficient mu_c of Eq. 8 [-]."""
         fs = factor_set(self.factors)
@@ -144,8 +188,9 @@ class ConstantFriction:
         beta, _ = fs.temperature(self.initial_temperature)
         return float(self.mu0 * gamma * alpha * beta)  # Eq. 8
 
-    def bind(self, contact_radius: float, travel: float) -> ConstantFrictionState:
-        """A stateless evaluator (the geometry does not matter for a constant mu)."""
+    def bind(self, contact_radius: float, travel: float, dimension: int = 1,
+             orientation: float | None = None) -> ConstantFrictionState:
+        """A stateless evaluator (neither the geometry nor the dimension matter)."""
         return ConstantFrictionState(self.mu, self.initial_temperature)
 
 
@@ -155,11 +200,11 @@ class ConstantFrictionState:
     def __init__(self, mu: float, temperature: float) -> None:
         self._friction = Friction(mu, 0.0, temperature, 0.0)
 
-    def trial(self, position: float, velocity: float, pressure: float, dt: float) -> Friction:
+    def trial(self, position: Pair, velocity: Pair, pressure: float, dt: float) -> Friction:
         """The constant mu; heat flux is not tracked."""
         return self._friction
 
-    def lifted(self, position: float, dt: float) -> Friction:
+    def lifted(self, position: Pair, dt: float) -> Friction:
         """Out of contact: mu = 0 at the model's temperature."""
         return Friction(0.0, 0.0, self._friction.temperature, 0.0)
 
@@ -168,6 +213,10 @@ class ConstantFrictionState:
 
     def revert(self) -> None:
         """Nothing to revert."""
+
+    def temperature_field(self) -> None:
+        """No monitor points."""
+        return None
 
 
 def eq7(
@@ -283,113 +332,114 @@ class PTVFriction:
         """Whether the contact temperature is tracked."""
         return self.heating is not None
 
-    def bind(self, contact_radius: float, travel: float) -> PTVFrictionState:
+    @property
+    def name(self) -> str:
+        """``"precise"`` (a monitor line), ``"simplified"`` (the centre point) or
+        ``"ptv-no-heating"``."""
+        if self.heating is None:
+            return "ptv-no-heating"
+        return "precise" if self.heating.average_over_contact else "simplified"
+
+    @property
+    def initial_temperature(self) -> float:
+        """Temperature of the plates before any sliding [degC]."""
+        return self.thermal.initial_temperature
+
+    def bind(self, contact_radius: float, travel: float, dimension: int = 1,
+             orientation: float | None = None) -> PTVFrictionState:
         """The stateful evaluator for a slider of ``contact_radius`` [m].
 
-        ``travel`` [m] is the largest relative displacement of the plates the monitor line
-        must cover.
+        ``travel`` [m] is the largest relative displacement of the plates the monitor points
+        must cover; ``dimension`` 1 (a bearing moving along x: the precise model's monitor
+        line) or 2 (in the plane: the precise model's monitor grid, its first axis at
+        ``orientation`` [deg] from x, None following the motion).
         """
-        return PTVFrictionState(self, contact_radius, travel)
+        return PTVFrictionState(self, contact_radius, travel, dimension, orientation)
 
 
 class PTVFrictionState:
-    """Evaluator of :class:`PTVFriction` for one bearing; see the module docstring."""
+    """Evaluator of :class:`PTVFriction` for one bearing (see the module docstring).
 
-    def __init__(self, model: PTVFriction, contact_radius: float, travel: float) -> None:
+    The contact temperature comes from the model's layout of monitor points on each plate:
+    the centre point (simplified model) in any dimension; the precise model's line along x for
+    a bearing in one dimension and its grid over the plate for a bearing in two
+    (:class:`~isolator.monitor_grid.GridHeating`). Both are driven through the same two calls,
+    ``friction_trial`` (Eq. 7 solved with the newest interval's flux) and ``commit_trial``.
+    """
+
+    def __init__(self, model: PTVFriction, contact_radius: float, travel: float,
+                 dimension: int = 1, orientation: float | None = None) -> None:
+        check_int(dimension, "dimension", "PTVFriction.bind", low=1, high=2)
         self.model = model
-        self._kernel_parameters = model.factors.kernel_parameters
-        self._use_pressure = "pressure" in model.dependencies
-        self._use_velocity = "velocity" in model.dependencies
-        self._use_temperature = "temperature" in model.dependencies
-        self._initial_temperature = model.thermal.initial_temperature
         self._surfaces = float(model.surfaces)
-        self._heating: SurfaceHeating | None = None
+        code, reference_pressure, rate = model.factors.kernel_parameters
+        self._cold = (code, reference_pressure, rate, model.mu_t0,
+                      "pressure" in model.dependencies, "velocity" in model.dependencies)
+        self._use_temperature = "temperature" in model.dependencies
+        self.heating: SurfaceHeating | GridHeating | None = None
+        constants = {}
         if model.heating is not None:
-            kernel: SumOfExponentials = sum_of_exponentials(
-                model.kernel_min_lag, model.kernel_max_lag, model.kernel_tolerance)
-            self._heating = SurfaceHeating(
-                model.heating, contact_radius, travel / model.surfaces, model.thermal, kernel
-            )
-        self._pending: tuple[float, tuple[int, int], float] | None = None
-        if self._heating is not None:  # constant arguments of the fused kernel, packed once
-            h = self._heating
-            code, reference_pressure, rate = self._kernel_parameters
-            self._parameters = pack_ptv({
-                "first_point": h.first_point, "spacing": h.spacing, "n_points": h.n_points,
-                "flux_half_width": h.flux_half_width,
-                "average_over_contact": h.average_over_contact,
-                "initial_temperature": self._initial_temperature,
-                "flux_coefficient": h.coefficient, "factor_code": code,
-                "reference_pressure": reference_pressure, "rate_parameter": rate,
-                "mu_t0": model.mu_t0, "use_pressure": self._use_pressure,
-                "use_velocity": self._use_velocity, "use_temperature": self._use_temperature,
-                "surfaces": self._surfaces})
+            kernel = sum_of_exponentials(model.kernel_min_lag, model.kernel_max_lag,
+                                         model.kernel_tolerance)
+            plate_travel = travel / model.surfaces
+            if dimension == 2 and model.heating.average_over_contact:
+                grid = MonitorGrid.from_line(model.heating, orientation)
+                self.heating = GridHeating(grid, contact_radius, plate_travel, model.thermal,
+                                           kernel)
+            else:
+                self.heating = SurfaceHeating(model.heating, contact_radius, plate_travel,
+                                              model.thermal, kernel)
+            constants = self.heating.constants()
+        self._parameters = pack_ptv({
+            **constants, "initial_temperature": model.thermal.initial_temperature,
+            "factor_code": code, "reference_pressure": reference_pressure,
+            "rate_parameter": rate, "mu_t0": model.mu_t0, "use_pressure": self._cold[4],
+            "use_velocity": self._cold[5], "use_temperature": self._use_temperature,
+            "surfaces": self._surfaces})
+        self._pending: tuple[float, float] | None = None
 
-    @property
-    def heating(self) -> SurfaceHeating | None:
-        """The surface heating model (None without heating)."""
-        return self._heating
-
-    def trial(self, position: float, velocity: float, pressure: float, dt: float) -> Friction:
-        """Friction at a trial relative displacement, velocity, contact pressure and step.
-
-        Parameters
-        ----------
-        position : float
-            Relative displacement of the two plates u [m] (the slider is at u / surfaces on
-            each plate).
-        velocity : float
-            Relative velocity of the plates v [m/s].
-        pressure : float
-            Contact pressure p = N / (pi r^2) [Pa].
-        dt : float
-            Time since the last commit [s].
-        """
-        speed = abs(velocity)
-        code, reference_pressure, rate = self._kernel_parameters
-        heating = self._heating
-        if heating is None or dt <= 0.0:
-            mu_cold, dmu_cold = cold_friction(code, reference_pressure, rate, self.model.mu_t0,
-                                              self._use_pressure, self._use_velocity, pressure,
-                                              speed)
+    def trial(self, position: Pair, velocity: Pair, pressure: float, dt: float) -> Friction:
+        """Friction at a trial relative displacement [m] and velocity [m/s] of the plates
+        ((x, y) pairs), contact pressure p = N / (pi r^2) [Pa] and step since the last
+        commit [s]. The slider sits at ``position`` / surfaces on each plate."""
+        speed = speed_of(velocity)
+        heating = self.heating
+        self._pending = None
+        if heating is None or dt <= 0.0:  # no heating, or no time: Eq. 7 at T_0
+            mu_cold, dmu_cold = cold_friction(*self._cold, pressure, speed)
             mu, dmu_dspeed, temperature = solve_friction(
-                code, mu_cold, dmu_cold, self._use_temperature, self._initial_temperature, 0.0,
-                0.0)
-            flux = mu * pressure * speed / self._surfaces
-            self._pending = None
-        else:
-            if dt != heating.prepared_step:
-                heating.prepare(dt)
-            mu, dmu_dspeed, temperature, flux, lo, hi, inside = ptv_trial(
-                heating.states, heating.weighted_decay, self._parameters,
-                position / self._surfaces, heating.newest_coefficient, pressure, speed,
-            )
-            if not inside:
-                heating.window(position / self._surfaces)  # raises with the full message
-            self._pending = (dt, (lo, hi), flux)
-        # d mu / d v = d mu / d|v| sign(v); d mu / d|v| is negative on a hot plate at speed
-        return Friction(mu, math.copysign(1.0, velocity) * dmu_dspeed if velocity else 0.0,
-                        temperature, flux)
+                self._cold[0], mu_cold, dmu_cold, self._use_temperature,
+                self.model.thermal.initial_temperature, 0.0, 0.0)
+            return Friction(mu, dmu_dspeed, temperature, mu * pressure * speed / self._surfaces)
+        on_plate = (position[0] / self._surfaces, position[1] / self._surfaces)
+        mu, dmu_dspeed, temperature, flux = heating.friction_trial(
+            on_plate, velocity, pressure, speed, dt, self._parameters)
+        self._pending = (dt, flux)
+        return Friction(mu, dmu_dspeed, temperature, flux)
 
-    def lifted(self, position: float, dt: float) -> Friction:
+    def lifted(self, position: Pair, dt: float) -> Friction:
         """Out of contact at ``position`` [m] for ``dt`` [s]: mu = 0 and no heat flux; the
         step is staged with zero flux, so the commit advances the heat history by ``dt`` and
         the plates cool as under a slider at rest (the contact temperature returned is theirs
-        at the window under ``position``). Evaluated as the trial at zero speed, where the flux
-        mu p |v| is zero whatever mu and the temperature does not depend on the pressure,
-        which is therefore taken as the reference one."""
-        friction = self.trial(position, 0.0, REFERENCE_PRESSURE, dt)
+        under ``position``). Evaluated as the trial at zero speed, where the flux mu p |v| is
+        zero whatever mu and the temperature does not depend on the pressure, which is
+        therefore taken as the reference one."""
+        friction = self.trial(position, (0.0, 0.0), REFERENCE_PRESSURE, dt)
         if self._pending is not None:
-            self._pending = (*self._pending[:2], 0.0)
+            self._pending = (self._pending[0], 0.0)
         return Friction(0.0, 0.0, friction.temperature, 0.0)
 
     def commit(self) -> None:
-        """Add the last trial's heat to the history."""
-        if self._heating is not None and self._pending is not None:
-            dt, heated, flux = self._pending
-            self._heating.commit(dt, heated, flux)
+        """Add the last trial's heat to the plates' history."""
+        if self.heating is not None and self._pending is not None:
+            self.heating.commit_trial(*self._pending)
         self._pending = None
 
     def revert(self) -> None:
         """Forget the last trial; the heat history is untouched."""
         self._pending = None
+
+    def temperature_field(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """The monitor points' positions (m, 2) [m] on a plate and temperatures (m,) [degC]
+        after the last commit (None without heating; see the heating's ``temperature_field``)."""
+        return None if self.heating is None else self.heating.temperature_field()

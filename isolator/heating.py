@@ -21,6 +21,7 @@ State lives inside trial / commit / revert: :meth:`SurfaceHeating.trial` never c
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -28,7 +29,13 @@ import numpy as np
 
 from dcfpb.common.errors import CapacityExceeded
 from dcfpb.common.validation import check_real
-from isolator.compiled.kernels import advance_states, contact_history, heated_window, jit
+from isolator.compiled.kernels import (
+    advance_states,
+    contact_history,
+    heated_window,
+    jit,
+    ptv_trial,
+)
 
 
 @dataclass(frozen=True)
@@ -282,6 +289,7 @@ class SurfaceHeating:
         self._step = np.empty((2, kernel.rates.size))
         self.weighted_decay = np.empty(kernel.rates.size)
         self.newest_coefficient = 0.0
+        self._staged = (0, 0)  # the points the last friction trial heats
 
     def prepare(self, dt: float) -> None:
         """Make the step factors exp(-s_k dt) for the step ``dt`` [s] current, exactly.
@@ -355,6 +363,51 @@ class SurfaceHeating:
         if dt != self.prepared_step:
             self.prepare(dt)
         self._touched = advance_states(self.states, self._step, *self._touched, *heated, flux)
+
+    def constants(self) -> dict[str, float]:
+        """The layout's constants of :func:`~isolator.compiled.layout.pack_ptv` (the points,
+        how the contact is read, the heat-conduction coefficient)."""
+        return {"first_point": self.first_point, "spacing": self.spacing,
+                "n_points": self.n_points, "flux_half_width": self.flux_half_width,
+                "average_over_contact": self.average_over_contact,
+                "flux_coefficient": self.coefficient}
+
+    def friction_trial(self, position: tuple[float, float], velocity: tuple[float, float],
+                       pressure: float, speed: float, dt: float,
+                       parameters: np.ndarray) -> tuple[float, float, float, float]:
+        """Eq. 7 solved with the contact temperature of this surface for the slider centre at
+        ``position`` (x, y) [m] on the plate after ``dt`` [s]: ``(mu, d mu / d|v| [s/m],
+        temperature [degC], flux [W/m^2])`` (:func:`~isolator.compiled.kernels.ptv_trial`,
+        ``parameters`` packed by :func:`~isolator.compiled.layout.pack_ptv`). The line lies
+        along x; the centre point sees the distance from the centre. The heated points are
+        kept for :meth:`commit_trial`; ``velocity`` [m/s] is not needed here.
+
+        Raises
+        ------
+        dcfpb.common.errors.CapacityExceeded
+            When the slider has left the monitor line.
+        """
+        x, y = position
+        coordinate = x if self.average_over_contact or y == 0.0 else math.hypot(x, y)
+        if dt != self.prepared_step:
+            self.prepare(dt)
+        mu, dmu_dspeed, temperature, flux, lo, hi, inside = ptv_trial(
+            self.states, self.weighted_decay, parameters, coordinate, self.newest_coefficient,
+            pressure, speed)
+        if not inside:
+            self.window(coordinate)  # raises with the full message
+        self._staged = (lo, hi)
+        return mu, dmu_dspeed, temperature, flux
+
+    def commit_trial(self, dt: float, flux: float) -> None:
+        """:meth:`commit` one interval ``dt`` [s] of ``flux`` [W/m^2] on the points of the last
+        :meth:`friction_trial`."""
+        self.commit(dt, self._staged, flux)
+
+    def temperature_field(self) -> tuple[np.ndarray, np.ndarray]:
+        """Positions (m, 2) [m] of the monitor points on the plate (the line along x, the
+        centre point at the origin) and their temperatures (m,) [degC] after the last commit."""
+        return np.column_stack([self.points, np.zeros_like(self.points)]), self.profile()
 
     def profile(self, dt: float = 0.0) -> np.ndarray:
         """Temperature at every monitor point ``dt`` after the last commit [degC]."""

@@ -1,9 +1,12 @@
 """A virtual bearing test machine: a bearing driven through an imposed displacement history.
 
 Each sample of the history is one trial of the element followed by a commit, exactly as a
-displacement-controlled test rig imposes it. The result is a tidy record of the histories
-(time, displacement, velocity, force, mu, temperature, heat flux, axial load) with the
-per-cycle force-deflection characteristics one call away.
+displacement-controlled test rig imposes it, along one axis (a history of shape (n,)) or in
+the plane (an orbit of shape (n, 2), :mod:`isolator.orbits`). The result is a tidy record of
+the histories (time, displacement, velocity, force, friction force, z, mu, temperature, heat
+flux, axial load) with the per-cycle force-deflection characteristics along each axis and the
+energies (the work of the force and of its friction part, the heat put into the plates) one
+call away.
 """
 
 from __future__ import annotations
@@ -13,32 +16,57 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from dcfpb.common.validation import check_array
 from isolator.bearing import DCFPBearing
+from isolator.orbits import Orbit
 
+AXES = ("x", "y")
 HISTORY_FIELDS = (
-    "time", "displacement", "velocity", "force", "friction_force", "mu", "temperature",
+    "time", "displacement", "velocity", "force", "friction_force", "z", "mu", "temperature",
     "heat_flux", "axial_load",
 )
 UNITS = {
     "time": "s", "displacement": "m", "velocity": "m/s", "force": "N", "friction_force": "N",
-    "mu": "-", "temperature": "degC", "heat_flux": "W/m^2", "axial_load": "N",
+    "z": "-", "mu": "-", "temperature": "degC", "heat_flux": "W/m^2", "axial_load": "N",
 }
+_VECTORS = ("displacement", "velocity", "force", "friction_force", "z")
+
+
+def path_integral(displacement: np.ndarray, force: np.ndarray) -> float:
+    """Integral of F . du along a path by the trapezoid rule [J].
+
+    Parameters
+    ----------
+    displacement, force : ndarray, shape (n,) or (n, 2)
+        Displacement [m] and force [N] at the samples.
+    """
+    du = np.diff(displacement, axis=0)
+    return float(np.sum(0.5 * (force[1:] + force[:-1]) * du))
 
 
 @dataclass(frozen=True)
 class BearingTestResult:
-    """Histories of a virtual bearing test, one value per sample of the imposed history.
+    """Histories of a virtual bearing test, one value (or (x, y) row) per sample.
 
     Attributes
     ----------
-    time, displacement, velocity, force, friction_force, mu, temperature, heat_flux, axial_load
-        Arrays in SI units (see ``UNITS``).
+    time : ndarray, shape (n,)
+        Sample times [s].
+    displacement, velocity, force, friction_force, z : ndarray, shape (n,) or (n, 2)
+        Imposed relative displacement [m] and velocity [m/s], horizontal force and its friction
+        part mu N z [N], hysteretic variable [-]: along one axis, or (x, y) in the plane.
+    mu, temperature, heat_flux, axial_load : ndarray, shape (n,)
+        Friction coefficient [-], contact temperature [degC], heat flux into each sliding
+        surface over the step ending at the sample [W/m^2], axial load [N].
     bearing : DCFPBearing
         The bearing tested.
     name : str
         Name of the imposed history.
+    stored_points : int
+        Monitor points holding a history at the end, per plate (the precise model in the
+        plane; 0 otherwise).
     wall_time : float
         Seconds the run took (for information; benchmarks measure speed properly).
     """
@@ -48,74 +76,131 @@ class BearingTestResult:
     velocity: np.ndarray
     force: np.ndarray
     friction_force: np.ndarray
+    z: np.ndarray
     mu: np.ndarray
     temperature: np.ndarray
     heat_flux: np.ndarray
     axial_load: np.ndarray
     bearing: DCFPBearing = field(repr=False)
     name: str = "imposed history"
+    stored_points: int = 0
     wall_time: float = 0.0
 
-    def characteristics(self, **kwargs):
-        """Per-cycle force-deflection characteristics (see :mod:`isolator.characteristics`)."""
+    @property
+    def dimension(self) -> int:
+        """1 for a test along one axis, 2 for an orbit in the plane."""
+        return 1 if self.displacement.ndim == 1 else 2
+
+    def _axis(self, values: np.ndarray, axis: int | str) -> np.ndarray:
+        index = AXES.index(axis) if isinstance(axis, str) and axis in AXES else axis
+        if index not in range(self.dimension):
+            allowed = "0 or 'x'" if self.dimension == 1 else "0, 1, 'x' or 'y'"
+            raise ValueError(f"The 'axis' parameter of BearingTestResult must be {allowed}. "
+                             f"Got {axis!r} instead.")
+        return values if self.dimension == 1 else values[:, index]
+
+    def characteristics(self, axis: int | str = 0, **kwargs):
+        """Per-cycle characteristics of the loop along ``axis`` (0/``"x"`` or 1/``"y"``): see
+        :func:`isolator.characteristics.cycle_characteristics` (same keyword arguments)."""
         from isolator.characteristics import cycle_characteristics
 
-        return cycle_characteristics(self.displacement, self.force, **kwargs)
+        return cycle_characteristics(self._axis(self.displacement, axis),
+                                     self._axis(self.force, axis), self.time, **kwargs)
+
+    def dissipated_energy(self, samples: slice = slice(None)) -> float:
+        """Work of the force along the path, integral of F . du [J] (trapezoid), over the
+        ``samples`` (e.g. one block of :meth:`isolator.orbits.Orbit.segment_slices`). Over a
+        closed path the restoring part cancels and this is the energy dissipated."""
+        return path_integral(self.displacement[samples], self.force[samples])
+
+    def friction_work(self, samples: slice = slice(None)) -> float:
+        """Work of the friction force alone, integral of mu N z . du [J]."""
+        return path_integral(self.displacement[samples], self.friction_force[samples])
+
+    def heat_input(self, samples: slice = slice(None)) -> float:
+        """Heat put into the plates [J]: over each step, the flux of Eq. 5 on every sliding
+        surface times the contact area; for the models without heating, the friction power
+        mu N |v| integrated the same way."""
+        t = self.time[samples]
+        surfaces = getattr(self.bearing.friction, "surfaces", None)
+        if getattr(self.bearing.friction, "heats", False):
+            power = surfaces * self.heat_flux[samples][1:] * self.bearing.contact_area
+        else:
+            velocity = self.velocity[samples][1:]
+            speed = np.abs(velocity) if self.dimension == 1 else np.hypot(*velocity.T)
+            power = self.mu[samples][1:] * self.axial_load[samples][1:] * speed
+        return float(np.sum(power * np.diff(t)))
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The histories written by :meth:`to_csv`: time [s], displacement [m], velocity [m/s],
+        force [N] (one column each along one axis; ``_x`` and ``_y`` in the plane), mu [-] and
+        temperature [degC]."""
+        columns = {"time": self.time}
+        for name in ("displacement", "velocity", "force"):
+            values = getattr(self, name)
+            if self.dimension == 1:
+                columns[name] = values
+            else:
+                columns |= {f"{name}_{axis}": values[:, i] for i, axis in enumerate(AXES)}
+        return columns | {"mu": self.mu, "temperature": self.temperature}
 
     def to_csv(self, path: str | Path) -> Path:
-        """Write time [s], displacement [m], velocity [m/s], force [N], mu [-] and
-        temperature [degC] to a CSV file with one header line of those names."""
+        """Write :meth:`columns` to a CSV file with one header line of their names."""
         path = Path(path)
-        names = ("time", "displacement", "velocity", "force", "mu", "temperature")
-        header = ",".join(names)
-        data = np.column_stack([getattr(self, n) for n in names])
-        np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")
+        columns = self.columns()
+        np.savetxt(path, np.column_stack(list(columns.values())), delimiter=",",
+                   header=",".join(columns), comments="", fmt="%.10g")
         return path
 
     def to_dataset(self):
-        """The histories as an ``xarray.Dataset`` indexed by time, with units attributes."""
+        """The histories as an ``xarray.Dataset`` indexed by time (and ``direction`` in the
+        plane), with units attributes."""
         import xarray as xr
 
-        data = {
-            n: ("time", getattr(self, n), {"units": UNITS[n]})
-            for n in HISTORY_FIELDS if n != "time"
-        }
-        return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})},
-                          attrs={"history": self.name})
+        data = {}
+        for name in HISTORY_FIELDS[1:]:
+            dims = ("time", "direction") if name in _VECTORS and self.dimension == 2 else "time"
+            data[name] = (dims, getattr(self, name), {"units": UNITS[name]})
+        coords = {"time": ("time", self.time, {"units": "s"})}
+        if self.dimension == 2:
+            coords["direction"] = list(AXES)
+        return xr.Dataset(data, coords=coords, attrs={"history": self.name})
 
 
-def imposed_history(
-    time: np.ndarray, displacement: np.ndarray, velocity: np.ndarray | None, owner: str
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def imposed_history(time: ArrayLike, displacement: ArrayLike, velocity: ArrayLike | None,
+                    owner: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Check an imposed history and return it as float arrays ``(t [s], u [m], v [m/s])``.
 
-    Times must be strictly increasing and the arrays of one length; without a velocity, the
-    central-difference derivative of the displacement (``numpy.gradient``) is used. Errors
-    name ``owner``.
+    ``displacement`` has the shape (n,) (one axis) or (n, 2) (the plane), the velocity the
+    same; times must be strictly increasing. Without a velocity, the central-difference
+    derivative of the displacement (``numpy.gradient``) is used. Errors name ``owner``.
     """
     t = check_array(time, "time", owner, min_length=2)
-    u = check_array(displacement, "displacement", owner, min_length=2)
-    if u.shape != t.shape:
-        raise ValueError(f"The 'displacement' parameter of {owner} must have the length of "
-                         f"'time' ({t.size}). Got {u.size} instead.")
     if np.any(np.diff(t) <= 0.0):
         raise ValueError(f"The 'time' parameter of {owner} must be strictly increasing.")
+    planar = np.ndim(displacement) == 2
+    u = check_array(displacement, "displacement", owner, ndim=2 if planar else 1, min_length=2)
+    shape = (t.size, 2) if planar else t.shape
+    if u.shape != shape:
+        raise ValueError(f"The 'displacement' parameter of {owner} must have the shape "
+                         f"{shape} (one row per time). Got {u.shape} instead.")
     if velocity is None:
-        return t, u, np.gradient(u, t)
-    v = check_array(velocity, "velocity", owner, min_length=2)
-    if v.shape != t.shape:
-        raise ValueError(f"The 'velocity' parameter of {owner} must have the length of "
-                         f"'time' ({t.size}). Got {v.size} instead.")
+        return t, u, np.gradient(u, t, axis=0)
+    v = check_array(velocity, "velocity", owner, ndim=u.ndim, min_length=2)
+    if v.shape != u.shape:
+        raise ValueError(f"The 'velocity' parameter of {owner} must have the shape {u.shape} "
+                         f"of 'displacement'. Got {v.shape} instead.")
     return t, u, v
 
 
 def run_test(
     bearing: DCFPBearing,
-    time: np.ndarray,
-    displacement: np.ndarray,
-    velocity: np.ndarray | None = None,
+    time: ArrayLike,
+    displacement: ArrayLike,
+    velocity: ArrayLike | None = None,
     *,
     name: str = "imposed history",
+    grid_orientation: float | None = None,
 ) -> BearingTestResult:
     """Drive ``bearing`` through an imposed relative displacement history.
 
@@ -123,15 +208,20 @@ def run_test(
     ----------
     bearing : DCFPBearing
         The bearing to test; a fresh element (at rest, unheated) is made for the run.
-    time : array_like
+    time : array_like, shape (n,)
         Strictly increasing sample times [s].
-    displacement : array_like
-        Imposed relative displacement of the plates [m].
+    displacement : array_like, shape (n,) or (n, 2)
+        Imposed relative displacement of the plates [m], along one axis or (x, y) in the
+        plane, within the bearing's displacement capacity (a radius in the plane).
     velocity : array_like, optional
-        Imposed relative velocity [m/s]; by default the central-difference derivative of the
-        displacement (``numpy.gradient``). Give the analytic velocity where it is known.
+        Imposed relative velocity [m/s], the shape of ``displacement``; by default the
+        central-difference derivative of the displacement (``numpy.gradient``). Give the
+        analytic velocity where it is known.
     name : str
         Name of the history, kept in the result.
+    grid_orientation : float or None
+        Orientation of the precise model's monitor grid in the plane [deg]; None follows the
+        motion.
 
     Returns
     -------
@@ -139,28 +229,34 @@ def run_test(
     """
     owner = "run_test"
     t, u, v = imposed_history(time, displacement, velocity, owner)
+    reach = np.abs(u) if u.ndim == 1 else np.hypot(u[:, 0], u[:, 1])
     capacity = bearing.displacement_capacity
-    if np.max(np.abs(u)) > capacity:
+    if np.max(reach) > capacity:
         raise ValueError(
             f"The 'displacement' parameter of {owner} must stay within the bearing's "
-            f"displacement_capacity +-{capacity:g} m. Got a peak of {np.max(np.abs(u)):g} m "
-            "instead."
+            f"displacement_capacity {capacity:g} m{' (a radius)' if u.ndim == 2 else ''}. Got "
+            f"a peak of {np.max(reach):g} m instead."
         )
     start = _time.perf_counter()
-    element = bearing.element()
-    out = {n: np.empty(t.size) for n in HISTORY_FIELDS}
+    element = bearing.element(u.ndim, grid_orientation)
+    out = {n: np.empty(u.shape) for n in _VECTORS[2:]}
+    out |= {n: np.empty(t.size) for n in ("mu", "temperature", "heat_flux", "axial_load")}
     shift = t[0]
     for i in range(t.size):
         # sample 0 is a trial at zero elapsed time: it sets mu and z but adds no heat
         element.set_trial(u[i], v[i], t[i] - shift)
         element.commit()
         s = element.committed
-        out["force"][i] = s.force
-        out["friction_force"][i] = s.friction_force
-        out["mu"][i] = s.mu
-        out["temperature"][i] = s.temperature
-        out["heat_flux"][i] = s.heat_flux
-        out["axial_load"][i] = s.axial_load
-    out["time"], out["displacement"], out["velocity"] = t, u, v
-    wall = _time.perf_counter() - start
-    return BearingTestResult(**out, bearing=bearing, name=name, wall_time=wall)
+        out["force"][i], out["friction_force"][i], out["z"][i] = s.force, s.friction_force, s.z
+        out["mu"][i], out["temperature"][i] = s.mu, s.temperature
+        out["heat_flux"][i], out["axial_load"][i] = s.heat_flux, s.axial_load
+    stored = getattr(getattr(element.friction_state, "heating", None), "stored_points", 0)
+    return BearingTestResult(t, u, v, **out, bearing=bearing, name=name, stored_points=stored,
+                             wall_time=_time.perf_counter() - start)
+
+
+def run_orbit(bearing: DCFPBearing, orbit: Orbit, *,
+              grid_orientation: float | None = None) -> BearingTestResult:
+    """:func:`run_test` on an :class:`~isolator.orbits.Orbit` (its exact velocity)."""
+    return run_test(bearing, orbit.time, orbit.displacement, orbit.velocity, name=orbit.name,
+                    grid_orientation=grid_orientation)

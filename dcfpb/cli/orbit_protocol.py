@@ -1,6 +1,6 @@
 """``dcfpb protocol --orbit circle|figure8|square|line [--angle DEG]``: the virtual test
-machine in 2D (:mod:`isolator.bidirectional.orbits`,
-:func:`isolator.bidirectional.testrig.run_orbit`).
+machine in 2D (:mod:`isolator.orbits`,
+:func:`isolator.testrig.run_orbit`).
 
 The orbit's size is ``--amplitude`` (the circle's radius, the figure-eight's and the line's
 amplitude, the square's half side), its period, cycles and step those of the sine. The report
@@ -15,7 +15,7 @@ import json
 from collections.abc import Callable
 
 ORBIT_CHOICES = ("circle", "figure8", "square", "line")
-"""The orbits of :data:`isolator.bidirectional.orbits.ORBITS`, written out so that parsing imports
+"""The orbits of :data:`isolator.orbits.ORBITS`, written out so that parsing imports
 nothing."""
 
 
@@ -37,8 +37,8 @@ def run_orbit_protocol(args: argparse.Namespace,
     from dcfpb.cli.outputs import check_outputs
     from dcfpb.common.errors import InputError
     from dcfpb.common.validation import check_real
-    from isolator.bidirectional.orbits import orbit
-    from isolator.bidirectional.testrig import run_orbit
+    from isolator.orbits import orbit
+    from isolator.testrig import run_orbit
     from isolator.experiments import protocol_bearing
 
     command = "dcfpb protocol"

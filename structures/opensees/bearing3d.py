@@ -1,11 +1,11 @@
 """One bearing in OpenSees 3D under an imposed orbit in the horizontal plane.
 
 :func:`run_opensees_orbit` is the OpenSees twin of
-:func:`isolator.bidirectional.testrig.run_orbit_test`:
+:func:`isolator.testrig.run_test`:
 it builds one 3D element (``ndm 3``, ``ndf 6``, two coincident nodes) from a
 :class:`~isolator.bearing.DCFPBearing`, loads it with the bearing's constant axial load, drives
 the top node's X and Y through the orbit and returns an
-:class:`~isolator.bidirectional.testrig.OrbitTestResult`. Elements:
+:class:`~isolator.testrig.BearingTestResult`. Elements:
 
 ``"coulomb"``
     ``singleFPBearing`` (3D, ``SingleFPSimple3d``) with ``frictionModel Coulomb`` for a
@@ -25,7 +25,7 @@ Conventions read in ``SingleFPSimple3d.cpp`` and ``FPBearingPTV.cpp`` (``update(
 - Both run one coupled return map on the two shear components: a trial force
   ``q* = k0 (u - u_p)`` per axis, ``k0_i = kInit - N / R_i``; if ``|q*| > mu N`` it is
   projected on the circle of radius mu N (radial return). With k0 = mu N / u_y this is our
-  :func:`~isolator.bidirectional.element.isotropic_return_map`, except that k0 is fixed by kInit
+  :func:`~isolator.bearing.isotropic_return_map`, except that k0 is fixed by kInit
   while
   ours, mu N z with z moving by du / u_y, follows N and mu; and k0_x != k0_y off the axes.
 - singleFPBearing: ``R_x = sqrt(R^2 - u_Y^2)``, ``R_y = sqrt(R^2 - u_X^2)``; restoring force
@@ -53,8 +53,8 @@ from numpy.typing import ArrayLike
 
 from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
-from isolator.bidirectional.orbits import Orbit
-from isolator.bidirectional.testrig import OrbitTestResult
+from isolator.orbits import Orbit
+from isolator.testrig import BearingTestResult
 from isolator.friction import ConstantFriction
 from structures.opensees.bearing import imposed_analysis, record_steps
 from structures.opensees.equivalents import (
@@ -97,7 +97,7 @@ def run_opensees_orbit(
     *,
     element: str = "coulomb",
     name: str = "orbit",
-) -> OrbitTestResult:
+) -> BearingTestResult:
     """Drive ``bearing`` built as an OpenSees 3D element through an imposed orbit.
 
     Parameters
@@ -111,7 +111,7 @@ def run_opensees_orbit(
         Imposed relative displacement (x, y) [m], starting at (0, 0).
     velocity : array_like, shape (n, 2), optional
         Imposed velocity [m/s]; by default ``numpy.gradient`` of the displacement (as
-        :func:`~isolator.bidirectional.testrig.run_orbit_test`). Give the analytic velocity where
+        :func:`~isolator.testrig.run_test`). Give the analytic velocity where
         known.
     element : {"coulomb", "ptv"}
         Which OpenSees element (see the module docstring).
@@ -120,7 +120,7 @@ def run_opensees_orbit(
 
     Returns
     -------
-    OrbitTestResult
+    BearingTestResult
         One row per sample; sample 0 is the initial state (zero force, the axial load, mu NaN).
         ``mu`` is the friction model's COF (``MuAdjusted`` for FPBearingPTV), ``axial_load``
         the normal force the element uses, ``friction_force`` the force less the element's own
@@ -176,13 +176,13 @@ def run_opensees_orbit(
     label = {"coulomb": "singleFPBearing 3D Coulomb", "ptv": "FPBearingPTV"}[element]
     if element == "coulomb" and math.isinf(bearing.effective_radius):
         label = "flatSliderBearing 3D Coulomb"
-    return OrbitTestResult(t, **out, bearing=bearing, name=f"OpenSees {label}: {name}",
+    return BearingTestResult(t, **out, bearing=bearing, name=f"OpenSees {label}: {name}",
                            wall_time=_time.perf_counter() - start)
 
 
 def opensees_orbit(bearing: DCFPBearing, orbit: Orbit, *,
-                   element: str = "coulomb") -> OrbitTestResult:
-    """:func:`run_opensees_orbit` on an :class:`~isolator.bidirectional.orbits.Orbit` (its exact
+                   element: str = "coulomb") -> BearingTestResult:
+    """:func:`run_opensees_orbit` on an :class:`~isolator.orbits.Orbit` (its exact
     velocity)."""
     return run_opensees_orbit(bearing, orbit.time, orbit.displacement, orbit.velocity,
                               element=element, name=orbit.name)

@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 
 from dcfpb.common.validation import check_array
 from isolator.bearing import AxialLoadHistory, DCFPBearing
-from isolator.bidirectional.testrig import run_orbit_test
+from isolator.testrig import run_test
 from structures.opensees.equivalents import constant_axial_load
 
 __all__ = [
@@ -71,7 +71,7 @@ def singlefp3d_normal_force(
     """The normal force singleFPBearing (3D) uses, ``N = W + F_X u_X / R_x + F_Y u_Y / R_y``,
     from our bidirectional element.
 
-    Fixed-point iteration on :func:`~isolator.bidirectional.testrig.run_orbit_test`: N_0 = W,
+    Fixed-point iteration on :func:`~isolator.testrig.run_test`: N_0 = W,
     N_(k+1) = W + F_k . (u_X / R_x, u_Y / R_y) with the radii of
     :func:`singlefp3d_restoring`; the map contracts by about |u| / R (0.4 % for |u| = 0.2 m,
     R = 4.5 m). Given as the axial load of our bearing it makes our element see what
@@ -102,7 +102,7 @@ def singlefp3d_normal_force(
     change = math.inf
     for _ in range(max_iterations):
         trial = replace(bearing, axial_load=AxialLoadHistory(relative, normal))
-        force = run_orbit_test(trial, t, u, v).force
+        force = run_test(trial, t, u, v).force
         updated = weight + np.sum(force * lever, axis=1)
         change = float(np.max(np.abs(updated - normal))) / weight
         normal = updated

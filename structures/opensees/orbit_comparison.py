@@ -1,7 +1,7 @@
 """Our bidirectional element side by side with OpenSees 3D, one bearing under one orbit.
 
 :func:`run_orbit_comparison` drives the same orbit through our element
-(:func:`isolator.bidirectional.testrig.run_orbit`) and through the OpenSees 3D element
+(:func:`isolator.testrig.run_orbit`) and through the OpenSees 3D element
 (:func:`structures.opensees.bearing3d.opensees_orbit`); :func:`compare_orbit_results`
 measures the differences. Both runs share the orbit's samples, so the force histories (x, y)
 are compared sample by sample. Differences are OpenSees's relative to ours:
@@ -29,8 +29,8 @@ import numpy as np
 
 from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
-from isolator.bidirectional.orbits import Orbit
-from isolator.bidirectional.testrig import OrbitTestResult, path_integral, run_orbit
+from isolator.orbits import Orbit
+from isolator.testrig import BearingTestResult, path_integral, run_orbit
 from structures.opensees.bearing3d import ELEMENTS_3D, opensees_orbit, singlefp3d_normal_force
 
 __all__ = ["OrbitComparison", "compare_orbit_results", "orbit_cycles", "run_orbit_comparison"]
@@ -44,15 +44,15 @@ class OrbitComparison(NamedTuple):
 
     Attributes
     ----------
-    ours, opensees : OrbitTestResult
+    ours, opensees : BearingTestResult
         Our element's and the OpenSees element's histories; ``force[:, 0]`` and
         ``force[:, 1]`` are the per-axis force histories [N].
     summary : dict
         :func:`compare_orbit_results` of the two (JSON-ready).
     """
 
-    ours: OrbitTestResult
-    opensees: OrbitTestResult
+    ours: BearingTestResult
+    opensees: BearingTestResult
     summary: dict[str, Any]
 
 
@@ -63,17 +63,17 @@ def orbit_cycles(orbit: Orbit) -> list[slice]:
     return blocks or [slice(None)]
 
 
-def _energy(result: OrbitTestResult, cycles: list[slice]) -> float:
+def _energy(result: BearingTestResult, cycles: list[slice]) -> float:
     return sum(path_integral(result.displacement[s], result.force[s]) for s in cycles)
 
 
-def compare_orbit_results(ours: OrbitTestResult, opensees: OrbitTestResult,
+def compare_orbit_results(ours: BearingTestResult, opensees: BearingTestResult,
                           cycles: list[slice] | None = None) -> dict[str, Any]:
     """Peaks, energies and differences of two orbit tests on the same samples (JSON-ready).
 
     Parameters
     ----------
-    ours, opensees : OrbitTestResult
+    ours, opensees : BearingTestResult
         The two tests, sample by sample on one time grid.
     cycles : list of slice, optional
         The closed blocks whose work is the dissipated energy (:func:`orbit_cycles`); by
@@ -146,7 +146,7 @@ def run_orbit_comparison(
         a ConstantFriction for ``"coulomb"``, a PTVFriction shaped by
         :func:`~structures.opensees.equivalents.fpbearingptv_equivalent` for ``"ptv"``).
     orbit : Orbit
-        The imposed orbit (:mod:`isolator.bidirectional.orbits`), starting at the centre.
+        The imposed orbit (:mod:`isolator.orbits`), starting at the centre.
     element : {"coulomb", "ptv"}
         singleFPBearing 3D with Coulomb friction, or FPBearingPTV.
     ours_bearing : DCFPBearing, optional

@@ -2,7 +2,7 @@
 
 Degrees of freedom: those of :class:`~structures.spatial.building.SpatialBuilding`, the base
 slab's ``(u_x, u_y, theta)`` first. Bearing ``i`` at ``(x_i, y_i)`` is a
-:class:`~isolator.bidirectional.element.BidirectionalElement` whose plates move apart by
+:class:`~isolator.bearing.BearingElement` whose plates move apart by
 ``u_i = T_i q_b = (u_x - theta y_i, u_y + theta x_i)``; its force ``F_i`` acts on the base slab as
 ``T_i^T F_i`` (force x, force y, torque about O) and its 2x2 tangents as ``T_i^T K_i T_i``.
 No viscous damping acts on the isolation level.
@@ -41,7 +41,7 @@ from dcfpb.common.errors import InputTypeError, InputWarning
 from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
-from isolator.bidirectional.element import BidirectionalElement, PlanarState
+from isolator.bearing import BearingElement, BearingState
 from structures.model import RestoringForce
 from structures.spatial.building import SpatialBuilding, bearing_transformation, dof
 
@@ -93,7 +93,7 @@ class SpatialIsolatedBuilding:
         self.bearing = dataclasses.replace(bearing, axial_load=None)
         self.bearings = tuple(dataclasses.replace(bearing, axial_load=float(share))
                               for share in shares)
-        self.elements = tuple(BidirectionalElement(b, grid_orientation) for b in self.bearings)
+        self.elements = tuple(BearingElement(b, 2, grid_orientation) for b in self.bearings)
         self.transformations = tuple(bearing_transformation(x, y)
                                      for x, y in building.plan.bearing_coordinates)
         self._gravity = shares
@@ -206,7 +206,7 @@ class SpatialIsolatedBuilding:
                 damping[:3] += np.outer(per_load, dv)
         return RestoringForce(force, stiffness, damping)
 
-    def committed_states(self) -> tuple[PlanarState, ...]:
+    def committed_states(self) -> tuple[BearingState, ...]:
         """The committed state of every bearing."""
         return tuple(element.committed for element in self.elements)
 

@@ -27,7 +27,7 @@ BEARING_RECORD: dict[str, tuple[int, ...]] = {
     "heat_flux": (), "axial_load": (),
 }
 """What is recorded of each bearing at each committed step (its shape besides time and
-bearing): the fields of :class:`isolator.bidirectional.element.PlanarState`."""
+bearing): the fields of :class:`isolator.bearing.BearingState`."""
 
 _ENERGIES = ("input", "kinetic", "damping", "strain", "friction", "error")
 
@@ -47,7 +47,7 @@ def plate_fields(model: SpatialIsolatedBuilding) -> tuple[np.ndarray, np.ndarray
     precise model; None for the others): positions (n_bearings, m, 2) [m] in plate
     coordinates and temperatures (n_bearings, m) [degC], padded with NaN to the bearing with
     the most points ever touched."""
-    from isolator.bidirectional.heating import GridHeating
+    from isolator.monitor_grid import GridHeating
 
     grids = [getattr(e.friction_state, "heating", None) for e in model.elements]
     if not all(isinstance(g, GridHeating) for g in grids):

@@ -43,7 +43,7 @@ import numpy as np
 import pytest
 
 from isolator.bearing import DCFPBearing
-from isolator.bidirectional.orbits import circle, figure_eight, line, square
+from isolator.orbits import circle, figure_eight, line, square
 from isolator.factors import KumarFactors
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import MonitorLine

@@ -9,7 +9,7 @@ import pytest
 
 from dcfpb.cli import main
 from dcfpb.cli.orbit_protocol import ORBIT_CHOICES
-from isolator.bidirectional.orbits import ORBITS
+from isolator.orbits import ORBITS
 
 ARGS = ["protocol", "--model", "constant", "--slider-diameter", "0.3", "--pressure", "60e6",
         "--amplitude", "0.2", "--period", "2.0", "--cycles", "2", "--dt", "0.02"]

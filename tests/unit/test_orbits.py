@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from isolator.bidirectional.orbits import (
+from isolator.orbits import (
     ORBITS,
     Orbit,
     circle,
@@ -17,7 +17,7 @@ from isolator.bidirectional.orbits import (
     rotation,
     square,
 )
-from isolator.bidirectional.testrig import run_orbit_test
+from isolator.testrig import run_test
 from isolator.experiments import protocol_bearing
 from isolator.protocols import sine
 
@@ -114,9 +114,9 @@ def test_rig_refuses_an_orbit_beyond_the_capacity_and_bad_shapes():
     bearing = protocol_bearing("constant", displacement_capacity=0.3)
     o = circle(0.31, 2.0, 1, 0.05)
     with pytest.raises(ValueError, match=r"displacement_capacity 0\.3 m"):
-        run_orbit_test(bearing, o.time, o.displacement, o.velocity)
+        run_test(bearing, o.time, o.displacement, o.velocity)
     with pytest.raises(ValueError, match=r"shape \(41, 2\)"):
-        run_orbit_test(bearing, o.time[:41], o.displacement[:41].T.reshape(-1, 1))
+        run_test(bearing, o.time[:41], o.displacement[:41].T.reshape(-1, 1))
     small = circle(0.1, 2.0, 1, 0.05)
-    by_gradient = run_orbit_test(bearing, small.time, small.displacement)  # v = np.gradient
+    by_gradient = run_test(bearing, small.time, small.displacement)  # v = np.gradient
     assert by_gradient.force.shape == (len(small), 2)

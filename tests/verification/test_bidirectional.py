@@ -1,4 +1,4 @@
-"""The bidirectional DCFPB element against the planar element and closed forms.
+"""The DCFPB element in two directions against the element in one and closed forms.
 
 - A sine along any direction gives the planar element's force (along the line, zero across),
   mu, temperature and heat flux, for the constant, simplified and precise models (1e-9).
@@ -16,14 +16,12 @@ import math
 import numpy as np
 import pytest
 
-from isolator.bearing import DCFPBearing
-from isolator.bidirectional.element import BidirectionalElement, isotropic_return_map
-from isolator.bidirectional.orbits import circle, line
-from isolator.bidirectional.testrig import path_integral, run_orbit
+from isolator.bearing import BearingElement, DCFPBearing, isotropic_return_map
 from isolator.experiments import protocol_bearing
 from isolator.friction import ConstantFriction
+from isolator.orbits import circle, line
 from isolator.protocols import sine
-from isolator.testrig import run_test
+from isolator.testrig import path_integral, run_orbit, run_test
 
 N = 60e6 * math.pi * 0.15**2  # 60 N/mm^2 on a 300 mm slider [N]
 MODELS = ("constant", "simplified", "precise")
@@ -134,9 +132,9 @@ def _fd_tangents(element, u, v, t, h_u=1e-9, h_v=1e-7):
     return stiffness, damping
 
 
-def _element_on_a_curve(model: str, steps: int = 12) -> tuple[BidirectionalElement, float]:
+def _element_on_a_curve(model: str, steps: int = 12) -> tuple[BearingElement, float]:
     bearing = protocol_bearing(model, slider_diameter=0.3)
-    element = BidirectionalElement(bearing)
+    element = BearingElement(bearing, 2)
     t = 0.0
     for n in range(steps):
         t = 0.01 * n
@@ -167,12 +165,16 @@ def test_tangents_against_finite_differences(model, state):
 
 def test_return_map_tangent_is_the_derivative_of_the_map():
     z0, du, uy = np.array([0.6, 0.7]), np.array([3e-4, -1e-4]), 5e-4
-    z, tangent = isotropic_return_map(z0, du, uy)
+
+    def mapped(increment):
+        values = isotropic_return_map(*z0, *increment, uy)
+        return np.array(values[:2]), np.reshape(values[2:], (2, 2))
+
+    z, tangent = mapped(du)
     assert math.hypot(*z) == pytest.approx(1.0, abs=1e-15)
     h = 1e-10
     numeric = np.column_stack([
-        (isotropic_return_map(z0, du + h * e, uy)[0]
-         - isotropic_return_map(z0, du - h * e, uy)[0]) / (2 * h) for e in np.eye(2)])
+        (mapped(du + h * e)[0] - mapped(du - h * e)[0]) / (2 * h) for e in np.eye(2)])
     assert np.allclose(tangent, numeric, rtol=1e-6, atol=1e-3)
 
 
@@ -220,7 +222,7 @@ def test_a_lifted_bearing_cools_as_one_at_rest(model):
     dt, amplitude, omega = 0.005, 0.1, 2 * math.pi
     temperatures = []
     for bearing in (loaded, lifted):
-        element, history = BidirectionalElement(bearing), []
+        element, history = BearingElement(bearing, 2), []
         for time in np.arange(1, 601) * dt:
             tau = time - 1.0 if time > 2.0 else min(time, 1.0)
             moving = time < 1.0 or time > 2.0

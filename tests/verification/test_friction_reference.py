@@ -82,7 +82,7 @@ def test_the_readable_element_packs_its_model_for_the_kernel(factors):
     model = PTVFriction(mu_t0=0.075, heating=MonitorLine(), factors=factors)
     state = model.bind(contact_radius=0.15, travel=0.6)
     pressure, velocity, dt = 60e6, -0.3, 0.01
-    trial = state.trial(0.0, velocity, pressure, dt)
+    trial = state.trial((0.0, 0.0), (velocity, 0.0), pressure, dt)
     newest = 2.0 * state.heating.coefficient * math.sqrt(dt)
     t0 = model.thermal.initial_temperature
     assert trial.heat_flux == pytest.approx(trial.mu * pressure * abs(velocity) / 2, rel=1e-12)
@@ -94,17 +94,18 @@ def test_the_readable_element_packs_its_model_for_the_kernel(factors):
 @pytest.mark.parametrize("velocity", [0.8, -0.8, 0.05, -0.05])
 def test_the_velocity_tangent_keeps_its_sign_on_a_hot_plate(velocity):
     """d mu / d v = d mu / d|v| sign(v), also where d mu / d|v| < 0 (a hot plate at speed: the
-    newest flux heats it more than alpha(v) adds); a copysign once made it always point along v."""
+    newest flux heats it more than alpha(v) adds): the evaluator's d mu / d|v| keeps its sign."""
     state = PTVFriction(mu_t0=0.075, heating=MonitorLine()).bind(contact_radius=0.15, travel=0.6)
     position, speed, dt = 0.0, 0.5, 0.005
     for _ in range(2000):  # heat the plate: back and forth over 0.4 m at 0.5 m/s
         position += speed * dt
         speed = -speed if abs(position) > 0.2 else speed
-        state.trial(position, speed, 60e6, dt)
+        state.trial((position, 0.0), (speed, 0.0), 60e6, dt)
         state.commit()
-    trial = state.trial(position, velocity, 60e6, dt)
+    trial = state.trial((position, 0.0), (velocity, 0.0), 60e6, dt)
     h = 1e-6
-    slope = (state.trial(position, velocity + h, 60e6, dt).mu
-             - state.trial(position, velocity - h, 60e6, dt).mu) / (2 * h)
+    slope = (state.trial((position, 0.0), (velocity + h, 0.0), 60e6, dt).mu
+             - state.trial((position, 0.0), (velocity - h, 0.0), 60e6, dt).mu) / (2 * h)
     assert trial.temperature > 100.0
-    assert trial.dmu_dvelocity == pytest.approx(slope, rel=1e-6, abs=1e-10)
+    assert math.copysign(1.0, velocity) * trial.dmu_dspeed == pytest.approx(slope, rel=1e-6,
+                                                                            abs=1e-10)

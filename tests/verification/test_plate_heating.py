@@ -20,10 +20,10 @@ import math
 import numpy as np
 import pytest
 
-from isolator.bidirectional.element import BidirectionalElement
-from isolator.bidirectional.heating import GridHeating, MonitorGrid
-from isolator.bidirectional.orbits import circle, figure_eight, line
-from isolator.bidirectional.testrig import run_orbit
+from isolator.bearing import BearingElement
+from isolator.monitor_grid import GridHeating, MonitorGrid
+from isolator.orbits import circle, figure_eight, line
+from isolator.testrig import run_orbit
 from isolator.experiments import protocol_bearing
 from isolator.heating import ThermalProperties, exact_rise, sum_of_exponentials
 
@@ -43,7 +43,7 @@ def _drive(model: str, orbit_name: str, orientation: float | None):
     """Run the bidirectional element through the orbit; keep its heating model."""
     bearing = protocol_bearing(model, slider_diameter=SLIDER, design_velocity=0.4)
     orbit = ORBITS[orbit_name]()
-    element = BidirectionalElement(bearing, grid_orientation=orientation)
+    element = BearingElement(bearing, 2, orientation)
     temperature, flux = np.empty(len(orbit)), np.empty(len(orbit))
     friction = np.empty((len(orbit), 2))
     for i in range(len(orbit)):

@@ -20,7 +20,7 @@ import numpy as np
 
 from dcfpb.common.errors import CapacityExceeded
 from isolator.bearing import trial_failure
-from isolator.bidirectional.heating import GridHeating
+from isolator.monitor_grid import GridHeating
 from isolator.compiled import kernels
 from isolator.compiled import layout as L
 from isolator.compiled.bidirectional import bearing as E

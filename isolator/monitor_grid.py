@@ -1,6 +1,7 @@
 """Frictional heating over a whole plate: the precise model's monitor points on a 2D grid.
 
-The planar precise model (:class:`~isolator.heating.MonitorLine`, paper Fig. 3a) tracks points
+For a bearing moving along one axis, the precise model (:class:`~isolator.heating.MonitorLine`,
+paper Fig. 3a) tracks points
 every 5 mm on a line through the plate centre along the sliding direction; the contact is taken
 as the square of equal area (half side a = sqrt(pi) r / 2, Eq. 5) and the contact temperature is
 the mean over the points inside it. The paper notes that for a square contact "one line of
@@ -23,8 +24,8 @@ the default): e1 points along the slider's position on the plate at the first co
 heat on it (along the velocity if the slider is then at the centre, along x if both are zero),
 and stays so. For a unidirectional history this is the line's direction, at any angle; for an
 orbit the orientation of the square is a modelling choice like any other (the paper's square
-has none), and a fixed one can be given. The per-axis window is the planar kernel
-:func:`~isolator.compiled.kernels.heated_window` on axes with the planar line's geometry, so the
+has none), and a fixed one can be given. The per-axis window is the line's kernel
+:func:`~isolator.compiled.kernels.heated_window` on axes with the line's geometry, so the
 two models pick the same points to the last rounding.
 
 Storage: only points ever heated are stored (a growing array of histories, indexed per grid
@@ -43,7 +44,7 @@ import numpy as np
 
 from dcfpb.common.errors import CapacityExceeded
 from dcfpb.common.validation import check_real
-from isolator.compiled.kernels import heated_window
+from isolator.compiled.kernels import heated_window, ptv_friction
 from isolator.heating import MonitorLine, SumOfExponentials, ThermalProperties, step_factors
 
 _INITIAL_CAPACITY = 256  # stored points before the first growth of the arrays
@@ -60,9 +61,9 @@ class MonitorGrid:
     orientation : float or None
         Angle of the grid's first axis from x [deg], counter-clockwise. None (the default): the
         first axis follows the motion (see the module docstring), which makes a unidirectional
-        history reproduce the planar precise model at any angle.
+        history reproduce the precise model's line at any angle.
     half_length : float or None
-        Half side of the square of plate covered by the grid [m]; None sizes it like the planar
+        Half side of the square of plate covered by the grid [m]; None sizes it like the
         line (:meth:`MonitorLine.points`) for the slider's travel.
     """
 
@@ -80,11 +81,11 @@ class MonitorGrid:
 
     @classmethod
     def from_line(cls, line: MonitorLine, orientation: float | None = None) -> MonitorGrid:
-        """The grid of a planar precise model's monitor line (same spacing and extent)."""
+        """The grid of a precise model's monitor line (same spacing and extent)."""
         return cls(line.spacing, orientation, line.half_length)
 
     def axis(self, contact_radius: float, travel: float) -> np.ndarray:
-        """Point coordinates along either axis [m]: those of the planar line."""
+        """Point coordinates along either axis [m]: those of the line."""
         return MonitorLine(self.spacing, self.half_length).points(contact_radius, travel)
 
 
@@ -179,6 +180,7 @@ class GridHeating:
         self._axes: np.ndarray | None = None
         self._time = 0.0  # committed time of the plate's own clock [s]
         self._factors: dict[float, tuple[np.ndarray, np.ndarray, float]] = {}
+        self._staged: GridTrial | None = None  # the window of the last friction trial
 
     # --- geometry -------------------------------------------------------------------------
 
@@ -327,6 +329,39 @@ class GridHeating:
             self._states[rows] = self._histories_now(rows) * step[0] + flux * step[1]
             self._stamps[rows] = self._time + dt
         self._time += dt
+
+    def constants(self) -> dict[str, float]:
+        """The grid's constants of :func:`~isolator.compiled.layout.pack_ptv` (the axes' points,
+        the contact read as a mean over the points under the slider, the heat-conduction
+        coefficient)."""
+        return {"first_point": self.first_point, "spacing": self.spacing,
+                "n_points": self.n_points, "flux_half_width": self.flux_half_width,
+                "average_over_contact": True, "flux_coefficient": self.coefficient}
+
+    def friction_trial(self, position: tuple[float, float], velocity: tuple[float, float],
+                       pressure: float, speed: float, dt: float,
+                       parameters: np.ndarray) -> tuple[float, float, float, float]:
+        """Eq. 7 solved with the grid's contact temperature for the slider centre at
+        ``position`` (x, y) [m] on the plate after ``dt`` [s]: ``(mu, d mu / d|v| [s/m],
+        temperature [degC], flux [W/m^2])`` (:func:`~isolator.compiled.kernels.ptv_friction`
+        with the newest interval's flux). ``velocity`` [m/s] orients a frame not yet fixed
+        while the slider is at the centre. The trial's window is kept for :meth:`commit_trial`.
+        """
+        grid = self.trial(np.asarray(position, dtype=float), dt,
+                          hint=np.asarray(velocity, dtype=float))
+        _, _, newest = self.factors(dt)
+        self._staged = grid
+        return ptv_friction(grid.rise, grid.points > 0, parameters, newest, pressure, speed)
+
+    def commit_trial(self, dt: float, flux: float) -> None:
+        """:meth:`commit` one interval ``dt`` [s] of ``flux`` [W/m^2] on the window of the last
+        :meth:`friction_trial`."""
+        self.commit(dt, self._staged, flux)
+
+    def temperature_field(self) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`point_positions` (m, 2) [m] and :meth:`point_temperatures` (m,) [degC] of
+        the stored points."""
+        return self.point_positions(), self.point_temperatures()
 
     # --- read-outs ------------------------------------------------------------------------
 
