@@ -29,7 +29,6 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-
 from numpy.typing import ArrayLike
 
 from dcfpb.common.errors import CapacityExceeded, InputError, InputTypeError

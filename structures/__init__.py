@@ -35,10 +35,7 @@ _EXPORTS = {
     "run_fixed_base": "structures.fixed_base",
     "ratios_to_fixed_base": "structures.fixed_base",
     "with_floor_spectra": "structures.floor_spectra",
-    "Plan": "structures.spatial.plan",
-    "SpatialBuilding": "structures.spatial.building",
-    "SpatialIsolatedBuilding": "structures.spatial.isolated",
-    "run_spatial": "structures.spatial.analysis",
+    "Plan": "structures.plan",
 }
 __all__ = [
     "HHT",
@@ -49,8 +46,6 @@ __all__ = [
     "Plan",
     "RayleighDamping",
     "ShearBuilding",
-    "SpatialBuilding",
-    "SpatialIsolatedBuilding",
     "default_step",
     "energy_balance",
     "integrate",
@@ -60,7 +55,6 @@ __all__ = [
     "run",
     "run_building",
     "run_fixed_base",
-    "run_spatial",
     "with_floor_spectra",
 ]
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
@@ -74,9 +68,6 @@ if TYPE_CHECKING:
     from structures.floor_spectra import with_floor_spectra
     from structures.integrators import HHT, Newmark, integrate
     from structures.isolated_building import IsolatedShearBuilding
+    from structures.plan import Plan
     from structures.runner import run
     from structures.shear_building import ModalDamping, RayleighDamping, ShearBuilding
-    from structures.spatial.analysis import run_spatial
-    from structures.spatial.building import SpatialBuilding
-    from structures.spatial.isolated import SpatialIsolatedBuilding
-    from structures.spatial.plan import Plan

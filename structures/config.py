@@ -20,12 +20,10 @@ import numpy as np
 from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS, friction_model
-from structures.config_schema import ConfigError, ConfigWarning, check_tables
+from structures.config_schema import ConfigError, ConfigWarning, check_plan, check_tables
 from structures.integrators import HHT, Newmark
+from structures.plan import Plan
 from structures.shear_building import ModalDamping, RayleighDamping, ShearBuilding
-from structures.spatial.building import SpatialBuilding
-from structures.spatial.plan import Plan
-from structures.spatial.plan_schema import build_plan, check_plan
 
 __all__ = ["BuildingConfig", "ConfigError", "ConfigWarning", "load_config", "read_toml"]
 
@@ -35,8 +33,8 @@ MAX_FILE_BYTES = 10_000_000
 
 @dataclass(frozen=True)
 class BuildingConfig:
-    """Everything a run needs besides the ground motion; ``plan`` (from a ``[plan]`` table,
-    :mod:`structures.spatial.plan_schema`) is None for a planar building."""
+    """Everything a run needs besides the ground motion. ``building`` has the plan of a file
+    with a ``[plan]`` table (a building in plan) and none otherwise."""
 
     name: str
     building: ShearBuilding
@@ -45,19 +43,11 @@ class BuildingConfig:
     friction: dict[str, Any]
     integrator: Newmark | HHT
     dt: float | None
-    plan: Plan | None = None
 
-    def spatial_building(self) -> SpatialBuilding:
-        """The building in plan of a file with a ``[plan]`` table.
-
-        Raises
-        ------
-        ConfigError
-            For a planar file (no ``[plan]``).
-        """
-        if self.plan is None:
-            raise ConfigError(f"The building {self.name!r} has no [plan] table: it is planar.")
-        return SpatialBuilding(self.building, self.plan)
+    @property
+    def plan(self) -> Plan | None:
+        """The building's plan (None for a building in one direction)."""
+        return self.building.plan
 
     def bearing(self, model: str | None = None) -> DCFPBearing:
         """One bearing with friction ``model`` (default: the file's), loaded by W / count."""
@@ -123,15 +113,16 @@ def _build(tables: dict[str, dict], path: Path) -> BuildingConfig:
     b = tables["building"]
     masses = np.asarray(b["floor_masses"], dtype=float)
     damping = _damping(tables["building.damping"])
+    plan = None if tables.get("plan") is None else Plan(**tables["plan"])
     if "storey_stiffnesses" in b:
         building = ShearBuilding(masses, np.asarray(b["storey_stiffnesses"], dtype=float),
-                                 b["base_mass"], damping)
+                                 b["base_mass"], damping, plan)
     else:
         building = ShearBuilding.from_period(masses, b["fixed_base_period"],
                                              base_mass=b["base_mass"], damping=damping,
-                                             profile=b.get("stiffness_profile", "uniform"))
+                                             profile=b.get("stiffness_profile", "uniform"),
+                                             plan=plan)
     bearing = dict(tables["bearing"])
-    plan = None if tables.get("plan") is None else build_plan(tables["plan"])
     count = bearing.pop("count", 1 if plan is None else plan.n_bearings)
     friction = dict(tables["friction"])
     friction["model"] = friction.get("model", "precise")
@@ -139,11 +130,9 @@ def _build(tables: dict[str, dict], path: Path) -> BuildingConfig:
     hht = analysis.get("integrator", "newmark") == "hht"
     integrator = HHT(alpha=analysis.get("alpha", -0.05)) if hht else Newmark()
     config = BuildingConfig(tables[""].get("name", path.stem), building, count, bearing,
-                            friction, integrator, analysis.get("dt"), plan)
+                            friction, integrator, analysis.get("dt"))
     for model in MODELS:  # every model the file may run (--model, suites), checked now
         config.bearing(model)
-    if plan is not None:  # the plan fits the building and carries its weight
-        config.spatial_building()
     return config
 
 

@@ -1,4 +1,5 @@
-"""Energy balance of a time-history run, in the relative frame of the ground.
+"""Energy balance of a time-history run, in the relative frame of the ground, for a building in
+one direction or in plan.
 
 Every term is a work integral taken over the displacement increments of each step with the
 trapezoid rule, which is exactly the identity the average-acceleration Newmark method satisfies:
@@ -6,12 +7,15 @@ for gamma = 1/2, beta = 1/4 the balance closes to round-off (for linear, nonline
 hysteretic restoring forces alike). For HHT-alpha the closure error is the method's numerical
 dissipation.
 
-    input   E_I = sum du . (p_n + p_n+1) / 2,          p = -M r a_g
-    kinetic E_K = v . M v / 2                            (relative velocity)
-    damping E_D = sum du . C (v_n + v_n+1) / 2
-    strain  E_S = sum du . (f_n + f_n+1) / 2 minus friction: storey springs + pendulum
-    friction E_F = sum du_b . (F_f,n + F_f,n+1) / 2 x n_bearings
+    input    E_I = sum du . (p_n + p_n+1) / 2,          p = -M R a_g
+    kinetic  E_K = v . M v / 2                            (relative velocity)
+    damping  E_D = sum du . C (v_n + v_n+1) / 2
+    strain   E_S = sum du . (f_n + f_n+1) / 2 minus friction: storey springs + pendulums
+    friction E_F = sum over the bearings of sum du_i . (F_f,i,n + F_f,i,n+1) / 2
     error = E_I - (E_K + E_D + E_S + E_F)
+
+``du_i`` is the displacement increment of bearing ``i`` and ``F_f,i`` its friction force, so
+the friction work is counted where it is done, torsion included.
 """
 
 from __future__ import annotations
@@ -55,34 +59,34 @@ def energy_balance(
     damping: np.ndarray,
     influence: np.ndarray,
     restoring_force: np.ndarray,
+    bearing_displacement: np.ndarray,
     friction_force: np.ndarray,
-    friction_dof: int = 0,
 ) -> EnergyBalance:
-    """Energy balance of a committed history.
+    """Energy balance of a committed history (module docstring).
 
     Parameters
     ----------
     displacement, velocity : ndarray, shape (nt, n)
-        Response relative to the ground [m], [m/s].
-    ground_acceleration : ndarray, shape (nt,)
-        [m/s^2].
+        Response relative to the ground [m, rad], [m/s, rad/s].
+    ground_acceleration : ndarray, shape (nt, k)
+        The k components of the ground acceleration [m/s^2].
     mass, damping : ndarray, shape (n, n)
-        [kg], [N s/m].
-    influence : ndarray, shape (n,)
-        Influence vector r [-].
+        [kg ...], [N s/m ...].
+    influence : ndarray, shape (n, k)
+        Influence ``R`` of the ground acceleration [-].
     restoring_force : ndarray, shape (nt, n)
-        Total restoring force f(u, v) at each step (springs and isolators) [N].
-    friction_force : ndarray, shape (nt,)
-        Friction part of the isolators' force on ``friction_dof`` (all bearings) [N].
-    friction_dof : int
-        Degree of freedom of the isolators.
+        Total restoring force f(u, v) at each step (storeys and bearings) [N, N m].
+    bearing_displacement : ndarray, shape (nt, n_b, d)
+        Displacement of each bearing position [m].
+    friction_force : ndarray, shape (nt, n_b, d)
+        Friction force of all the bearings at each position [N], so that the friction work is
+        counted where it is done, torsion included.
     """
-    load = -np.outer(ground_acceleration, mass @ influence)
+    load = -(ground_acceleration @ (mass @ influence).T)
     energy_input = trapezoid_work(load, displacement)
-    kinetic = 0.5 * np.einsum("ti,ij,tj->t", velocity, mass, velocity)
+    kinetic = 0.5 * np.sum((velocity @ mass.T) * velocity, axis=1)  # v . M v per step
     damping_work = trapezoid_work(velocity @ damping.T, displacement)
-    restoring = trapezoid_work(restoring_force, displacement)
-    friction = trapezoid_work(friction_force, displacement[:, friction_dof])
-    strain = restoring - friction
+    friction = trapezoid_work(friction_force, bearing_displacement)
+    strain = trapezoid_work(restoring_force, displacement) - friction
     error = energy_input - (kinetic + damping_work + strain + friction)
     return EnergyBalance(energy_input, kinetic, damping_work, strain, friction, error)

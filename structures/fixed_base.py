@@ -26,9 +26,11 @@ import time as _time
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
+from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import sdof_response
-from structures.analysis import default_step, resampled_record
+from structures.analysis import default_step, ground_record
 from structures.limits import DEFAULT_MAX_STEPS, check_run, fixed_base_fields
 from structures.shear_building import ShearBuilding
 
@@ -54,16 +56,18 @@ def _modal_damping_ratios(building: ShearBuilding, shapes: np.ndarray,
     return diagonal / (2.0 * omega)
 
 
-def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float | None = None,
-                   max_steps: int = DEFAULT_MAX_STEPS):
+def run_fixed_base(building: ShearBuilding, motion: GroundMotion | GroundMotionPair, *,
+                   dt: float | None = None, max_steps: int = DEFAULT_MAX_STEPS):
     """The linear response of the superstructure on a fixed base to a ground motion.
 
     Parameters
     ----------
     building : ShearBuilding
-        The superstructure (its base slab is not part of the fixed-base building).
-    motion : GroundMotion
-        Ground acceleration [m/s^2] (scale it first with ``motion.scaled``).
+        The superstructure (its base slab is not part of the fixed-base building), in one
+        direction or in plan.
+    motion : GroundMotion or GroundMotionPair
+        Ground acceleration [m/s^2] (scale it first with ``motion.scaled``): one record in one
+        direction, a pair (x, y; a vertical is left out) in plan.
     dt : float, optional
         Output step [s], at most the record's; finer steps interpolate the record linearly
         (exactly as :func:`structures.analysis.run` does, so the two share a time axis).
@@ -73,10 +77,13 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float |
     Returns
     -------
     xarray.Dataset
-        Dimensions ``time``, ``floor`` (0 = the ground level, 1..n) and ``storey`` (1..n);
-        variables ``displacement``, ``velocity`` (relative to the ground), ``absolute_acceleration``
-        (time, floor), ``storey_drift``, ``storey_shear`` (time, storey), ``base_shear`` and
-        ``ground_acceleration`` (time); attributes ``configuration = "fixed base"``, the
+        The layout of :func:`structures.results.response_dataset` for the superstructure:
+        dimensions ``time``, ``floor`` (0 = the ground level, 1..n), ``storey`` (1..n) and
+        ``direction``; variables ``displacement``, ``velocity`` (relative to the ground),
+        ``absolute_acceleration`` (time, floor, direction), ``storey_drift``,
+        ``storey_shear`` (time, storey, direction), ``base_shear`` and
+        ``ground_acceleration`` (time, direction), in plan also ``rotation`` (time, floor)
+        and ``storey_twist`` (time, storey); attributes ``configuration = "fixed base"``, the
         record, ``dt``, the modal periods and damping ratios, ``success`` and ``wall_time``.
 
     Raises
@@ -84,59 +91,82 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float |
     ValueError
         For a ``dt`` outside (0, record dt], or a damping that is not classical; an
         :class:`~dcfpb.common.errors.InputError` for a run past ``max_steps`` or the memory
-        available.
+        available, or a motion that does not fit the building (one record in one direction,
+        a pair in plan).
     """
     import xarray as xr
 
+    pair = isinstance(motion, GroundMotionPair)
+    if pair != (building.plan is not None):
+        raise InputError("The fixed base of a building in plan runs under a pair of records and "
+                         "that of a building in one direction under one record.")
+    first = motion.x if pair else motion
     limit = {"max_steps": max_steps, "what": "The fixed-base run",
              "raise_with": "the max_steps argument of structures.fixed_base.run_fixed_base"}
-    fields = fixed_base_fields(building.n_storeys)
-    check_run(motion, default_step(motion.dt) if dt is None else dt, fields, **limit)
-    acceleration, step = resampled_record(motion, dt)
+    fields = fixed_base_fields(building.n_storeys * building.level_dofs)
+    check_run(first, default_step(first.dt) if dt is None else dt, fields, **limit)
+    acceleration, step = ground_record(motion, dt)
     start = _time.perf_counter()
     modes = building.fixed_base_modes()
     omega = modes.circular_frequencies
     ratios = _modal_damping_ratios(building, modes.shapes, omega)
     mass = building.fixed_base_mass_matrix
-    participation = modes.shapes.T @ mass @ np.ones(building.n_storeys)  # Gamma_j [kg^1/2]
-    n = building.n_storeys
-    # q_j = Gamma_j x_j, x_j the oscillator of period T_j and ratio xi_j under -a_g
-    x, dx = sdof_response(acceleration, step, modes.periods, ratios)
-    u = (x * participation) @ modes.shapes.T
-    v = (dx * participation) @ modes.shapes.T
+    dofs, n, directions = building.level_dofs, building.n_storeys, building.directions
+    nt, components = acceleration.shape[0], len(directions)
+    ground = acceleration.reshape(nt, components)
+    influence = np.reshape(building.isolated_influence[dofs:], (n * dofs, components))
+    participation = modes.shapes.T @ mass @ influence  # Gamma_jc [kg^1/2]
+    # q_j = sum_c Gamma_jc x_jc, x_jc the oscillator of period T_j and ratio xi_j under -a_g,c
+    u = v = 0.0
+    for c in range(components):
+        x, dx = sdof_response(ground[:, c], step, modes.periods, ratios)
+        u = u + (x * participation[:, c]) @ modes.shapes.T
+        v = v + (dx * participation[:, c]) @ modes.shapes.T
     # M a_abs = -(C v + K u): the absolute acceleration from equilibrium
     damping, stiffness = building.fixed_base_damping_matrix, building.fixed_base_stiffness_matrix
     inertia = -(v @ damping.T + u @ stiffness.T)
-    absolute = inertia / building.floor_masses
+    absolute = (inertia / building.floor_masses if dofs == 1
+                else np.linalg.solve(mass, inertia.T).T)
     wall = _time.perf_counter() - start
-
-    ground = acceleration[:, None]
-    displacement = np.hstack([np.zeros_like(ground), u])
-    velocity = np.hstack([np.zeros_like(ground), v])
-    absolute_acceleration = np.hstack([ground, absolute])
-    storey_shear = np.cumsum(-(absolute * building.floor_masses)[:, ::-1], axis=1)[:, ::-1]
+    levels = (nt, n + 1, dofs)
+    at_ground = np.zeros((nt, 1, dofs))
+    displacement = np.concatenate([at_ground, u.reshape(nt, n, dofs)], axis=1)
+    velocity = np.concatenate([at_ground, v.reshape(nt, n, dofs)], axis=1)
+    moving = at_ground.copy()
+    moving[:, 0, :components] = ground
+    absolute_acceleration = np.concatenate([moving, absolute.reshape(nt, n, dofs)], axis=1)
+    forces = inertia.reshape(nt, n, dofs)[..., :components]  # the floors' inertia forces
+    storey_shear = np.cumsum(forces[:, ::-1], axis=1)[:, ::-1]
+    drift = np.diff(displacement.reshape(levels), axis=1)
 
     def var(dims, data, units, long_name):
         return dims, np.asarray(data), {"units": units, "long_name": long_name}
 
+    tfd = ("time", "floor", "direction")
     data = {
-        "displacement": var(("time", "floor"), displacement, "m",
+        "displacement": var(tfd, displacement[..., :components], "m",
                             "displacement relative to the ground"),
-        "velocity": var(("time", "floor"), velocity, "m/s", "velocity relative to the ground"),
-        "absolute_acceleration": var(("time", "floor"), absolute_acceleration, "m/s^2",
+        "velocity": var(tfd, velocity[..., :components], "m/s",
+                        "velocity relative to the ground"),
+        "absolute_acceleration": var(tfd, absolute_acceleration[..., :components], "m/s^2",
                                      "absolute acceleration"),
-        "storey_drift": var(("time", "storey"), np.diff(displacement, axis=1), "m",
+        "storey_drift": var(("time", "storey", "direction"), drift[..., :components], "m",
                             "storey drift"),
-        "storey_shear": var(("time", "storey"), storey_shear, "N",
+        "storey_shear": var(("time", "storey", "direction"), storey_shear, "N",
                             "storey shear (inertia forces of the floors above)"),
-        "base_shear": var("time", storey_shear[:, 0], "N",
+        "base_shear": var(("time", "direction"), storey_shear[:, 0], "N",
                           "base shear (first-storey shear)"),
-        "ground_acceleration": var("time", acceleration, "m/s^2", "ground acceleration"),
+        "ground_acceleration": var(("time", "direction"), ground, "m/s^2",
+                                   "ground acceleration"),
     }
+    if dofs == 3:
+        data["rotation"] = var(("time", "floor"), displacement[..., 2], "rad",
+                               "rotation about the vertical")
+        data["storey_twist"] = var(("time", "storey"), drift[..., 2], "rad", "storey twist")
     attrs = {
         "configuration": "fixed base",
         "record": motion.name,
-        "record_processing": "; ".join(motion.processing),
+        "record_processing": "; ".join(first.processing),
         "dt": step,
         "integrator": "modal superposition, exact piecewise-linear recurrence",
         "fixed_base_periods": modes.periods.tolist(),
@@ -144,12 +174,20 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion, *, dt: float |
         "total_mass": float(building.floor_masses.sum()),
         "success": 1,
         "message": "The integration reached the end of the record.",
-        "steps": int(acceleration.size - 1),
+        "steps": int(nt - 1),
         "wall_time": wall,
     }
-    coords = {"time": ("time", step * np.arange(acceleration.size), {"units": "s"}),
-              "floor": np.arange(n + 1), "storey": np.arange(1, n + 1)}
+    coords = {"time": ("time", step * np.arange(nt), {"units": "s"}),
+              "floor": np.arange(n + 1), "storey": np.arange(1, n + 1),
+              "direction": list(directions)}
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _per_direction(name: str, values: np.ndarray, directions) -> dict[str, float]:
+    """``name`` for one direction, ``name_x`` and ``name_y`` in plan."""
+    if len(directions) == 1:
+        return {name: float(values[0])}
+    return {f"{name}_{d}": float(value) for d, value in zip(directions, values, strict=True)}
 
 
 def superstructure_peaks(result) -> dict[str, float]:
@@ -160,21 +198,23 @@ def superstructure_peaks(result) -> dict[str, float]:
     dict
         ``peak_storey_drift`` [m] and ``peak_storey_shear`` [N] (largest over the storeys),
         ``peak_roof_acceleration`` (absolute) [m/s^2] and ``peak_base_shear`` [N] (through the
-        isolation level of an isolated run; the first-storey shear on a fixed base).
+        isolation level of an isolated run; the first-storey shear on a fixed base); each per
+        direction in plan (``_x``, ``_y``).
     """
-    return {
-        "peak_storey_drift": float(np.abs(result["storey_drift"]).max()),
-        "peak_storey_shear": float(np.abs(result["storey_shear"]).max()),
-        "peak_roof_acceleration": float(np.abs(result["absolute_acceleration"].isel(floor=-1))
-                                        .max()),
-        "peak_base_shear": float(np.abs(result["base_shear"]).max()),
-    }
+    directions = list(result["direction"].values)
+    roof = result["absolute_acceleration"].isel(floor=-1)
+    peaks = {}
+    for name, values in (("peak_storey_drift", result["storey_drift"]),
+                         ("peak_storey_shear", result["storey_shear"]),
+                         ("peak_roof_acceleration", roof),
+                         ("peak_base_shear", result["base_shear"])):
+        axes = tuple(i for i, dim in enumerate(values.dims) if dim != "direction")
+        peaks |= _per_direction(name, np.abs(values.values).max(axis=axes), directions)
+    return peaks
 
 
 def ratios_to_fixed_base(result, fixed_base) -> dict[str, float]:
-    """Each of :data:`PEAK_NAMES` of ``result`` over the same peak of ``fixed_base`` [-].
-
-    Below 1 where the isolation reduces the response, above 1 where it amplifies it.
-    """
+    """Each of :func:`superstructure_peaks` of ``result`` over the same peak of ``fixed_base``
+    [-]: below 1 where the isolation reduces the response, above 1 where it amplifies it."""
     isolated, fixed = superstructure_peaks(result), superstructure_peaks(fixed_base)
-    return {name: isolated[name] / fixed[name] for name in PEAK_NAMES}
+    return {name: isolated[name] / fixed[name] for name in isolated}

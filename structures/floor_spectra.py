@@ -2,11 +2,12 @@
 
 Equipment and non-structural parts are designed from the 5 %-damped pseudo-acceleration
 spectrum of the floor they stand on. :func:`with_floor_spectra` adds to the Dataset of a run
-(:func:`structures.analysis.run`, or :func:`structures.fixed_base.run_fixed_base`)
+(:func:`structures.analysis.run`, or :func:`structures.fixed_base.run_fixed_base`), in each
+direction the building moves in,
 
-``floor_spectrum`` (floor, period) [m/s^2]
+``floor_spectrum`` (floor, direction, period) [m/s^2]
     Sa of each floor's absolute acceleration history, on the run's time step;
-``ground_spectrum`` (period) [m/s^2]
+``ground_spectrum`` (direction, period) [m/s^2]
     Sa of the record as read, on its own time step: exactly what ``dcfpb spectrum`` gives.
 
 Both come from the exact recurrence of :mod:`groundmotions.spectra` (the project's spectrum
@@ -20,6 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import response_spectra, spectrum
 
@@ -33,14 +35,23 @@ FLOOR_SPECTRUM_DAMPING = 0.05
 """Damping ratio of the floor spectra [-] (the usual 5 %)."""
 
 
+def _histories(result) -> np.ndarray:
+    """The absolute acceleration of every floor in every direction as columns (time, floor *
+    direction), floor by floor [m/s^2]."""
+    acceleration = np.asarray(result["absolute_acceleration"].transpose("time", "floor",
+                                                                          "direction"))
+    return acceleration.reshape(acceleration.shape[0], -1)
+
+
 def floor_spectra(result, periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
                   damping: float = FLOOR_SPECTRUM_DAMPING) -> np.ndarray:
-    """Pseudo-acceleration spectra of every floor's absolute acceleration.
+    """Pseudo-acceleration spectra of every floor's absolute acceleration in each direction.
 
     Parameters
     ----------
     result : xarray.Dataset
-        A run with ``absolute_acceleration`` (time, floor) and the attribute ``dt`` [s].
+        A run with ``absolute_acceleration`` (time, floor, direction) and the attribute
+        ``dt`` [s].
     periods : array_like
         Oscillator periods, >= 0 [s].
     damping : float
@@ -48,14 +59,14 @@ def floor_spectra(result, periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
 
     Returns
     -------
-    numpy.ndarray, shape (floors, len(periods))
+    numpy.ndarray, shape (floors, directions, len(periods))
         Sa [m/s^2], floor 0 (the base slab, or the ground level of a fixed base) first.
     """
-    acceleration = np.asarray(result["absolute_acceleration"].transpose("time", "floor"))
-    return response_spectra(acceleration, float(result.attrs["dt"]), periods, damping).sa
+    sa = response_spectra(_histories(result), float(result.attrs["dt"]), periods, damping).sa
+    return sa.reshape(result.sizes["floor"], result.sizes["direction"], -1)
 
 
-def with_floor_spectra(result, motion: GroundMotion | None = None, *,
+def with_floor_spectra(result, motion: GroundMotion | GroundMotionPair | None = None, *,
                        periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
                        damping: float = FLOOR_SPECTRUM_DAMPING):
     """The run's Dataset with its floor spectra and the ground's spectrum added.
@@ -64,10 +75,10 @@ def with_floor_spectra(result, motion: GroundMotion | None = None, *,
     ----------
     result : xarray.Dataset
         A run (``absolute_acceleration``, ``ground_acceleration``, attribute ``dt``).
-    motion : GroundMotion, optional
-        The record the run was driven by (scaled as it was). Its spectrum, on its own step,
-        is ``ground_spectrum``; without it, the run's ``ground_acceleration`` (on the run's
-        step) is used instead.
+    motion : GroundMotion or GroundMotionPair, optional
+        The record(s) the run was driven by (scaled as they were). Their spectra, on their own
+        step, are ``ground_spectrum``; without them, the run's ``ground_acceleration`` (on the
+        run's step) is used instead.
     periods : array_like
         Periods of the spectra, >= 0 [s].
     damping : float
@@ -77,17 +88,17 @@ def with_floor_spectra(result, motion: GroundMotion | None = None, *,
     -------
     xarray.Dataset
         A new Dataset with the coordinate ``period`` [s] and the variables ``floor_spectrum``
-        (floor, period) and ``ground_spectrum`` (period) [m/s^2]; attribute
-        ``spectrum_damping``.
+        (floor, direction, period) and ``ground_spectrum`` (direction, period) [m/s^2];
+        attribute ``spectrum_damping``.
     """
     return with_floor_spectra_all({"run": result}, motion, periods=periods,
                                   damping=damping)["run"]
 
 
-def with_floor_spectra_all(results: dict, motion: GroundMotion | None = None, *,
-                           periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
+def with_floor_spectra_all(results: dict, motion: GroundMotion | GroundMotionPair | None = None,
+                           *, periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
                            damping: float = FLOOR_SPECTRUM_DAMPING) -> dict:
-    """:func:`with_floor_spectra` of several runs of one record, keyed alike.
+    """:func:`with_floor_spectra` of several runs of one motion, keyed alike.
 
     Runs that share a time step and a length go through the spectrum code in one pass (the
     same numbers as one at a time, in a fraction of the time).
@@ -98,35 +109,40 @@ def with_floor_spectra_all(results: dict, motion: GroundMotion | None = None, *,
         groups.setdefault((float(result.attrs["dt"]), result.sizes["time"]), []).append(key)
     floors = {}
     for (step, _), keys in groups.items():
-        stacked = np.hstack([np.asarray(results[k]["absolute_acceleration"]
-                                        .transpose("time", "floor")) for k in keys])
+        stacked = np.hstack([_histories(results[k]) for k in keys])
         sa = response_spectra(stacked, step, periods, damping).sa
-        starts = np.cumsum([0] + [results[k].sizes["floor"] for k in keys])
-        floors.update({k: sa[starts[i]:starts[i + 1]] for i, k in enumerate(keys)})
-    ground_cache: dict[tuple[float, int], np.ndarray] = {}
+        starts = np.cumsum([0] + [results[k].sizes["floor"] * results[k].sizes["direction"]
+                                  for k in keys])
+        floors.update({k: sa[starts[i]:starts[i + 1]].reshape(
+            results[k].sizes["floor"], results[k].sizes["direction"], -1)
+            for i, k in enumerate(keys)})
+    ground_cache: dict[str, np.ndarray] = {}
     return {key: _with(result, floors[key], motion, periods, damping, ground_cache)
             for key, result in results.items()}
 
 
-def _with(result, floors: np.ndarray, motion: GroundMotion | None, periods: np.ndarray,
-          damping: float, ground_cache: dict):
-    """``result`` with its floor spectra ``floors`` and the ground's spectrum added."""
+def _with(result, floors: np.ndarray, motion: GroundMotion | GroundMotionPair | None,
+          periods: np.ndarray, damping: float, ground_cache: dict):
+    """``result`` with its floor spectra ``floors`` and the ground's spectra added."""
     if motion is not None:
         if "record" not in ground_cache:
-            ground_cache["record"] = spectrum(motion, periods, damping).sa
+            components = (motion.x, motion.y) if isinstance(motion, GroundMotionPair) else (
+                motion,)
+            ground_cache["record"] = np.array([spectrum(m, periods, damping).sa
+                                               for m in components])
         ground = ground_cache["record"]
         source = f"the record {motion.name} as read (dt = {motion.dt:g} s)"
     else:
-        ground = response_spectra(np.asarray(result["ground_acceleration"])[:, None],
-                                  float(result.attrs["dt"]), periods, damping).sa[0]
+        ground = response_spectra(np.asarray(result["ground_acceleration"]),
+                                  float(result.attrs["dt"]), periods, damping).sa
         source = "the run's ground acceleration"
     percent = f"{100 * damping:g} %"
     added = result.assign_coords(period=("period", periods, {"units": "s"})).assign(
-        floor_spectrum=(("floor", "period"), floors, {
+        floor_spectrum=(("floor", "direction", "period"), floors, {
             "units": "m/s^2",
             "long_name": f"{percent}-damped pseudo-spectral acceleration of the floor's "
                          "absolute acceleration (period 0: peak floor acceleration)"}),
-        ground_spectrum=("period", ground, {
+        ground_spectrum=(("direction", "period"), ground, {
             "units": "m/s^2",
             "long_name": f"{percent}-damped pseudo-spectral acceleration of {source}"}),
     )

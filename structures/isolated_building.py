@@ -1,10 +1,41 @@
-"""A shear building on DCFPB isolators as a dynamic model (the integrators' protocol).
+"""A shear building on DCFPB isolators, in one direction or in plan, as a dynamic model (the
+integrators' protocol).
 
-Degrees of freedom ``[u_b, u_1, ..., u_n]``: the base slab and the floors, relative to the
-ground. The superstructure is linear (storey springs and dampers acting on the drifts); the
-isolation level is ``n_bearings`` identical bearings that share the building's weight, reached
-only through the element contract ``set_trial / commit / revert``. No damping acts on the
-isolation level.
+Degrees of freedom: those of :class:`~structures.shear_building.ShearBuilding`, the base slab's
+first. The isolation level is a list of bearing positions (:attr:`ShearBuilding.bearing_positions`),
+each with a multiplicity and a :class:`~isolator.bearing.BearingElement`, reached only through
+the element contract ``set_trial / commit / revert``:
+
+- in one direction, one group of ``n_bearings`` identical bearings at the reference point, each
+  element moving along x with the base slab; the group's force is ``n_bearings`` times one
+  bearing's;
+- in plan, one bearing at each position ``(x_i, y_i)``, whose plates move apart by
+  ``u_i = T_i q_b = (u_x - theta y_i, u_y + theta x_i)``; its force acts on the base slab as
+  ``T_i^T F_i`` (force x, force y, torque about the reference point) and its 2x2 tangents as
+  ``T_i^T K_i T_i``.
+
+No viscous damping acts on the isolation level. Axial loads, evaluated at every trial
+(:meth:`IsolatedShearBuilding.axial_loads`)::
+
+    N_i = N_i,gravity (1 + a_z(t) / g) + G_i1 sum_j H_j F_x,j + G_i2 sum_j H_j F_y,j
+
+- ``N_i,gravity``: the weight shared by the bearings (W / n in one direction; in plan, the
+  statics of the rigid base, :func:`structures.plan.gravity_shares`);
+- ``a_z``: the vertical ground acceleration [m/s^2], positive up, when a vertical component
+  is given (the building is rigid vertically, so it scales the weight and its moments alike);
+- in plan, the overturning: the floors' inertia forces ``F_j``, equal to the storey forces
+  acting on floor j, ``(K_s u + C v)_j``, at the floor's height ``H_j`` above the isolation
+  level; their moments are shared linearly over the bearings (``G`` of
+  :func:`structures.plan.axial_distribution`). Being a function of ``(u, v)``, the loads enter
+  the tangent: ``dF_i / dN_i`` times ``dN_i / du`` and ``dN_i / dv``, with
+  ``dF_i / dN_i = F_i / N_i`` (exact for the constant model; the PTV models' pressure
+  dependence of mu is left out of the tangent only, the residual is exact). P-delta effects
+  are not modelled.
+
+Uplift is the element's: a bearing whose load is not positive carries no force and makes no
+heat (the loads are not redistributed to the others). With a symmetric plan, equal shares and
+no overturning, a motion along x or y is the building in one direction with ``n_bearings``
+bearings.
 """
 
 from __future__ import annotations
@@ -14,22 +45,16 @@ import warnings
 
 import numpy as np
 
-from dcfpb.common.errors import InputWarning
+from dcfpb.common.errors import InputError, InputTypeError, InputWarning
+from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.common.validation import check_int
-from isolator.bearing import AxialLoadHistory, BearingElement, DCFPBearing
+from groundmotions.records import GroundMotion
+from isolator.bearing import BearingElement, BearingState, DCFPBearing
 from structures.model import RestoringForce
+from structures.plan import bearing_transformation
 from structures.shear_building import ShearBuilding
 
-
-def _warn_if_replaced(given: object, load: float, n_bearings: int) -> None:
-    """Say so when the building replaces an axial load the bearing was given."""
-    if given is None:
-        return
-    if isinstance(given, AxialLoadHistory) or abs(float(given) - load) > 1e-9 * load:
-        warnings.warn(
-            f"The bearing's 'axial_load' ({given!r}) is replaced by the building's weight "
-            f"shared by its {n_bearings} bearing(s), W / n = {load:.6g} N; describe the "
-            "bearing with axial_load=None.", InputWarning, stacklevel=3)
+__all__ = ["IsolatedShearBuilding"]
 
 
 class IsolatedShearBuilding:
@@ -38,75 +63,207 @@ class IsolatedShearBuilding:
     Parameters
     ----------
     building : ShearBuilding
-        Floor masses, storey stiffnesses, base slab mass and superstructure damping.
+        The superstructure and base slab, with its plan for a building in plan.
     bearing : DCFPBearing
-        One bearing of the isolation level, best described without an axial load
-        (``axial_load=None``): its load is the building's weight shared equally by the
-        bearings, W / n_bearings. A load given on the bearing that differs from it is replaced,
-        with an :class:`~dcfpb.common.errors.InputWarning`.
-    n_bearings : int
-        Number of identical bearings under the base slab.
+        The bearing of every position, best described without an axial load
+        (``axial_load=None``): each takes its share of the building's weight. A load given on
+        the bearing is replaced, with an :class:`~dcfpb.common.errors.InputWarning`.
+    n_bearings : int, optional
+        Identical bearings under the base slab in one direction (default 1). In plan, one per
+        bearing position: leave it out or give that number.
+    overturning : bool
+        In plan, add the overturning moment of the floors' inertia forces to the axial loads
+        (needs the plan's ``storey_heights``). Default True; no effect in one direction.
+    vertical : GroundMotion, optional
+        Vertical ground acceleration [m/s^2], positive up, from ``t = 0`` (linear between its
+        samples, held after its end).
+    grid_orientation : float, optional
+        The precise model's monitor grid orientation in plan [deg] (None: follows the motion).
     """
 
-    def __init__(self, building: ShearBuilding, bearing: DCFPBearing, n_bearings: int = 1):
-        if not isinstance(building, ShearBuilding):
-            raise TypeError(f"The 'building' parameter of {type(self).__name__} must be a "
-                            f"ShearBuilding. Got {building!r} instead.")
-        if not isinstance(bearing, DCFPBearing):
-            raise TypeError(f"The 'bearing' parameter of {type(self).__name__} must be a "
-                            f"DCFPBearing. Got {bearing!r} instead.")
-        self.n_bearings = check_int(n_bearings, "n_bearings", type(self).__name__, low=1)
+    def __init__(self, building: ShearBuilding, bearing: DCFPBearing,
+                 n_bearings: int | None = None, *, overturning: bool = True,
+                 vertical: GroundMotion | None = None,
+                 grid_orientation: float | None = None) -> None:
+        owner = type(self).__name__
+        for name, value, kind in (("building", building, ShearBuilding),
+                                  ("bearing", bearing, DCFPBearing)):
+            if not isinstance(value, kind):
+                raise InputTypeError(f"The {name!r} parameter of {owner} must be a "
+                                     f"{kind.__name__}. Got {value!r} instead.")
+        if vertical is not None and not isinstance(vertical, GroundMotion):
+            raise InputTypeError(f"The 'vertical' parameter of {owner} must be a GroundMotion "
+                                 f"or None. Got {vertical!r} instead.")
         self.building = building
-        load = building.weight / self.n_bearings
-        _warn_if_replaced(bearing.axial_load, load, self.n_bearings)
-        self.bearing = dataclasses.replace(bearing, axial_load=load)
-        self.element: BearingElement = self.bearing.element()
+        self.level_dofs = building.level_dofs
+        positions = building.bearing_positions
+        if building.plan is None:
+            count = 1 if n_bearings is None else check_int(n_bearings, "n_bearings", owner,
+                                                             low=1)
+            self.multiplicity = np.array([count])
+        else:
+            if n_bearings is not None and n_bearings != len(positions):
+                raise InputError(f"The 'n_bearings' parameter of {owner} must be the number "
+                                 f"of bearing positions of the plan ({len(positions)}) or None. "
+                                 f"Got {n_bearings!r} instead.")
+            self.multiplicity = np.ones(len(positions), dtype=int)
+        self.n_bearings = int(self.multiplicity.sum())
+        self.gravity_loads = building.gravity_shares / self.multiplicity  # one bearing's [N]
+        _warn_if_replaced(bearing.axial_load, self.gravity_loads, stacklevel=3)
+        self.bearing = dataclasses.replace(bearing, axial_load=None)
+        self.bearings = tuple(dataclasses.replace(bearing, axial_load=float(load))
+                              for load in self.gravity_loads)
+        self.elements = tuple(BearingElement(b, len(building.directions), grid_orientation)
+                              for b in self.bearings)
+        self.transformations = tuple(bearing_transformation(x, y) for x, y in positions)
+        self.overturning = bool(overturning) and building.plan is not None
+        self.vertical = vertical
         self._mass = building.isolated_mass_matrix
         self._damping = building.isolated_damping_matrix
         self._stiffness = np.array(building.isolated_stiffness_matrix)
         self._influence = building.isolated_influence
-        self._zeros = np.zeros_like(self._stiffness)
+        n = building.n_dof
+        self._overturning = np.zeros((len(positions), n))
+        if self.overturning:
+            heights = building.plan.floor_heights(building.n_storeys)
+            levels = np.arange(1, building.n_storeys + 1)
+            arm_x, arm_y = np.zeros(n), np.zeros(n)
+            arm_x[3 * levels], arm_y[3 * levels + 1] = heights, heights
+            g = building.axial_distribution
+            self._overturning = np.outer(g[:, 1], arm_x) + np.outer(g[:, 2], arm_y)
+        self._load_du = self._overturning @ self._stiffness  # dN / du [N/m]
+        self._load_dv = self._overturning @ self._damping  # dN / dv [N s/m]
+
+    @property
+    def positions(self) -> np.ndarray:
+        """Where the bearing positions stand, shape (n_b, 2) [m]."""
+        return self.building.bearing_positions
 
     @property
     def mass_matrix(self) -> np.ndarray:
-        """Mass matrix on ``[u_b, u_1..u_n]`` [kg]."""
+        """Mass matrix on the levels' degrees of freedom [kg, kg m, kg m^2]."""
         return self._mass
 
     @property
     def damping_matrix(self) -> np.ndarray:
-        """Superstructure damping on the drifts only [N s/m]."""
+        """Superstructure damping on the drifts only [N s/m, ...]."""
         return self._damping
 
     @property
     def influence(self) -> np.ndarray:
-        """Ground-motion influence vector (ones) [-]."""
+        """Ground-motion influence: (n_dof,) in one direction, (n_dof, 2) in plan [-]."""
         return self._influence
 
     @property
     def superstructure_stiffness(self) -> np.ndarray:
-        """Storey stiffness matrix on ``[u_b, u_1..u_n]`` without the isolators [N/m]."""
+        """Storey stiffness matrix without the isolators [N/m, ...]."""
         return self._stiffness
 
+    @property
+    def overturning_matrix(self) -> np.ndarray:
+        """``G H``: the axial loads' share of the storey forces ``K_s u + C v``, shape
+        (n_b, n_dof) [-, 1/m] (zeros without overturning)."""
+        return self._overturning
+
+    @property
+    def load_du(self) -> np.ndarray:
+        """dN / du of the axial loads through the overturning, shape (n_b, n_dof) [N/m]."""
+        return self._load_du
+
+    @property
+    def load_dv(self) -> np.ndarray:
+        """dN / dv of the axial loads through the overturning, shape (n_b, n_dof) [N s/m]."""
+        return self._load_dv
+
+    def vertical_acceleration(self, time: float) -> float:
+        """Vertical ground acceleration at ``time`` [m/s^2] (0 without a vertical)."""
+        if self.vertical is None:
+            return 0.0
+        return float(np.interp(time, self.vertical.time, self.vertical.acceleration))
+
+    def vertical_accelerations(self, times: np.ndarray) -> np.ndarray:
+        """Vertical ground acceleration at each of ``times`` [s] (the values of
+        :meth:`vertical_acceleration`), shape of ``times`` [m/s^2]."""
+        times = np.asarray(times, dtype=float)
+        if self.vertical is None:
+            return np.zeros_like(times)
+        return np.interp(times, self.vertical.time, self.vertical.acceleration)
+
+    def axial_loads(self, u: np.ndarray, v: np.ndarray, time: float) -> np.ndarray:
+        """Axial load of one bearing at each position at a trial state (module docstring),
+        shape (n_b,) [N]; zero or negative is uplift."""
+        loads = self.gravity_loads * (1.0 + self.vertical_acceleration(time) / STANDARD_GRAVITY)
+        if self.overturning:
+            loads = loads + self._overturning @ (self._stiffness @ u + self._damping @ v)
+        return loads
+
+    def bearing_displacements(self, u: np.ndarray) -> np.ndarray:
+        """Displacement (x, y) of each bearing position, shape (n_b, 2) [m], or (nt, n_b, 2)
+        for a history ``u`` of shape (nt, n_dof) (y = 0 in one direction)."""
+        u = np.asarray(u)
+        if self.level_dofs == 1:
+            along = np.repeat(u[..., :1], len(self.elements), axis=-1)
+            return np.stack([along, np.zeros_like(along)], axis=-1)
+        t = np.asarray(self.transformations)  # (n_b, 2, 3)
+        return np.einsum("bij,...j->...bi", t, u[..., :3])
+
     def restoring_force(self, u: np.ndarray, v: np.ndarray, time: float) -> RestoringForce:
-        """Storey spring forces plus the isolators' force on the base slab, and the tangent."""
-        trial = self.element.set_trial(float(u[0]), float(v[0]), time)
+        """Storey forces plus the bearings' forces on the base slab, and the tangents."""
         force = self._stiffness @ u
-        force[0] += self.n_bearings * trial.force
         stiffness = self._stiffness.copy()
-        stiffness[0, 0] += self.n_bearings * trial.stiffness
-        damping = self._zeros.copy()
-        damping[0, 0] = self.n_bearings * trial.damping
+        damping = np.zeros_like(stiffness)
+        loads = self.axial_loads(u, v, time)
+        if self.level_dofs == 1:  # one group along x on the base slab's one DOF
+            for element, count, load in zip(self.elements, self.multiplicity, loads,
+                                            strict=True):
+                trial = element.set_trial(float(u[0]), float(v[0]), time, axial_load=load)
+                force[0] += count * trial.force
+                stiffness[0, 0] += count * trial.stiffness
+                damping[0, 0] += count * trial.damping
+            return RestoringForce(force, stiffness, damping)
+        ub, vb = u[:3], v[:3]
+        for element, t, load, du, dv in zip(self.elements, self.transformations, loads,
+                                            self._load_du, self._load_dv, strict=True):
+            trial = element.set_trial(t @ ub, t @ vb, time, axial_load=load)
+            force[:3] += t.T @ trial.force
+            stiffness[:3, :3] += t.T @ trial.stiffness @ t
+            damping[:3, :3] += t.T @ trial.damping @ t
+            if self.overturning and load > 0.0:
+                per_load = t.T @ (trial.force / load)  # d(T^T F_i) / dN_i
+                stiffness[:3] += np.outer(per_load, du)
+                damping[:3] += np.outer(per_load, dv)
         return RestoringForce(force, stiffness, damping)
 
+    def committed_states(self) -> tuple[BearingState, ...]:
+        """The committed state of one bearing at each position."""
+        return tuple(element.committed for element in self.elements)
+
     def commit(self) -> None:
-        """Accept the last trial of the isolators."""
-        self.element.commit()
+        """Accept the last trial of every bearing."""
+        for element in self.elements:
+            element.commit()
 
     def revert(self) -> None:
-        """Return the isolators to their last committed state."""
-        self.element.revert()
+        """Return every bearing to its last committed state."""
+        for element in self.elements:
+            element.revert()
 
     def isolated_period(self) -> float:
-        """Period of the rigid building on the pendulum stiffness, 2 pi sqrt(R_eff / g) [s]."""
-        k = self.n_bearings * self.bearing.pendulum_stiffness
-        return float(2 * np.pi * np.sqrt(self.building.total_mass / k)) if k > 0 else np.inf
+        """Period of the rigid building on the pendulums, 2 pi sqrt(R_eff / g) [s]."""
+        stiffness = self.building.weight / self.bearing.effective_radius
+        return float(2 * np.pi * np.sqrt(self.building.total_mass / stiffness)) \
+            if stiffness > 0 else np.inf
+
+
+def _warn_if_replaced(given: object, loads: np.ndarray, *, stacklevel: int) -> None:
+    """Say so when the building replaces an axial load the bearing was given."""
+    if given is None:
+        return
+    if isinstance(given, float | int) and np.all(np.abs(loads - float(given)) <= 1e-9 * loads):
+        return
+    share = (f"W / n = {loads[0]:.6g} N" if loads.size == 1
+             else f"{loads.min():.6g} to {loads.max():.6g} N")
+    warnings.warn(
+        f"The bearing's 'axial_load' ({given!r}) is replaced by the building's weight shared by "
+        f"its bearings ({share}); describe the bearing with axial_load=None.", InputWarning,
+        stacklevel=stacklevel + 1)

@@ -6,12 +6,12 @@ line (``--max-steps``) before it waits for the engine. The limit and its default
 :mod:`isolator.limits` (:data:`~isolator.limits.DEFAULT_MAX_STEPS` = 2,000,000 steps).
 
 Memory per step is counted from what a run holds at once: the fields the result Dataset stores
-(:func:`structures.results.response_dataset`: displacement, velocity and absolute acceleration
-of the n + 1 floors, drift and shear of the n storeys, 15 histories of one value: isolator
-displacement and force, base shear, friction force, mu, temperature, heat flux, ground
-acceleration, six energies and the time) and the engine's working histories beside them
-(displacement, velocity and acceleration of the n + 1 floors, the restoring force, seven
-bearing fields, iterations, subdivisions, the record and the time), 8 bytes each.
+(:func:`structures.results.response_dataset`: the levels' displacement, velocity and absolute
+acceleration per direction and their rotations in plan, the storeys' drift and shear, seven
+histories per bearing position, the base shear and the ground acceleration per direction, six
+energies and the time) and the engine's working histories beside them (displacement, velocity,
+acceleration and restoring force on every degree of freedom, ten fields per bearing position,
+iterations, subdivisions, the record and the time), 8 bytes each.
 """
 
 from __future__ import annotations
@@ -29,13 +29,17 @@ __all__ = ["DEFAULT_MAX_STEPS", "building_fields", "check_run", "fixed_base_fiel
 _BYTES = 8  # one float64 (or int64) per field and step
 
 
-def building_fields(n_storeys: int) -> int:
-    """Values a building run holds per step: the Dataset's and the engine's (see above)."""
-    dataset = 3 * (n_storeys + 1) + 2 * n_storeys + 15
-    engine = 4 * (n_storeys + 1) + 11
+def building_fields(n_storeys: int, level_dofs: int = 1, positions: int = 1) -> int:
+    """Values a building run holds per step: the Dataset's and the engine's (see above), for
+    ``level_dofs`` degrees of freedom per level (1 in one direction, 3 in plan) and
+    ``positions`` bearing positions."""
+    components = 1 if level_dofs == 1 else 2
+    levels = level_dofs * (n_storeys + 1)
+    dataset = levels + 2 * components * (n_storeys + 1) + 2 * components * n_storeys \
+        + (n_storeys if level_dofs == 3 else 0) + positions * (3 * components + 4) \
+        + 2 * components + 8
+    engine = 4 * levels + 10 * positions + 3 * components + 4
     return dataset + engine
-
-
 def fixed_base_fields(n_storeys: int) -> int:
     """Values a fixed-base run holds per step: its Dataset (displacement, velocity, absolute
     acceleration, drift and shear of n floors; base shear, ground acceleration, time) and the

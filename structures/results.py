@@ -1,45 +1,115 @@
-"""The result of a building run as an ``xarray.Dataset``: one form for every program.
+"""The result of a building run as an ``xarray.Dataset``: one layout for every building and
+every program.
 
-:func:`response_dataset` turns the histories of a run (ours, with either engine, or OpenSees's)
-into the Dataset that :func:`structures.analysis.run` documents, with the energy balance and the
-displacement-capacity check, so every producer gives the same variables, units and attributes.
+:func:`response_dataset` turns the histories of a run (ours, with either engine, or
+OpenSees's) into the Dataset :func:`structures.analysis.run` documents, with the energy balance
+(:func:`structures.energy.energy_balance`) and the displacement-capacity check of every
+bearing, so every producer gives the same variables, units and attributes. A building in one
+direction has the one direction ``x``; a building in plan has ``x`` and ``y`` and the levels'
+rotations.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
+from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from isolator.bearing import beyond_capacity_message
-from isolator.friction import ConstantFriction, PTVFriction
 from structures.energy import energy_balance
+from structures.integrators import IntegrationResult
 from structures.isolated_building import IsolatedShearBuilding
 
-ISOLATOR_FIELDS = ("force", "friction_force", "mu", "temperature", "heat_flux")
-"""Isolator histories a producer hands over: force and friction force of all bearings [N],
-mu [-], contact temperature [degC] and heat flux [W/m^2] of one bearing."""
+__all__ = ["BEARING_RECORD", "EngineHistory", "response_dataset", "temperature_fields"]
+
+BEARING_RECORD: dict[str, int] = {
+    "displacement": 2, "force": 2, "friction_force": 2, "mu": 0, "temperature": 0,
+    "heat_flux": 0, "axial_load": 0,
+}
+"""What a producer records of one bearing at each position at each committed step, with the
+length of its (x, y) axis (0: a scalar): displacement [m], force and friction force [N], mu [-],
+contact temperature [degC], heat flux into each sliding surface [W/m^2], axial load [N]."""
+
+_ENERGIES = ("input", "kinetic", "damping", "strain", "friction", "error")
 
 
-def friction_name(friction: ConstantFriction | PTVFriction) -> str:
-    """``"constant"``, ``"precise"``, ``"simplified"`` or ``"ptv-no-heating"``."""
-    if isinstance(friction, ConstantFriction):
-        return "constant"
-    if friction.heating is None:
-        return "ptv-no-heating"
-    return "precise" if type(friction.heating).__name__ == "MonitorLine" else "simplified"
+class EngineHistory(NamedTuple):
+    """What an engine (the reference or the compiled one) hands to :func:`response_dataset`.
+
+    Attributes
+    ----------
+    result : IntegrationResult
+        Time, relative response on the model's degrees of freedom, iterations, success and
+        message.
+    bearings : dict of str to ndarray
+        One bearing at each position at every committed step, :data:`BEARING_RECORD` (time,
+        position, then the (x, y) axis of the vectors) [SI units].
+    restoring : ndarray, shape (nt, n_dof)
+        Total restoring force (storeys and all bearings) at every step [N, N m].
+    wall_time : float
+        Time spent integrating [s], compilation left out.
+    engine : str
+        ``"reference"`` or ``"compiled"``.
+    compile_time : float
+        Time spent compiling (or loading from numba's disk cache) before the run [s]; 0.0
+        when this process had compiled it already.
+    plate : tuple of ndarray or None
+        The monitor points' temperature field at the end (:func:`temperature_fields`), None
+        for the models without monitor points.
+    """
+
+    result: IntegrationResult
+    bearings: dict[str, np.ndarray]
+    restoring: np.ndarray
+    wall_time: float
+    engine: str
+    compile_time: float = 0.0
+    plate: tuple[np.ndarray, np.ndarray] | None = None
+
+
+def temperature_fields(model: IsolatedShearBuilding) -> tuple[np.ndarray, np.ndarray] | None:
+    """The temperature field each bearing's monitor points hold after the last commit (the
+    models with monitor points; None for the others): positions (n_b, m, 2) [m] on the plate
+    and temperatures (n_b, m) [degC], padded with NaN to the bearing with the most points."""
+    fields = [element.friction_state.temperature_field() for element in model.elements]
+    if any(field is None for field in fields):
+        return None
+    size = max(field[1].size for field in fields)
+    positions = np.full((len(fields), size, 2), np.nan)
+    temperatures = np.full((len(fields), size), np.nan)
+    for b, (points, values) in enumerate(fields):
+        positions[b, :values.size], temperatures[b, :values.size] = points, values
+    return positions, temperatures
+
+
+def _capacity(reach: np.ndarray, capacity: float, step: float) -> tuple[int, str]:
+    """The steps kept and the capacity failure's message ("" if none), from the largest
+    resultant displacement of any bearing at each step ``reach`` [m]."""
+    beyond = np.flatnonzero(reach > capacity)
+    if not beyond.size:
+        return reach.size, ""
+    kept = int(beyond[0]) + 1
+    return kept, beyond_capacity_message(reach[kept - 1], step * (kept - 1), capacity)
+
+
+def _motion_attrs(motion: GroundMotion | GroundMotionPair) -> dict[str, Any]:
+    if isinstance(motion, GroundMotionPair):
+        return {"record": motion.name, "record_x": motion.x.name, "record_y": motion.y.name,
+                "record_processing": "; ".join(motion.x.processing)}
+    return {"record": motion.name, "record_processing": "; ".join(motion.processing)}
 
 
 def response_dataset(
     model: IsolatedShearBuilding,
-    motion: GroundMotion,
+    motion: GroundMotion | GroundMotionPair,
     step: float,
     ground_acceleration: np.ndarray,
     displacement: np.ndarray,
     velocity: np.ndarray,
     absolute_acceleration: np.ndarray,
-    isolator: dict[str, np.ndarray],
+    bearings: dict[str, np.ndarray],
     *,
     integrator: str,
     success: bool,
@@ -48,134 +118,190 @@ def response_dataset(
     restoring: np.ndarray | None = None,
     failure: str = "",
     failed_at: float | None = None,
+    plate: tuple[np.ndarray, np.ndarray] | None = None,
 ):
     """Assemble the Dataset of a run.
 
     Parameters
     ----------
     model : IsolatedShearBuilding
-        The model that was run (building, bearing, number of bearings).
-    motion : GroundMotion
-        The record (its name and processing go to the attributes).
+        The model that was run (building, bearings, positions).
+    motion : GroundMotion or GroundMotionPair
+        The record or records (names and processing go to the attributes).
     step : float
         Analysis time step [s].
-    ground_acceleration : ndarray, shape (nt,)
-        [m/s^2] on the analysis steps kept.
-    displacement, velocity, absolute_acceleration : ndarray, shape (nt, n + 1)
-        Relative displacement [m] and velocity [m/s], absolute acceleration [m/s^2].
-    isolator : dict of str to ndarray
-        The ``ISOLATOR_FIELDS`` histories (force and friction force of all bearings), and
-        optionally ``axial_load`` [N] of one bearing.
+    ground_acceleration : ndarray, shape (nt,) or (nt, 2)
+        The horizontal ground acceleration on the analysis steps kept [m/s^2].
+    displacement, velocity, absolute_acceleration : ndarray, shape (nt, n_dof)
+        Relative displacement [m, rad] and velocity, absolute acceleration, on the model's
+        degrees of freedom.
+    bearings : dict of str to ndarray
+        One bearing at each position at each step, :data:`BEARING_RECORD` (time first, the
+        position second, then the (x, y) axis of the vectors; y = 0 in one direction).
     integrator : str
         Description of the time integration.
     success, message : bool, str
-        The producer's outcome; a response beyond the bearing's displacement capacity turns
+        The producer's outcome; a response beyond the bearings' displacement capacity turns
         it into a failure with its own message, for every friction model alike.
     attrs : dict
         Producer-specific attributes (iterations, wall time, engine or program...).
-    restoring : ndarray, shape (nt, n + 1), optional
-        Total restoring force (storey springs + isolators) the producer recorded [N]; by
-        default it is formed from the displacements and the isolator force.
+    restoring : ndarray, shape (nt, n_dof), optional
+        Total restoring force (storeys and bearings) the producer recorded [N, N m]; by
+        default it is formed from the displacements and the bearing forces.
     failure : str
         The kind of the producer's failure (``"convergence"``, ``"capacity"``,
         ``"timeout"``...); ``"error"`` when it failed without saying.
     failed_at : float, optional
         Time of the producer's failure [s].
+    plate : tuple of ndarray, optional
+        The monitor points' temperature field at the end: positions (n_b, m, 2) [m] and
+        temperatures (n_b, m) [degC], NaN-padded (:func:`temperature_fields`).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``time``, ``floor`` (0 = base slab), ``storey``, ``direction`` (``x``, or
+        ``x`` and ``y`` in plan) and ``bearing`` (one per bearing position; coordinates
+        ``bearing_x``, ``bearing_y`` [m] and ``bearing_count``, the bearings standing there).
+        Level histories at the reference point (the centre of stiffness in plan):
+        ``displacement``, ``velocity``, ``absolute_acceleration`` (time, floor, direction);
+        in plan also ``rotation``, ``angular_velocity``, ``angular_acceleration`` (time,
+        floor) and ``storey_twist`` (time, storey); ``storey_drift`` and ``storey_shear``
+        (time, storey, direction); one bearing of each position: ``bearing_displacement``,
+        ``bearing_force``, ``bearing_friction_force`` (time, bearing, direction),
+        ``axial_load`` (0 on uplift), ``mu``, ``temperature``, ``heat_flux`` (time, bearing);
+        ``base_shear`` (time, direction), through the isolation level, all bearings;
+        ``ground_acceleration`` (time, direction) and, with a vertical,
+        ``vertical_ground_acceleration`` (time); the energies ``energy_input``,
+        ``energy_kinetic``, ``energy_damping``, ``energy_strain``, ``energy_friction``,
+        ``energy_error`` (time); with monitor points, ``plate_temperature`` (bearing,
+        plate_point) [degC] at ``plate_point_x``, ``plate_point_y`` [m].
 
     Notes
     -----
-    The failure contract: the first committed step whose isolator displacement exceeds
-    ``displacement_capacity`` ends the run there. Every history is cut after that step
-    (the response beyond it is not physical) and the run is a failure, ``"capacity"``, at
-    that step's time, whatever the producer said (its own failure can only come later).
-    A failed run's Dataset has ``success = 0``, ``message`` (the reason, then up to when the
-    histories go), ``failure``, ``failed_at`` [s] and ``peaks_up_to_failure = 1``; a run
-    that finished has ``failure = ""`` and ``peaks_up_to_failure = 0``.
+    The failure contract: the first committed step at which a bearing's displacement (the
+    length of its (x, y) vector) exceeds ``displacement_capacity`` ends the run there. Every
+    history is cut after that step (the response beyond it is not physical) and the run is a
+    failure, ``"capacity"``, at that step's time, whatever the producer said (its own failure
+    can only come later). A failed run's Dataset has ``success = 0``, ``message`` (the reason,
+    then up to when the histories go), ``failure``, ``failed_at`` [s] and
+    ``peaks_up_to_failure = 1``; a run that finished has ``failure = ""`` and
+    ``peaks_up_to_failure = 0``.
     """
     import xarray as xr
 
     building, bearing = model.building, model.bearing
-    capacity = bearing.displacement_capacity
-    beyond = np.flatnonzero(np.abs(displacement[:, 0]) > capacity)
-    if beyond.size:  # the run ends at the first step beyond the capacity
-        kept = int(beyond[0]) + 1
-        displacement, velocity = displacement[:kept], velocity[:kept]
-        ground_acceleration = ground_acceleration[:kept]
-        absolute_acceleration = absolute_acceleration[:kept]
-        isolator = {name: values[:kept] for name, values in isolator.items()}
-        restoring = None if restoring is None else restoring[:kept]
-        success, failure, failed_at = False, "capacity", step * (kept - 1)
-        message = beyond_capacity_message(displacement[-1, 0], failed_at, capacity)
+    directions = building.directions
+    components, dofs = len(directions), model.level_dofs
+    reach = np.hypot(bearings["displacement"][..., 0], bearings["displacement"][..., 1])
+    kept, beyond = _capacity(reach.max(axis=1), bearing.displacement_capacity, step)
+    if beyond:
+        success, message, failure, failed_at = False, beyond, "capacity", step * (kept - 1)
     if success:
         failure, failed_at = "", None
     else:
         failure = failure or "error"
-        if failed_at is None:
-            failed_at = step * (displacement.shape[0] - 1)
+        failed_at = step * (kept - 1) if failed_at is None else failed_at
         message = (f"{message} The histories and peaks are those up to t = "
-                   f"{step * (displacement.shape[0] - 1):.6g} s.")
-    u, v, ag = displacement, velocity, ground_acceleration
+                   f"{step * (kept - 1):.6g} s.")
+    u, v, a_abs = displacement[:kept], velocity[:kept], absolute_acceleration[:kept]
+    ground = np.reshape(ground_acceleration[:kept], (kept, components))
+    records = {name: values[:kept] for name, values in bearings.items()}
+    count = model.multiplicity.astype(float)
+    group_force = records["force"] * count[:, None]  # all the bearings of each position
     if restoring is None:
         restoring = u @ model.superstructure_stiffness.T
-        restoring[:, 0] += isolator["force"]
-    energies = energy_balance(u, v, ag, model.mass_matrix, model.damping_matrix,
-                              model.influence, restoring, isolator["friction_force"])
-    inertia = -absolute_acceleration * np.diag(model.mass_matrix)  # [N] per floor
-    storey_shear = np.cumsum(inertia[:, :0:-1], axis=1)[:, ::-1]  # sum of the floors above
+        restoring[:, :dofs] += np.einsum("tbi,bij->tj", group_force,
+                                         np.asarray(model.transformations)[..., :dofs])
+    else:
+        restoring = restoring[:kept]
+    influence = np.reshape(model.influence, (u.shape[1], components))
+    energies = energy_balance(u, v, ground, model.mass_matrix, model.damping_matrix, influence,
+                              restoring, records["displacement"],
+                              records["friction_force"] * count[:, None])
+    n, nt = building.n_storeys, u.shape[0]
+    levels = (nt, n + 1, dofs)
+    inertia = -(a_abs @ model.mass_matrix.T).reshape(levels)  # [N, N m] per level
+    shear = np.cumsum(inertia[:, :0:-1, :components], axis=1)[:, ::-1]  # the floors above
+    drift = np.diff(u.reshape(levels), axis=1)
 
     def var(dims, data, units, long_name):
         return dims, np.asarray(data), {"units": units, "long_name": long_name}
 
+    where = " (centre of stiffness)" if dofs == 3 else ""
+    tfd, tf, tbd, tb = ("time", "floor", "direction"), ("time", "floor"), \
+        ("time", "bearing", "direction"), ("time", "bearing")
     data = {
-        "displacement": var(("time", "floor"), u, "m", "displacement relative to the ground"),
-        "velocity": var(("time", "floor"), v, "m/s", "velocity relative to the ground"),
-        "absolute_acceleration": var(("time", "floor"), absolute_acceleration, "m/s^2",
-                                     "absolute acceleration"),
-        "storey_drift": var(("time", "storey"), np.diff(u, axis=1), "m", "storey drift"),
-        "storey_shear": var(("time", "storey"), storey_shear, "N",
+        "displacement": var(tfd, u.reshape(levels)[..., :components], "m",
+                            f"displacement relative to the ground{where}"),
+        "velocity": var(tfd, v.reshape(levels)[..., :components], "m/s",
+                        f"velocity relative to the ground{where}"),
+        "absolute_acceleration": var(tfd, a_abs.reshape(levels)[..., :components], "m/s^2",
+                                     f"absolute acceleration{where}"),
+        "storey_drift": var(("time", "storey", "direction"), drift[..., :components], "m",
+                            f"storey drift{where}"),
+        "storey_shear": var(("time", "storey", "direction"), shear, "N",
                             "storey shear (inertia forces of the floors above)"),
-        "isolator_displacement": var("time", u[:, 0], "m", "isolator displacement"),
-        "isolator_force": var("time", isolator["force"], "N", "isolator force, all bearings"),
-        "base_shear": var("time", isolator["force"], "N",
+        "bearing_displacement": var(tbd, records["displacement"][..., :components], "m",
+                                    "bearing displacement"),
+        "bearing_force": var(tbd, records["force"][..., :components], "N",
+                             "force of one bearing"),
+        "bearing_friction_force": var(tbd, records["friction_force"][..., :components], "N",
+                                      "friction part of the force of one bearing"),
+        "axial_load": var(tb, records["axial_load"], "N", "normal force of one bearing (0: "
+                          "uplift)"),
+        "mu": var(tb, records["mu"], "-", "friction coefficient"),
+        "temperature": var(tb, records["temperature"], "degC", "contact temperature"),
+        "heat_flux": var(tb, records["heat_flux"], "W/m^2", "heat flux into each sliding "
+                         "surface"),
+        "base_shear": var(("time", "direction"), group_force.sum(axis=1)[:, :components], "N",
                           "base shear through the isolation level"),
-        "friction_force": var("time", isolator["friction_force"], "N",
-                              "friction part of the isolator force, all bearings"),
-        "mu": var("time", isolator["mu"], "-", "friction coefficient"),
-        "temperature": var("time", isolator["temperature"], "degC", "contact temperature"),
-        "heat_flux": var("time", isolator["heat_flux"], "W/m^2",
-                         "heat flux into each sliding surface"),
-        "ground_acceleration": var("time", ag, "m/s^2", "ground acceleration"),
+        "ground_acceleration": var(("time", "direction"), ground, "m/s^2",
+                                   "ground acceleration"),
     }
-    if "axial_load" in isolator:
-        data["axial_load"] = var("time", isolator["axial_load"], "N",
-                                 "normal force of one bearing")
-    for name in ("input", "kinetic", "damping", "strain", "friction", "error"):
+    if dofs == 3:
+        data |= {
+            "rotation": var(tf, u.reshape(levels)[..., 2], "rad", "rotation about the vertical"),
+            "angular_velocity": var(tf, v.reshape(levels)[..., 2], "rad/s", "angular velocity"),
+            "angular_acceleration": var(tf, a_abs.reshape(levels)[..., 2], "rad/s^2",
+                                        "angular acceleration"),
+            "storey_twist": var(("time", "storey"), drift[..., 2], "rad", "storey twist"),
+        }
+    time = step * np.arange(nt)
+    if model.vertical is not None:
+        data["vertical_ground_acceleration"] = var(
+            "time", model.vertical_accelerations(time), "m/s^2",
+            "vertical ground acceleration (positive up)")
+    if plate is not None:
+        data["plate_temperature"] = var(("bearing", "plate_point"), plate[1], "degC",
+                                        "temperature of the plate's monitor points at the end")
+    for name in _ENERGIES:
         data[f"energy_{name}"] = var("time", getattr(energies, name), "J", f"{name} energy")
+    xy = model.positions
+    coords = {"time": ("time", time, {"units": "s"}), "floor": np.arange(n + 1),
+              "storey": np.arange(1, n + 1), "direction": list(directions),
+              "bearing": np.arange(xy.shape[0]),
+              "bearing_x": ("bearing", xy[:, 0], {"units": "m"}),
+              "bearing_y": ("bearing", xy[:, 1], {"units": "m"}),
+              "bearing_count": ("bearing", model.multiplicity)}
+    if plate is not None:
+        for axis, name in enumerate(("plate_point_x", "plate_point_y")):
+            coords[name] = (("bearing", "plate_point"), plate[0][..., axis], {"units": "m"})
     common: dict[str, Any] = {
-        "record": motion.name,
-        "record_processing": "; ".join(motion.processing),
-        "dt": step,
-        "integrator": integrator,
-        "friction_model": friction_name(bearing.friction),
-        "friction": repr(bearing.friction),
+        **_motion_attrs(motion), "dt": step, "integrator": integrator,
+        "friction_model": bearing.friction.name, "friction": repr(bearing.friction),
         "n_bearings": model.n_bearings,
-        "axial_load_per_bearing": bearing.axial_load_at(0.0),
-        "effective_radius": bearing.effective_radius,
-        "slider_diameter": bearing.slider_diameter,
-        "displacement_capacity": capacity,
+        "axial_load_per_bearing": building.weight / model.n_bearings,
+        "gravity_shares": model.gravity_loads.tolist(), "overturning": int(model.overturning),
+        "vertical": int(model.vertical is not None),
+        "effective_radius": bearing.effective_radius, "slider_diameter": bearing.slider_diameter,
+        "displacement_capacity": bearing.displacement_capacity,
         "isolated_period": model.isolated_period(),
         "fixed_base_periods": building.fixed_base_modes().periods.tolist(),
-        "total_mass": building.total_mass,
-        "success": int(success),
-        "message": message,
-        "failure": failure,
-        "peaks_up_to_failure": int(not success),
-        "steps": int(u.shape[0] - 1),
+        "total_mass": building.total_mass, "success": int(success), "message": message,
+        "failure": failure, "peaks_up_to_failure": int(not success), "steps": int(nt - 1),
         "energy_balance_error": energies.relative_error,
     }
-    n = building.n_storeys
-    coords = {"time": ("time", step * np.arange(u.shape[0]), {"units": "s"}),
-              "floor": np.arange(n + 1), "storey": np.arange(1, n + 1)}
     if failed_at is not None:
         common["failed_at"] = float(failed_at)
     return xr.Dataset(data, coords=coords, attrs=common | attrs)

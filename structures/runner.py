@@ -2,10 +2,10 @@
 and for Python alike.
 
 ``structures.run(config, motion)`` takes a building file (or its :class:`BuildingConfig`) and a
-record file (or a :class:`GroundMotion`), applies what the caller overrides (friction model,
-integrator, step, scale) and runs :func:`structures.analysis.run`, which takes the model
-objects themselves (a :class:`ShearBuilding`, a :class:`DCFPBearing` and the number of
-bearings).
+record file, a :class:`GroundMotion` or a :class:`GroundMotionPair`, applies what the caller
+overrides (friction model, integrator, step, scale) and runs :func:`structures.analysis.run`,
+which takes the model objects themselves (a :class:`ShearBuilding`, a :class:`DCFPBearing` and
+the number of bearings).
 
 Example
 -------
@@ -17,10 +17,11 @@ Example
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 from typing import Any
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import InputError, InputWarning
 from dcfpb.common.validation import check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
@@ -50,8 +51,9 @@ def run(
     motion : GroundMotion or GroundMotionPair or str or Path
         The ground acceleration [m/s^2], or a record file (PEER .AT2 or text;
         :func:`groundmotions.readers.read_record`). A pair (x, y and optionally z) runs the
-        building in plan of a file with a ``[plan]`` table
-        (:func:`structures.spatial.analysis.run_spatial`; ``floor_spectra`` does not apply).
+        building of a file with a ``[plan]`` table in plan; one record runs a building in one
+        direction, and a file with a ``[plan]`` table along x as a building in one direction,
+        with a warning.
     model : {"precise", "simplified", "constant"}, optional
         Friction model (default: the building file's).
     integrator : Newmark or HHT or {"newmark", "hht"}, optional
@@ -60,63 +62,50 @@ def run(
         Analysis step [s] (default: the building file's, else the record's step divided into
         parts of at most 5 ms; :func:`structures.analysis.default_step`).
     scale : float
-        Amplitude scale factor of the record [-], > 0.
+        Amplitude scale factor of the record(s) [-], > 0.
     engine : {"auto", "compiled", "reference"}
         As :func:`structures.analysis.run`.
     floor_spectra : bool
         Add the 5 %-damped floor response spectra (``floor_spectrum``, ``ground_spectrum``).
     **options
         Further keywords of :func:`structures.analysis.run` (``tolerance``,
-        ``max_subdivisions``, ...).
+        ``max_subdivisions``, ``overturning``, ...).
 
     Returns
     -------
     xarray.Dataset
-        The result of :func:`structures.analysis.run` (of
-        :func:`structures.spatial.analysis.run_spatial` for a pair); ``attrs["building"]``
-        names the building.
+        The result of :func:`structures.analysis.run`; ``attrs["building"]`` names the
+        building.
     """
+    import dataclasses
+
     from structures.analysis import run as run_building
 
     if not isinstance(config, BuildingConfig):
         config = load_config(config)
-    if isinstance(motion, GroundMotionPair):
-        if floor_spectra:
-            raise InputError(
-                "A building in plan runs without floor spectra: floor_spectra must be False. "
-                f"Got floor_spectra={floor_spectra!r} instead.")
-        return _run_pair(config, motion, model=model, integrator=integrator, dt=dt,
-                         scale=scale, engine=engine, **options)
-    if not isinstance(motion, GroundMotion):
+    if not isinstance(motion, GroundMotion | GroundMotionPair):
         from groundmotions.readers import read_record
 
         motion = read_record(motion)
     check_real(scale, "scale", "structures.run", low=0.0, low_open=True)
     if scale != 1.0:
         motion = motion.scaled(scale)
+    building = config.building
+    if isinstance(motion, GroundMotionPair):
+        if building.plan is None:
+            raise InputError(
+                f"A pair of records runs a building in plan, but the building {config.name!r} "
+                "has no [plan] table: give it one, or run it under one record.")
+    elif building.plan is not None:
+        warnings.warn(f"The building {config.name!r} has a [plan] table but runs under one "
+                      "record: it runs in one direction (x) on its bearings' count; give a pair "
+                      "of records to run it in plan.", InputWarning, stacklevel=2)
+        building = dataclasses.replace(building, plan=None)
+    bearing = dataclasses.replace(config.bearing(model), axial_load=None)  # their shares
     result = run_building(
-        config.building, config.bearing(model), motion,
-        config.integrator if integrator is None else integrator,
-        n_bearings=config.n_bearings, dt=config.dt if dt is None else dt, engine=engine,
-        floor_spectra=floor_spectra, **options)
-    result.attrs["building"] = config.name
-    return result
-
-
-def _run_pair(config: BuildingConfig, pair: GroundMotionPair, *, model: str | None,
-              integrator: Newmark | HHT | str | None, dt: float | None, scale: float,
-              **options: Any):
-    """:func:`run` for a building in plan under a pair of records."""
-    import dataclasses
-
-    from structures.spatial.analysis import run_spatial
-
-    check_real(scale, "scale", "structures.run", low=0.0, low_open=True)
-    if scale != 1.0:
-        pair = pair.scaled(scale)
-    bearing = dataclasses.replace(config.bearing(model), axial_load=None)  # the shares
-    result = run_spatial(config.spatial_building(), bearing, pair,
-                         config.integrator if integrator is None else integrator,
-                         dt=config.dt if dt is None else dt, **options)
+        building, bearing, motion, config.integrator if integrator is None else integrator,
+        n_bearings=config.n_bearings if building.plan is None else None,
+        dt=config.dt if dt is None else dt, engine=engine, floor_spectra=floor_spectra,
+        **options)
     result.attrs["building"] = config.name
     return result

@@ -1,12 +1,15 @@
-"""A shear building on an isolation level: storey masses and stiffnesses, superstructure damping.
+"""A shear building on an isolation level, in one direction or in plan: storey masses and
+stiffnesses, superstructure damping, the matrices on the levels' degrees of freedom.
 
-The fixed-base building has one lateral DOF per floor, ``u_1 ... u_n`` relative to its base.
-On isolators it gains the base slab: DOFs ``[u_b, u_1, ..., u_n]``, all relative to the ground.
-The superstructure matrices act on the storey drifts only, through the transformation
-``T = [-1 | I]`` (``u_i - u_b``): ``K = T^T K_fb T`` and ``C = T^T C_fb T``. Hence a rigid-body
+The fixed-base building has L degrees of freedom per floor (L = 1: u_x; L = 3 with a
+:class:`~structures.plan.Plan`: u_x, u_y, theta at the centre of stiffness), relative to its
+base. On isolators it gains the base slab, level 0, first. The superstructure matrices act on
+the storey drifts only, through the transformation ``T = [-I | I]`` (each floor's degrees of
+freedom minus the base slab's): ``K = T^T K_fb T`` and ``C = T^T C_fb T``. Hence a rigid-body
 motion of the whole building on its isolators is neither resisted nor damped by the
-superstructure, and the isolation level gets no viscous damping from it (``C @ 1 = 0``): the
-isolator brings its own force, added by the model that couples the two.
+superstructure, and the isolation level gets no viscous damping from it: the isolators bring
+their own forces, added by the model that couples the two
+(:class:`~structures.isolated_building.IsolatedShearBuilding`).
 """
 
 from __future__ import annotations
@@ -18,9 +21,17 @@ from typing import NamedTuple
 import numpy as np
 import scipy.linalg
 
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.common.validation import check_array, check_choice, check_int, check_real
 from structures.model import LinearModel
+from structures.plan import (
+    Plan,
+    axial_distribution,
+    bearing_stiffness_matrix,
+    gravity_shares,
+    level_mass_matrix,
+)
 
 __all__ = [
     "ModalDamping",
@@ -32,6 +43,8 @@ __all__ = [
 ]
 
 _PROFILES = ("uniform", "triangular", "storey_shear")
+DIRECTIONS = ("x", "y")
+"""The horizontal directions, in their order."""
 
 
 class ModalProperties(NamedTuple):
@@ -210,25 +223,54 @@ def _frozen(array: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class ShearBuilding:
-    """A shear building that can stand on a fixed base or on an isolation level.
+    """A shear building that can stand on a fixed base or on an isolation level, in one
+    direction or, with a :class:`~structures.plan.Plan`, in plan.
+
+    Without a plan each level (the base slab, level 0, and the floors 1..n) has one lateral
+    degree of freedom along x. With a plan each level is a rigid diaphragm with
+    ``(u_x, u_y, theta)`` at the plan's reference point (the centre of stiffness), numbered
+    level by level; its mass matrix follows from its centre of mass and inertia
+    (:func:`~structures.plan.level_mass_matrix`), storey ``s`` joins levels ``s-1`` and ``s``
+    with ``k_x``, ``k_y`` and ``k_theta`` acting at the centre of stiffness, and the ground
+    translates without turning (influence: ones on the x and on the y degrees of freedom).
+
+    The superstructure matrices act on the storey drifts only, ``K = T^T K_fb T`` and
+    ``C = T^T C_fb T``, so the isolation level gets no viscous damping from them. Rayleigh
+    damping takes its coefficients ``a0, a1`` from the fixed-base modes along x (with a
+    symmetric plan the x response is damped exactly as the building in one direction) and
+    applies them to the matrices in plan; modal damping puts its ratio on every fixed-base
+    mode (one ratio for all in plan: the mode numbers of one direction do not name the modes
+    in plan).
 
     Parameters
     ----------
     floor_masses : array_like
         Floor masses from the first floor up, shape (n,) [kg].
     storey_stiffnesses : array_like
-        Lateral storey stiffnesses from the first storey up, shape (n,) [N/m].
+        Lateral storey stiffnesses (along x) from the first storey up, shape (n,) [N/m].
     base_mass : float
         Mass of the base slab above the isolators [kg].
     damping : RayleighDamping or ModalDamping
         Damping of the superstructure, defined on the fixed-base building and applied to the
         storey drifts only, never to the isolation level.
+    plan : Plan, optional
+        Bearings, eccentricities, inertias, stiffnesses along y and in torsion, storey heights:
+        the building in plan. None (the default): one direction.
+
+    Raises
+    ------
+    InputError
+        For a value outside its range; with a plan, if the plan does not fit the building (a
+        per-storey field of another length, an inertia or torsional stiffness with neither its
+        value nor the plan's dimensions), if the bearings cannot carry the weight
+        (:func:`~structures.plan.gravity_shares`), or for per-mode modal damping ratios.
     """
 
     floor_masses: np.ndarray
     storey_stiffnesses: np.ndarray
     base_mass: float
     damping: RayleighDamping | ModalDamping = _DEFAULT_DAMPING
+    plan: Plan | None = None
 
     def __post_init__(self) -> None:
         owner = type(self).__name__
@@ -243,7 +285,7 @@ class ShearBuilding:
             )
         base = check_real(self.base_mass, "base_mass", owner, low=0.0, low_open=True)
         if not isinstance(self.damping, RayleighDamping | ModalDamping):
-            raise TypeError(
+            raise InputTypeError(
                 f"The 'damping' parameter of {owner} must be a RayleighDamping or ModalDamping. "
                 f"Got {self.damping!r} instead."
             )
@@ -251,6 +293,16 @@ class ShearBuilding:
         object.__setattr__(self, "floor_masses", _frozen(masses.copy()))
         object.__setattr__(self, "storey_stiffnesses", _frozen(stiffnesses.copy()))
         object.__setattr__(self, "base_mass", base)
+        if self.plan is not None:
+            if not isinstance(self.plan, Plan):
+                raise InputTypeError(f"The 'plan' parameter of {owner} must be a Plan or None. "
+                                     f"Got {self.plan!r} instead.")
+            if isinstance(self.damping, ModalDamping) and isinstance(self.damping.ratio, tuple):
+                raise InputError(
+                    f"The 'damping' of a {owner} in plan must be RayleighDamping or "
+                    "ModalDamping with one ratio for every mode (the mode numbers of one "
+                    f"direction do not name the modes in plan). Got {self.damping!r} instead.")
+            _ = self.storey_table, self.level_inertias, self.gravity_shares  # checked now
 
     @classmethod
     def from_period(
@@ -261,8 +313,9 @@ class ShearBuilding:
         base_mass: float,
         profile: str | object = "uniform",
         damping: RayleighDamping | ModalDamping = _DEFAULT_DAMPING,
+        plan: Plan | None = None,
     ) -> ShearBuilding:
-        """Scale a storey-stiffness profile to hit a fixed-base fundamental period.
+        """Scale a storey-stiffness profile to hit a fixed-base fundamental period along x.
 
         Periods scale as ``1 / sqrt(stiffness)``, so one scaling hits the target exactly.
 
@@ -271,7 +324,7 @@ class ShearBuilding:
         floor_masses : array_like
             Floor masses from the first floor up, shape (n,) [kg].
         fixed_base_period : float
-            Target fundamental period of the fixed-base building [s].
+            Target fundamental period of the fixed-base building along x [s].
         base_mass : float
             Mass of the base slab above the isolators [kg].
         profile : {"uniform", "triangular", "storey_shear"} or array_like
@@ -279,6 +332,8 @@ class ShearBuilding:
             proportional to the mass carried by each storey; or a positive (n,) array.
         damping : RayleighDamping or ModalDamping
             Superstructure damping.
+        plan : Plan, optional
+            The building in plan (see the class).
         """
         owner = f"{cls.__name__}.from_period"
         masses = check_array(floor_masses, "floor_masses", owner, low=0.0, low_open=True)
@@ -298,12 +353,27 @@ class ShearBuilding:
                     f"Got {shape.shape[0]} instead."
                 )
         period = modal_analysis(np.diag(masses), shear_stiffness_matrix(shape)).periods[0]
-        return cls(masses, shape * (period / target) ** 2, base_mass, damping)
+        return cls(masses, shape * (period / target) ** 2, base_mass, damping, plan)
 
     @property
     def n_storeys(self) -> int:
         """Number of storeys (and floors above the base) [-]."""
         return int(self.floor_masses.shape[0])
+
+    @property
+    def level_dofs(self) -> int:
+        """Degrees of freedom per level: 1 (x) in one direction, 3 (x, y, theta) in plan."""
+        return 1 if self.plan is None else 3
+
+    @property
+    def directions(self) -> tuple[str, ...]:
+        """The horizontal directions the building moves in: ``("x",)`` or ``("x", "y")``."""
+        return DIRECTIONS[:1] if self.plan is None else DIRECTIONS
+
+    @property
+    def n_dof(self) -> int:
+        """Degrees of freedom on the isolators, (n + 1) per level [-]."""
+        return self.level_dofs * (self.n_storeys + 1)
 
     @property
     def total_mass(self) -> float:
@@ -316,85 +386,174 @@ class ShearBuilding:
         return self.total_mass * STANDARD_GRAVITY
 
     @cached_property
+    def bearing_positions(self) -> np.ndarray:
+        """Where the bearings stand, shape (n_b, 2) [m]: the plan's coordinates, or one
+        group at the reference point in one direction."""
+        if self.plan is None:
+            return _frozen(np.zeros((1, 2)))
+        return self.plan.bearing_coordinates
+
+    @cached_property
+    def level_masses(self) -> np.ndarray:
+        """Masses of the base slab and the floors, shape (n+1,) [kg]."""
+        return _frozen(np.concatenate([[self.base_mass], self.floor_masses]))
+
+    @cached_property
+    def level_centres(self) -> np.ndarray:
+        """Centres of mass of the base slab and the floors, shape (n+1, 2) [m] (at the
+        reference point in one direction)."""
+        if self.plan is None:
+            return _frozen(np.zeros((self.n_storeys + 1, 2)))
+        floors = self.plan.floor_eccentricities(self.n_storeys)
+        return _frozen(np.vstack([self.plan.base_eccentricity, floors]))
+
+    @cached_property
+    def level_inertias(self) -> np.ndarray:
+        """Mass moments of inertia about each level's centre of mass, (n+1,) [kg m^2] (plan)."""
+        floors, base = self._plan("level_inertias").inertias(self.floor_masses, self.base_mass)
+        return _frozen(np.concatenate([[base], floors]))
+
+    @cached_property
+    def storey_table(self) -> np.ndarray:
+        """Storey stiffnesses per level degree of freedom, shape (n, level_dofs): ``k_x``, or
+        ``(k_x, k_y, k_theta)`` in plan [N/m, N/m, N m/rad]."""
+        if self.plan is None:
+            return _frozen(self.storey_stiffnesses[:, None].copy())
+        return _frozen(self.plan.stiffnesses(self.storey_stiffnesses))
+
+    @cached_property
+    def gravity_shares(self) -> np.ndarray:
+        """Each bearing position's share of the weight, shape (n_b,) [N], summing to the
+        weight (the whole weight on the one group in one direction)."""
+        if self.plan is None:
+            return _frozen(np.array([self.weight]))
+        return _frozen(gravity_shares(self.plan.bearing_coordinates, self.level_masses,
+                                      self.level_centres))
+
+    @cached_property
+    def axial_distribution(self) -> np.ndarray:
+        """``G`` of :func:`structures.plan.axial_distribution`, shape (n_b, 3) (plan)."""
+        return _frozen(axial_distribution(self._plan("axial_distribution").bearing_coordinates))
+
+    def _plan(self, what: str) -> Plan:
+        if self.plan is None:
+            raise InputError(f"The {what!r} of a ShearBuilding need its plan; this one has none.")
+        return self.plan
+
+    def _level_masses(self, levels: range) -> np.ndarray:
+        if self.plan is None:
+            return np.diag(self.level_masses[levels.start:levels.stop])
+        out = np.zeros((3 * len(levels), 3 * len(levels)))
+        for k, level in enumerate(levels):
+            out[3 * k:3 * k + 3, 3 * k:3 * k + 3] = level_mass_matrix(
+                self.level_masses[level], self.level_inertias[level], self.level_centres[level])
+        return out
+
+    @cached_property
     def fixed_base_mass_matrix(self) -> np.ndarray:
-        """Fixed-base mass matrix, shape (n, n) [kg]."""
-        return _frozen(np.diag(self.floor_masses))
+        """Fixed-base mass matrix of the floors, shape (n L, n L) [kg, kg m, kg m^2], L the
+        level's degrees of freedom."""
+        return _frozen(self._level_masses(range(1, self.n_storeys + 1)))
 
     @cached_property
     def fixed_base_stiffness_matrix(self) -> np.ndarray:
-        """Fixed-base stiffness matrix, shape (n, n) [N/m]."""
-        return _frozen(shear_stiffness_matrix(self.storey_stiffnesses))
+        """Fixed-base stiffness matrix, shape (n L, n L) [N/m, N m/rad]."""
+        table, dofs = self.storey_table, self.level_dofs
+        n = self.n_storeys
+        out = np.zeros((dofs * n, dofs * n))
+        for component in range(dofs):
+            out[component::dofs, component::dofs] = shear_stiffness_matrix(table[:, component])
+        return _frozen(out)
 
     @cached_property
     def fixed_base_damping_matrix(self) -> np.ndarray:
-        """Fixed-base (superstructure) damping matrix, shape (n, n) [N s/m]."""
-        return _frozen(
-            self.damping.matrix(self.fixed_base_mass_matrix, self.fixed_base_stiffness_matrix)
-        )
+        """Fixed-base (superstructure) damping matrix, shape (n L, n L) [N s/m, ...]."""
+        mass, stiffness = self.fixed_base_mass_matrix, self.fixed_base_stiffness_matrix
+        if self.plan is not None and isinstance(self.damping, RayleighDamping):
+            along_x = modal_analysis(np.diag(self.floor_masses),
+                                     shear_stiffness_matrix(self.storey_stiffnesses))
+            omega = along_x.circular_frequencies
+            i, j = self.damping.modes
+            a0, a1 = self.damping.coefficients((omega[i - 1], omega[j - 1]), self.damping.ratios)
+            return _frozen(a0 * mass + a1 * stiffness)
+        return _frozen(self.damping.matrix(mass, stiffness))
 
     @cached_property
     def drift_transformation(self) -> np.ndarray:
-        """``T`` with ``T @ [u_b, u_1..u_n] = [u_1 - u_b, ..., u_n - u_b]``, shape (n, n+1)."""
-        n = self.n_storeys
-        return _frozen(np.hstack([-np.ones((n, 1)), np.eye(n)]))
+        """``T`` with ``T q`` the drifts of every floor from the base slab, (n L, (n+1) L)."""
+        n, dofs = self.n_storeys, self.level_dofs
+        return _frozen(np.hstack([-np.tile(np.eye(dofs), (n, 1)), np.eye(dofs * n)]))
 
     @cached_property
     def isolated_mass_matrix(self) -> np.ndarray:
-        """Mass matrix on DOFs ``[u_b, u_1..u_n]``, shape (n+1, n+1) [kg]."""
-        return _frozen(np.diag(np.concatenate([[self.base_mass], self.floor_masses])))
+        """Mass matrix on the levels' degrees of freedom, base slab first, ((n+1) L, (n+1) L)."""
+        return _frozen(self._level_masses(range(self.n_storeys + 1)))
 
     @cached_property
     def isolated_stiffness_matrix(self) -> np.ndarray:
-        """Superstructure stiffness ``T^T K_fb T`` (isolator not included), (n+1, n+1) [N/m]."""
+        """Superstructure stiffness ``T^T K_fb T`` (isolators not included) [N/m, ...]."""
         t = self.drift_transformation
         return _frozen(t.T @ self.fixed_base_stiffness_matrix @ t)
 
     @cached_property
     def isolated_damping_matrix(self) -> np.ndarray:
-        """Superstructure damping ``T^T C_fb T`` on drifts only, (n+1, n+1) [N s/m]."""
+        """Superstructure damping ``T^T C_fb T`` on the drifts only [N s/m, ...]."""
         t = self.drift_transformation
         return _frozen(t.T @ self.fixed_base_damping_matrix @ t)
 
     @cached_property
     def isolated_influence(self) -> np.ndarray:
-        """Ground-motion influence vector on ``[u_b, u_1..u_n]`` (all ones), (n+1,) [-]."""
-        return _frozen(np.ones(self.n_storeys + 1))
+        """Ground-motion influence: ones, shape (n+1,), in one direction; ``R`` of the (x, y)
+        ground acceleration, shape (3 (n+1), 2), in plan [-]."""
+        if self.plan is None:
+            return _frozen(np.ones(self.n_storeys + 1))
+        r = np.zeros((self.n_dof, 2))
+        r[0::3, 0] = 1.0
+        r[1::3, 1] = 1.0
+        return _frozen(r)
 
     def fixed_base_modes(self) -> ModalProperties:
         """Periods [s] and mass-normalised shapes of the fixed-base building."""
         return modal_analysis(self.fixed_base_mass_matrix, self.fixed_base_stiffness_matrix)
 
-    def isolated_modes(self, isolator_stiffness: float) -> ModalProperties:
-        """Periods [s] and mass-normalised shapes on a linear isolator.
+    def isolated_modes(self, isolator_stiffness: float | np.ndarray) -> ModalProperties:
+        """Periods [s] and mass-normalised shapes on linear isotropic isolators.
 
         Parameters
         ----------
-        isolator_stiffness : float
-            Total lateral stiffness of the isolation level [N/m] (e.g. ``W / R_eff`` of a
-            friction pendulum, or an effective stiffness).
+        isolator_stiffness : float or array_like
+            Lateral stiffness of the isolation level [N/m]: the total, shared equally by the
+            bearing positions (e.g. ``W / R_eff`` of a friction pendulum, or an effective
+            stiffness), or one value per bearing position, shape (n_b,) (e.g. ``N_i / R_eff``).
         """
         return modal_analysis(self.isolated_mass_matrix, self._with_isolator(isolator_stiffness))
 
     def fixed_base_model(self) -> LinearModel:
         """The fixed-base building as a :class:`~structures.model.LinearModel`."""
-        return LinearModel(
-            self.fixed_base_mass_matrix,
-            self.fixed_base_damping_matrix,
-            self.fixed_base_stiffness_matrix,
-            np.ones(self.n_storeys),
-        )
+        influence = self.isolated_influence[self.level_dofs:]
+        return LinearModel(self.fixed_base_mass_matrix, self.fixed_base_damping_matrix,
+                           self.fixed_base_stiffness_matrix, influence)
 
-    def isolated_linear_model(self, isolator_stiffness: float) -> LinearModel:
-        """The building on a linear, undamped isolator of the given stiffness [N/m]."""
-        return LinearModel(
-            self.isolated_mass_matrix,
-            self.isolated_damping_matrix,
-            self._with_isolator(isolator_stiffness),
-            self.isolated_influence,
-        )
+    def isolated_linear_model(self, isolator_stiffness: float | np.ndarray) -> LinearModel:
+        """The building on linear, undamped isolators (see :meth:`isolated_modes`)."""
+        return LinearModel(self.isolated_mass_matrix, self.isolated_damping_matrix,
+                           self._with_isolator(isolator_stiffness), self.isolated_influence)
 
-    def _with_isolator(self, isolator_stiffness: float) -> np.ndarray:
-        k = check_real(isolator_stiffness, "isolator_stiffness", type(self).__name__, low=0.0)
+    def _with_isolator(self, isolator_stiffness: float | np.ndarray) -> np.ndarray:
+        positions = self.bearing_positions
+        owner = type(self).__name__
+        if np.ndim(isolator_stiffness) == 0:
+            total = check_real(isolator_stiffness, "isolator_stiffness", owner, low=0.0)
+            each = np.full(len(positions), total / len(positions))
+        else:
+            each = check_array(isolator_stiffness, "isolator_stiffness", owner, low=0.0)
+            if each.shape != (len(positions),):
+                raise InputError(f"The 'isolator_stiffness' parameter of {owner} must be a "
+                                 f"total or one value per bearing ({len(positions)}). Got "
+                                 f"{each.shape[0]} values instead.")
         stiffness = self.isolated_stiffness_matrix.copy()
-        stiffness[0, 0] += k
+        if self.plan is None:
+            stiffness[0, 0] += float(each.sum())
+        else:
+            stiffness[:3, :3] += bearing_stiffness_matrix(positions, each)
         return stiffness

@@ -26,7 +26,8 @@ from dcfpb.common.errors import InputError
 from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.common.validation import check_array, check_real
 
-__all__ = ["Plan", "axial_distribution", "gravity_shares"]
+__all__ = ["Plan", "axial_distribution", "bearing_stiffness_matrix", "bearing_transformation",
+           "gravity_shares", "level_mass_matrix"]
 
 _OWNER = "Plan"
 _LARGEST = 1e4  # [m]: the largest plan coordinate or dimension accepted
@@ -163,7 +164,7 @@ class Plan:
     storey_heights : float or array_like, optional
         Storey heights, one for all or one per storey [m], in (0, 1000]: the lever arms of the
         floors' inertia forces, whose overturning moment loads the bearings. Required when the
-        overturning is modelled (:class:`structures.spatial.isolated.SpatialIsolatedBuilding`).
+        overturning is modelled (:class:`structures.isolated_building.IsolatedShearBuilding`).
 
     Raises
     ------
@@ -271,3 +272,43 @@ class Plan:
                              "overturning moment of the floors' inertia forces; give it, or "
                              "leave the overturning out (overturning=False).")
         return np.cumsum(self._per_storey("storey_heights", n))
+
+
+def level_mass_matrix(mass: float, inertia: float, centre: np.ndarray) -> np.ndarray:
+    """Mass matrix of a rigid level with the degrees of freedom (u_x, u_y, theta) at the
+    reference point, shape (3, 3) [kg, kg m, kg m^2].
+
+    A level of mass ``m`` and inertia ``J_G`` about its centre of mass ``G = O + e`` moves
+    ``G`` at ``(u_x - theta e_y, u_y + theta e_x)``: its kinetic energy is
+    ``m/2 [(u_x' - theta' e_y)^2 + (u_y' + theta' e_x)^2] + J_G/2 theta'^2``, whose Hessian in
+    the velocities this is.
+
+    Parameters
+    ----------
+    mass : float
+        [kg].
+    inertia : float
+        Mass moment of inertia about the level's own centre of mass [kg m^2].
+    centre : numpy.ndarray
+        Centre of mass ``(e_x, e_y)`` from the reference point [m].
+    """
+    ex, ey = float(centre[0]), float(centre[1])
+    return np.array([[mass, 0.0, -mass * ey],
+                     [0.0, mass, mass * ex],
+                     [-mass * ey, mass * ex, inertia + mass * (ex * ex + ey * ey)]])
+
+
+def bearing_transformation(x: float, y: float) -> np.ndarray:
+    """``T_i``: the displacement of a bearing at ``(x, y)`` [m] from the base slab's
+    ``(u_x, u_y, theta)``, ``u_i = (u_x - theta y, u_y + theta x)``, shape (2, 3)."""
+    return np.array([[1.0, 0.0, -y], [0.0, 1.0, x]])
+
+
+def bearing_stiffness_matrix(coordinates: np.ndarray, stiffnesses: np.ndarray) -> np.ndarray:
+    """``sum_i k_i T_i^T T_i`` on the base slab's DOFs for isotropic linear bearings, (3, 3)
+    [N/m, N, N m/rad]."""
+    out = np.zeros((3, 3))
+    for (x, y), k in zip(coordinates, stiffnesses, strict=True):
+        t = bearing_transformation(x, y)
+        out += k * (t.T @ t)
+    return out
