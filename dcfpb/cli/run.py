@@ -1,13 +1,18 @@
-"""``dcfpb run``: a building file under a recorded ground motion; and what the other building
-commands share with it (the inputs, the integrator flags, the peaks table, the bundled example)."""
+"""``dcfpb run``: a building file under a recorded ground motion (one record in one direction;
+a pair, ``--record-y`` and optionally ``--record-z``, for a building file with a ``[plan]``
+table); and what the other building commands share with it (the inputs, the integrator flags,
+the peaks table, the bundled example)."""
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 from pathlib import Path
 
-from dcfpb.cli.pairs import add_pair_options
+FIXED_BASE = "fixed base"
+"""The label of the fixed-base building in tables and plots."""
+
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -34,7 +39,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_max_steps(p)
     add_record_options(p)
     p.add_argument("--json", action="store_true", help="print the peaks as JSON")
-    p.add_argument("--output", metavar="FILE.nc", help="write the full result to netCDF")
+    p.add_argument("--output", metavar="FILE.nc", help="write the full result (with floor spectra) "
+                   "to netCDF")
     p.add_argument("--plot", metavar="DIR", help="write plots to this folder")
     p.set_defaults(handler=_run_building)
 
@@ -82,13 +88,18 @@ def analysis_dt(args: argparse.Namespace, config) -> float | None:
 
 def check_run_length(args: argparse.Namespace, config, motion, command: str) -> None:
     """Refuse a building run past ``--max-steps`` or the memory available, before any work."""
+    from groundmotions.pairs import GroundMotionPair
     from structures.analysis import default_step
     from structures.limits import building_fields, check_run
 
     dt = analysis_dt(args, config)
-    check_run(motion, default_step(motion.dt) if dt is None else dt,
-              building_fields(config.building.n_storeys), max_steps=args.max_steps,
-              raise_with="--max-steps", owner=command)
+    pair = isinstance(motion, GroundMotionPair)
+    first = motion.x if pair else motion
+    building = config.building
+    fields = building_fields(building.n_storeys, building.level_dofs if pair else 1,
+                             len(building.bearing_positions) if pair else 1)
+    check_run(first, default_step(first.dt) if dt is None else dt, fields,
+              max_steps=args.max_steps, raise_with="--max-steps", owner=command)
 
 
 def integrator_from_args(config, kind: str | None, alpha: float | None):
@@ -108,18 +119,19 @@ def integrator_from_args(config, kind: str | None, alpha: float | None):
 
 
 def building_run_inputs(args: argparse.Namespace, command: str):
-    """The building file, the integrator and the (scaled) record of a building command.
+    """The building file, the integrator and the (scaled) record or pair of a building command.
 
     Reads ``args.building``, ``args.integrator``, ``args.alpha``, ``args.record`` (with
-    ``args.units`` and ``args.record_dt`` when given) and ``args.scale``, and checks
-    ``args.dt`` and ``args.max_steps`` when the command has them; every value is checked
-    before any work starts.
+    ``args.units`` and ``args.record_dt`` when given; ``args.record_y`` and ``args.record_z``
+    read a pair, :func:`pair_from_args`) and ``args.scale``, and checks ``args.dt`` and
+    ``args.max_steps`` when the command has them; every value is checked before any work
+    starts.
 
     Returns
     -------
     config : BuildingConfig
     integrator : Newmark or HHT
-    motion : GroundMotion
+    motion : GroundMotion or GroundMotionPair
     """
     from dcfpb.common.validation import check_int, check_real
     from structures.config import load_config
@@ -131,36 +143,84 @@ def building_run_inputs(args: argparse.Namespace, command: str):
         check_int(args.max_steps, "--max-steps", command, low=1)
     config = load_config(args.building)
     integrator = integrator_from_args(config, args.integrator, args.alpha)
+    if getattr(args, "record_y", None) is not None or getattr(args, "record_z", None) is not None:
+        return config, integrator, pair_from_args(args, config, command)
     motion = read_record_from_args(args.record, args)
     if args.scale != 1.0:
         motion = motion.scaled(args.scale)
     return config, integrator, motion
 
 
+def add_pair_options(p: argparse.ArgumentParser) -> None:
+    """Add ``--record-y``, ``--record-z``, ``--resample`` and ``--truncate`` to a command that reads
+    ``--record``."""
+    p.add_argument("--record-y", metavar="FILE",
+                   help="second horizontal component (y of the plan); with --record (x) it "
+                   "runs a building file with a [plan] table in plan")
+    p.add_argument("--record-z", metavar="FILE",
+                   help="vertical component (positive up), with --record-y")
+    p.add_argument("--resample", action="store_true",
+                   help="resample components whose time step differs from the x component's")
+    p.add_argument("--truncate", action="store_true",
+                   help="cut the components to the shortest (they must start together)")
+
+
+def pair_from_args(args: argparse.Namespace, config, command: str):
+    """The (scaled) pair of ``--record``/``--record-y``/``--record-z``, checked against the
+    building file before anything is read: a pair needs a ``[plan]`` table, and
+    ``--record-z`` needs ``--record-y``.
+
+    Returns
+    -------
+    GroundMotionPair
+    """
+    from dcfpb.common.errors import InputError
+    from groundmotions.pairs import read_pair
+
+    if args.record_y is None:
+        raise InputError("--record-z needs --record-y (the vertical comes with a "
+                         "pair of horizontal components).")
+    if config.plan is None:
+        raise InputError(
+            "--record-y runs a building in plan, but the building file "
+            f"{args.building!r} has no [plan] table (bearing_coordinates, eccentricity, ...; "
+            "see README, 'A building in plan'). Drop --record-y to run it planar.")
+    step = None
+    if args.resample:
+        from groundmotions.readers import read_record
+
+        step = read_record(args.record, units=getattr(args, "units", None),
+                           dt=getattr(args, "record_dt", None)).dt
+    try:
+        pair = read_pair(args.record, args.record_y, args.record_z,
+                         dt=getattr(args, "record_dt", None),
+                         units=getattr(args, "units", None), resample_to=step,
+                         truncate=args.truncate)
+    except InputError as error:
+        hint = ""
+        if "time step" in str(error) and not args.resample:
+            hint = "--resample resamples the y (and z) component to the x component's step."
+        elif "samples" in str(error) and not args.truncate:
+            hint = "--truncate cuts the components to the shortest."
+        if hint:
+            raise InputError(f"{error} On the command line: {hint}") from None
+        raise
+    return pair.scaled(args.scale) if args.scale != 1.0 else pair
+
+
 def _run_building(args: argparse.Namespace) -> int:
     from dcfpb.cli.outputs import check_outputs
     from structures.compiled.ahead import compile_ahead
-
-    if args.record_y is not None or args.record_z is not None:
-        return run_plan(args)
 
     check_outputs(files={"--output": args.output}, folders={"--plot": args.plot})
     with compile_ahead() as ahead:  # the engine compiles while the inputs are read
         # bad input (a record of 31 M steps) is refused first, before this process compiles
         config, integrator, motion = building_run_inputs(args, "dcfpb run")
         check_run_length(args, config, motion, "dcfpb run")
-        if config.plan is not None:
-            import warnings
-
-            from dcfpb.common.errors import InputWarning
-
-            warnings.warn(InputWarning(
-                "the building file's [plan] table is not used: one record runs the planar "
-                "building along x; give "
-                "--record-y to run it in plan"), stacklevel=1)
         ahead.help()
         from structures.analysis import peaks
-        from structures.floor_spectra import with_floor_spectra
+        from structures.fixed_base import ratios_to_fixed_base, run_fixed_base
+        from structures.floor_spectra import with_floor_spectra_all
         from structures.runner import run
 
         model = args.model or config.friction["model"]
@@ -168,73 +228,29 @@ def _run_building(args: argparse.Namespace) -> int:
         result = run(config, motion, model=model, integrator=integrator,
                      dt=analysis_dt(args, config), max_steps=args.max_steps)
     summary = peaks(result)
-    result = with_floor_spectra(result, motion)
+    building = config.building if result.sizes["direction"] == 2 else dataclasses.replace(
+        config.building, plan=None)
+    fixed = run_fixed_base(building, motion, dt=result.attrs["dt"], max_steps=args.max_steps)
+    results = with_floor_spectra_all({model: result, FIXED_BASE: fixed}, motion)
+    result, fixed = results[model], results[FIXED_BASE]
+    ratios = ratios_to_fixed_base(result, fixed)
     if args.output:
         result.to_netcdf(args.output)
     if args.plot:
         from dcfpb.plotting import plot_runs
 
-        plot_runs({model: result}, args.plot, title=f"{config.name}: {motion.name}")
-    if args.json:
-        keys = ("peak_isolator_displacement", "peak_base_shear", "peak_roof_acceleration",
-                "energy_balance_error", "steps", "wall_time")
-        print(json.dumps({k: summary[k] for k in keys} | {
-            "peak_storey_drift": summary["peak_storey_drift"],
-            "max_temperature": summary["max_temperature"],
-            "success": bool(result.attrs["success"]), "message": result.attrs["message"],
-            "peaks_up_to_failure": summary["peaks_up_to_failure"],
-            "failed_at": summary["failed_at"], "failure": summary["failure"]},
-            indent=2))
-    else:
-        print_peaks({model: summary}, f"{config.name} under {motion.name} "
-                     f"(scale {args.scale:g}, {integrator!r})")
-        print_failure(summary, result.attrs["message"])
-    return 0 if result.attrs["success"] else 1
-
-
-def run_plan(args: argparse.Namespace) -> int:
-    """``dcfpb run BUILDING.toml --record X --record-y Y [--record-z Z]``: the building in plan
-    under the pair (the reference engine)."""
-    from dcfpb.cli.outputs import check_outputs
-    from dcfpb.cli.pairs import pair_from_args, print_plan_peaks
-    from dcfpb.common.validation import check_int, check_real
-    from structures.config import load_config
-    from structures.limits import check_run
-    from structures.spatial.analysis import spatial_fields
-    from structures.spatial.peaks import plan_peaks
-
-    command = "dcfpb run"
-    check_outputs(files={"--output": args.output}, folders={"--plot": args.plot})
-    check_real(args.scale, "scale", command, low=0.0, low_open=True)
-    if args.dt is not None:
-        check_real(args.dt, "--dt", command, low=0.0, low_open=True, high=1.0)
-    check_int(args.max_steps, "--max-steps", command, low=1)
-    config = load_config(args.building)
-    integrator = integrator_from_args(config, args.integrator, args.alpha)
-    pair = pair_from_args(args, config, command)
-    from structures.analysis import default_step
-    from structures.runner import run
-
-    dt = args.dt if args.dt is not None else config.dt
-    check_run(pair.x, default_step(pair.dt) if dt is None else dt,
-              spatial_fields(config.building.n_storeys, config.plan.n_bearings),
-              max_steps=args.max_steps, raise_with="--max-steps", owner=command)
-    model = args.model or config.friction["model"]
-    result = run(config, pair, model=model, integrator=integrator, dt=dt,
-                 max_steps=args.max_steps)
-    summary = plan_peaks(result)
-    if args.output:
-        result.to_netcdf(args.output)
-    if args.plot:
-        from dcfpb.plotting.plan import plot_plan_runs
-
-        plot_plan_runs({model: result}, args.plot, title=f"{config.name}: {pair.name}")
+        plot_runs({model: result}, args.plot, title=f"{config.name}: {motion.name}",
+                  fixed_base=fixed)
     if args.json:
         print(json.dumps(summary | {"success": bool(result.attrs["success"]),
-                                    "message": result.attrs["message"]}, indent=2))
+                                    "message": result.attrs["message"],
+                                    "ratios_to_fixed_base": ratios}, indent=2))
     else:
-        print_plan_peaks({model: summary}, f"{config.name} under the pair {pair.name} "
-                         f"(scale {args.scale:g}, {integrator!r})")
+        what = "the pair " if result.sizes["direction"] == 2 else ""
+        print_peaks({model: summary}, f"{config.name} under {what}{motion.name} "
+                    f"(scale {args.scale:g}, {integrator!r})", fixed_base=fixed)
+        print()
+        print_ratios({model: ratios}, fixed, float(abs(fixed["ground_acceleration"]).max()))
         print_failure(summary, result.attrs["message"])
     return 0 if result.attrs["success"] else 1
 
@@ -250,28 +266,89 @@ def print_failure(summary: dict, message: str) -> None:
 
 
 def print_peaks(rows: dict[str, dict], heading: str, *, fixed_base=None) -> None:
-    """Print a peaks table, one row per run, under ``heading``.
+    """Print a peaks table, one row per run (:func:`structures.analysis.peaks` of each), under
+    ``heading``: in plan with the centre's displacement and the roof acceleration and drift
+    per direction.
 
     ``fixed_base`` (a :func:`structures.fixed_base.run_fixed_base` Dataset) adds its row: the
     first-storey shear in the base-shear column, no isolator, temperature or energy.
     """
+    plan = "peak_centre_displacement" in next(iter(rows.values()))
+    directions = ("_x", "_y") if plan else ("",)
+    columns = [("isol. disp", "[mm]", 10,
+                lambda p: f"{1e3 * p['peak_isolator_displacement']:.1f}")]
+    if plan:
+        columns.append(("centre", "[mm]", 8,
+                        lambda p: f"{1e3 * p['peak_centre_displacement']:.1f}"))
+    columns.append(("base shear", "[kN]", 11, lambda p: f"{p['peak_base_shear'] / 1e3:.0f}"))
+    for d in directions:
+        columns.append((f"roof acc{d.replace('_', ' ')}", "[m/s2]", 10 if plan else 9,
+                        lambda p, d=d: f"{p[f'peak_roof_acceleration{d}']:.2f}"))
+    for d in directions:
+        columns.append((f"drift{d.replace('_', ' ')}", "[mm]", 7,
+                        lambda p, d=d: f"{1e3 * p[f'peak_storey_drift{d}']:.2f}"))
+    columns += [("T max", "[degC]", 7, lambda p: f"{p['max_temperature']:.1f}"),
+                ("energy err", "[-]", 10, lambda p: f"{p['energy_balance_error']:.1e}"),
+                ("wall", "[s]", 6, lambda p: f"{p['wall_time']:.2f}")]
     print(heading)
-    print(f"{'model':12s} {'isol. disp':>10s} {'base shear':>11s} {'roof acc':>9s} "
-          f"{'drift':>7s} {'T max':>7s} {'energy err':>10s} {'wall':>6s}")
-    print(f"{'':12s} {'[mm]':>10s} {'[kN]':>11s} {'[m/s2]':>9s} {'[mm]':>7s} {'[degC]':>7s} "
-          f"{'[-]':>10s} {'[s]':>6s}")
+    for line in (0, 1):
+        print(f"{'model' if line == 0 else '':12s} "
+              + " ".join(f"{column[line]:>{column[2]}s}" for column in columns))
     for name, p in rows.items():
-        print(f"{name:12s} {1e3 * p['peak_isolator_displacement']:10.1f} "
-              f"{p['peak_base_shear'] / 1e3:11.0f} {p['peak_roof_acceleration']:9.2f} "
-              f"{1e3 * p['peak_storey_drift']:7.2f} {p['max_temperature']:7.1f} "
-              f"{p['energy_balance_error']:10.1e} {p['wall_time']:6.2f}")
+        print(f"{name:12s} " + " ".join(f"{cell(p):>{width}s}" for _, _, width, cell in columns))
     if fixed_base is not None:
         from structures.fixed_base import superstructure_peaks
 
         p = superstructure_peaks(fixed_base)
-        print(f"{'fixed base':12s} {'-':>10s} {p['peak_base_shear'] / 1e3:11.0f} "
-              f"{p['peak_roof_acceleration']:9.2f} {1e3 * p['peak_storey_drift']:7.2f} "
-              f"{'-':>7s} {'-':>10s} {fixed_base.attrs['wall_time']:6.2f}")
+        shear = max(v for k, v in p.items() if k.startswith("peak_base_shear"))
+        cells = {"base shear": f"{shear / 1e3:.0f}", "wall": f"{fixed_base.attrs['wall_time']:.2f}"}
+        for d in directions:
+            cells[f"roof acc{d.replace('_', ' ')}"] = f"{p[f'peak_roof_acceleration{d}']:.2f}"
+            cells[f"drift{d.replace('_', ' ')}"] = f"{1e3 * p[f'peak_storey_drift{d}']:.2f}"
+        print(f"{FIXED_BASE:12s} " + " ".join(f"{cells.get(name, '-'):>{width}s}"
+                                               for name, _, width, _ in columns))
+    if plan:
+        print("isol. disp: the corner bearing (largest resultant); centre: the base slab at the "
+              "plan's reference point; base shear: resultant")
+
+
+def print_ratios(ratios: dict[str, dict[str, float]], fixed_base, pga: float) -> None:
+    """Print each isolated run's peaks over the fixed base's, and the roof over the ground.
+
+    Parameters
+    ----------
+    ratios : dict of str to dict
+        :func:`structures.fixed_base.ratios_to_fixed_base` of each run, keyed by its label.
+    fixed_base : xarray.Dataset
+        The fixed-base run.
+    pga : float
+        Peak ground acceleration [m/s^2] (the larger component's in plan).
+    """
+    from structures.fixed_base import superstructure_peaks
+
+    first = next(iter(ratios.values()))
+    directions = ("_x", "_y") if "peak_storey_drift_x" in first else ("",)
+    print("isolated / fixed base (below 1: the isolation reduces it)")
+    for d in directions:
+        where = f", {d[1]}" if d else ""
+        print(f"{'model' + where:12s} {'drift':>7s} {'storey shear':>13s} {'roof acc':>9s} "
+              f"{'base shear':>11s}")
+        for name, r in ratios.items():
+            print(f"{name:12s} {r[f'peak_storey_drift{d}']:7.3f} "
+                  f"{r[f'peak_storey_shear{d}']:13.3f} {r[f'peak_roof_acceleration{d}']:9.3f} "
+                  f"{r[f'peak_base_shear{d}']:11.3f}")
+    fixed = superstructure_peaks(fixed_base)
+    roof = max(v for k, v in fixed.items() if k.startswith("peak_roof_acceleration"))
+    def roof_of(r: dict[str, float]) -> float:  # the isolated roof's peak [m/s^2]
+        return max(r[f"peak_roof_acceleration{d}"] * fixed[f"peak_roof_acceleration{d}"]
+                   for d in directions)
+
+    isolated = ", ".join(f"{name} {roof_of(r) / pga:.2f}" for name, r in ratios.items())
+    print(f"roof acceleration / PGA ({pga:.2f} m/s2): fixed base {roof / pga:.2f}; {isolated}.")
+    print("An isolated roof above the PGA comes from the friction force reversing at each "
+          "stick-slip (a step of\nabout 2 mu W of base shear) exciting the sliding building's "
+          "own modes; it hardly depends on the\nbearings' u_y and falls with the "
+          "superstructure's damping: docs/presliding_study.md.")
 
 
 def example_path(name: str) -> Path:

@@ -39,7 +39,17 @@ MODEL_COLOURS = {"precise": "tab:red", "simplified": "tab:orange", "constant": "
 
 
 def colour(name: str, index: int) -> str:
+    """The colour of a run's label: its friction model's, else matplotlib's ``index``-th."""
     return MODEL_COLOURS.get(name, f"C{index}")
+
+
+def corner_bearing(result) -> int:
+    """The bearing position of a run that moved farthest (largest resultant displacement): in
+    plan the corner bearing that torsion loads most; in one direction the one group."""
+    import numpy as np
+
+    reach = np.sqrt((result["bearing_displacement"].values ** 2).sum(axis=-1))
+    return int(np.argmax(reach.max(axis=0)))
 
 
 def draw(figures: Sequence[tuple[Path, Callable[[], object], float]], *,

@@ -1,9 +1,9 @@
-"""The figures of runs of a building in plan under a pair of records: the bearings' orbits
-coloured by their contact temperature, the force orbits, the temperature field left on a plate,
-and the roof and drift responses per direction.
+"""The figures only a building in plan has: the bearings' orbits coloured by their contact
+temperature, the force orbits and the temperature field left on a plate.
 
-Each function takes the Datasets of :func:`structures.spatial.analysis.run_spatial` keyed by
-a label (one per friction model, say) and writes one PNG.
+Each function takes the Datasets of :func:`structures.analysis.run` in plan keyed by a label
+(one per friction model, say) and writes one PNG; :func:`dcfpb.plotting.building.plot_runs`
+draws them beside the figures every building has.
 """
 
 from __future__ import annotations
@@ -11,18 +11,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from dcfpb.plotting.base import PNG_OPTIONS, colour, draw, margins, pyplot
+from dcfpb.plotting.base import PNG_OPTIONS, colour, corner_bearing, margins, pyplot
 
-__all__ = ["plot_plan_runs"]
+__all__ = ["plot_bearing_orbits", "plot_force_orbits", "plot_plate_temperature"]
 
 
-def corner_bearing(result: Any) -> int:
-    """The bearing that moved farthest (largest resultant displacement): the corner bearing
-    that torsion loads most."""
-    import numpy as np
-
-    reach = np.hypot(*np.moveaxis(result["bearing_displacement"].values, -1, 0))
-    return int(np.argmax(reach.max(axis=0)))
 
 
 def _save(plt, fig, directory: Path, name: str, title: str) -> Path:
@@ -147,80 +140,3 @@ def plot_plate_temperature(results: dict[str, Any], directory: Path,
     colourbar = fig.colorbar(image, ax=list(axes[0]), fraction=0.04, pad=0.02)
     colourbar.set_label("plate temperature at the end [degC]")
     return _save(plt, fig, directory, "plate_temperature.png", title)
-
-
-def plot_plan_responses(results: dict[str, Any], directory: Path, title: str = "") -> Path:
-    """``plan_responses.png``: the roof's absolute acceleration along x and y, the base
-    rotation, and the envelope of the storey drift per direction."""
-    import numpy as np
-
-    plt = pyplot()
-    fig, axes = plt.subplots(2, 2, figsize=(11, 7))
-    margins(fig, left=0.85, bottom=0.6, top=0.9, hspace=0.4, wspace=0.3)
-    for i, (label, r) in enumerate(results.items()):
-        c = colour(label, i)
-        roof = r["absolute_acceleration"].isel(floor=-1).values
-        for axis in range(2):
-            axes[0, axis].plot(r["time"], roof[:, axis], lw=0.6, color=c, label=label)
-        axes[1, 0].plot(r["time"], 1e3 * r["rotation"].isel(floor=0).values, lw=0.6,
-                        color=c, label=label)
-        drift = 1e3 * np.abs(r["storey_drift"].values).max(axis=0)  # (storey, direction)
-        storeys = r["storey"].values
-        axes[1, 1].plot(drift[:, 0], storeys, "o-", color=c, label=f"{label}, x")
-        axes[1, 1].plot(drift[:, 1], storeys, "s--", color=c, label=f"{label}, y")
-    for axis, name in enumerate("xy"):
-        axes[0, axis].set_title(f"roof absolute acceleration, {name}")
-        axes[0, axis].set_xlabel("time [s]")
-        axes[0, axis].set_ylabel("[m/s^2]")
-    axes[1, 0].set_title("rotation of the base slab")
-    axes[1, 0].set_xlabel("time [s]")
-    axes[1, 0].set_ylabel("[mrad]")
-    axes[1, 1].set_title("peak storey drift")
-    axes[1, 1].set_xlabel("drift [mm]")
-    axes[1, 1].set_ylabel("storey")
-    axes[1, 1].yaxis.get_major_locator().set_params(integer=True)
-    for ax in axes.ravel():
-        ax.grid(alpha=0.3)
-    axes[0, 0].legend(loc="upper right", fontsize=8)
-    axes[1, 1].legend(loc="upper right", fontsize=7)
-    return _save(plt, fig, directory, "plan_responses.png", title)
-
-
-def plot_plan_runs(results: dict[str, Any], directory: str | Path, *, title: str = "",
-                   processes: int = 1) -> list[Path]:
-    """Figures of runs of a building in plan.
-
-    Writes ``bearing_orbits.png``, ``force_orbits.png``, ``plan_responses.png`` and, when a
-    run holds the plate's temperature field, ``plate_temperature.png`` to ``directory``.
-
-    Parameters
-    ----------
-    results : dict of str to xarray.Dataset
-        Output of :func:`structures.spatial.analysis.run_spatial`, keyed by a label.
-    directory : str or Path
-        Folder for the PNG files (created if missing).
-    title : str
-        Figure title.
-    processes : int
-        2: a forked copy of this process draws part of the figures
-        (:func:`dcfpb.plotting.base.draw`).
-
-    Returns
-    -------
-    list of Path
-        The files written.
-    """
-    directory = Path(directory)
-    directory.mkdir(parents=True, exist_ok=True)
-    figures = [
-        (directory / "bearing_orbits.png",
-         lambda: plot_bearing_orbits(results, directory, title), 1.0),
-        (directory / "force_orbits.png",
-         lambda: plot_force_orbits(results, directory, title), 1.0),
-        (directory / "plan_responses.png",
-         lambda: plot_plan_responses(results, directory, title), 1.5),
-    ]
-    if any("plate_temperature" in r for r in results.values()):
-        figures.append((directory / "plate_temperature.png",
-                        lambda: plot_plate_temperature(results, directory, title), 1.0))
-    return draw(figures, processes=processes)
