@@ -1,5 +1,10 @@
-"""``dcfpb protocol``: a virtual bearing test (a sine displacement history on one bearing) and
-its per-cycle force-deflection characteristics."""
+"""``dcfpb protocol``: a virtual bearing test and its per-cycle force-deflection
+characteristics: a sine displacement history along one axis, or with ``--orbit circle|figure8|
+square|line [--angle DEG]`` an orbit in the plane (:mod:`isolator.orbits`), whose size is
+``--amplitude`` (the circle's radius, the figure-eight's and the line's amplitude, the square's
+half side) and whose period, cycles and step are those of the sine. An orbit's report gives the
+characteristics along x and along y and the energy dissipated, integral of F . du, over the
+whole orbit and per cycle."""
 
 from __future__ import annotations
 
@@ -42,11 +47,21 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_max_steps(p, "the test")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument("--output", metavar="FILE.csv", help="write the history to a CSV file")
-    p.add_argument("--plot", metavar="FILE.png", help="draw the hysteresis loop and temperature")
-    from dcfpb.cli.orbit_protocol import add_orbit_flags
-
-    add_orbit_flags(p)
+    p.add_argument("--plot", metavar="FILE.png", help="draw the hysteresis loop(s) and the "
+                   "temperature")
+    p.add_argument("--orbit", choices=ORBIT_CHOICES, default=None,
+                   help="impose an orbit in the plane instead of the sine: circle (radius "
+                   "--amplitude), figure8, square (half side --amplitude) or line (the sine "
+                   "along --angle); reports each axis and the orbit's energy")
+    p.add_argument("--angle", type=float, default=None,
+                   help="rotation of the orbit, the line's direction [deg] (default 0; with "
+                   "--orbit)")
     p.set_defaults(handler=_run_protocol)
+
+
+ORBIT_CHOICES = ("circle", "figure8", "square", "line")
+"""The orbits of :data:`isolator.orbits.ORBITS`, written out so that parsing imports
+nothing."""
 
 
 _FLAGS = {  # flag: (low, high, low_open); None: unbounded; finite but for a flat slider's radius
@@ -83,61 +98,94 @@ def check_sine_flags(args: argparse.Namespace, command: str) -> None:
 
 
 def _run_protocol(args: argparse.Namespace) -> int:
-    if getattr(args, "orbit", None):  # a 2D orbit (dcfpb.cli.orbit_protocol)
-        from dcfpb.cli.orbit_protocol import run_orbit_protocol
-
-        return run_orbit_protocol(args, check_sine_flags)
     from dcfpb.cli.outputs import check_outputs
+    from dcfpb.common.errors import InputError
+    from dcfpb.common.validation import check_real
     from isolator.experiments import protocol_bearing
+    from isolator.orbits import orbit
     from isolator.protocols import sine
+    from isolator.testrig import run_orbit, run_test
 
+    command = "dcfpb protocol"
     check_outputs(files={"--output": args.output}, figures={"--plot": args.plot})
-    check_sine_flags(args, "dcfpb protocol")
+    check_sine_flags(args, command)
+    if args.orbit is None and args.angle is not None:
+        raise InputError(f"{command}: --angle turns an --orbit; give --orbit or leave it out.")
+    angle = check_real(args.angle or 0.0, "--angle", command, low=-360.0, high=360.0)
+    if args.orbit is None:
+        history = sine(args.amplitude, args.period, args.cycles, args.dt,
+                       max_steps=args.max_steps)
+        speed, reach = 2.0 * math.pi * args.amplitude / args.period, args.amplitude
+    else:
+        history = orbit(args.orbit, args.amplitude, args.period, args.cycles, args.dt,
+                        angle=angle, max_steps=args.max_steps)
+        speed = float(max(math.hypot(*v) for v in history.velocity))
+        reach = float(max(math.hypot(*u) for u in history.displacement))
     bearing = protocol_bearing(
-        model=args.model,
-        slider_diameter=args.slider_diameter,
-        effective_radius=args.effective_radius,
-        pressure=args.pressure,
-        axial_load=args.axial_load,
-        design_velocity=2.0 * math.pi * args.amplitude / args.period,
-        refinement=args.refinement,
-        mu0=args.mu0,
-        mu_t0=args.mu_t0,
-        initial_temperature=args.initial_temperature,
-        displacement_capacity=max(0.6, 1.05 * args.amplitude),
-    )
-    history = sine(args.amplitude, args.period, args.cycles, args.dt, max_steps=args.max_steps)
-    from isolator.testrig import run_test
-
-    result = run_test(bearing, history.time, history.displacement, history.velocity,
-                      name=history.name)
-    cycles = [c.to_dict() for c in result.characteristics()]
-    summary = {
-        "model": args.model,
-        "max_temperature": float(result.temperature.max()),
-        "axial_load": bearing.axial_load_at(0.0),
-        "cycles": cycles,
-    }
+        model=args.model, slider_diameter=args.slider_diameter,
+        effective_radius=args.effective_radius, pressure=args.pressure,
+        axial_load=args.axial_load, design_velocity=speed, refinement=args.refinement,
+        mu0=args.mu0, mu_t0=args.mu_t0, initial_temperature=args.initial_temperature,
+        displacement_capacity=max(0.6, 1.05 * reach))
+    if args.orbit is None:
+        result = run_test(bearing, history.time, history.displacement, history.velocity,
+                          name=history.name)
+    else:
+        result = run_orbit(bearing, history)
+    summary = {"model": args.model, "max_temperature": float(result.temperature.max()),
+               "axial_load": bearing.axial_load_at(0.0)}
+    if args.orbit is None:
+        summary["cycles"] = [c.to_dict() for c in result.characteristics()]
+    else:
+        blocks = [slice(start, stop) for label, start, stop in history.segments
+                  if label != "lead-in"]
+        summary |= {"orbit": args.orbit, "angle": angle,
+                    "dissipated_energy": result.dissipated_energy(),
+                    "energy_per_cycle": [result.dissipated_energy(b) for b in blocks],
+                    "cycles": {axis: _cycles(result, axis) for axis in ("x", "y")}}
     if args.output:
         result.to_csv(args.output)
     if args.plot:
         from dcfpb.plotting import plot_bearing_test
 
-        plot_bearing_test(result, args.plot, title=f"{args.model} model")
+        plot_bearing_test(result, args.plot, title=f"{args.model} model"
+                          + (f", {args.orbit} orbit" if args.orbit else ""))
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
-        _print_cycles(summary)
+        _print(summary)
     return 0
 
 
-def _print_cycles(summary: dict) -> None:
-    print(f"model: {summary['model']}   max temperature: {summary['max_temperature']:.1f} degC"
-          f"   axial load: {summary['axial_load'] / 1e3:.1f} kN")
+def _cycles(result, axis: str) -> list[dict]:
+    """The characteristics of the loops along ``axis`` (none when there is no complete loop
+    along it: a line across it)."""
+    try:
+        return [c.to_dict() for c in result.characteristics(axis)]
+    except ValueError:
+        return []
+
+
+def _print(summary: dict) -> None:
+    orbit = f"   orbit: {summary['orbit']} at {summary['angle']:g} deg" if "orbit" in summary \
+        else ""
+    print(f"model: {summary['model']}{orbit}   max temperature: "
+          f"{summary['max_temperature']:.1f} degC   axial load: "
+          f"{summary['axial_load'] / 1e3:.1f} kN")
+    if "orbit" in summary:
+        per_cycle = " ".join(f"{e / 1e3:.2f}" for e in summary["energy_per_cycle"])
+        print(f"dissipated energy: {summary['dissipated_energy'] / 1e3:.2f} kJ   "
+              f"per cycle: {per_cycle} kJ")
+    cycles = summary["cycles"]
+    axes = cycles if isinstance(cycles, dict) else {"": cycles}
     header = f"{'cycle':>5} {'Fmax kN':>9} {'Fmin kN':>9} {'Kru kN/m':>9} {'Krl kN/m':>9} " \
              f"{'EDC kJ':>8} {'Keff kN/m':>10} {'beta_eff':>8}"
-    print(header)
-    for c in summary["cycles"]:
-        print(f"{c['cycle']:>5d} {c['Fmax'] / 1e3:9.2f} {c['Fmin'] / 1e3:9.2f} "
-              f"{c['Kru'] / 1e3:9.1f} {c['Krl'] / 1e3:9.1f} {c['EDC'] / 1e3:8.2f} "
-              f"{c['Keff'] / 1e3:10.1f} {c['beta_eff']:8.3f}")
+    for axis, rows in axes.items():
+        if axis:
+            print(f"{axis} axis" + ("" if rows else ": no complete cycle"))
+        if rows or not axis:
+            print(header)
+        for c in rows:
+            print(f"{c['cycle']:>5d} {c['Fmax'] / 1e3:9.2f} {c['Fmin'] / 1e3:9.2f} "
+                  f"{c['Kru'] / 1e3:9.1f} {c['Krl'] / 1e3:9.1f} {c['EDC'] / 1e3:8.2f} "
+                  f"{c['Keff'] / 1e3:10.1f} {c['beta_eff']:8.3f}")

@@ -1,4 +1,4 @@
-"""The figure of a bearing test: hysteresis loop and temperature history."""
+"""The figure of a bearing test: hysteresis loop(s) and temperature history."""
 
 from __future__ import annotations
 
@@ -9,24 +9,32 @@ from dcfpb.plotting.base import PNG_OPTIONS, pyplot
 
 
 def plot_bearing_test(result: Any, path: str | Path, *, title: str = "") -> Path:
-    """Hysteresis loop (force against displacement) and temperature history of a bearing test.
+    """Hysteresis loop (force against displacement; one per axis for an orbit) and the
+    temperature history of a bearing test.
 
     Parameters
     ----------
     result : BearingTestResult
-        Output of :func:`isolator.testrig.run_test`.
+        Output of :func:`isolator.testrig.run_test` (a history or an orbit).
     path : str or Path
         PNG file to write.
     title : str
         Figure title.
     """
     plt = pyplot()
-    fig, (ax_loop, ax_temp) = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
-    ax_loop.plot(result.displacement * 1e3, result.force / 1e3, lw=0.8)
-    ax_loop.set_xlabel("displacement [mm]")
-    ax_loop.set_ylabel("horizontal force [kN]")
-    ax_loop.set_title("hysteresis loop")
-    ax_loop.grid(alpha=0.3)
+    axes_names = ("x", "y")[:result.dimension]
+    fig, axes = plt.subplots(1, 1 + result.dimension, figsize=(5.5 * (1 + result.dimension), 4.2),
+                             constrained_layout=True)
+    for axis, (ax_loop, name) in enumerate(zip(axes[:-1], axes_names, strict=True)):
+        where = "" if result.dimension == 1 else f" {name}"
+        u = result.displacement if result.dimension == 1 else result.displacement[:, axis]
+        f = result.force if result.dimension == 1 else result.force[:, axis]
+        ax_loop.plot(u * 1e3, f / 1e3, lw=0.8)
+        ax_loop.set_xlabel(f"displacement{where} [mm]")
+        ax_loop.set_ylabel(f"horizontal force{where} [kN]")
+        ax_loop.set_title("hysteresis loop" + ("" if result.dimension == 1 else f", {name}"))
+        ax_loop.grid(alpha=0.3)
+    ax_temp = axes[-1]
     ax_temp.plot(result.time, result.temperature, lw=0.9, color="tab:red")
     ax_temp.set_xlabel("time [s]")
     ax_temp.set_ylabel("contact temperature [degC]")
