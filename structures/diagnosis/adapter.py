@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
 from isolator.diagnosis import BearingRecord, Campaign
 
 if TYPE_CHECKING:
@@ -25,10 +26,11 @@ if TYPE_CHECKING:
 
 def bearing_records(result: xr.Dataset, *, name: str | None = None, per_bearing: bool = True,
                     velocity: bool = True) -> list[BearingRecord]:
-    """The isolators' histories of a building response, one record per bearing type.
+    """The isolators' histories of a building response in one direction, one record for its
+    bearings.
 
-    All bearings of :func:`structures.analysis.run` are identical and share the weight, so
-    one record stands for each of them.
+    All bearings of a building in one direction (:func:`structures.analysis.run`) are
+    identical and share the weight, so one record stands for each of them.
 
     Parameters
     ----------
@@ -37,8 +39,8 @@ def bearing_records(result: xr.Dataset, *, name: str | None = None, per_bearing:
     name : str, optional
         Name of the record (default: the record name of the run).
     per_bearing : bool
-        Divide the isolation-level force by the number of bearings (default), else keep the
-        total force and multiply the axial load by it.
+        The force through one bearing (default), else the isolation level's total force with
+        the axial load multiplied by the number of bearings.
     velocity : bool
         Pass the computed isolator velocity as the measured one (default); False leaves the
         diagnosis to derive it from the displacement.
@@ -47,13 +49,16 @@ def bearing_records(result: xr.Dataset, *, name: str | None = None, per_bearing:
     -------
     list of BearingRecord
     """
+    if result.sizes["direction"] != 1:
+        raise InputError("bearing_records reads a building in one direction: the diagnosis "
+                         "takes histories along one axis. Got a run in plan.")
     count = int(result.attrs["n_bearings"])
-    share = count if per_bearing else 1
     load = float(result.attrs["axial_load_per_bearing"]) * (1 if per_bearing else count)
     time = np.asarray(result["time"], dtype=float)
-    displacement = np.asarray(result["isolator_displacement"], dtype=float)
-    force = np.asarray(result["isolator_force"], dtype=float) / share
-    v = np.asarray(result["velocity"].isel(floor=0), dtype=float) if velocity else None
+    displacement = np.asarray(result["bearing_displacement"][:, 0, 0], dtype=float)
+    force = np.asarray(result["bearing_force"][:, 0, 0] if per_bearing
+                       else result["base_shear"][:, 0], dtype=float)
+    v = np.asarray(result["velocity"][:, 0, 0], dtype=float) if velocity else None
     label = name or str(result.attrs.get("record", "building response"))
     return [BearingRecord(label, time, displacement, force, np.full(time.size, load), v)]
 
