@@ -8,8 +8,9 @@
     MonitorLine` for the precise model, :class:`~isolator.heating.CentrePoint` for the
     simplified one) and a factor set (the paper's Eq. 1-3 or Kumar's).
 
-A model is a frozen parameter object with a ``name`` and an ``initial_temperature`` [degC];
-:meth:`bind` gives the stateful evaluator for one bearing geometry (contact radius, travel)
+A model is a frozen parameter object with a ``name``, an ``initial_temperature`` [degC] and
+``scaled(factor)`` (the model with its friction coefficient times a factor); :meth:`bind`
+gives the stateful evaluator for one bearing geometry (contact radius, travel)
 in one or two horizontal dimensions, as an OpenSees ``FrictionModel`` serves its bearing. An
 evaluator (:class:`FrictionState`) keeps the element contract: ``trial(position, velocity,
 pressure, dt) -> Friction`` (vectors as (x, y) pairs; a one-dimensional bearing moves along x)
@@ -27,7 +28,7 @@ method, and d mu / d|v| includes that coupling (it is negative on a hot plate at
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import NamedTuple, Protocol
 
 import numpy as np
@@ -123,6 +124,11 @@ class FrictionModel(Protocol):
         ``travel`` [m] apart, in ``dimension`` 1 or 2 directions."""
         ...
 
+    def scaled(self, factor: float) -> FrictionModel:
+        """The model with its friction coefficient times ``factor`` [-] (a property
+        modification factor, ASCE 7-16 Sec. 17.2.8.4)."""
+        ...
+
 
 def speed_of(velocity: Pair) -> float:
     """|v| of an (x, y) velocity [m/s] (exactly |v_x| when v_y = 0)."""
@@ -192,6 +198,11 @@ class ConstantFriction:
              orientation: float | None = None) -> ConstantFrictionState:
         """A stateless evaluator (neither the geometry nor the dimension matter)."""
         return ConstantFrictionState(self.mu, self.initial_temperature)
+
+    def scaled(self, factor: float) -> ConstantFriction:
+        """The model with mu_0, and so mu_c, times ``factor`` [-]."""
+        check_real(factor, "factor", "ConstantFriction.scaled", low=0.0, low_open=True)
+        return replace(self, mu0=self.mu0 * factor)
 
 
 class ConstantFrictionState:
@@ -344,6 +355,11 @@ class PTVFriction:
     def initial_temperature(self) -> float:
         """Temperature of the plates before any sliding [degC]."""
         return self.thermal.initial_temperature
+
+    def scaled(self, factor: float) -> PTVFriction:
+        """The model with mu_t0, and so mu at every state, times ``factor`` [-]."""
+        check_real(factor, "factor", "PTVFriction.scaled", low=0.0, low_open=True)
+        return replace(self, mu_t0=self.mu_t0 * factor)
 
     def bind(self, contact_radius: float, travel: float, dimension: int = 1,
              orientation: float | None = None) -> PTVFrictionState:

@@ -33,7 +33,6 @@ from dcfpb.common.validation import check_choice, check_real
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS
-from isolator.friction import ConstantFriction
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
 
@@ -131,10 +130,7 @@ def modified_bearing(config: BuildingConfig, model: str, modifier: float = 1.0) 
     bearing = config.bearing(check_choice(model, "model", "modified_bearing", MODELS))
     if modifier == 1.0:
         return bearing
-    friction = bearing.friction
-    name = "mu0" if isinstance(friction, ConstantFriction) else "mu_t0"
-    changed = replace(friction, **{name: getattr(friction, name) * modifier})
-    return replace(bearing, friction=changed)
+    return replace(bearing, friction=bearing.friction.scaled(modifier))
 
 
 def analysis_step(requested: float | None, record_dt: float) -> float:
