@@ -11,7 +11,6 @@ the package at run time, and the readers (`groundmotions.readers`, `groundmotion
 from groundmotions.bundled import bundled_names, load_bundled
 from groundmotions.pairs import GroundMotionPair, read_pair, read_pair_manifest
 from groundmotions.pairs.rotd import RotDSpectrum, rotd_spectra
-from groundmotions.pairs.scaling import PairScalingReport, scale_pairs
 from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.processing import (
     arias_intensity,
@@ -30,6 +29,7 @@ from groundmotions.scaling import (
     asce7_design_spectrum,
     isolated_period_range,
     scale_suite,
+    suite_spectra,
 )
 from groundmotions.spectra import (
     Spectrum,
@@ -55,7 +55,6 @@ __all__ = [
     "UNIT_NAMES",
     "GroundMotion",
     "GroundMotionPair",
-    "PairScalingReport",
     "PiecewiseEnvelope",
     "RecordFormatError",
     "RotDSpectrum",
@@ -86,11 +85,11 @@ __all__ = [
     "response_spectra",
     "response_spectrum",
     "rotd_spectra",
-    "scale_pairs",
     "scale_suite",
     "sdof_response",
     "significant_duration",
     "spectrum",
+    "suite_spectra",
     "synthetic_pair",
     "velocity_and_displacement",
     "zero_residuals",

@@ -13,7 +13,7 @@
 
 Synthetic pairs are made by `groundmotions.pairs.synthetic.synthetic_pair`, RotD spectra by
 `groundmotions.pairs.rotd`, the ASCE 7-16 scaling of a suite of pairs by
-`groundmotions.pairs.scaling`.
+`groundmotions.scale_suite`.
 A bad pair is refused, never repaired: components of different time steps or lengths raise
 `dcfpb.common.errors.InputError` naming both components and the way to make them agree.
 """
