@@ -11,7 +11,6 @@ the package at run time, and the readers (`groundmotions.readers`, `groundmotion
 from groundmotions.bundled import bundled_names, load_bundled
 from groundmotions.pairs import GroundMotionPair, read_pair, read_pair_manifest
 from groundmotions.pairs.rotd import RotDSpectrum, rotd_spectra
-from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.processing import (
     arias_intensity,
     baseline_corrected,
@@ -47,6 +46,7 @@ from groundmotions.synthetic import (
     clough_penzien_psd,
     kanai_tajimi,
     kanai_tajimi_psd,
+    synthetic_pair,
 )
 from groundmotions.units import TO_M_PER_S2, UNIT_NAMES, parse_units
 

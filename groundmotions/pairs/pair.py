@@ -11,7 +11,7 @@
     the pairs listed in a CSV file with the columns ``name, x, y`` and optionally ``z``,
     ``dt`` (for one-column text records) and ``units``; paths relative to the manifest.
 
-Synthetic pairs are made by `groundmotions.pairs.synthetic.synthetic_pair`, RotD spectra by
+Synthetic pairs are made by `groundmotions.synthetic.synthetic_pair`, RotD spectra by
 `groundmotions.pairs.rotd`, the ASCE 7-16 scaling of a suite of pairs by
 `groundmotions.scale_suite`.
 A bad pair is refused, never repaired: components of different time steps or lengths raise

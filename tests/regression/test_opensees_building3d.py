@@ -43,9 +43,9 @@ import numpy as np
 import pytest
 
 from groundmotions.pairs import GroundMotionPair, read_pair
-from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion
 from groundmotions.scaling import asce7_design_spectrum, isolated_period_range, scale_suite
+from groundmotions.synthetic import synthetic_pair
 from isolator.bearing import DCFPBearing
 from isolator.experiments import friction_model
 from structures.opensees.building3d import run_opensees_3d

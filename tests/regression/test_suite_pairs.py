@@ -33,9 +33,9 @@ from dcfpb.cli.suite import target_hook
 from dcfpb.common.errors import InputError, InputWarning
 from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.pairs import read_pair
-from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion
 from groundmotions.scaling import asce7_design_spectrum, scale_suite
+from groundmotions.synthetic import synthetic_pair
 from structures.config import load_config
 from structures.spatial.peaks import PLAN_PEAK_KEYS, plan_peaks
 from structures.suites.pairs.runs import PLAN_PEAK_COLUMNS, execute_pair_run, truncated_pair
