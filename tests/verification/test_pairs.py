@@ -144,6 +144,12 @@ def test_pair_operations(pair):
     cut = GroundMotionPair.truncated_to_common(pair.x, longer, name="cut")
     assert cut.npts == pair.npts and "common" in cut.y.processing[-1]
     assert pair.resampled(0.005).npts == 2 * pair.npts - 1
+    short = GroundMotionPair(pair.x, pair.y, pair.x, "p").truncated(2.0)
+    assert short.npts == 201 and all(m.processing[-1] == "truncated to 2 s (201 samples)"
+                                     for m in short)
+    np.testing.assert_array_equal(short.y.acceleration, pair.y.acceleration[:201])
+    with pytest.raises(ValueError, match=r"'duration' parameter of GroundMotionPair\.truncated"):
+        pair.truncated(2 * pair.duration)
 
 
 def test_manifest_reads_pairs_relative_to_its_folder(tmp_path):
