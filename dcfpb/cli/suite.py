@@ -259,38 +259,29 @@ def _plots(result, suite, target, period_range) -> list[Path]:
     from dcfpb.plotting.suite import plot_peak_distributions, plot_scaled_spectra
 
     out = Path(result.out_dir) / "plots"
-    kind = "peaks in plan" if "pair" in result.peaks.columns else "peaks"
+    pairs = "pair" in result.peaks.columns
+    kind = "peaks in plan" if pairs else "peaks"
     written = [plot_peak_distributions(result.peaks, out / "peak_distributions.png",
                                        title=f"{suite.config.name}: {kind} per friction model")]
-    if target is not None and "pair" in result.peaks.columns:
-        written.append(_pair_spectra_plot(result, suite, target, period_range, out))
-    elif target is not None:
-        first = result.peaks.drop_duplicates("record_file").set_index("record_file")
-        motions, _ = suite.read()
-        scaled = []
-        for file, motion in motions.items():
-            if suite.duration is not None:  # the part of the record that was run
-                motion = motion.truncated(min(suite.duration, motion.duration))
-            scaled.append(motion.scaled(float(first.loc[Path(file).name, "record_factor"])))
-        written.append(plot_scaled_spectra(scaled, *target, out / "scaled_spectra.png",
+    if target is not None:
+        written.append(plot_scaled_spectra(_scaled_suite(result, suite, pairs), *target,
+                                           out / "scaled_spectra.png",
                                            period_range=period_range))
     return written
 
 
-def _pair_spectra_plot(result, suite, target, period_range, out: Path) -> Path:
-    """The RotD100 spectra of the pairs as scaled (and truncated) for the suite."""
-    from dcfpb.plotting.suite import plot_scaled_pair_spectra
-    from structures.suites.pairs.runs import truncated_pair
-
-    first = result.peaks.drop_duplicates("pair").set_index("pair")
-    pairs, _ = suite.read()
+def _scaled_suite(result, suite, pairs: bool) -> list:
+    """The records or the pairs as scaled (and truncated) for the suite's runs."""
+    key = "pair" if pairs else "record_file"
+    first = result.peaks.drop_duplicates(key).set_index(key)
+    motions, _ = suite.read()
     scaled = []
-    for name, pair in pairs.items():
-        if suite.duration is not None:  # the part of the pair that was run
-            pair = truncated_pair(pair, suite.duration)
-        scaled.append(pair.scaled(float(first.loc[name, "record_factor"])))
-    return plot_scaled_pair_spectra(scaled, *target, out / "scaled_spectra.png",
-                                    period_range=period_range)
+    for name, motion in motions.items():
+        if suite.duration is not None:  # the part that was run
+            motion = motion.truncated(min(suite.duration, motion.duration))
+        factor = first.loc[name if pairs else Path(name).name, "record_factor"]
+        scaled.append(motion.scaled(float(factor)))
+    return scaled
 
 
 def _report(result, plots: list[Path], as_json: bool) -> None:
