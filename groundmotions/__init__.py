@@ -3,9 +3,10 @@
 Everything listed in ``__all__`` is importable from the package itself
 (``from groundmotions import read_record, spectrum``). The package imports nothing of the
 project but the lowest layer (``dcfpb.common``: errors, units, validation); within
-it, `groundmotions.records` (`GroundMotion`, `RecordFormatError`) imports no other module of
-the package at run time, and the readers (`groundmotions.readers`, `groundmotions.peer`,
-`groundmotions.text_records`) and the bundled records (`groundmotions.bundled`) import it.
+it, `groundmotions.records` (`GroundMotion`, `RecordFormatError`) imports only
+`groundmotions.processing` (which reads a record through a Protocol), and the readers
+(`groundmotions.readers`, `groundmotions.peer`, `groundmotions.text_records`), the bundled
+records (`groundmotions.bundled`) and the pairs (`groundmotions.pairs`) import it.
 """
 
 from groundmotions.bundled import bundled_names, load_bundled
