@@ -67,8 +67,8 @@ def pair(duration: float):
     """The synthetic 10 s pair with a vertical at ``DT``, repeated to ``duration`` [s] (so
     that every length sees the same shaking)."""
     from groundmotions.pairs import GroundMotionPair
-    from groundmotions.pairs.synthetic import synthetic_pair
     from groundmotions.records import GroundMotion
+    from groundmotions.synthetic import synthetic_pair
 
     base = synthetic_pair("kanai-tajimi", 11, duration=10.0, dt=DT, target_pga=4.0,
                           vertical_ratio=0.6, ground_frequency=15.0, ground_damping=0.6)

@@ -3,16 +3,15 @@
 Everything listed in ``__all__`` is importable from the package itself
 (``from groundmotions import read_record, spectrum``). The package imports nothing of the
 project but the lowest layer (``dcfpb.common``: errors, units, validation); within
-it, `groundmotions.records` (`GroundMotion`, `RecordFormatError`) imports no other module of
-the package at run time, and the readers (`groundmotions.readers`, `groundmotions.peer`,
-`groundmotions.text_records`) and the bundled records (`groundmotions.bundled`) import it.
+it, `groundmotions.records` (`GroundMotion`, `RecordFormatError`) imports only
+`groundmotions.processing` (which reads a record through a Protocol), and the readers
+(`groundmotions.readers`, `groundmotions.peer`, `groundmotions.text_records`), the bundled
+records (`groundmotions.bundled`) and the pairs (`groundmotions.pairs`) import it.
 """
 
 from groundmotions.bundled import bundled_names, load_bundled
 from groundmotions.pairs import GroundMotionPair, read_pair, read_pair_manifest
 from groundmotions.pairs.rotd import RotDSpectrum, rotd_spectra
-from groundmotions.pairs.scaling import PairScalingReport, scale_pairs
-from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.processing import (
     arias_intensity,
     baseline_corrected,
@@ -30,6 +29,7 @@ from groundmotions.scaling import (
     asce7_design_spectrum,
     isolated_period_range,
     scale_suite,
+    suite_spectra,
 )
 from groundmotions.spectra import (
     Spectrum,
@@ -47,6 +47,7 @@ from groundmotions.synthetic import (
     clough_penzien_psd,
     kanai_tajimi,
     kanai_tajimi_psd,
+    synthetic_pair,
 )
 from groundmotions.units import TO_M_PER_S2, UNIT_NAMES, parse_units
 
@@ -55,7 +56,6 @@ __all__ = [
     "UNIT_NAMES",
     "GroundMotion",
     "GroundMotionPair",
-    "PairScalingReport",
     "PiecewiseEnvelope",
     "RecordFormatError",
     "RotDSpectrum",
@@ -86,11 +86,11 @@ __all__ = [
     "response_spectra",
     "response_spectrum",
     "rotd_spectra",
-    "scale_pairs",
     "scale_suite",
     "sdof_response",
     "significant_duration",
     "spectrum",
+    "suite_spectra",
     "synthetic_pair",
     "velocity_and_displacement",
     "zero_residuals",

@@ -1,6 +1,6 @@
 """Reader of PEER .AT2 acceleration records (`read_peer_at2`).
 
-Every header layout met so far is read: ``NPTS=  7996, DT= .00500 SEC``,
+These header layouts are read: ``NPTS=  7996, DT= .00500 SEC``,
 ``NPTS=   1451, dt=  .02000``, ``NPTS=   7998, DT=   .0050 SEC,`` (trailing comma), the NGA
 "values first" ``7997 0.0050 NPTS, DT`` and free-text headers of any length (the NPTS/DT line is
 found by search, not by position), a trailing ``*** End Data ***`` line, and LF, CR LF, CR CR LF
@@ -164,7 +164,7 @@ def _parse_peer_line2(line: str) -> dict[str, str | None]:
 
 
 def _units_label(units: RecordUnits) -> str:
-    """``units_in_file`` of the metadata (the strings of earlier versions for g and cm/s^2)."""
+    """``units_in_file`` of the metadata: the unit, and where it came from unless the header."""
     if units.source == "default":
         return "g (not stated; the PEER AT2 convention)"
     return units.name if units.source == "header" else f"{units.name} (given by the caller)"

@@ -2,7 +2,7 @@
 (`groundmotions.peer`) and the text reader (`groundmotions.text_records`), re-exported here.
 
 ``read_peer_at2``
-    PEER .AT2 files in every header layout met so far (see `groundmotions.peer`).
+    PEER .AT2 files in the header layouts listed in `groundmotions.peer`.
 ``read_text_record``
     one column (acceleration; ``dt`` required) or two columns (time, acceleration; ``dt``
     inferred and checked to be uniform).

@@ -126,7 +126,9 @@ class GroundMotion:
         """Peak ground acceleration, max |a| [m/s^2]."""
         return float(np.max(np.abs(self.acceleration)))
 
-    def _derived(self, acceleration: np.ndarray, step: str) -> GroundMotion:
+    def derived(self, acceleration: np.ndarray, step: str) -> GroundMotion:
+        """A new record of this step, name and metadata with ``acceleration`` [m/s^2] and
+        ``step`` (what was done) appended to ``processing``."""
         return GroundMotion(
             acceleration, self.dt, self.name, dict(self.metadata), (*self.processing, step)
         )
@@ -134,11 +136,11 @@ class GroundMotion:
     def scaled(self, factor: float) -> GroundMotion:
         """Return a new record with the acceleration multiplied by ``factor`` [-]."""
         k = check_real(factor, "factor", "GroundMotion.scaled")
-        return self._derived(self.acceleration * k, f"scaled by {k:.12g}")
+        return self.derived(self.acceleration * k, f"scaled by {k:.12g}")
 
     def negated(self) -> GroundMotion:
         """Return a new record with the sign of the acceleration reversed."""
-        return self._derived(-self.acceleration, "negated")
+        return self.derived(-self.acceleration, "negated")
 
     def truncated(self, duration: float) -> GroundMotion:
         """Return the first ``duration`` seconds (samples with t <= duration) as a new record.
@@ -152,7 +154,7 @@ class GroundMotion:
             duration, "duration", "GroundMotion.truncated", low=self.dt, high=self.duration
         )
         n = min(self.npts, math.floor(d / self.dt + 1e-9) + 1)
-        return self._derived(self.acceleration[:n], f"truncated to {d:g} s ({n} samples)")
+        return self.derived(self.acceleration[:n], f"truncated to {d:g} s ({n} samples)")
 
     # Thin wrappers of the pure functions in `groundmotions.processing` (see there for details).
 

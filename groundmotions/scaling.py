@@ -7,12 +7,16 @@
 ``isolated_period_range``
     the ASCE 7-16 Section 17.3.3 period range 0.75 T_M ... 1.25 T_M of an isolated structure.
 ``scale_suite``
-    one amplitude factor per record so that the mean spectrum of the scaled suite is nowhere
-    below the target in the period range and touches it at its tightest period.
+    one amplitude factor per record, or per pair of records (every component of a pair scaled
+    alike), so that the mean spectral measure of the scaled suite is nowhere below the target
+    in the period range and touches it at its tightest period: a record's own spectrum, a
+    pair's maximum-direction (RotD100) spectrum by default (`suite_spectra`).
 
-Single horizontal components are scaled here (for the planar building); pairs of components
-for the building in plan are scaled on their maximum-direction (RotD100) spectrum by
-:mod:`groundmotions.pairs.scaling`.
+ASCE 7-16 Section 17.3.3 (isolated structures): for three-dimensional analysis a
+maximum-direction spectrum is formed for each pair, one factor scales both components, and over
+0.75 T_M (upper-bound properties) to 1.25 T_M (lower-bound properties) the average of the
+suite's spectra may not fall below the target. Section 16.2.3.1 (fixed-base structures) asks
+for 90 % of the target over its own range: ``fraction=0.9`` and that range.
 """
 
 from __future__ import annotations
@@ -23,13 +27,16 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.common.errors import InputTypeError
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.common.validation import check_array, check_choice, check_int, check_real
+from groundmotions.pairs import GroundMotionPair
+from groundmotions.pairs.rotd import rotd_spectra
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import spectrum
 
 __all__ = [
+    "MEASURES",
     "ScalingReport",
     "TargetSpectrum",
     "asce7_design_spectrum",
@@ -37,7 +44,18 @@ __all__ = [
     "scale_suite",
     "scaling_grid",
     "suite_factors",
+    "suite_spectra",
 ]
+
+Motion = GroundMotion | GroundMotionPair
+
+MEASURES: dict[type, tuple[str, ...]] = {
+    GroundMotion: ("sa",),
+    GroundMotionPair: ("rotd100", "rotd50"),
+}
+"""The spectral measures of a record and of a pair (`suite_spectra`), the default first."""
+
+_LABELS = {"sa": "spectrum", "rotd100": "RotD100 spectrum", "rotd50": "RotD50 spectrum"}
 
 MCE_FACTOR = 1.5
 """MCE_R over design spectral ordinates, ASCE 7-16 Section 11.4.7 [-]."""
@@ -187,25 +205,30 @@ class ScalingReport:
     Attributes
     ----------
     names : tuple of str
-        Record names, in the order given.
+        Names of the records or pairs, in the order given.
     individual_factors : numpy.ndarray
-        Step 1: the factor that matches each record to the target on average over the range
-        (geometric mean of target / record spectrum) [-].
+        Step 1: the factor that matches each one's ``measure`` to the target on average over
+        the range (geometric mean of target / measure) [-].
     common_factor : float
-        Step 2: the one factor applied to all records so the mean touches the target [-].
+        Step 2: the one factor applied to all so the mean touches the target [-].
     scale_factors : numpy.ndarray
         The factors applied, ``common_factor * individual_factors`` [-].
-    periods, target_sa, mean_sa : numpy.ndarray
-        The period grid [s], the target and the mean spectrum of the scaled suite [m/s^2].
+    periods, target_sa : numpy.ndarray
+        The period grid [s] and ``fraction`` times the target on it [m/s^2].
+    spectra : dict of str to numpy.ndarray
+        The spectral measures of the scaled suite on the grid (`suite_spectra`), each of shape
+        (len(names), len(periods)) [m/s^2]: ``"sa"`` of records, ``"rotd100"`` and
+        ``"rotd50"`` of pairs.
     ratio : numpy.ndarray
         ``mean_sa / target_sa`` on the grid [-].
     min_ratio, tightest_period : float
         The minimum of ``ratio`` (1 to round-off with ``method="mean"``, >= 1 with
         ``"individual"``) [-] and the grid period where it occurs [s].
-    motions : tuple of GroundMotion
-        The scaled records.
+    motions : tuple of GroundMotion or of GroundMotionPair
+        The scaled records or pairs.
     period_range : (float, float)
-        [s]. Also ``damping`` [-], ``method`` and ``target_name``.
+        [s]. Also ``damping`` [-], ``fraction`` [-], ``method``, ``measure`` (the key of
+        ``spectra`` the factors are fitted on) and ``target_name``.
     """
 
     names: tuple[str, ...]
@@ -214,41 +237,64 @@ class ScalingReport:
     scale_factors: np.ndarray
     periods: np.ndarray
     target_sa: np.ndarray
-    mean_sa: np.ndarray
+    spectra: dict[str, np.ndarray]
     ratio: np.ndarray
     min_ratio: float
     tightest_period: float
-    motions: tuple[GroundMotion, ...] = field(repr=False)
+    motions: tuple[Motion, ...] = field(repr=False)
     period_range: tuple[float, float] = (0.0, 0.0)
     damping: float = 0.05
+    fraction: float = 1.0
     method: str = "mean"
+    measure: str = "sa"
     target_name: str = ""
 
+    @property
+    def mean_spectra(self) -> dict[str, np.ndarray]:
+        """The mean over the suite of each of ``spectra`` [m/s^2]."""
+        return {name: sa.mean(axis=0) for name, sa in self.spectra.items()}
+
+    @property
+    def mean_sa(self) -> np.ndarray:
+        """The mean over the suite of the scaled ``measure`` [m/s^2]."""
+        return self.spectra[self.measure].mean(axis=0)
+
     def to_frame(self) -> Any:
-        """One row per record (index ``record``): individual, common and final factors, PGA of
-        the scaled record [m/s^2]; the summary (min ratio, tightest period ...) in ``attrs``."""
+        """One row per record (index ``record``) or pair (index ``pair``): individual, common
+        and final factors, the PGA of the scaled record (``scaled_pga``) or of the scaled
+        pair's x and y (``scaled_pga_x``, ``scaled_pga_y``) [m/s^2]; the summary (min ratio,
+        tightest period ...) in ``attrs``."""
         import pandas as pd
 
+        pairs = isinstance(self.motions[0], GroundMotionPair)
+        if pairs:
+            pga = {f"scaled_pga_{c}": [getattr(p, c).pga for p in self.motions] for c in "xy"}
+        else:
+            pga = {"scaled_pga": [m.pga for m in self.motions]}
         frame = pd.DataFrame(
             {
                 "individual_factor": self.individual_factors,
                 "common_factor": self.common_factor,
                 "scale_factor": self.scale_factors,
-                "scaled_pga": [m.pga for m in self.motions],
+                **pga,
             },
-            index=pd.Index(self.names, name="record"),
+            index=pd.Index(self.names, name="pair" if pairs else "record"),
         )
         frame.attrs.update(min_ratio=self.min_ratio, tightest_period=self.tightest_period,
                            period_range=self.period_range, damping=self.damping,
-                           method=self.method, target=self.target_name)
+                           fraction=self.fraction, method=self.method, measure=self.measure,
+                           target=self.target_name)
         return frame
 
     def spectrum_frame(self) -> Any:
-        """One row per period [s]: ``target_sa``, ``mean_sa`` [m/s^2] and ``ratio`` [-]."""
+        """One row per period [s]: ``target_sa``, the mean of each spectral measure
+        (``mean_sa`` of records; ``mean_rotd100``, ``mean_rotd50`` of pairs) [m/s^2] and
+        ``ratio`` [-]."""
         import pandas as pd
 
-        return pd.DataFrame({"target_sa": self.target_sa, "mean_sa": self.mean_sa,
-                             "ratio": self.ratio}, index=pd.Index(self.periods, name="period"))
+        means = {f"mean_{name}": sa for name, sa in self.mean_spectra.items()}
+        return pd.DataFrame({"target_sa": self.target_sa, **means, "ratio": self.ratio},
+                            index=pd.Index(self.periods, name="period"))
 
 
 def scaling_grid(target: object, period_range: object, n_periods: object, owner: str,
@@ -306,74 +352,118 @@ def suite_factors(spectra: np.ndarray, target_sa: np.ndarray, method: str,
     return individual, 1.0, individual / np.min(scaled / target_sa, axis=1)
 
 
+def suite_spectra(motions: Sequence[Motion], periods: np.ndarray, damping: float = 0.05,
+                  *, angle_step: float = 1.0) -> dict[str, np.ndarray]:
+    """The spectral measures of a suite, each of shape (len(motions), len(periods)) [m/s^2].
+
+    Records give ``{"sa": ...}``, each its own pseudo-acceleration spectrum
+    (`groundmotions.spectrum`); pairs give ``{"rotd100": ..., "rotd50": ...}``, the
+    orientation-independent spectra of their horizontals (`groundmotions.rotd_spectra`, the
+    directions ``angle_step`` [deg] apart). ``periods`` [s] and ``damping`` [-] as those take
+    them; ``motions`` are all records or all pairs (:data:`MEASURES`).
+    """
+    if isinstance(motions[0], GroundMotionPair):
+        rotd = [rotd_spectra(p, periods, damping, (50, 100), angle_step=angle_step)
+                for p in motions]
+        return {"rotd100": np.array([s.rotd100 for s in rotd]),
+                "rotd50": np.array([s.rotd50 for s in rotd])}
+    return {"sa": np.array([spectrum(m, periods, damping).sa for m in motions])}
+
+
+def _suite(motions: Any, owner: str) -> tuple[tuple[Motion, ...], type]:
+    """The records or the pairs of a suite and their kind (a key of :data:`MEASURES`)."""
+    suite = tuple(motions)
+    for kind in MEASURES:
+        if suite and all(isinstance(m, kind) for m in suite):
+            return suite, kind
+    raise InputTypeError(f"The 'motions' parameter of {owner} must be a non-empty sequence of "
+                         f"GroundMotion or of GroundMotionPair. Got {motions!r} instead.")
+
+
 def scale_suite(
-    motions: Sequence[GroundMotion],
+    motions: Sequence[GroundMotion] | Sequence[GroundMotionPair],
     target: TargetSpectrum | tuple[Any, Any],
     period_range: tuple[float, float],
     damping: float = 0.05,
     method: str = "mean",
     *,
+    measure: str | None = None,
+    fraction: float = 1.0,
     n_periods: int = 60,
+    angle_step: float = 1.0,
 ) -> ScalingReport:
     """Amplitude-scale a suite so its mean spectrum envelopes the target over a period range.
 
     Parameters
     ----------
-    motions : sequence of GroundMotion
-        The records, at least one.
+    motions : sequence of GroundMotion, or sequence of GroundMotionPair
+        The records, or the pairs (one factor for every component of a pair), at least one.
     target : TargetSpectrum or (array_like, array_like)
         The target, or a ``(periods [s], sa [m/s^2])`` table made into one; its periods must
         cover ``period_range``.
     period_range : (float, float)
         ``(T_min, T_max)`` with 0 < T_min <= T_max [s], e.g. `isolated_period_range`.
     damping : float
-        Damping ratio of the record spectra, in [0, 1) [-].
+        Damping ratio of the spectra, in [0, 1) [-].
     method : {"mean", "individual"}
         ``"mean"`` (ASCE 7-16 17.3.3): the arithmetic mean spectrum of the scaled suite is not
-        below the target anywhere on the grid and equals it at the tightest period.
-        ``"individual"``: each record's own spectrum satisfies that (more conservative).
+        below ``fraction`` times the target anywhere on the grid and equals it at the tightest
+        period. ``"individual"``: each record's (pair's) own spectrum satisfies that (more
+        conservative).
+    measure : {"sa", "rotd100", "rotd50"}, optional
+        The spectrum the factors are fitted on: ``"sa"``, a record's own (the only one of
+        records); ``"rotd100"`` (the default of pairs, ASCE 7-16 17.3.3) or ``"rotd50"``, a
+        pair's maximum-direction or median-direction spectrum.
+    fraction : float
+        The share of the target the mean must reach, in (0, 1] [-] (1 for 17.3.3).
     n_periods : int
         Number of log-spaced grid periods over the range, in [2, 1000] (1 if T_min = T_max).
+    angle_step : float
+        Step of the directions of a pair's RotD spectra [deg] (see `rotd_spectra`).
 
     Returns
     -------
     ScalingReport
-        The factors, the scaled records and the mean-to-target ratio on the grid.
+        The factors, the scaled suite, its spectra and the mean-to-target ratio on the grid.
 
     Notes
     -----
-    Step 1 scales each record to match the target on average over the range: its factor is
-    the geometric mean over the log-spaced grid of ``target / Sa_record`` (a least-squares fit
-    in log(Sa), so no single period dominates). Step 2 multiplies all records by one common
-    factor ``1 / min_T(mean_i(Sa_i) / target)``, so the mean touches the target at one grid
-    period and is above it at the others. With ``"individual"`` step 2 is made per record.
-    The criterion is checked on the grid only; between grid periods the mean may dip by
-    the spectrum's variation over one grid interval.
+    Step 1 scales each record (pair) to match the target on average over the range: its
+    factor is the geometric mean over the log-spaced grid of ``target / measure`` (a
+    least-squares fit in log(Sa), so no single period dominates). Step 2 multiplies all by one
+    common factor ``1 / min_T(mean_i(Sa_i) / target)``, so the mean touches the target at one
+    grid period and is above it at the others. With ``"individual"`` step 2 is made per
+    record. A spectrum, and a RotD spectrum (|k u_theta| = |k| |u_theta| at every angle),
+    scales with its record, so the spectra are computed once, unscaled, and multiplied by the
+    factors. The criterion is checked on the grid only; between grid periods the mean may dip
+    by the spectrum's variation over one grid interval.
     """
     owner = "scale_suite"
-    records = tuple(motions)
-    if not records or not all(isinstance(m, GroundMotion) for m in records):
-        raise TypeError(f"The 'motions' parameter of {owner} must be a non-empty sequence of "
-                        f"GroundMotion. Got {motions!r} instead.")
+    suite, kind = _suite(motions, owner)
     target, periods, (t_min, t_max) = scaling_grid(target, period_range, n_periods, owner)
-    kind = check_choice(method, "method", owner, ("mean", "individual"))
+    how = check_choice(method, "method", owner, ("mean", "individual"))
+    fitted = check_choice(MEASURES[kind][0] if measure is None else measure, "measure", owner,
+                          MEASURES[kind])
     zeta = check_real(damping, "damping", owner, low=0.0, high=1.0, high_open=True)
-    target_sa = target.sa_at(periods)
-    spectra = np.array([spectrum(m, periods, zeta).sa for m in records])
-    empty = np.flatnonzero(~(spectra > 0.0).all(axis=1))
+    share = check_real(fraction, "fraction", owner, low=0.0, high=1.0, low_open=True)
+    target_sa = share * target.sa_at(periods)
+    spectra = suite_spectra(suite, periods, zeta, angle_step=angle_step)
+    empty = np.flatnonzero(~(spectra[fitted] > 0.0).all(axis=1))
     if empty.size:
-        raise ValueError(f"The 'motions' parameter of {owner} must hold records with a "
-                         f"non-zero spectrum over the range. Got {records[empty[0]]!r} at "
-                         f"index {empty[0]} instead.")
-    individual, common, factors = suite_factors(spectra, target_sa, kind)
-    out = tuple(m.scaled(float(k)) for m, k in zip(records, factors, strict=True))
-    mean_sa = (factors[:, None] * spectra).mean(axis=0)
-    ratio = mean_sa / target_sa
+        noun = "pairs" if kind is GroundMotionPair else "records"
+        raise InputError(f"The 'motions' parameter of {owner} must hold {noun} with a non-zero "
+                         f"{_LABELS[fitted]} over the range. Got {suite[empty[0]]!r} at index "
+                         f"{empty[0]} instead.")
+    individual, common, factors = suite_factors(spectra[fitted], target_sa, how)
+    scaled = {name: factors[:, None] * sa for name, sa in spectra.items()}
+    ratio = scaled[fitted].mean(axis=0) / target_sa
     tight = int(np.argmin(ratio))
     return ScalingReport(
-        names=tuple(m.name for m in records), individual_factors=individual,
+        names=tuple(m.name for m in suite), individual_factors=individual,
         common_factor=common, scale_factors=factors, periods=periods, target_sa=target_sa,
-        mean_sa=mean_sa, ratio=ratio, min_ratio=float(ratio[tight]),
-        tightest_period=float(periods[tight]), motions=out, period_range=(t_min, t_max),
-        damping=zeta, method=kind, target_name=target.name,
+        spectra=scaled, ratio=ratio, min_ratio=float(ratio[tight]),
+        tightest_period=float(periods[tight]),
+        motions=tuple(m.scaled(float(k)) for m, k in zip(suite, factors, strict=True)),
+        period_range=(t_min, t_max), damping=zeta, fraction=share, method=how,
+        measure=fitted, target_name=target.name,
     )

@@ -245,17 +245,23 @@ def response_spectrum(
     acc, step = _check_record(acceleration, dt, owner)
     t = _check_periods(periods, owner, allow_zero=True)
     zeta = _check_damping(damping, owner)
-    sd = np.zeros_like(t)
-    sa = np.zeros_like(t)
-    sv = np.zeros_like(t)
+    sd, sv, sa = _spectra(acc[:, None], step, t, zeta)
+    return Spectrum(t, sd[0], sv[0], sa[0], zeta)
+
+
+def _spectra(acc: np.ndarray, step: float, t: np.ndarray, zeta: float,
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """sd [m], sv [m/s], sa [m/s^2] of shape (m, len(t)) of the checked records acc (npts, m)."""
+    shape = (acc.shape[1], t.size)
+    sd, sv, sa = np.zeros(shape), np.zeros(shape), np.zeros(shape)
     rigid = t == 0.0
-    sa[rigid] = np.max(np.abs(acc))
+    sa[:, rigid] = np.max(np.abs(acc), axis=0)[:, None]
     if (~rigid).any():
         omega = 2 * np.pi / t[~rigid]
-        sd[~rigid] = oscillator_recurrence(acc, step, omega, zeta)
-        sv[~rigid] = omega * sd[~rigid]
-        sa[~rigid] = omega**2 * sd[~rigid]
-    return Spectrum(t, sd, sv, sa, zeta)
+        sd[:, ~rigid] = oscillator_recurrence(acc, step, omega, zeta)
+        sv[:, ~rigid] = omega * sd[:, ~rigid]
+        sa[:, ~rigid] = omega**2 * sd[:, ~rigid]
+    return sd, sv, sa
 
 
 def response_spectra(
@@ -264,8 +270,7 @@ def response_spectra(
     """`response_spectrum` of several records sampled alike, in one pass over the samples.
 
     Used for floor response spectra (every floor of a run at once). Each row of the result is
-    what :func:`response_spectrum` gives for that record, to the last digit: the recurrence does
-    the same arithmetic, only on more oscillators at a time.
+    what :func:`response_spectrum` gives for that record, which is this computation on one.
 
     Parameters
     ----------
@@ -288,16 +293,7 @@ def response_spectra(
     step = check_real(dt, "dt", owner, low=0.0, low_open=True)
     t = _check_periods(periods, owner, allow_zero=True)
     zeta = _check_damping(damping, owner)
-    shape = (acc.shape[1], t.size)
-    sd, sv, sa = np.zeros(shape), np.zeros(shape), np.zeros(shape)
-    rigid = t == 0.0
-    sa[:, rigid] = np.max(np.abs(acc), axis=0)[:, None]
-    if (~rigid).any():
-        omega = 2 * np.pi / t[~rigid]
-        sd[:, ~rigid] = oscillator_recurrence(acc, step, omega, zeta)
-        sv[:, ~rigid] = omega * sd[:, ~rigid]
-        sa[:, ~rigid] = omega**2 * sd[:, ~rigid]
-    return Spectrum(t, sd, sv, sa, zeta)
+    return Spectrum(t, *_spectra(acc, step, t, zeta), zeta)
 
 
 def spectrum(motion: GroundMotion, periods: np.ndarray, damping: float = 0.05) -> Spectrum:

@@ -6,6 +6,11 @@ is multiplied by a deterministic time envelope. The white noise comes from
 seed (with the same numpy version and platform); every parameter and the seed are written to
 the record's ``metadata``.
 
+``synthetic_pair`` draws a horizontal pair (and optionally a vertical) from one generator with
+the same parameters and the seeds ``seed``, ``seed + 1`` (and ``seed + 2``): independent
+realisations of one process, so no direction is preferred (each a PCG64 stream; numpy's
+seeding hashes the seed, so neighbouring seeds give unrelated streams).
+
 Power spectral densities are two-sided and per rad/s: the variance of a process is
 ``integral_{-inf}^{inf} S(omega) d omega``. With the white-noise intensity S0
 [m^2/s^3 = (m/s^2)^2 / (rad/s)]
@@ -33,21 +38,26 @@ stochastic method", Pure Appl. Geophys. 160, 635-676 (the (epsilon, eta) paramet
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
 
+from dcfpb.common.errors import InputTypeError
 from dcfpb.common.validation import check_choice, check_int, check_real
+from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 
 __all__ = [
+    "GENERATORS",
     "PiecewiseEnvelope",
     "SaragoniHartEnvelope",
     "clough_penzien",
     "clough_penzien_psd",
     "kanai_tajimi",
     "kanai_tajimi_psd",
+    "synthetic_pair",
 ]
 
 
@@ -316,3 +326,70 @@ def clough_penzien(
         {"ground_frequency": ground_frequency, "ground_damping": ground_damping,
          "filter_frequency": filter_frequency, "filter_damping": filter_damping},
         intensity, target_pga, envelope, seed, name)
+
+
+GENERATORS: dict[str, Callable[..., GroundMotion]] = {
+    "kanai-tajimi": kanai_tajimi,
+    "clough-penzien": clough_penzien,
+}
+"""The generators a pair can be drawn from, by name."""
+
+
+def synthetic_pair(
+    generator: str | Callable[..., GroundMotion],
+    seed: int,
+    *,
+    duration: float,
+    dt: float,
+    vertical_ratio: float | None = None,
+    name: str | None = None,
+    **parameters: Any,
+) -> GroundMotionPair:
+    """A pair of independent synthetic horizontals (and optionally a vertical).
+
+    Parameters
+    ----------
+    generator : {"kanai-tajimi", "clough-penzien"} or callable
+        The generator, by name or as the function (`kanai_tajimi`, `clough_penzien` or one
+        with their signature: ``(duration, dt, *, seed, name, **parameters) -> GroundMotion``).
+    seed : int
+        Seed of the pair, >= 0: x uses ``seed``, y ``seed + 1``, z ``seed + 2``.
+    duration : float
+        Record length, > 0 [s].
+    dt : float
+        Time step [s] (see the generator).
+    vertical_ratio : float, optional
+        If given, add a vertical component: a third realisation of the same process
+        multiplied by this ratio, > 0 [-] (e.g. 2/3, the classical vertical-to-horizontal
+        ratio; with ``target_pga`` the vertical's PGA is ``vertical_ratio * target_pga``).
+    name : str, optional
+        The pair's name; ``"<generator> pair (seed <seed>)"`` by default.
+    **parameters
+        Keyword parameters of the generator (``ground_frequency`` [rad/s],
+        ``ground_damping`` [-], ``intensity`` [m^2/s^3] or ``target_pga`` [m/s^2],
+        ``envelope`` ...), the same for every component.
+
+    Returns
+    -------
+    GroundMotionPair
+        Components named ``<name> x``, ``<name> y`` (and ``<name> z``) [m/s^2].
+    """
+    owner = "synthetic_pair"
+    if isinstance(generator, str):
+        make = GENERATORS[check_choice(generator, "generator", owner, tuple(GENERATORS))]
+        label = generator
+    elif callable(generator):
+        make, label = generator, getattr(generator, "__name__", "synthetic")
+    else:
+        raise InputTypeError(f"The 'generator' parameter of {owner} must be one of "
+                             f"{tuple(GENERATORS)} or a generator function. "
+                             f"Got {generator!r} instead.")
+    first = check_int(seed, "seed", owner, low=0)
+    ratio = None if vertical_ratio is None else check_real(
+        vertical_ratio, "vertical_ratio", owner, low=0.0, low_open=True)
+    pair_name = name if name is not None else f"{label} pair (seed {first})"
+    roles = ("x", "y") if ratio is None else ("x", "y", "z")
+    motions = {role: make(duration, dt, seed=first + k, name=f"{pair_name} {role}",
+                          **parameters) for k, role in enumerate(roles)}
+    z = None if ratio is None else motions["z"].scaled(ratio)
+    return GroundMotionPair(motions["x"], motions["y"], z, pair_name)

@@ -139,7 +139,7 @@ def _print_torsion(rows: dict[str, dict], plan) -> None:
 
 PLAN_PAIR = {"generator": "kanai-tajimi", "seed": 1940, "duration": 15.0, "dt": 0.01,
              "ground_frequency": 12.0, "ground_damping": 0.6}
-"""The synthetic pair of ``--plan`` (:func:`groundmotions.pairs.synthetic.synthetic_pair`)."""
+"""The synthetic pair of ``--plan`` (:func:`groundmotions.synthetic.synthetic_pair`)."""
 
 PLAN_PGA_X, PLAN_PGA_Y = 3.1, 2.5
 """Peak ground accelerations of the two components [m/s^2] (El Centro 1940 N-S: 3.13)."""
@@ -151,7 +151,7 @@ PLAN_STEP = 0.01
 def plan_demo_pair():
     """The pair of ``--plan``: x scaled to :data:`PLAN_PGA_X`, y to :data:`PLAN_PGA_Y` [m/s^2]."""
     from groundmotions.pairs import GroundMotionPair
-    from groundmotions.pairs.synthetic import synthetic_pair
+    from groundmotions.synthetic import synthetic_pair
 
     spec = PLAN_PAIR
     pair = synthetic_pair(spec["generator"], spec["seed"], duration=spec["duration"],

@@ -255,13 +255,6 @@ def add_plan_options(p: argparse.ArgumentParser) -> None:
                    "forces (OpenSees has none; the gap it makes is then measured)")
 
 
-def _truncated(pair, duration: float):
-    from groundmotions.pairs import GroundMotionPair
-
-    parts = [None if m is None else m.truncated(duration) for m in (pair.x, pair.y, pair.z)]
-    return GroundMotionPair(*parts, name=pair.name)
-
-
 def run_plan_comparison(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb compare-opensees`` with ``--record-y``; returns the exit status."""
     import dataclasses
@@ -292,7 +285,7 @@ def run_plan_comparison(args: argparse.Namespace) -> int:
     integrator = integrator_from_args(config, args.integrator, args.alpha)
     pair = pair_from_args(args, config, command)
     if args.duration is not None:
-        pair = _truncated(pair, args.duration)
+        pair = pair.truncated(args.duration)
     dt = args.dt if args.dt is not None else config.dt
     check_run(pair.x, default_step(pair.dt) if dt is None else dt,
               spatial_fields(config.building.n_storeys, config.plan.n_bearings),

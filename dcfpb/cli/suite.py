@@ -46,9 +46,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--target", metavar="SPECTRUM",
                    help="target spectrum: a CSV of rows 'period,sa' in [s, g], or "
                    "asce7:S_DS,S_D1,T_L (asce7-mce:... for MCE_R); each record is scaled "
-                   "to it (groundmotions.scaling.scale_suite), each pair on its RotD100 "
-                   "(groundmotions.pairs.scaling.scale_pairs, ASCE 7-16); --scales then "
-                   "multiplies those factors")
+                   "to it, each pair on its RotD100 (groundmotions.scaling.scale_suite, "
+                   "ASCE 7-16); --scales then multiplies those factors")
     p.add_argument("--period-range", metavar="TMIN,TMAX",
                    help="period range of the scaling [s] (default 0.75 and 1.25 times the "
                    "isolated period 2 pi sqrt(R_eff / g))")
@@ -155,7 +154,8 @@ def factors_from_report(report: Any, names: Sequence[str]) -> Mapping[str, float
 
 
 def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float, float]):
-    """The record-factor hook of a target spectrum, through ``groundmotions.scaling``.
+    """The factor hook of a target spectrum [s, g] for a suite of records or of pairs, through
+    ``groundmotions.scaling``.
 
     ``scale_suite(motions, (periods [s], sa [m/s^2]), period_range)`` is the one call to
     the scaling module; change it here if its signature differs.
@@ -189,6 +189,7 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
 def _suite(args: argparse.Namespace, config, target, period_range):
     """The suite of the command line and the function that runs it: of records, or of pairs
     (``--pairs``), the latter refused before any work on a building file without ``[plan]``."""
+    factors = None if target is None else target_hook(*target, period_range)
     if args.pairs is None:
         from structures.suites.suite import Suite, record_files, run_suite
 
@@ -200,28 +201,18 @@ def _suite(args: argparse.Namespace, config, target, period_range):
             warnings.warn(InputWarning(
                 "the building file's [plan] table is not used: single records run the planar "
                 "building along x; give --pairs to run it in plan"), stacklevel=1)
-
-        factors = None if target is None else target_hook(*target, period_range)
         return Suite(config, record_files(args.records), models=args.models.split(","),
                      scales=_floats(args.scales, "--scales"),
                      property_modifiers=_floats(args.modifiers, "--modifiers"),
                      record_factors=factors, duration=args.duration, dt=args.dt), run_suite
     from dcfpb.common.errors import InputError
-    from structures.suites.pairs.suite import (
-        PairSuite,
-        pair_sources,
-        rotd100_factors,
-        run_pair_suite,
-    )
+    from structures.suites.pairs.suite import PairSuite, pair_sources, run_pair_suite
 
     if config.plan is None:
         raise InputError(f"--pairs runs a building in plan, but the building file "
                          f"{args.building!r} has no [plan] table (bearing_coordinates, "
                          "eccentricity, ...; see README, 'A building in plan'). Give --records "
                          "to run it planar under single records.")
-    factors = None
-    if target is not None:
-        factors = rotd100_factors((target[0], target[1] * STANDARD_GRAVITY), period_range)
     return PairSuite(config, pair_sources(args.pairs), models=args.models.split(","),
                      scales=_floats(args.scales, "--scales"),
                      property_modifiers=_floats(args.modifiers, "--modifiers"),
@@ -268,38 +259,29 @@ def _plots(result, suite, target, period_range) -> list[Path]:
     from dcfpb.plotting.suite import plot_peak_distributions, plot_scaled_spectra
 
     out = Path(result.out_dir) / "plots"
-    kind = "peaks in plan" if "pair" in result.peaks.columns else "peaks"
+    pairs = "pair" in result.peaks.columns
+    kind = "peaks in plan" if pairs else "peaks"
     written = [plot_peak_distributions(result.peaks, out / "peak_distributions.png",
                                        title=f"{suite.config.name}: {kind} per friction model")]
-    if target is not None and "pair" in result.peaks.columns:
-        written.append(_pair_spectra_plot(result, suite, target, period_range, out))
-    elif target is not None:
-        first = result.peaks.drop_duplicates("record_file").set_index("record_file")
-        motions, _ = suite.read()
-        scaled = []
-        for file, motion in motions.items():
-            if suite.duration is not None:  # the part of the record that was run
-                motion = motion.truncated(min(suite.duration, motion.duration))
-            scaled.append(motion.scaled(float(first.loc[Path(file).name, "record_factor"])))
-        written.append(plot_scaled_spectra(scaled, *target, out / "scaled_spectra.png",
+    if target is not None:
+        written.append(plot_scaled_spectra(_scaled_suite(result, suite, pairs), *target,
+                                           out / "scaled_spectra.png",
                                            period_range=period_range))
     return written
 
 
-def _pair_spectra_plot(result, suite, target, period_range, out: Path) -> Path:
-    """The RotD100 spectra of the pairs as scaled (and truncated) for the suite."""
-    from dcfpb.plotting.suite import plot_scaled_pair_spectra
-    from structures.suites.pairs.runs import truncated_pair
-
-    first = result.peaks.drop_duplicates("pair").set_index("pair")
-    pairs, _ = suite.read()
+def _scaled_suite(result, suite, pairs: bool) -> list:
+    """The records or the pairs as scaled (and truncated) for the suite's runs."""
+    key = "pair" if pairs else "record_file"
+    first = result.peaks.drop_duplicates(key).set_index(key)
+    motions, _ = suite.read()
     scaled = []
-    for name, pair in pairs.items():
-        if suite.duration is not None:  # the part of the pair that was run
-            pair = truncated_pair(pair, suite.duration)
-        scaled.append(pair.scaled(float(first.loc[name, "record_factor"])))
-    return plot_scaled_pair_spectra(scaled, *target, out / "scaled_spectra.png",
-                                    period_range=period_range)
+    for name, motion in motions.items():
+        if suite.duration is not None:  # the part that was run
+            motion = motion.truncated(min(suite.duration, motion.duration))
+        factor = first.loc[name if pairs else Path(name).name, "record_factor"]
+        scaled.append(motion.scaled(float(factor)))
+    return scaled
 
 
 def _report(result, plots: list[Path], as_json: bool) -> None:

@@ -1,5 +1,5 @@
 """Figures of a ground-motion suite: peak distributions per friction model (of records, or of
-pairs on a building in plan), scaled spectra (of records, or the RotD100 of pairs).
+pairs on a building in plan), scaled spectra (of records, or the RotD100 and RotD50 of pairs).
 
 matplotlib is imported inside each function (Agg backend) so the library runs without it.
 """
@@ -80,12 +80,59 @@ def plot_peak_distributions(peaks: pd.DataFrame, path: str | Path, *, title: str
     return path
 
 
-def _finish_spectra(plt, fig, ax, target_periods: np.ndarray, target_sa: np.ndarray,
-                    period_range: tuple[float, float] | None, damping: float, title: str,
-                    path: str | Path) -> Path:
-    """Add the target [g] and the shaded period range to spectra drawn on ``ax``, label the
-    log-log axes, save the figure to ``path`` and close it."""
-    ax.plot(target_periods, np.asarray(target_sa, dtype=float), color="tab:red", lw=2.0,
+def plot_scaled_spectra(
+    motions: Sequence[GroundMotion] | Sequence[GroundMotionPair],
+    target_periods: np.ndarray,
+    target_sa: np.ndarray,
+    path: str | Path,
+    *,
+    period_range: tuple[float, float] | None = None,
+    damping: float = 0.05,
+    title: str = "",
+) -> Path:
+    """Spectra of the scaled suite, their mean, and the target: each record's own spectrum, or
+    each pair's RotD100 with the mean RotD50 beside (`groundmotions.suite_spectra`).
+
+    Parameters
+    ----------
+    motions : sequence of GroundMotion, or sequence of GroundMotionPair
+        The records or the pairs as scaled for the suite (acceleration [m/s^2]).
+    target_periods : array_like
+        Periods of the target spectrum [s].
+    target_sa : array_like
+        Target pseudo-spectral acceleration [g].
+    path : str or Path
+        PNG file to write.
+    period_range : (float, float), optional
+        Period range of the scaling [s], shaded.
+    damping : float
+        Damping ratio of the spectra [-].
+    title : str
+        Figure title.
+    """
+    from groundmotions.pairs import GroundMotionPair
+    from groundmotions.scaling import suite_spectra
+
+    plt = _pyplot()
+    t_target = np.asarray(target_periods, dtype=float)
+    pairs = bool(motions) and isinstance(motions[0], GroundMotionPair)
+    noun = "pairs" if pairs else "records"
+    top = max(10.0, 1.2 * float(t_target.max()))
+    periods = np.geomspace(0.02, top, 100 if pairs else 160)  # RotD costs 180 directions
+    fig, ax = plt.subplots(figsize=(8, 5.5), constrained_layout=True)
+    spectra = suite_spectra(motions, periods, damping) if motions else {}
+    for k, (measure, sa) in enumerate(spectra.items()):  # the fitted measure first
+        sa = sa / STANDARD_GRAVITY
+        name = "" if measure == "sa" else measure.replace("rotd", "RotD") + " "
+        if k == 0:
+            each = f"{name}of the scaled {noun}" if name else f"scaled {noun}"
+            for i, row in enumerate(sa):
+                ax.plot(periods, row, color="0.6", lw=0.6, label=each if i == 0 else None)
+            ax.plot(periods, sa.mean(axis=0), color="k", lw=2.0,
+                    label=f"mean {name}of {len(sa)} {noun}")
+        else:
+            ax.plot(periods, sa.mean(axis=0), color="k", lw=1.2, ls=":", label=f"mean {name}")
+    ax.plot(t_target, np.asarray(target_sa, dtype=float), color="tab:red", lw=2.0,
             ls="--", label="target")
     if period_range is not None:
         ax.axvspan(*period_range, color="tab:orange", alpha=0.15, label="scaling period range")
@@ -93,7 +140,8 @@ def _finish_spectra(plt, fig, ax, target_periods: np.ndarray, target_sa: np.ndar
     ax.set_yscale("log")
     ax.set_xlabel("period [s]")
     ax.set_ylabel(f"pseudo-spectral acceleration ({100 * damping:g} % damping) [g]")
-    ax.set_title(title)
+    ax.set_title(title or f"scaled {noun}{' (RotD100)' if pairs else ''} against the target "
+                 "spectrum")
     ax.grid(alpha=0.3, which="both")
     ax.legend()
     path = Path(path)
@@ -101,103 +149,3 @@ def _finish_spectra(plt, fig, ax, target_periods: np.ndarray, target_sa: np.ndar
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
-
-
-def plot_scaled_spectra(
-    motions: Sequence[GroundMotion],
-    target_periods: np.ndarray,
-    target_sa: np.ndarray,
-    path: str | Path,
-    *,
-    period_range: tuple[float, float] | None = None,
-    damping: float = 0.05,
-    title: str = "",
-) -> Path:
-    """5 %-damped spectra of the scaled records, their mean, and the target.
-
-    Parameters
-    ----------
-    motions : sequence of GroundMotion
-        The records as scaled for the suite (acceleration [m/s^2]).
-    target_periods : array_like
-        Periods of the target spectrum [s].
-    target_sa : array_like
-        Target pseudo-spectral acceleration [g].
-    path : str or Path
-        PNG file to write.
-    period_range : (float, float), optional
-        Period range of the scaling [s], shaded.
-    damping : float
-        Damping ratio of the spectra [-].
-    title : str
-        Figure title.
-    """
-    from groundmotions.spectra import spectrum
-
-    plt = _pyplot()
-    t_target = np.asarray(target_periods, dtype=float)
-    top = max(10.0, 1.2 * float(t_target.max()))
-    periods = np.geomspace(0.02, top, 160)
-    fig, ax = plt.subplots(figsize=(8, 5.5), constrained_layout=True)
-    curves = []
-    for i, motion in enumerate(motions):
-        sa = spectrum(motion, periods, damping).sa / STANDARD_GRAVITY
-        curves.append(sa)
-        ax.plot(periods, sa, color="0.6", lw=0.6, label="scaled records" if i == 0 else None)
-    if curves:
-        ax.plot(periods, np.mean(curves, axis=0), color="k", lw=2.0,
-                label=f"mean of {len(curves)} records")
-    return _finish_spectra(plt, fig, ax, t_target, target_sa, period_range, damping,
-                           title or "scaled records against the target spectrum", path)
-
-
-def plot_scaled_pair_spectra(
-    pairs: Sequence[GroundMotionPair],
-    target_periods: np.ndarray,
-    target_sa: np.ndarray,
-    path: str | Path,
-    *,
-    period_range: tuple[float, float] | None = None,
-    damping: float = 0.05,
-    title: str = "",
-) -> Path:
-    """5 %-damped RotD100 spectra of the scaled pairs, their mean and RotD50 mean, the target.
-
-    Parameters
-    ----------
-    pairs : sequence of GroundMotionPair
-        The pairs as scaled for the suite (acceleration [m/s^2]).
-    target_periods : array_like
-        Periods of the target spectrum [s].
-    target_sa : array_like
-        Target pseudo-spectral acceleration [g].
-    path : str or Path
-        PNG file to write.
-    period_range : (float, float), optional
-        Period range of the scaling [s], shaded.
-    damping : float
-        Damping ratio of the spectra [-].
-    title : str
-        Figure title.
-    """
-    from groundmotions.pairs.rotd import rotd_spectra
-
-    plt = _pyplot()
-    t_target = np.asarray(target_periods, dtype=float)
-    top = max(10.0, 1.2 * float(t_target.max()))
-    periods = np.geomspace(0.02, top, 100)
-    fig, ax = plt.subplots(figsize=(8, 5.5), constrained_layout=True)
-    rotd100, rotd50 = [], []
-    for i, pair in enumerate(pairs):
-        spectra = rotd_spectra(pair, periods, damping, (50, 100))
-        rotd100.append(spectra.rotd100 / STANDARD_GRAVITY)
-        rotd50.append(spectra.rotd50 / STANDARD_GRAVITY)
-        ax.plot(periods, rotd100[-1], color="0.6", lw=0.6,
-                label="RotD100 of the scaled pairs" if i == 0 else None)
-    if rotd100:
-        ax.plot(periods, np.mean(rotd100, axis=0), color="k", lw=2.0,
-                label=f"mean RotD100 of {len(rotd100)} pairs")
-        ax.plot(periods, np.mean(rotd50, axis=0), color="k", lw=1.2, ls=":",
-                label="mean RotD50")
-    return _finish_spectra(plt, fig, ax, t_target, target_sa, period_range, damping,
-                           title or "scaled pairs (RotD100) against the target spectrum", path)

@@ -2,18 +2,18 @@
 
 ``GroundMotionPair``
     x, y (and z) as `GroundMotion` objects of one time step and one length, checked on
-    construction; ``scaled`` (one factor for every component), ``rotated`` (the horizontal
-    axes), ``resampled``; ``truncated_to_common`` builds a pair from components of unequal
-    length.
+    construction; ``scaled`` (one factor for every component), ``truncated`` and
+    ``resampled`` (every component as `GroundMotion` does it), ``rotated`` (the horizontal
+    axes); ``truncated_to_common`` builds a pair from components of unequal length.
 ``read_pair``
     a pair from two (or three) record files, each read with `groundmotions.read_record`.
 ``read_pair_manifest``
     the pairs listed in a CSV file with the columns ``name, x, y`` and optionally ``z``,
     ``dt`` (for one-column text records) and ``units``; paths relative to the manifest.
 
-Synthetic pairs are made by `groundmotions.pairs.synthetic.synthetic_pair`, RotD spectra by
+Synthetic pairs are made by `groundmotions.synthetic.synthetic_pair`, RotD spectra by
 `groundmotions.pairs.rotd`, the ASCE 7-16 scaling of a suite of pairs by
-`groundmotions.pairs.scaling`.
+`groundmotions.scale_suite`.
 A bad pair is refused, never repaired: components of different time steps or lengths raise
 `dcfpb.common.errors.InputError` naming both components and the way to make them agree.
 """
@@ -22,12 +22,10 @@ from __future__ import annotations
 
 import csv
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import NamedTuple
-
-import numpy as np
 
 from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.validation import check_real
@@ -46,11 +44,6 @@ def _label(role: str, motion: GroundMotion) -> str:
     """``"y component (CHY023-W.AT2)"``: the role and the file (else the name) of a record."""
     source = motion.metadata.get("source_file") or motion.name or "unnamed"
     return f"{role} component ({source})"
-
-
-def _with_step(motion: GroundMotion, acceleration: np.ndarray, step: str) -> GroundMotion:
-    return GroundMotion(acceleration, motion.dt, motion.name, dict(motion.metadata),
-                        (*motion.processing, step))
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,16 +149,31 @@ class GroundMotionPair:
                                      f"Got {motion!r} instead.")
         _check_steps(name, tuple(motions.items()))
         n = min(m.npts for m in motions.values())
-        cut = {role: m if m.npts == n else _with_step(
-                   m, m.acceleration[:n], f"truncated to the pair's common {n} samples")
+        cut = {role: m if m.npts == n else m.derived(
+                   m.acceleration[:n], f"truncated to the pair's common {n} samples")
                for role, m in motions.items()}
         return cls(cut["x"], cut["y"], cut.get("z"), name)
+
+    def _each(self, operation: Callable[[GroundMotion], GroundMotion]) -> GroundMotionPair:
+        """The pair of ``operation`` applied to every component (the vertical included)."""
+        z = None if self.z is None else operation(self.z)
+        return GroundMotionPair(operation(self.x), operation(self.y), z, self.name)
 
     def scaled(self, factor: float) -> GroundMotionPair:
         """The pair with every component (vertical included) multiplied by ``factor`` [-]."""
         k = check_real(factor, "factor", "GroundMotionPair.scaled")
-        z = None if self.z is None else self.z.scaled(k)
-        return GroundMotionPair(self.x.scaled(k), self.y.scaled(k), z, self.name)
+        return self._each(lambda motion: motion.scaled(k))
+
+    def truncated(self, duration: float) -> GroundMotionPair:
+        """The first ``duration`` seconds of every component, in [dt, self.duration] [s]
+        (`groundmotions.GroundMotion.truncated`)."""
+        d = check_real(duration, "duration", "GroundMotionPair.truncated", low=self.dt,
+                       high=self.duration)
+        return self._each(lambda motion: motion.truncated(d))
+
+    def resampled(self, dt: float, *, anti_alias: bool = True) -> GroundMotionPair:
+        """Every component at the time step ``dt`` [s] (`groundmotions.processing.resampled`)."""
+        return self._each(lambda motion: motion.resampled(dt, anti_alias=anti_alias))
 
     def rotated(self, angle_deg: float) -> GroundMotionPair:
         """The horizontal components along axes turned by ``angle_deg`` [deg] counter-clockwise.
@@ -176,14 +184,8 @@ class GroundMotionPair:
         c, s = math.cos(math.radians(a)), math.sin(math.radians(a))
         ax, ay = self.x.acceleration, self.y.acceleration
         step = f"pair axes rotated by {a:g} deg"
-        return GroundMotionPair(_with_step(self.x, c * ax + s * ay, step),
-                                _with_step(self.y, -s * ax + c * ay, step), self.z, self.name)
-
-    def resampled(self, dt: float, *, anti_alias: bool = True) -> GroundMotionPair:
-        """Every component at the time step ``dt`` [s] (`groundmotions.processing.resampled`)."""
-        z = None if self.z is None else self.z.resampled(dt, anti_alias=anti_alias)
-        return GroundMotionPair(self.x.resampled(dt, anti_alias=anti_alias),
-                                self.y.resampled(dt, anti_alias=anti_alias), z, self.name)
+        return GroundMotionPair(self.x.derived(c * ax + s * ay, step),
+                                self.y.derived(-s * ax + c * ay, step), self.z, self.name)
 
 
 def _check_steps(name: str, roles: tuple[tuple[str, GroundMotion], ...]) -> None:

@@ -16,7 +16,7 @@ from groundmotions import (
     read_pair,
     read_pair_manifest,
     rotd_spectra,
-    scale_pairs,
+    scale_suite,
 )
 
 HEADER = ("PEER STRONG MOTION DATABASE RECORD\nTEST 01/01/00, STATION, 000\n"
@@ -132,5 +132,10 @@ def test_bad_parameters_of_rotd_and_scaling(files):
     _raises(lambda: rotd_spectra(pair, [1.0], angle_step=7.0), "'angle_step'", "whole number")
     _raises(lambda: rotd_spectra(pair, [-1.0]), "'periods'")
     target = asce7_design_spectrum(1.0, 0.6, 8.0, periods=np.geomspace(0.1, 5.0, 50))
-    _raises(lambda: scale_pairs([pair], target, (2.0, 6.0)), "'period_range[1]'")
-    _raises(lambda: scale_pairs([pair.x], target, (2.0, 3.0)), "GroundMotionPair")
+    _raises(lambda: scale_suite([pair], target, (2.0, 6.0)), "'period_range[1]'")
+    _raises(lambda: scale_suite([pair, pair.x], target, (2.0, 3.0)), "GroundMotionPair")
+    _raises(lambda: scale_suite([pair], target, (2.0, 3.0), measure="sa"), "'measure'",
+            "'rotd100'")
+    _raises(lambda: scale_suite([pair.x], target, (2.0, 3.0), measure="rotd100"), "'measure'")
+    _raises(lambda: scale_suite([pair, pair.scaled(0.0)], target, (2.0, 3.0)),
+            "pairs with a non-zero RotD100 spectrum", "index 1")

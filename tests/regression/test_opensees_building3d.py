@@ -26,7 +26,7 @@ Measured (openseespy 3.7.1.2):
 - With singleFPBearing's normal force given to ours (:mod:`structures.opensees.singlefp_plan`):
   peak displacement -0.020 %, base shear +0.055 %, NRMSE 0.013 % / 0.043 % (the crossed radii
   and the return map are what is left).
-- TAP094 (Chi-Chi, N and E) scaled by scale_pairs to the ASCE 7-16 design spectrum S_DS = 1 g,
+- TAP094 (Chi-Chi, N and E) scaled by scale_suite to the ASCE 7-16 design spectrum S_DS = 1 g,
   S_D1 = 0.4 g, T_L = 8 s on RotD100 over (2.25, 5.33) s (factor 2.39), the 10 s from 3 s
   before its strongest sample (0.24 m): peak displacement -0.074 %, base shear +0.43 %,
   NRMSE 0.092 % / 0.080 %. Scaled to S_D1 = 0.6 g (factor 3.58, 0.41 m, u / R = 0.092) the
@@ -43,10 +43,9 @@ import numpy as np
 import pytest
 
 from groundmotions.pairs import GroundMotionPair, read_pair
-from groundmotions.pairs.scaling import scale_pairs
-from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion
-from groundmotions.scaling import asce7_design_spectrum, isolated_period_range
+from groundmotions.scaling import asce7_design_spectrum, isolated_period_range, scale_suite
+from groundmotions.synthetic import synthetic_pair
 from isolator.bearing import DCFPBearing
 from isolator.experiments import friction_model
 from structures.opensees.building3d import run_opensees_3d
@@ -172,9 +171,9 @@ def test_singlefp_normal_force_given_to_ours_closes_most_of_the_gap(ops):
 @functools.cache
 def _recorded_pair() -> GroundMotionPair:
     pair = read_pair(SHARED_PAIRS / "TAP094-N.AT2", SHARED_PAIRS / "TAP094-E.AT2")
-    report = scale_pairs([pair], asce7_design_spectrum(1.0, S_D1, 8.0),
+    report = scale_suite([pair], asce7_design_spectrum(1.0, S_D1, 8.0),
                          isolated_period_range(3.0, 4.26), n_periods=8, angle_step=5.0)
-    scaled = report.pairs[0]
+    scaled = report.motions[0]
     start = max(int(np.argmax(np.hypot(scaled.x.acceleration, scaled.y.acceleration))
                     - 3.0 / scaled.dt), 0)
     window = slice(start, start + int(10.0 / scaled.dt) + 1)

@@ -33,6 +33,7 @@ import pandas as pd
 import pytest
 
 from dcfpb import cli
+from groundmotions import scaling
 from groundmotions.readers import read_record
 from structures.analysis import peaks, run
 from structures.config import load_config
@@ -321,9 +322,7 @@ def test_cli_target_scales_through_the_hook(monkeypatch, capsys, scheduler, tmp_
         seen.update(names=[m.name for m in motions], target=target, period_range=period_range)
         return types.SimpleNamespace(scale_factors={m.name: 1.5 for m in motions})
 
-    stub = types.ModuleType("groundmotions.scaling")
-    stub.scale_suite = scale_suite
-    monkeypatch.setitem(sys.modules, "groundmotions.scaling", stub)
+    monkeypatch.setattr(scaling, "scale_suite", scale_suite)  # the plots use the rest
     target = tmp_path / "target.csv"
     target.write_text("period,sa\n0.1,1.0\n4.0,0.2\n")
     out = tmp_path / "out"

@@ -7,7 +7,8 @@ single records are.
 - a pair that cannot be read (a missing component, components of two time steps) is a failed
   run with its reason while the others finish; a rerun keeps the finished runs (no second
   "done" in the log) and retries the failures;
-- factors to a target on RotD100 are those of ``scale_pairs``; ``run_timeout`` and
+- factors to a target on RotD100 (the hook of ``dcfpb suite --target``) are those of
+  ``scale_suite``; ``run_timeout`` and
   ``max_steps`` reach each run;
 - ``dcfpb suite --pairs``: the resumed suite, its JSON, tables and plots; a planar building
   file refused before any work, naming the flag and the file.
@@ -28,22 +29,17 @@ import pytest
 
 import structures
 from dcfpb import cli
+from dcfpb.cli.suite import target_hook
 from dcfpb.common.errors import InputError, InputWarning
 from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.pairs import read_pair
-from groundmotions.pairs.scaling import scale_pairs
-from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion
-from groundmotions.scaling import asce7_design_spectrum
+from groundmotions.scaling import asce7_design_spectrum, scale_suite
+from groundmotions.synthetic import synthetic_pair
 from structures.config import load_config
 from structures.spatial.peaks import PLAN_PEAK_KEYS, plan_peaks
 from structures.suites.pairs.runs import PLAN_PEAK_COLUMNS, execute_pair_run, truncated_pair
-from structures.suites.pairs.suite import (
-    PairSuite,
-    pair_sources,
-    rotd100_factors,
-    run_pair_suite,
-)
+from structures.suites.pairs.suite import PairSuite, pair_sources, run_pair_suite
 from structures.suites.store import RunStore
 from structures.suites.suite import local_cluster
 
@@ -191,14 +187,15 @@ def test_broken_pairs_fail_with_their_reason_and_a_rerun_resumes(files, config, 
                                   result.peaks[["run_id", "status", *PHYSICS]])
 
 
-def test_rotd100_factors_are_those_of_scale_pairs(files, config):
+def test_target_factors_are_those_of_scale_suite(files, config):
     spectrum = asce7_design_spectrum(1.0, 0.6, 8.0)
-    target = (np.asarray(spectrum.periods)[1:], np.asarray(spectrum.sa)[1:])
+    periods, sa_g = np.asarray(spectrum.periods)[1:], np.asarray(spectrum.sa)[1:] / STANDARD_GRAVITY
     suite = PairSuite(config, pair_sources(files / "broken.csv"), models=("constant",),
-                      scales=(1.0, 2.0), pair_factors=rotd100_factors(target, (0.8, 2.0)))
+                      scales=(1.0, 2.0), pair_factors=target_hook(periods, sa_g, (0.8, 2.0)))
     specs, pairs, unreadable = suite.plan(read=False)  # the hook reads the pairs
     assert set(pairs) == {"s1"} and set(unreadable) == {"missing", "two-steps"}
-    expected = scale_pairs([pairs["s1"]], target, (0.8, 2.0)).scale_factors[0]
+    target = (periods, sa_g * STANDARD_GRAVITY)  # as the hook makes it
+    expected = scale_suite([pairs["s1"]], target, (0.8, 2.0)).scale_factors[0]
     factors = {(s.pair, s.multiplier): (s.record_factor, s.scale) for s in specs}
     assert factors[("s1", 1.0)] == (expected, expected)
     assert factors[("s1", 2.0)] == (expected, 2.0 * expected)
@@ -259,6 +256,24 @@ def test_cli_pairs_resumes_the_suite_with_tables_and_plots(files, good_suite, sc
     assert (out / "plots" / "peak_distributions.png").stat().st_size > 0
     assert {p.name for p in out.iterdir()} >= {"summary.csv", "summary.parquet",
                                                "failures.json", "suite.log"}
+
+
+def test_cli_pairs_scaled_to_a_target_on_rotd100(files, scheduler, capsys, tmp_path):
+    out = tmp_path / "out"
+    code = cli.main(["suite", str(files / "building.toml"), "--pairs", str(files / "good.csv"),
+                     "--models", "constant", "--target", "asce7:0.3,0.2,8", "--period-range",
+                     "0.8,2", "--scheduler", scheduler, "--out", str(out), "--no-progress",
+                     "--json"])
+    assert code == 0 and json.loads(capsys.readouterr().out)["done"] == 2
+    spectrum = asce7_design_spectrum(0.3, 0.2, 8.0)
+    target = (spectrum.periods, spectrum.sa / STANDARD_GRAVITY * STANDARD_GRAVITY)
+    pairs = [read_pair(files / f"s{seed}-x.AT2", files / f"s{seed}-y.AT2", name=f"s{seed}")
+             for seed in (1, 3)]
+    expected = scale_suite(pairs, target, (0.8, 2.0)).scale_factors
+    table = pd.read_csv(out / "peaks.csv").set_index("pair")
+    assert table.loc[["s1", "s3"], "record_factor"].tolist() == pytest.approx(expected,
+                                                                              rel=1e-15)
+    assert (out / "plots" / "scaled_spectra.png").stat().st_size > 0
 
 
 def test_cli_refuses_pairs_on_a_planar_building_file(files, capsys, tmp_path):

@@ -48,7 +48,7 @@ def ops():
 @pytest.fixture(scope="module")
 def files(tmp_path_factory):
     """The building files and a 2 s synthetic pair with a vertical, as text records."""
-    from groundmotions.pairs.synthetic import synthetic_pair
+    from groundmotions.synthetic import synthetic_pair
 
     folder = tmp_path_factory.mktemp("plan")
     (folder / "plan.toml").write_text(PLAN_FILE)

@@ -12,7 +12,7 @@ import pytest
 import structures
 from dcfpb.cli import main
 from dcfpb.common.errors import InputWarning
-from groundmotions.pairs.synthetic import synthetic_pair
+from groundmotions.synthetic import synthetic_pair
 from structures.spatial.peaks import PLAN_PEAK_KEYS, plan_peaks
 
 REPO = Path(__file__).resolve().parents[2]

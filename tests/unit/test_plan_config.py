@@ -10,7 +10,7 @@ import pytest
 
 import structures
 from dcfpb.common.errors import InputError
-from groundmotions.pairs.synthetic import synthetic_pair
+from groundmotions.synthetic import synthetic_pair
 
 PLAN_FILE = """
 name = "three storeys in plan"

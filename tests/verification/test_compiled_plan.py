@@ -20,8 +20,8 @@ import pytest
 
 from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.pairs import GroundMotionPair
-from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion
+from groundmotions.synthetic import synthetic_pair
 from isolator.bearing import DCFPBearing
 from isolator.experiments import friction_model
 from isolator.heating import MonitorLine

@@ -14,14 +14,14 @@ from dcfpb.common.units import STANDARD_GRAVITY as G
 from groundmotions import (
     GroundMotion,
     GroundMotionPair,
-    PairScalingReport,
+    ScalingReport,
     asce7_design_spectrum,
     isolated_period_range,
     read_pair,
     read_pair_manifest,
     response_spectra,
     rotd_spectra,
-    scale_pairs,
+    scale_suite,
     spectrum,
     synthetic_pair,
 )
@@ -92,20 +92,32 @@ def test_scaled_suite_mean_rotd100_envelopes_and_touches_the_target():
                             filter_damping=0.6, **KT) for seed in (1, 5, 9)]
     target = asce7_design_spectrum(1.0, 0.6, 8.0, level="mce")
     t_range = isolated_period_range(2.4, 3.0)
-    report = scale_pairs(suite, target, t_range, n_periods=10)
-    assert isinstance(report, PairScalingReport)
+    report = scale_suite(suite, target, t_range, n_periods=10)
+    assert isinstance(report, ScalingReport) and report.measure == "rotd100"
     assert report.period_range == pytest.approx((1.8, 3.75))
     # recomputed from the scaled pairs themselves, independently of the report's arithmetic
-    mean100 = np.mean([rotd_spectra(p, report.periods).rotd100 for p in report.pairs], axis=0)
+    mean100 = np.mean([rotd_spectra(p, report.periods).rotd100 for p in report.motions], axis=0)
     ratio = mean100 / target.sa_at(report.periods)
     assert ratio.min() == pytest.approx(1.0, abs=1e-9) and (ratio >= 1.0 - 1e-9).all()
-    np.testing.assert_allclose(report.mean_rotd100, mean100, rtol=1e-12)
-    assert (report.mean_rotd50 <= report.mean_rotd100).all()
-    for before, after, k in zip(suite, report.pairs, report.scale_factors, strict=True):
+    means = report.mean_spectra
+    np.testing.assert_allclose(means["rotd100"], mean100, rtol=1e-12)
+    np.testing.assert_array_equal(report.mean_sa, means["rotd100"])
+    assert (means["rotd50"] <= means["rotd100"]).all()
+    for before, after, k in zip(suite, report.motions, report.scale_factors, strict=True):
         np.testing.assert_allclose(after.y.acceleration, k * before.y.acceleration, rtol=1e-15)
-    assert list(report.to_frame().index) == [p.name for p in suite]
-    individual = scale_pairs(suite, target, t_range, method="individual", n_periods=10)
-    assert (individual.rotd100 / individual.target_sa).min(axis=1) == pytest.approx(1.0)
+    frame = report.to_frame()
+    assert frame.index.name == "pair" and list(frame.index) == [p.name for p in suite]
+    assert list(frame.columns) == ["individual_factor", "common_factor", "scale_factor",
+                                   "scaled_pga_x", "scaled_pga_y"]
+    assert list(report.spectrum_frame().columns) == ["target_sa", "mean_rotd100",
+                                                     "mean_rotd50", "ratio"]
+    individual = scale_suite(suite, target, t_range, method="individual", n_periods=10)
+    each = individual.spectra["rotd100"] / individual.target_sa
+    assert each.min(axis=1) == pytest.approx(1.0)
+    # on RotD50 instead: the same steps on the median direction, so larger factors
+    median = scale_suite(suite, target, t_range, measure="rotd50", n_periods=10)
+    assert median.min_ratio == pytest.approx(1.0, abs=1e-12)
+    assert (median.scale_factors > report.scale_factors).all()
 
 
 # ----------------------------------------------------------------------- synthetic, the pair
@@ -132,6 +144,12 @@ def test_pair_operations(pair):
     cut = GroundMotionPair.truncated_to_common(pair.x, longer, name="cut")
     assert cut.npts == pair.npts and "common" in cut.y.processing[-1]
     assert pair.resampled(0.005).npts == 2 * pair.npts - 1
+    short = GroundMotionPair(pair.x, pair.y, pair.x, "p").truncated(2.0)
+    assert short.npts == 201 and all(m.processing[-1] == "truncated to 2 s (201 samples)"
+                                     for m in short)
+    np.testing.assert_array_equal(short.y.acceleration, pair.y.acceleration[:201])
+    with pytest.raises(ValueError, match=r"'duration' parameter of GroundMotionPair\.truncated"):
+        pair.truncated(2 * pair.duration)
 
 
 def test_manifest_reads_pairs_relative_to_its_folder(tmp_path):

@@ -27,9 +27,8 @@ import pytest
 
 from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.pairs import GroundMotionPair, read_pair
-from groundmotions.pairs.synthetic import synthetic_pair
 from groundmotions.records import GroundMotion
-from groundmotions.synthetic import kanai_tajimi
+from groundmotions.synthetic import kanai_tajimi, synthetic_pair
 from isolator.bearing import DCFPBearing
 from isolator.experiments import friction_model
 from structures.analysis import run

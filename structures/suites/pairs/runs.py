@@ -70,11 +70,7 @@ def plan_fingerprint(config: BuildingConfig) -> str:
 def truncated_pair(pair: GroundMotionPair, duration: float) -> GroundMotionPair:
     """The first ``duration`` seconds of every component of a pair [s] (all of it when the
     pair is shorter)."""
-    if duration >= pair.duration:
-        return pair
-    z = None if pair.z is None else pair.z.truncated(duration)
-    return GroundMotionPair(pair.x.truncated(duration), pair.y.truncated(duration), z,
-                            pair.name)
+    return pair if duration >= pair.duration else pair.truncated(duration)
 
 
 @dataclass(frozen=True)

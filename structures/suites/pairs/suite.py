@@ -11,8 +11,8 @@ its reason while the others carry on (:mod:`structures.suites.dispatch`), ``run_
 suite per folder (:mod:`structures.suites.lock`).
 
 Scale factors: per pair, a mapping by pair name, or a hook given the readable pairs in order,
-e.g. :func:`rotd100_factors`, the ASCE 7-16 scaling of the suite on RotD100
-(:func:`groundmotions.pairs.scaling.scale_pairs`); ``scales`` multiplies them.
+e.g. the factors of the ASCE 7-16 scaling of the suite on RotD100
+(:func:`groundmotions.scale_suite`); ``scales`` multiplies them.
 
 Example::
 
@@ -47,7 +47,7 @@ from structures.suites.store import RunStore
 from structures.suites.suite import check_suite_axes
 from structures.suites.summary import PLAN_QUANTITIES
 
-__all__ = ["PairSource", "PairSuite", "pair_sources", "rotd100_factors", "run_pair_suite"]
+__all__ = ["PairSource", "PairSuite", "pair_sources", "run_pair_suite"]
 
 PairFactors = Mapping[str, float] | Callable[[Sequence[GroundMotionPair]], Any]
 
@@ -104,29 +104,6 @@ def pair_sources(manifest: str | Path) -> tuple[PairSource, ...]:
     return tuple(sources)
 
 
-def rotd100_factors(target: Any, period_range: tuple[float, float],
-                    **options: Any) -> Callable[[Sequence[GroundMotionPair]], list[float]]:
-    """The pair-factor hook of the ASCE 7-16 scaling on RotD100 of the readable pairs.
-
-    Parameters
-    ----------
-    target : TargetSpectrum or (array_like, array_like)
-        The target, or ``(periods [s], sa [m/s^2])``.
-    period_range : (float, float)
-        ``(T_min, T_max)`` [s], e.g. 0.75 T_M to 1.25 T_M.
-    **options
-        Further keywords of :func:`groundmotions.pairs.scaling.scale_pairs` (``damping``,
-        ``method``, ``fraction``, ...).
-    """
-    from groundmotions.pairs.scaling import scale_pairs
-
-    def hook(pairs: Sequence[GroundMotionPair]) -> list[float]:
-        report = scale_pairs(pairs, target, period_range, **options)
-        return [float(k) for k in report.scale_factors]
-
-    return hook
-
-
 @dataclass(frozen=True)
 class PairSuite:
     """Pairs x scale multipliers x friction models x property modifiers on a building in plan.
@@ -146,8 +123,9 @@ class PairSuite:
     pair_factors : mapping or callable, optional
         Per-pair scale factors [-] (one factor for every component of a pair): a mapping by
         pair name, or a hook called with the readable pairs (in order) that returns their
-        factors as a sequence or as a mapping by pair name, e.g. :func:`rotd100_factors`.
-        Default 1.
+        factors as a sequence or as a mapping by pair name, e.g.
+        ``lambda pairs: scale_suite(pairs, target, period_range).scale_factors``
+        (:func:`groundmotions.scale_suite`, on RotD100). Default 1.
     duration : float, optional
         Keep only the first ``duration`` seconds of each pair [s].
     dt : float, optional
