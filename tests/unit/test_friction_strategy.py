@@ -128,7 +128,7 @@ def test_a_building_runs_on_it_with_the_reference_engine(building):
 
 
 def test_a_building_in_plan_runs_on_it(building):
-    from groundmotions.pairs.synthetic import synthetic_pair
+    from groundmotions.synthetic import synthetic_pair
 
     plan = Plan([[-5.0, -4.0], [5.0, -4.0], [5.0, 4.0], [-5.0, 4.0]], eccentricity=(0.8, 0.4),
                 dimensions=(10.0, 8.0), storey_heights=3.0)
