@@ -59,8 +59,9 @@ def run(
     integrator : Newmark or HHT or {"newmark", "hht"}, optional
         Time integration (default: the building file's).
     dt : float, optional
-        Analysis step [s] (default: the building file's, else the record's step divided into
-        parts of at most 5 ms; :func:`structures.analysis.default_step`).
+        Analysis step [s] (default: the building file's, capped by the record's step with a
+        warning, else the record's step divided into parts of at most 5 ms;
+        :func:`structures.analysis.default_step`).
     scale : float
         Amplitude scale factor of the record(s) [-], > 0.
     engine : {"auto", "compiled", "reference"}
@@ -102,10 +103,16 @@ def run(
                       "of records to run it in plan.", InputWarning, stacklevel=2)
         building = dataclasses.replace(building, plan=None)
     bearing = dataclasses.replace(config.bearing(model), axial_load=None)  # their shares
+    if dt is None and config.dt is not None:
+        dt = config.dt
+        if dt > motion.dt * (1.0 + 1e-12):  # the file's step, longer than the record's
+            warnings.warn(f"The building {config.name!r} asks for dt = {dt:g} s ([analysis] "
+                          f"dt) but {motion.name} is sampled every {motion.dt:g} s: it runs at "
+                          "the record's step.", InputWarning, stacklevel=2)
+            dt = motion.dt
     result = run_building(
         building, bearing, motion, config.integrator if integrator is None else integrator,
-        n_bearings=config.n_bearings if building.plan is None else None,
-        dt=config.dt if dt is None else dt, engine=engine, floor_spectra=floor_spectra,
-        **options)
+        n_bearings=config.n_bearings if building.plan is None else None, dt=dt,
+        engine=engine, floor_spectra=floor_spectra, **options)
     result.attrs["building"] = config.name
     return result

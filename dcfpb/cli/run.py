@@ -80,10 +80,13 @@ def add_max_steps(p: argparse.ArgumentParser, what: str = "the run") -> None:
                    f"dt) or more memory than is available (default {DEFAULT_MAX_STEPS:,})")
 
 
-def analysis_dt(args: argparse.Namespace, config) -> float | None:
-    """The analysis step [s]: ``--dt`` when given, else the building file's (None: the
-    analysis's default, :func:`structures.analysis.default_step`)."""
-    return args.dt if args.dt is not None else config.dt
+def analysis_dt(args: argparse.Namespace, config, motion=None) -> float | None:
+    """The analysis step [s]: ``--dt`` when given, else the building file's, at most the step
+    of ``motion`` (a record or a pair; the run says so when it caps it), None for the
+    analysis's default (:func:`structures.analysis.default_step`)."""
+    if args.dt is not None or config.dt is None:
+        return args.dt
+    return config.dt if motion is None else min(config.dt, motion.dt)
 
 
 def check_run_length(args: argparse.Namespace, config, motion, command: str) -> None:
@@ -92,7 +95,7 @@ def check_run_length(args: argparse.Namespace, config, motion, command: str) -> 
     from structures.analysis import default_step
     from structures.limits import building_fields, check_run
 
-    dt = analysis_dt(args, config)
+    dt = analysis_dt(args, config, motion)
     pair = isinstance(motion, GroundMotionPair)
     first = motion.x if pair else motion
     building = config.building
@@ -226,7 +229,7 @@ def _run_building(args: argparse.Namespace) -> int:
         model = args.model or config.friction["model"]
         ahead.wait()
         result = run(config, motion, model=model, integrator=integrator,
-                     dt=analysis_dt(args, config), max_steps=args.max_steps)
+                     dt=args.dt, max_steps=args.max_steps)
     summary = peaks(result)
     building = config.building if result.sizes["direction"] == 2 else dataclasses.replace(
         config.building, plan=None)
