@@ -124,9 +124,9 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion | GroundMotionP
         v = v + (dx * participation[:, c]) @ modes.shapes.T
     # M a_abs = -(C v + K u): the absolute acceleration from equilibrium
     damping, stiffness = building.fixed_base_damping_matrix, building.fixed_base_stiffness_matrix
-    inertia = -(v @ damping.T + u @ stiffness.T)
-    absolute = (inertia / building.floor_masses if dofs == 1
-                else np.linalg.solve(mass, inertia.T).T)
+    forces = v @ damping.T + u @ stiffness.T  # storey forces on each floor = - M a_abs
+    absolute = (-forces / building.floor_masses if dofs == 1
+                else np.linalg.solve(mass, -forces.T).T)
     wall = _time.perf_counter() - start
     levels = (nt, n + 1, dofs)
     at_ground = np.zeros((nt, 1, dofs))
@@ -135,8 +135,8 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion | GroundMotionP
     moving = at_ground.copy()
     moving[:, 0, :components] = ground
     absolute_acceleration = np.concatenate([moving, absolute.reshape(nt, n, dofs)], axis=1)
-    forces = inertia.reshape(nt, n, dofs)[..., :components]  # the floors' inertia forces
-    storey_shear = np.cumsum(forces[:, ::-1], axis=1)[:, ::-1]
+    inertia = forces.reshape(nt, n, dofs)[..., :components]  # the floors' inertia forces
+    storey_shear = np.cumsum(inertia[:, ::-1], axis=1)[:, ::-1]
     drift = np.diff(displacement.reshape(levels), axis=1)
 
     def var(dims, data, units, long_name):
