@@ -40,7 +40,7 @@ ORBITS = {
 
 @functools.cache
 def _drive(model: str, orbit_name: str, orientation: float | None):
-    """Run the bidirectional element through the orbit; keep its heating model."""
+    """Run the element in two directions through the orbit; keep its heating model."""
     bearing = protocol_bearing(model, slider_diameter=SLIDER, design_velocity=0.4)
     orbit = ORBITS[orbit_name]()
     element = BearingElement(bearing, 2, orientation)
