@@ -4,8 +4,9 @@ Building files: the example (``examples/five_storey.toml``) with a ``[plan]`` ta
 one key of it wrong at a time, through :func:`structures.config.load_config` (and, for one
 case, ``dcfpb run``: exit status 2). Objects: :class:`structures.plan.Plan`,
 :class:`structures.shear_building.ShearBuilding` with a plan and the model
-(:class:`structures.isolated_building.IsolatedShearBuilding`), each with one parameter wrong. A plan whose bearings cannot carry the weight (the centre of mass outside where the
-linear distribution keeps every bearing in compression, or bearings on one line) is refused.
+(:class:`structures.isolated_building.IsolatedShearBuilding`), each with one parameter wrong.
+A plan whose bearings cannot carry the weight (the centre of mass outside where the linear
+distribution keeps every bearing in compression, or bearings on one line) is refused.
 """
 
 from __future__ import annotations
