@@ -100,7 +100,7 @@ class FrictionState(Protocol):
 
     def temperature_field(self) -> tuple[np.ndarray, np.ndarray] | None:
         """Positions (m, 2) [m] on a plate and temperatures (m,) [degC] of the monitor
-        points after the last commit; None for a model without monitor points."""
+        points after the last commit; None for a model without a field of them."""
         ...
 
 
@@ -457,5 +457,5 @@ class PTVFrictionState:
 
     def temperature_field(self) -> tuple[np.ndarray, np.ndarray] | None:
         """The monitor points' positions (m, 2) [m] on a plate and temperatures (m,) [degC]
-        after the last commit (None without heating; see the heating's ``temperature_field``)."""
+        after the last commit: the precise model's line or grid (None for the others)."""
         return None if self.heating is None else self.heating.temperature_field()

@@ -404,9 +404,12 @@ class SurfaceHeating:
         :meth:`friction_trial`."""
         self.commit(dt, self._staged, flux)
 
-    def temperature_field(self) -> tuple[np.ndarray, np.ndarray]:
-        """Positions (m, 2) [m] of the monitor points on the plate (the line along x, the
-        centre point at the origin) and their temperatures (m,) [degC] after the last commit."""
+    def temperature_field(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """Positions (m, 2) [m] of the monitor line's points on the plate (along x) and their
+        temperatures (m,) [degC] after the last commit; None for the centre point, which is
+        no field."""
+        if not self.average_over_contact:
+            return None
         return np.column_stack([self.points, np.zeros_like(self.points)]), self.profile()
 
     def profile(self, dt: float = 0.0) -> np.ndarray:

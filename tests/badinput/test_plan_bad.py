@@ -2,10 +2,11 @@
 
 Building files: the example (``examples/five_storey.toml``) with a ``[plan]`` table added,
 one key of it wrong at a time, through :func:`structures.config.load_config` (and, for one
-case, ``dcfpb run``: exit status 2). Objects: :class:`structures.spatial.plan.Plan`,
-:class:`structures.spatial.building.SpatialBuilding` and the model, each with one parameter
-wrong. A plan whose bearings cannot carry the weight (the centre of mass outside where the
-linear distribution keeps every bearing in compression, or bearings on one line) is refused.
+case, ``dcfpb run``: exit status 2). Objects: :class:`structures.plan.Plan`,
+:class:`structures.shear_building.ShearBuilding` with a plan and the model
+(:class:`structures.isolated_building.IsolatedShearBuilding`), each with one parameter wrong.
+A plan whose bearings cannot carry the weight (the centre of mass outside where the linear
+distribution keeps every bearing in compression, or bearings on one line) is refused.
 """
 
 from __future__ import annotations
@@ -19,10 +20,9 @@ from dcfpb.common.errors import InputError
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction
 from structures.config import ConfigError, load_config
+from structures.isolated_building import IsolatedShearBuilding
+from structures.plan import Plan
 from structures.shear_building import ModalDamping, ShearBuilding
-from structures.spatial.building import SpatialBuilding
-from structures.spatial.isolated import SpatialIsolatedBuilding
-from structures.spatial.plan import Plan
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "five_storey.toml"
@@ -49,7 +49,7 @@ def _file(tmp_path: Path, **changes: str | None) -> Path:
 def test_the_good_plan_loads_and_the_planar_file_has_none(tmp_path):
     config = load_config(_file(tmp_path))
     assert config.plan is not None and config.n_bearings == 6
-    assert config.spatial_building().gravity_shares.min() > 0.0
+    assert config.building.gravity_shares.min() > 0.0
     assert load_config(EXAMPLE).plan is None
 
 
@@ -104,8 +104,8 @@ def test_the_command_line_refuses_a_plan_that_cannot_carry_the_weight(tmp_path, 
     assert captured.out == "" and "cannot carry the weight" in captured.err
 
 
-def _building(**damping) -> ShearBuilding:
-    return ShearBuilding.from_period([4e5, 4e5], 0.4, base_mass=5e5, **damping)
+def _building(plan: Plan | None = None, **damping) -> ShearBuilding:
+    return ShearBuilding.from_period([4e5, 4e5], 0.4, base_mass=5e5, plan=plan, **damping)
 
 
 def test_objects_refuse_bad_parameters_naming_them():
@@ -117,17 +117,15 @@ def test_objects_refuse_bad_parameters_naming_them():
         Plan(SQUARE, base_inertia=0.0)
     with pytest.raises(InputError, match=r"'floor_inertias' parameter of Plan must hold one "
                                          r"value per storey \(2\)"):
-        SpatialBuilding(_building(), Plan(SQUARE, floor_inertias=[1e6], base_inertia=1e6,
-                                          dimensions=(12.0, 10.0)))
+        _building(Plan(SQUARE, floor_inertias=[1e6], base_inertia=1e6,
+                       dimensions=(12.0, 10.0)))
     with pytest.raises(InputError, match="cannot carry the weight"):
-        SpatialBuilding(_building(), Plan(SQUARE, eccentricity=(0.0, -9.0),
-                                          dimensions=(12.0, 10.0)))
+        _building(Plan(SQUARE, eccentricity=(0.0, -9.0), dimensions=(12.0, 10.0)))
     with pytest.raises(InputError, match="one ratio for every mode"):
-        SpatialBuilding(_building(damping=ModalDamping((0.02, 0.03))),
-                        Plan(SQUARE, dimensions=(12.0, 10.0)))
-    spatial = SpatialBuilding(_building(), Plan(SQUARE, dimensions=(12.0, 10.0)))
+        _building(Plan(SQUARE, dimensions=(12.0, 10.0)), damping=ModalDamping((0.02, 0.03)))
+    in_plan = _building(Plan(SQUARE, dimensions=(12.0, 10.0)))
     bearing = DCFPBearing(2.5, 0.3, friction=ConstantFriction())
     with pytest.raises(InputError, match="'storey_heights' parameter of Plan is needed"):
-        SpatialIsolatedBuilding(spatial, bearing)
+        IsolatedShearBuilding(in_plan, bearing)
     with pytest.raises(TypeError, match="'vertical' parameter"):
-        SpatialIsolatedBuilding(spatial, bearing, overturning=False, vertical=[0.0, 1.0])
+        IsolatedShearBuilding(in_plan, bearing, overturning=False, vertical=[0.0, 1.0])

@@ -38,7 +38,7 @@ def test_the_engine_depends_on_its_layouts_and_callees_not_on_the_rest():
     assert {"structures/compiled/workspace.py", "structures/compiled/lapack.py",
             "isolator/compiled/bearing.py", "isolator/compiled/kernels.py",
             "isolator/compiled/layout.py", "isolator/heating.py"} <= closure
-    assert not closure & {"structures/analysis.py", "structures/spatial/analysis.py",
+    assert not closure & {"structures/analysis.py", "structures/results.py",
                           "structures/__init__.py", "isolator/__init__.py"}
 
 

@@ -32,5 +32,9 @@ def test_demo_plan_prints_the_table_and_writes_its_figures(tmp_path, capsys, mon
     for model in demo.MODELS:
         assert f"{model}: the corner bearing" in out
     assert "6 bearings, eccentricity (1.2, 0.6) m" in out
+    # the figures of dcfpb demo (a panel or a line style per direction), then those in plan
     assert {p.name for p in folder.iterdir()} == {
-        "bearing_orbits.png", "force_orbits.png", "plan_responses.png", "plate_temperature.png"}
+        "isolator_hysteresis.png", "temperature.png", "roof_acceleration.png",
+        "storey_drift.png", "response_histories.png", "floor_spectra.png",
+        "isolation_effect.png", "bearing_orbits.png", "force_orbits.png",
+        "plate_temperature.png"}

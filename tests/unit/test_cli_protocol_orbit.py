@@ -8,7 +8,7 @@ import json
 import pytest
 
 from dcfpb.cli import main
-from dcfpb.cli.orbit_protocol import ORBIT_CHOICES
+from dcfpb.cli.protocol import ORBIT_CHOICES
 from isolator.orbits import ORBITS
 
 ARGS = ["protocol", "--model", "constant", "--slider-diameter", "0.3", "--pressure", "60e6",
@@ -56,9 +56,18 @@ def test_text_report_and_csv(capsys, tmp_path):
     assert len(rows) == 1 + 201
 
 
+def test_plot_draws_an_orbit(capsys, tmp_path):
+    """--plot with --orbit draws the loops along x and y and the temperature (it was refused
+    before the one test rig)."""
+    target = tmp_path / "orbit.png"
+    assert main([*ARGS, "--orbit", "circle", "--plot", str(target)]) == 0
+    capsys.readouterr()
+    assert target.stat().st_size > 10_000
+
+
 @pytest.mark.parametrize(("extra", "message"), [
     (["--orbit", "circle", "--angle", "400"], "--angle"),
-    (["--orbit", "circle", "--plot", "loop.png"], "--plot"),
+    (["--angle", "20"], "--angle"),  # an angle turns an orbit: refused without --orbit
     (["--orbit", "square", "--dt", "0.5"], "--dt"),
 ])
 def test_bad_orbit_flags_exit_2_naming_the_flag(capsys, extra, message):

@@ -102,8 +102,9 @@ def test_run_output_carries_the_floor_spectra(tmp_path, capsys):
     import xarray as xr
 
     with xr.open_dataset(nc) as ds:
-        assert ds["floor_spectrum"].dims == ("floor", "period")
-        assert ds["ground_spectrum"].dims == ("period",)
+        assert ds["floor_spectrum"].dims == ("floor", "direction", "period")
+        assert ds["ground_spectrum"].dims == ("direction", "period")
+        assert list(ds["direction"].values) == ["x"]
         assert ds["period"].values[0] == 0.0 and ds.attrs["spectrum_damping"] == 0.05
 
 

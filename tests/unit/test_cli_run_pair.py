@@ -1,5 +1,6 @@
 """``dcfpb run --record X --record-y Y``: a building file with a [plan] table under a pair; the
-peaks in plan (structures.spatial.peaks) against the Dataset; the figures; clear errors."""
+peaks in plan (structures.analysis.peaks of a run in plan) against the Dataset; the figures;
+clear errors."""
 
 from __future__ import annotations
 
@@ -12,8 +13,22 @@ import pytest
 import structures
 from dcfpb.cli import main
 from dcfpb.common.errors import InputWarning
+<<<<<<< HEAD
 from groundmotions.synthetic import synthetic_pair
 from structures.spatial.peaks import PLAN_PEAK_KEYS, plan_peaks
+=======
+from groundmotions.pairs.synthetic import synthetic_pair
+from structures.analysis import peaks
+
+PLAN_PEAK_KEYS = (
+    "peak_isolator_displacement", "peak_centre_displacement", "corner_bearing",
+    "peak_base_shear", "peak_roof_acceleration_x", "peak_roof_acceleration_y",
+    "peak_storey_drift_x", "peak_storey_drift_y", "peak_base_rotation", "max_temperature",
+    "energy_balance_error", "steps", "wall_time", "peaks_up_to_failure", "failed_at",
+    "failure",
+)
+"""The keys of the peaks of a run in plan (:func:`structures.analysis.peaks`)."""
+>>>>>>> coretests
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "five_storey.toml"
@@ -64,16 +79,21 @@ def test_a_pair_runs_the_plan_and_prints_its_peaks(files, capsys, tmp_path):
     assert main(_args(files, "--json", "--plot", str(plots))) == 0
     out = json.loads(capsys.readouterr().out)
     assert set(PLAN_PEAK_KEYS) <= set(out) and out["success"]
+    assert set(out["ratios_to_fixed_base"]) >= {"peak_storey_drift_x", "peak_storey_drift_y"}
     from groundmotions.pairs import read_pair
 
     pair = read_pair(files["x"], files["y"], units="m/s^2")
-    direct = plan_peaks(structures.run(files["plan"], pair))
+    direct = peaks(structures.run(files["plan"], pair))
     for key in ("peak_isolator_displacement", "peak_base_shear", "peak_roof_acceleration_y",
                 "max_temperature"):
         assert out[key] == direct[key]  # the command line is the library's one path
     assert out["energy_balance_error"] < 1e-6
     written = {p.name for p in plots.iterdir()}
-    assert written == {"bearing_orbits.png", "force_orbits.png", "plan_responses.png"}
+    # the figures of every building run (a panel or a line style per direction), with the
+    # floor spectra and the fixed-base comparison, and the figures of a building in plan
+    assert written == {"isolator_hysteresis.png", "temperature.png", "roof_acceleration.png",
+                       "storey_drift.png", "response_histories.png", "floor_spectra.png",
+                       "isolation_effect.png", "bearing_orbits.png", "force_orbits.png"}
     assert all((plots / name).stat().st_size > 10_000 for name in written)
 
 
@@ -81,7 +101,8 @@ def test_the_peaks_in_plan_hold_to_the_histories(files):
     from groundmotions.pairs import read_pair
 
     result = structures.run(files["plan"], read_pair(files["x"], files["y"], units="m/s^2"))
-    p = plan_peaks(result)
+    p = peaks(result)
+    assert tuple(p) == PLAN_PEAK_KEYS
     reach = np.hypot(*np.moveaxis(result["bearing_displacement"].values, -1, 0))
     assert p["peak_isolator_displacement"] == reach.max()
     assert p["corner_bearing"] == int(np.argmax(reach.max(axis=0)))
@@ -97,7 +118,7 @@ def test_the_peaks_in_plan_hold_to_the_histories(files):
 
 
 def test_a_plan_file_under_one_record_warns_that_it_runs_planar(files, capsys):
-    with pytest.warns(InputWarning, match="--record-y"):
+    with pytest.warns(InputWarning, match="runs under one record.*give a pair of records"):
         assert main(["run", str(files["plan"]), "--record", str(files["x"]), "--units",
                      "m/s^2", "--model", "constant"]) == 0
 
@@ -127,7 +148,7 @@ def test_components_of_other_steps_are_refused_unless_resampled(files, capsys):
 
 
 def test_the_precise_model_leaves_its_plate_field_in_the_dataset(files, tmp_path):
-    from dcfpb.plotting.plan import plot_plan_runs
+    from dcfpb.plotting import plot_runs
     from groundmotions.pairs import read_pair
 
     pair = read_pair(files["x"], files["y"], units="m/s^2")
@@ -138,5 +159,5 @@ def test_the_precise_model_leaves_its_plate_field_in_the_dataset(files, tmp_path
     assert np.nanmin(field) == pytest.approx(20.0, abs=0.5)
     assert 40.0 < np.nanmax(field) < result["temperature"].values.max() + 30.0
     assert "plate_temperature" not in structures.run(files["plan"], pair, model="simplified")
-    written = plot_plan_runs({"precise": result}, tmp_path)
+    written = plot_runs({"precise": result}, tmp_path)
     assert tmp_path / "plate_temperature.png" in written

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from isolator.experiments import protocol_bearing
 from isolator.orbits import (
     ORBITS,
     Orbit,
@@ -17,9 +18,8 @@ from isolator.orbits import (
     rotation,
     square,
 )
-from isolator.testrig import run_test
-from isolator.experiments import protocol_bearing
 from isolator.protocols import sine
+from isolator.testrig import run_test
 
 
 def test_circle_keeps_its_radius_and_speed():

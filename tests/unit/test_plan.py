@@ -9,9 +9,8 @@ import pytest
 from dcfpb.common.units import STANDARD_GRAVITY
 from structures.integrators import integrate
 from structures.model import LinearModel
+from structures.plan import Plan, axial_distribution, gravity_shares
 from structures.shear_building import ModalDamping, ShearBuilding
-from structures.spatial.building import SpatialBuilding
-from structures.spatial.plan import Plan, axial_distribution, gravity_shares
 
 IRREGULAR = np.array([[-7.0, -4.0], [5.0, -6.0], [8.0, 3.0], [-2.0, 6.0], [1.0, 0.5],
                       [-6.0, 2.0]])
@@ -43,13 +42,15 @@ def test_centre_of_mass_at_the_bearings_centroid_gives_equal_shares():
     assert np.allclose(shares, STANDARD_GRAVITY * 5e5 / len(IRREGULAR), rtol=1e-12)
 
 
-def test_spatial_building_shares_follow_the_eccentricity():
-    building = ShearBuilding.from_period([4e5, 4e5], 0.4, base_mass=5e5)
+def test_building_in_plan_shares_follow_the_eccentricity():
     square = [[-5.0, -5.0], [5.0, -5.0], [5.0, 5.0], [-5.0, 5.0]]
-    centred = SpatialBuilding(building, Plan(square, dimensions=(10.0, 10.0)))
+
+    def building(plan: Plan) -> ShearBuilding:
+        return ShearBuilding.from_period([4e5, 4e5], 0.4, base_mass=5e5, plan=plan)
+
+    centred = building(Plan(square, dimensions=(10.0, 10.0)))
     assert np.all(centred.gravity_shares == centred.gravity_shares[0])
-    shifted = SpatialBuilding(building, Plan(square, eccentricity=(1.0, 0.0),
-                                             dimensions=(10.0, 10.0)))
+    shifted = building(Plan(square, eccentricity=(1.0, 0.0), dimensions=(10.0, 10.0)))
     shares = shifted.gravity_shares
     assert shares[1] > shares[0] and shares[1] == pytest.approx(shares[2])
     floors = 8e5 * STANDARD_GRAVITY
@@ -67,10 +68,10 @@ def test_inertia_and_torsional_stiffness_defaults_from_the_rectangle():
 
 
 def test_mass_matrix_is_the_kinetic_energy_of_the_eccentric_floor():
-    building = ShearBuilding([4e5], [2e8], 5e5, damping=ModalDamping(0.02))
     plan = Plan([[-5.0, -4.0], [5.0, -4.0], [0.0, 4.0]], eccentricity=(1.5, -0.8),
                 floor_inertias=[7e6], base_inertia=9e6, torsional_stiffnesses=[1e10])
-    mass = SpatialBuilding(building, plan).isolated_mass_matrix
+    mass = ShearBuilding([4e5], [2e8], 5e5, damping=ModalDamping(0.02),
+                         plan=plan).isolated_mass_matrix
     rng = np.random.default_rng(3)
     for _ in range(5):
         q = rng.normal(size=6)

@@ -1,5 +1,6 @@
-"""A building file with a [plan] table runs in plan under a pair, and in its planar form under
-one record; the planar example file runs as before (no plan)."""
+"""A building file with a [plan] table runs in plan under a pair (with its floor spectra per
+direction), and in one direction under one record, with a warning; the planar example file runs
+as before (no plan)."""
 
 from __future__ import annotations
 
@@ -9,8 +10,13 @@ import numpy as np
 import pytest
 
 import structures
+<<<<<<< HEAD
 from dcfpb.common.errors import InputError
 from groundmotions.synthetic import synthetic_pair
+=======
+from dcfpb.common.errors import InputWarning
+from groundmotions.pairs.synthetic import synthetic_pair
+>>>>>>> coretests
 
 PLAN_FILE = """
 name = "three storeys in plan"
@@ -57,11 +63,20 @@ def test_a_plan_file_runs_in_plan_under_a_pair(plan_file):
 
 
 def test_a_plan_file_runs_planar_under_one_record(plan_file):
-    result = structures.run(plan_file, _pair().x, engine="reference")
+    with pytest.warns(InputWarning, match="runs under one record"):
+        result = structures.run(plan_file, _pair().x, engine="reference")
     assert result.attrs["success"] and result.attrs["n_bearings"] == 4
-    assert "direction" not in result.dims
+    assert list(result["direction"].values) == ["x"]  # one direction: the one Dataset layout
+    assert "rotation" not in result and list(result["bearing_count"].values) == [4]
 
 
-def test_a_pair_refuses_what_the_plan_run_does_not_do(plan_file):
-    with pytest.raises(InputError, match="floor_spectra"):
-        structures.run(plan_file, _pair(), floor_spectra=True)
+def test_a_pair_runs_the_floor_spectra_in_plan(plan_file):
+    """Floor spectra in plan (refused before the one building): one per floor and direction,
+    the ground's per component; at period 0 the peak absolute accelerations and the PGAs."""
+    pair = _pair()
+    result = structures.run(plan_file, pair, floor_spectra=True)
+    assert result["floor_spectrum"].dims == ("floor", "direction", "period")
+    assert result["ground_spectrum"].dims == ("direction", "period")
+    peaks = np.abs(result["absolute_acceleration"]).max("time").values
+    assert np.array_equal(result["floor_spectrum"].isel(period=0).values, peaks)
+    assert list(result["ground_spectrum"].isel(period=0).values) == [pair.x.pga, pair.y.pga]

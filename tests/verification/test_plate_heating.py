@@ -21,11 +21,11 @@ import numpy as np
 import pytest
 
 from isolator.bearing import BearingElement
+from isolator.experiments import protocol_bearing
+from isolator.heating import ThermalProperties, exact_rise, sum_of_exponentials
 from isolator.monitor_grid import GridHeating, MonitorGrid
 from isolator.orbits import circle, figure_eight, line
 from isolator.testrig import run_orbit
-from isolator.experiments import protocol_bearing
-from isolator.heating import ThermalProperties, exact_rise, sum_of_exponentials
 
 SLIDER = 0.2  # [m]: a 35 x 35 window of 5 mm points
 HALF_SIDE = 0.5 * math.sqrt(math.pi) * 0.5 * SLIDER  # Eq. 5
@@ -40,7 +40,7 @@ ORBITS = {
 
 @functools.cache
 def _drive(model: str, orbit_name: str, orientation: float | None):
-    """Run the bidirectional element through the orbit; keep its heating model."""
+    """Run the element in two directions through the orbit; keep its heating model."""
     bearing = protocol_bearing(model, slider_diameter=SLIDER, design_velocity=0.4)
     orbit = ORBITS[orbit_name]()
     element = BearingElement(bearing, 2, orientation)
