@@ -10,13 +10,8 @@ import numpy as np
 import pytest
 
 import structures
-<<<<<<< HEAD
-from dcfpb.common.errors import InputError
-from groundmotions.synthetic import synthetic_pair
-=======
 from dcfpb.common.errors import InputWarning
-from groundmotions.pairs.synthetic import synthetic_pair
->>>>>>> coretests
+from groundmotions.synthetic import synthetic_pair
 
 PLAN_FILE = """
 name = "three storeys in plan"
