@@ -13,11 +13,7 @@ import pytest
 import structures
 from dcfpb.cli import main
 from dcfpb.common.errors import InputWarning
-<<<<<<< HEAD
 from groundmotions.synthetic import synthetic_pair
-from structures.spatial.peaks import PLAN_PEAK_KEYS, plan_peaks
-=======
-from groundmotions.pairs.synthetic import synthetic_pair
 from structures.analysis import peaks
 
 PLAN_PEAK_KEYS = (
@@ -28,7 +24,6 @@ PLAN_PEAK_KEYS = (
     "failure",
 )
 """The keys of the peaks of a run in plan (:func:`structures.analysis.peaks`)."""
->>>>>>> coretests
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "five_storey.toml"
