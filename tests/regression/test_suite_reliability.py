@@ -34,8 +34,8 @@ from dcfpb import cli
 from groundmotions.bundled import load_bundled
 from structures.config import load_config
 from structures.suites.store import RunStore
-from structures.suites.suite import Suite, local_cluster, run_suite
-from structures.suites.tasks import BATCH_SIZE, batches
+from structures.suites.suite import Suite, run_suite
+from structures.suites.tasks import BATCH_SIZE, batches, local_cluster
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "five_storey.toml"
@@ -109,7 +109,7 @@ def test_a_killed_worker_has_its_runs_redone_and_nothing_finished_is_lost(config
     record = _elcentro(tmp_path / "long.at2", dt=0.005, repeats=3)  # 18,700 steps a run
     suite = Suite(config, [record], models=("precise",),
                   scales=tuple(0.2 + 0.05 * k for k in range(2 * BATCH_SIZE)))
-    specs, _, _ = suite.plan()
+    specs, _, _ = suite.runs()
     out = tmp_path / "out"
     store = RunStore(out)
     plan = batches(specs, BATCH_SIZE)  # the batches run_suite hands to the workers
