@@ -11,16 +11,11 @@ from __future__ import annotations
 import argparse
 import csv
 import json
-from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
 from dcfpb.common.units import STANDARD_GRAVITY
-
-_FACTOR_ATTRIBUTES = ("scale_factors", "factors")
-_FACTOR_COLUMNS = ("scale_factor", "factor")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -130,35 +125,10 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     return periods, sa
 
 
-def factors_from_report(report: Any, names: Sequence[str]) -> Mapping[str, float] | list[float]:
-    """Per-record scale factors out of a scaling report: a mapping by record name, a
-    sequence in record order, an object with a ``scale_factors`` or ``factors`` attribute
-    holding either, or a table with a ``scale_factor`` or ``factor`` column."""
-    for attribute in _FACTOR_ATTRIBUTES:
-        if hasattr(report, attribute) and not callable(getattr(report, attribute)):
-            return factors_from_report(getattr(report, attribute), names)
-    columns = getattr(report, "columns", ())
-    for column in _FACTOR_COLUMNS:
-        if column in columns:
-            return [float(x) for x in report[column]]
-    if isinstance(report, Mapping):
-        return {str(k): float(v) for k, v in report.items()}
-    if hasattr(report, "index") and hasattr(report, "to_numpy"):  # a pandas Series
-        return dict(zip(map(str, report.index), map(float, report.to_numpy()), strict=True))
-    values = [float(x) for x in report]
-    if len(values) != len(names):
-        raise ValueError(f"The scaling report gave {len(values)} factors for {len(names)} "
-                         "records.")
-    return values
-
-
 def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float, float]):
-    """The factor hook of a target spectrum [s, g] for a suite of records or of pairs, through
-    ``groundmotions.scaling``.
-
-    ``scale_suite(motions, (periods [s], sa [m/s^2]), period_range)`` is the one call to
-    the scaling module; change it here if its signature differs.
-    """
+    """The factor hook of a target spectrum [s, g] for a suite of records or of pairs: the
+    factors of ``groundmotions.scaling.scale_suite`` (each record on its spectrum, each pair
+    on its RotD100, over ``period_range`` [s]), in the order of the motions."""
     try:
         from groundmotions.scaling import scale_suite
     except ImportError as error:
@@ -167,8 +137,8 @@ def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float
                          "instead.") from None
 
     def hook(motions):
-        report = scale_suite(motions, (periods, sa_g * STANDARD_GRAVITY), period_range)
-        return factors_from_report(report, [m.name for m in motions])
+        target = (periods, sa_g * STANDARD_GRAVITY)
+        return scale_suite(motions, target, period_range).scale_factors
 
     return hook
 
