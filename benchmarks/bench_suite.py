@@ -35,17 +35,20 @@ def _warm_up() -> None:
     from groundmotions.bundled import load_bundled
     from structures.config import load_config
     from structures.suites.runs import RunSpec, execute_run
+    from structures.suites.sources import MotionSource
 
     config = load_config(REPO / "examples" / "five_storey.toml")
     motion = load_bundled("elcentro").truncated(1.0)
     for model in ("precise", "simplified", "constant"):
-        execute_run(RunSpec("warm-up", "-", model, dt=0.01), motion, config)
+        execute_run(RunSpec(MotionSource.record("warm-up"), ("-",), model, dt=0.01), motion,
+                    config)
 
 
 def _measure(suite, workers: int) -> tuple[float, float, object]:
     from distributed import Client
 
-    from structures.suites.suite import local_cluster, run_suite
+    from structures.suites.suite import run_suite
+    from structures.suites.tasks import local_cluster
 
     with local_cluster(workers) as cluster, Client(cluster) as client:
         client.run(_warm_up)
@@ -68,12 +71,13 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
 
     from structures.config import load_config
-    from structures.suites.suite import Suite, record_files
+    from structures.suites.sources import motion_sources
+    from structures.suites.suite import Suite
 
     if not args.folder.is_dir():
         print(f"no records: {args.folder} is absent", file=sys.stderr)
         return 2
-    files = record_files(args.folder)[: args.records]
+    files = motion_sources(args.folder)[: args.records]
     suite = Suite(load_config(REPO / "examples" / "five_storey.toml"), files,
                   models=args.models.split(","))
     n_runs = len(files) * len(suite.models)
@@ -82,7 +86,7 @@ def main(argv: list[str] | None = None) -> int:
     import pandas  # noqa: F401  (imports paid before either clock starts)
     import pyarrow  # noqa: F401
 
-    suite.plan()  # the readers' first call, likewise
+    suite.runs()  # the readers' first call, likewise
     walls, cpus, results, loads = {}, {}, {}, {}
     for _ in range(args.repeats):  # interleaved, best of: drift and other load hit both alike
         for workers in (1, 2):

@@ -11,16 +11,11 @@ from __future__ import annotations
 import argparse
 import csv
 import json
-from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
 from dcfpb.common.units import STANDARD_GRAVITY
-
-_FACTOR_ATTRIBUTES = ("scale_factors", "factors")
-_FACTOR_COLUMNS = ("scale_factor", "factor")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -102,7 +97,6 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     """
     text = str(path)
     if text.lower().startswith(("asce7:", "asce7-mce:")):
-        from dcfpb.common.units import STANDARD_GRAVITY
         from groundmotions.scaling import asce7_design_spectrum
 
         kind, _, values = text.partition(":")
@@ -131,35 +125,10 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     return periods, sa
 
 
-def factors_from_report(report: Any, names: Sequence[str]) -> Mapping[str, float] | list[float]:
-    """Per-record scale factors out of a scaling report: a mapping by record name, a
-    sequence in record order, an object with a ``scale_factors`` or ``factors`` attribute
-    holding either, or a table with a ``scale_factor`` or ``factor`` column."""
-    for attribute in _FACTOR_ATTRIBUTES:
-        if hasattr(report, attribute) and not callable(getattr(report, attribute)):
-            return factors_from_report(getattr(report, attribute), names)
-    columns = getattr(report, "columns", ())
-    for column in _FACTOR_COLUMNS:
-        if column in columns:
-            return [float(x) for x in report[column]]
-    if isinstance(report, Mapping):
-        return {str(k): float(v) for k, v in report.items()}
-    if hasattr(report, "index") and hasattr(report, "to_numpy"):  # a pandas Series
-        return dict(zip(map(str, report.index), map(float, report.to_numpy()), strict=True))
-    values = [float(x) for x in report]
-    if len(values) != len(names):
-        raise ValueError(f"The scaling report gave {len(values)} factors for {len(names)} "
-                         "records.")
-    return values
-
-
 def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float, float]):
-    """The factor hook of a target spectrum [s, g] for a suite of records or of pairs, through
-    ``groundmotions.scaling``.
-
-    ``scale_suite(motions, (periods [s], sa [m/s^2]), period_range)`` is the one call to
-    the scaling module; change it here if its signature differs.
-    """
+    """The factor hook of a target spectrum [s, g] for a suite of records or of pairs: the
+    factors of ``groundmotions.scaling.scale_suite`` (each record on its spectrum, each pair
+    on its RotD100, over ``period_range`` [s]), in the order of the motions."""
     try:
         from groundmotions.scaling import scale_suite
     except ImportError as error:
@@ -168,8 +137,8 @@ def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float
                          "instead.") from None
 
     def hook(motions):
-        report = scale_suite(motions, (periods, sa_g * STANDARD_GRAVITY), period_range)
-        return factors_from_report(report, [m.name for m in motions])
+        target = (periods, sa_g * STANDARD_GRAVITY)
+        return scale_suite(motions, target, period_range).scale_factors
 
     return hook
 
@@ -186,37 +155,24 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
     return 0.75 * period, 1.25 * period
 
 
-def _suite(args: argparse.Namespace, config, target, period_range):
-    """The suite of the command line and the function that runs it: of records, or of pairs
-    (``--pairs``), the latter refused before any work on a building file without ``[plan]``."""
-    factors = None if target is None else target_hook(*target, period_range)
-    if args.pairs is None:
-        from structures.suites.suite import Suite, record_files, run_suite
+def _suite(args: argparse.Namespace, config, factors):
+    """The suite of the command line: of records, or of pairs (``--pairs``), the latter
+    refused before any work on a building file without ``[plan]``."""
+    from structures.suites.sources import motion_sources
+    from structures.suites.suite import Suite
 
-        if config.plan is not None:
-            import warnings
+    if args.pairs is not None and config.plan is None:
+        from dcfpb.common.errors import InputError
 
-            from dcfpb.common.errors import InputWarning
-
-            warnings.warn(InputWarning(
-                "the building file's [plan] table is not used: single records run the planar "
-                "building along x; give --pairs to run it in plan"), stacklevel=1)
-        return Suite(config, record_files(args.records), models=args.models.split(","),
-                     scales=_floats(args.scales, "--scales"),
-                     property_modifiers=_floats(args.modifiers, "--modifiers"),
-                     record_factors=factors, duration=args.duration, dt=args.dt), run_suite
-    from dcfpb.common.errors import InputError
-    from structures.suites.pairs.suite import PairSuite, pair_sources, run_pair_suite
-
-    if config.plan is None:
         raise InputError(f"--pairs runs a building in plan, but the building file "
                          f"{args.building!r} has no [plan] table (bearing_coordinates, "
                          "eccentricity, ...; see README, 'A building in plan'). Give --records "
-                         "to run it planar under single records.")
-    return PairSuite(config, pair_sources(args.pairs), models=args.models.split(","),
-                     scales=_floats(args.scales, "--scales"),
-                     property_modifiers=_floats(args.modifiers, "--modifiers"),
-                     pair_factors=factors, duration=args.duration, dt=args.dt), run_pair_suite
+                         "to run it in one direction under single records.")
+    motions = motion_sources(args.pairs or args.records, pairs=args.pairs is not None)
+    return Suite(config, motions, models=args.models.split(","),
+                 scales=_floats(args.scales, "--scales"),
+                 property_modifiers=_floats(args.modifiers, "--modifiers"), factors=factors,
+                 duration=args.duration, dt=args.dt)
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -224,6 +180,7 @@ def _run(args: argparse.Namespace) -> int:
     from dcfpb.common.validation import check_int, check_real
     from structures.config import load_config
     from structures.suites.lock import SuiteLock
+    from structures.suites.suite import run_suite
 
     check_outputs(folders={"--out": args.out})
     if args.run_timeout is not None:
@@ -239,7 +196,7 @@ def _run(args: argparse.Namespace) -> int:
     if args.target:
         target = read_target(args.target)
         period_range = _period_range(args.period_range, config)
-    suite, run_suite = _suite(args, config, target, period_range)
+    suite = _suite(args, config, None if target is None else target_hook(*target, period_range))
     with SuiteLock(args.out, wait=args.wait_lock):  # the plots and tables too
         try:
             result = run_suite(suite, args.out, n_workers=args.workers,
@@ -259,28 +216,25 @@ def _plots(result, suite, target, period_range) -> list[Path]:
     from dcfpb.plotting.suite import plot_peak_distributions, plot_scaled_spectra
 
     out = Path(result.out_dir) / "plots"
-    pairs = "pair" in result.peaks.columns
-    kind = "peaks in plan" if pairs else "peaks"
+    kind = "peaks in plan" if suite.kind == "pair" else "peaks"
     written = [plot_peak_distributions(result.peaks, out / "peak_distributions.png",
                                        title=f"{suite.config.name}: {kind} per friction model")]
     if target is not None:
-        written.append(plot_scaled_spectra(_scaled_suite(result, suite, pairs), *target,
+        written.append(plot_scaled_spectra(_scaled_suite(result, suite), *target,
                                            out / "scaled_spectra.png",
                                            period_range=period_range))
     return written
 
 
-def _scaled_suite(result, suite, pairs: bool) -> list:
+def _scaled_suite(result, suite) -> list:
     """The records or the pairs as scaled (and truncated) for the suite's runs."""
-    key = "pair" if pairs else "record_file"
-    first = result.peaks.drop_duplicates(key).set_index(key)
+    factors = {spec.motion: spec.record_factor for spec in result.runs}
     motions, _ = suite.read()
     scaled = []
-    for name, motion in motions.items():
+    for source, motion in motions.items():
         if suite.duration is not None:  # the part that was run
             motion = motion.truncated(min(suite.duration, motion.duration))
-        factor = first.loc[name if pairs else Path(name).name, "record_factor"]
-        scaled.append(motion.scaled(float(factor)))
+        scaled.append(motion.scaled(float(factors[source])))
     return scaled
 
 

@@ -27,7 +27,7 @@ _PANELS = (  # column, label, factor from SI to the plotted unit
     ("peak_roof_acceleration", "peak roof acceleration [m/s$^2$]", 1.0),
     ("peak_storey_drift", "peak storey drift [mm]", 1e3),
 )
-_PLAN_PANELS = (  # the same for a suite of pairs (structures.spatial.peaks.plan_peaks)
+_PLAN_PANELS = (  # a suite of pairs: runs in plan (structures.analysis.peaks)
     ("peak_isolator_displacement", "peak corner-bearing displacement [mm]", 1e3),
     ("peak_base_shear", "peak resultant base shear [kN]", 1e-3),
     ("peak_roof_acceleration_x", "peak roof acceleration x [m/s$^2$]", 1.0),

@@ -1,8 +1,8 @@
-"""Ground-motion suites: records x scale factors x friction models through Dask, one result
-file per run (:mod:`~structures.suites.suite`, :mod:`~structures.suites.runs`,
-:mod:`~structures.suites.store`), the same for a building in plan under pairs of records
-(:mod:`~structures.suites.pairs.suite`, :mod:`~structures.suites.pairs.runs`) and the
-statistics of their peaks (:mod:`~structures.suites.summary`)."""
+"""Ground-motion suites: records or pairs of records x scale factors x friction models x property
+modifiers through Dask, one result file per run (:mod:`~structures.suites.suite`; the motions
+:mod:`~structures.suites.sources`, the runs :mod:`~structures.suites.runs`, their files
+:mod:`~structures.suites.store`) and the statistics of their peaks
+(:mod:`~structures.suites.summary`)."""
 
 from __future__ import annotations
 
@@ -11,18 +11,18 @@ from dcfpb.common.lazy import lazy_exports
 _EXPORTS = {
     "Suite": "structures.suites.suite",
     "run_suite": "structures.suites.suite",
-    "record_files": "structures.suites.suite",
+    "MotionSource": "structures.suites.sources",
+    "motion_sources": "structures.suites.sources",
+    "RunSpec": "structures.suites.runs",
+    "execute_run": "structures.suites.runs",
     "summarize": "structures.suites.summary",
-    "PairSuite": "structures.suites.pairs.suite",
-    "pair_sources": "structures.suites.pairs.suite",
-    "run_pair_suite": "structures.suites.pairs.suite",
 }
 __all__ = [
-    "PairSuite",
+    "MotionSource",
+    "RunSpec",
     "Suite",
-    "pair_sources",
-    "record_files",
-    "run_pair_suite",
+    "execute_run",
+    "motion_sources",
     "run_suite",
     "summarize",
 ]

@@ -1,12 +1,9 @@
-"""The run of any suite's runs through Dask, into its folder, and what comes out of it.
+"""The run of a suite's runs through Dask, into its folder, and what comes out of it.
 
-Shared by the suites of records (:func:`structures.suites.suite.run_suite`) and of pairs
-(:func:`structures.suites.pairs.suite.run_pair_suite`): a suite plans its runs (objects with the
-interface described in :mod:`structures.suites.tasks`) and reads what must be read here;
 :func:`compute_runs` keeps the runs already complete in the folder, records the runs whose
 ground motion cannot be read, computes the others on the cluster (each batch of one ground
-motion a Dask task) and stores each as it finishes; :func:`finish` writes the table of the
-invocation, its failures and its summary.
+motion a Dask task, :mod:`structures.suites.tasks`) and stores each as it finishes;
+:func:`finish` writes the table of the invocation, its failures and its summary.
 """
 
 from __future__ import annotations
@@ -22,17 +19,10 @@ from typing import TYPE_CHECKING, Any
 
 from dcfpb.common.validation import check_choice, check_int, check_real
 from structures.config import BuildingConfig
+from structures.suites.runs import RunSpec, execute_run
 from structures.suites.store import RunStore, atomic_write
 from structures.suites.summary import summarize, write_summary
-from structures.suites.tasks import (
-    BATCH_SIZE,
-    batches,
-    client_for,
-    compute_and_store,
-    cost,
-    execute,
-    run_batch,
-)
+from structures.suites.tasks import BATCH_SIZE, batches, client_for, compute_and_store, run_batch
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -47,9 +37,8 @@ class SuiteResult:
     Attributes
     ----------
     peaks : pandas.DataFrame
-        One row per run, in suite order (columns: :data:`structures.suites.runs.COLUMNS`, or
-        :data:`structures.suites.pairs.runs.PAIR_COLUMNS` for a suite of pairs; SI units,
-        times [s]).
+        One row per run, in suite order (columns: :data:`structures.suites.runs.COLUMNS` of
+        the suite's kind; SI units, times [s]).
     failures : list of dict
         ``{"run": run id, "reason": ...}`` of every failed run.
     wall_time : float
@@ -60,6 +49,8 @@ class SuiteResult:
         Runs computed now, and runs kept from an earlier invocation.
     summary : pandas.DataFrame
         :func:`structures.suites.summary.summarize` of the peaks.
+    runs : list of RunSpec
+        The runs, in suite order.
     """
 
     peaks: pd.DataFrame
@@ -69,19 +60,20 @@ class SuiteResult:
     computed: int
     skipped: int
     summary: pd.DataFrame
+    runs: list[RunSpec]
 
 
 def check_run_options(write: str, run_timeout: float | None, max_steps: int,
                       owner: str) -> None:
-    """The checks of the options of ``run_suite`` and ``run_pair_suite`` (``owner``)."""
+    """The checks of the options of ``run_suite`` (``owner`` in the messages)."""
     check_choice(write, "write", owner, ("workers", "client"))
     if run_timeout is not None:
         check_real(run_timeout, "run_timeout", owner, low=0.0, low_open=True)
     check_int(max_steps, "max_steps", owner, low=1)
 
 
-def compute_runs(specs: Sequence[Any], motions: Mapping[str, Any],
-                 unreadable: Mapping[str, str], config: BuildingConfig, store: RunStore, *,
+def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
+                 unreadable: Mapping[Any, str], config: BuildingConfig, store: RunStore, *,
                  n_workers: int | None, scheduler_address: str | None, write: str,
                  progress: bool, run_timeout: float | None, max_steps: int,
                  ship: bool) -> tuple[dict[str, dict[str, Any]], int, int]:
@@ -89,12 +81,12 @@ def compute_runs(specs: Sequence[Any], motions: Mapping[str, Any],
 
     Parameters
     ----------
-    specs : sequence
+    specs : sequence of RunSpec
         The suite's runs, in table order.
     motions : mapping
-        The ground motions read here, by ``spec.source`` (sent to the workers when ``ship``).
+        The ground motions read here, by ``spec.motion`` (sent to the workers when ``ship``).
     unreadable : mapping
-        Why each source that could not be read here cannot (its runs fail with it).
+        Why each motion that could not be read here cannot (its runs fail with it).
     config : BuildingConfig
         The building file.
     store : RunStore
@@ -120,8 +112,8 @@ def compute_runs(specs: Sequence[Any], motions: Mapping[str, Any],
         row = store.completed_row(spec.run_id)
         if row is not None:
             rows[spec.run_id] = row
-        elif spec.source in unreadable:
-            rows[spec.run_id] = store.save_failure(spec.failure(unreadable[spec.source]))
+        elif spec.motion in unreadable:
+            rows[spec.run_id] = store.save_failure(spec.failure(unreadable[spec.motion]))
         else:
             pending.append(spec)
     skipped = sum(row["status"] == "done" for row in rows.values())
@@ -131,20 +123,21 @@ def compute_runs(specs: Sequence[Any], motions: Mapping[str, Any],
     try:
         if pending:
             with client_for(n_workers, scheduler_address) as client:
-                needed = sorted({s.source for s in pending}) if ship else []
+                needed = list(dict.fromkeys(s.motion for s in pending)) if ship else []
                 shared = (dict(zip(needed, client.scatter([motions[f] for f in needed],
                                                            hash=False), strict=True))
                           if needed else {})
                 token = uuid.uuid4().hex[:8]
                 task, extra = ((compute_and_store,
                                 (str(store.root.resolve()), run_timeout, max_steps))
-                               if write == "workers" else (execute, (run_timeout, max_steps)))
+                               if write == "workers" else (execute_run,
+                                                           (run_timeout, max_steps)))
                 futures = {client.submit(run_batch, task, batch,
-                                         shared.get(batch[0].source), config,
+                                         shared.get(batch[0].motion), config,
                                          *extra, pure=False,
                                          key=f"dcfpb-{token}-{batch[0].run_id}",
-                                         priority=sum(cost(spec, motions.get(spec.source),
-                                                           config) for spec in batch)
+                                         priority=sum(spec.cost(motions.get(spec.motion),
+                                                                config) for spec in batch)
                                          ): batch
                            for batch in batches(pending, BATCH_SIZE)}
                 for future in as_completed(futures):
@@ -172,12 +165,11 @@ def compute_runs(specs: Sequence[Any], motions: Mapping[str, Any],
     return rows, len(pending), skipped
 
 
-def finish(specs: Sequence[Any], rows: dict[str, dict[str, Any]], store: RunStore,
-           computed: int, skipped: int, start: float, columns: Sequence[str],
-           quantities: dict[str, str] | None = None) -> SuiteResult:
-    """Write ``peaks.csv`` (``columns``), ``failures.json`` and the summary (of
-    ``quantities``, :func:`structures.suites.summary.summarize`) and return the result;
-    ``start`` is the invocation's ``time.perf_counter()`` [s]."""
+def finish(specs: Sequence[RunSpec], rows: dict[str, dict[str, Any]], store: RunStore,
+           computed: int, skipped: int, start: float, columns: Sequence[str]) -> SuiteResult:
+    """Write ``peaks.csv`` (``columns``), ``failures.json`` and the summary
+    (:func:`structures.suites.summary.summarize`) and return the result; ``start`` is the
+    invocation's ``time.perf_counter()`` [s]."""
     import pandas as pd
 
     wall = time.perf_counter() - start
@@ -186,6 +178,7 @@ def finish(specs: Sequence[Any], rows: dict[str, dict[str, Any]], store: RunStor
                 for r in table.to_dict("records") if r["status"] != "done"]
     atomic_write(store.root / "peaks.csv", table.to_csv(index=False).encode())
     atomic_write(store.root / "failures.json", json.dumps(failures, indent=1).encode())
-    summary = summarize(table, quantities)
+    summary = summarize(table)
     write_summary(summary, store.root)
-    return SuiteResult(table, failures, wall, store.root, computed, skipped, summary)
+    return SuiteResult(table, failures, wall, store.root, computed, skipped, summary,
+                       list(specs))

@@ -1,57 +1,73 @@
-"""One run of a ground-motion suite: what it is, its stable id, the task that computes it.
+"""One run of a suite: what it is, its stable id, its row and the work that computes it.
 
-A suite (:mod:`structures.suites.suite`) is a set of independent runs, each a record file at a scale
-factor under one friction model with one property modifier. This module holds what a single
-run needs:
+A run is a ground motion (:class:`~structures.suites.sources.MotionSource`: a record, run on the
+building in one direction, or a pair, run on the building in plan) at a scale factor under one
+friction model with one property modifier:
 
 ``RunSpec``
     the run's definition and its stable id, a readable name plus a hash of everything that
-    changes the answer (record bytes, scale, model, modifier, truncation, step, building);
-``modified_bearing``
-    the file's bearing with its friction coefficient multiplied by a property modifier
-    (upper/lower-bound analyses, lambda_max / lambda_min);
+    changes the answer (the motion's file names and bytes, how a pair is read, scale, model,
+    modifier, truncation, step, building and, in plan, its plan: :func:`fingerprint`);
 ``execute_run``
-    the computation of a run, pure: a spec and a record in, the peaks row and the netCDF
-    bytes out; the files are written by :mod:`structures.suites.store` (on the worker or on
-    the client, see ``structures.suites.suite.run_suite``).
+    the computation of a run, pure: a spec and a motion in, its row (the peaks of
+    :func:`structures.analysis.peaks` and the suite's own columns) and the netCDF bytes out;
+    the files are written by :mod:`structures.suites.store`.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import os
 import re
 import socket
 import time
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass
 from functools import cached_property
-from pathlib import Path
 from typing import Any
 
-from dcfpb.common.validation import check_choice, check_real
-from groundmotions.records import GroundMotion
-from isolator.bearing import DCFPBearing
-from isolator.experiments import MODELS
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
+from structures.suites.sources import MOTION_COLUMNS, MotionSource
 
-PEAK_COLUMNS = ("peak_isolator_displacement", "peak_base_shear", "peak_roof_acceleration",
-                "peak_storey_drift", "max_temperature", "energy_balance_error", "steps",
-                "wall_time")
-"""Columns filled from :func:`structures.analysis.peaks` (SI units, wall time [s])."""
+PEAK_COLUMNS = {
+    "record": ("peak_isolator_displacement", "peak_base_shear", "peak_roof_acceleration",
+               "peak_storey_drift", "max_temperature", "energy_balance_error", "steps",
+               "wall_time"),
+    "pair": ("peak_isolator_displacement", "peak_centre_displacement", "corner_bearing",
+             "peak_base_shear", "peak_roof_acceleration_x", "peak_roof_acceleration_y",
+             "peak_storey_drift_x", "peak_storey_drift_y", "peak_base_rotation",
+             "max_temperature", "energy_balance_error", "steps", "wall_time",
+             "peaks_up_to_failure"),
+}
+"""Columns of the peaks table filled from :func:`structures.analysis.peaks` (SI units, wall
+time [s]), by the kind of motion: a record's runs in one direction, a pair's in plan."""
 
-COLUMNS = ("run_id", "record", "record_file", "scale", "record_factor", "multiplier", "model",
-           "modifier", "duration", "dt", *PEAK_COLUMNS, "task_time", "status", "reason",
+COLUMNS = {
+    kind: ("run_id", *MOTION_COLUMNS[kind], "scale", "record_factor", "multiplier", "model",
+           "modifier", "duration", "dt", *PEAK_COLUMNS[kind], "task_time", "status", "reason",
            "worker", "failure", "failed_at")
-"""Columns of the peaks table, one row per run. A failed run keeps the peaks of the part that
-ran (up to ``failed_at`` [s] of the record, empty when it never ran); ``failure`` is its kind,
-one of :data:`FAILURE_KINDS` (empty for a run that finished)."""
+    for kind in MOTION_COLUMNS
+}
+"""Columns of the peaks table, one row per run, by the kind of motion: the motion
+(:data:`~structures.suites.sources.MOTION_COLUMNS`), the scale (``record_factor`` times the suite's
+``multiplier``), model and modifier, the peaks (:data:`PEAK_COLUMNS`), then how the run went.
+A failed run keeps the peaks of the part that ran (up to ``failed_at`` [s] of the motion, empty
+when it never ran); ``failure`` is its kind, one of :data:`FAILURE_KINDS` (empty for a run that
+finished)."""
 
 FAILURE_KINDS = ("capacity", "convergence", "timeout", "error")
 """Why a run failed: a bearing past its displacement capacity; a step that did not converge;
-past its time limit (``run_suite(run_timeout=...)``); anything else (an exception, an
-unreadable record, a worker that kept dying, a model outside its range)."""
+past its time limit (``run_suite(run_timeout=...)``); anything else (an exception, a motion
+that cannot be read, a worker that kept dying, a model outside its range)."""
+
+MODEL_COST = {"precise": 2.0, "simplified": 1.5, "constant": 1.0}
+"""Relative cost of a time step per friction model (the order in which runs start)."""
+
+NETCDF_ENGINE = "scipy"
+"""xarray engine of the result files: netCDF3 (64-bit offset) written to bytes in memory,
+needing only scipy (netCDF4 and h5netcdf are optional and cannot both write to bytes)."""
 
 
 def failure_kind(row: dict[str, Any]) -> str:
@@ -70,21 +86,20 @@ def failure_kind(row: dict[str, Any]) -> str:
             return kind
     return "error"
 
-MODEL_COST = {"precise": 2.0, "simplified": 1.5, "constant": 1.0}
-"""Relative cost of a time step per friction model (the order in which runs start)."""
 
-NETCDF_ENGINE = "scipy"
-"""xarray engine of the result files: netCDF3 (64-bit offset) written to bytes in memory,
-needing only scipy (netCDF4 and h5netcdf are optional and cannot both write to bytes)."""
+def _hash(payload: Any, digits: int) -> str:
+    text = json.dumps(payload, sort_keys=True, default=repr)
+    return hashlib.sha256(text.encode()).hexdigest()[:digits]
 
 
-def config_fingerprint(config: BuildingConfig) -> str:
-    """A 12-hex-digit hash of everything in a building file that changes a run's answer.
+def fingerprint(config: BuildingConfig, in_plan: bool = False) -> str:
+    """A 12-hex-digit hash of everything in a building file that changes a run's answer: the
+    building, bearings, friction and integration and, for a run in plan, the plan.
 
     The file's ``name`` is left out: renaming a building does not invalidate its results.
     """
     b = config.building
-    payload = {
+    digest = _hash({
         "floor_masses": [float(x) for x in b.floor_masses],
         "storey_stiffnesses": [float(x) for x in b.storey_stiffnesses],
         "base_mass": float(b.base_mass),
@@ -94,137 +109,54 @@ def config_fingerprint(config: BuildingConfig) -> str:
         "friction": config.friction,
         "integrator": repr(config.integrator),
         "dt": config.dt,
-    }
-    text = json.dumps(payload, sort_keys=True, default=repr)
-    return hashlib.sha256(text.encode()).hexdigest()[:12]
+    }, 12)
+    if not in_plan:
+        return digest
+    plan = {f.name: getattr(config.plan, f.name) for f in dataclasses.fields(config.plan)}
+    return _hash({"building": digest,
+                  "plan": {k: v.tolist() if hasattr(v, "tolist") else v
+                           for k, v in plan.items()}}, 12)
 
 
-def file_digest(path: str | Path) -> str:
-    """sha256 of a file's bytes (16 hex digits), or ``"missing"`` if it cannot be read."""
-    try:
-        return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:16]
-    except OSError:
-        return "missing"
-
-
-def modified_bearing(config: BuildingConfig, model: str, modifier: float = 1.0) -> DCFPBearing:
-    """The file's bearing with friction ``model``, its friction coefficient times ``modifier``.
-
-    Parameters
-    ----------
-    config : BuildingConfig
-        The building file.
-    model : {"precise", "simplified", "constant"}
-        Friction model.
-    modifier : float
-        Property modification factor on the reference friction coefficient [-]: it multiplies
-        ``mu_t0`` of the precise and simplified models (Eq. 7) or ``mu0`` of the constant
-        model (Eq. 8), e.g. lambda_max or lambda_min of ASCE 7-16 Sec. 17.2.8.4.
-
-    Raises
-    ------
-    ValueError
-        If ``modifier`` is not > 0, or the modified coefficient leaves (0, 1].
-    """
-    check_real(modifier, "property_modifier", "modified_bearing", low=0.0, low_open=True)
-    bearing = config.bearing(check_choice(model, "model", "modified_bearing", MODELS))
-    if modifier == 1.0:
-        return bearing
-    return replace(bearing, friction=bearing.friction.scaled(modifier))
-
-
-def analysis_step(requested: float | None, record_dt: float) -> float:
-    """The analysis step of a run [s]: the requested step, or the record's when that is finer
-    (``run`` cannot take a step longer than the record's). ``None`` means the record's."""
-    return record_dt if requested is None else min(float(requested), record_dt)
+def analysis_step(requested: float | None, motion_dt: float) -> float:
+    """The analysis step of a run [s]: the requested step, or the motion's when that is finer
+    (``run`` cannot take a step longer than the motion's). ``None`` means the motion's."""
+    return motion_dt if requested is None else min(float(requested), motion_dt)
 
 
 def _safe(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9._-]+", "-", text).strip("-") or "record"
 
 
-class SuiteRun:
-    """What a run of a suite of records (:class:`RunSpec`) and of pairs
-    (:class:`structures.suites.pairs.runs.PairRunSpec`) share: the scale, the form of the id,
-    the row of a failure and the cost estimate. A run has the fields ``record_factor``,
-    ``multiplier``, ``model``, ``modifier``, ``duration`` and ``dt``, and its ground motion's
-    ``files``."""
-
-    record_factor: float
-    multiplier: float
-    model: str
-    modifier: float
-    duration: float | None
-    dt: float | None
-
-    @property
-    def scale(self) -> float:
-        """Amplitude scale factor of the ground motion, ``record_factor * multiplier`` [-]."""
-        return self.record_factor * self.multiplier
-
-    @property
-    def files(self) -> tuple[str, ...]:
-        """The files of the run's ground motion."""
-        raise NotImplementedError
-
-    def _run_id(self, name: str, key: dict[str, Any]) -> str:
-        """``<name>_x<scale>_<model>_m<modifier>-<hash>``, the hash that of ``key`` (JSON)."""
-        digest = hashlib.sha256(json.dumps(key, sort_keys=True).encode()).hexdigest()[:10]
-        return (f"{_safe(name)}_x{self.scale:.4g}_{self.model}_m{self.modifier:.4g}"
-                f"-{digest}")
-
-    def row(self) -> dict[str, Any]:
-        """The peaks-table row of this run before it runs (peaks and status empty)."""
-        raise NotImplementedError
-
-    def failure(self, reason: str, row: dict[str, Any] | None = None,
-                kind: str = "error") -> dict[str, Any]:
-        """The row of a failed run, with its ``reason`` and ``kind`` (:data:`FAILURE_KINDS`)."""
-        return (row or self.row()) | {"status": "failed", "reason": reason, "failure": kind}
-
-    def cost(self, motion, config: BuildingConfig) -> int:
-        """Estimated cost, steps (or, for a motion not read here, its files' bytes) x model
-        weight: the longest runs start first, so fewer workers idle at the end of the suite."""
-        if motion is None:
-            try:
-                size = sum(os.path.getsize(f) for f in self.files)
-            except OSError:
-                return 0
-            return int(size * MODEL_COST[self.model])
-        length = motion.duration if self.duration is None else min(self.duration,
-                                                                  motion.duration)
-        step = analysis_step(self.dt if self.dt is not None else config.dt, motion.dt)
-        return int(length / step * MODEL_COST[self.model])
-
-
 @dataclass(frozen=True)
-class RunSpec(SuiteRun):
+class RunSpec:
     """One run of a suite.
 
     Parameters
     ----------
-    record_file : str
-        Path of the record file.
-    record_digest : str
-        sha256 of the file's bytes (see :func:`file_digest`).
+    motion : MotionSource
+        The ground motion: a record (the building runs in one direction) or a pair (in plan).
+    digests : tuple of str
+        sha256 of each of the motion's files (:meth:`MotionSource.digests`).
     model : str
         Friction model, ``"precise"``, ``"simplified"`` or ``"constant"``.
     record_factor : float
-        Per-record scale factor (e.g. to a target spectrum) [-].
+        Per-motion scale factor (e.g. to a target spectrum) [-].
     multiplier : float
-        Suite-wide multiplier of the record factor [-]; the run's scale is their product.
+        Suite-wide multiplier of the motion's factor [-]; the run's scale is their product.
     modifier : float
-        Property modifier on the friction coefficient [-] (:func:`modified_bearing`).
+        Property modification factor on the friction coefficient [-]
+        (``friction.scaled(modifier)``).
     duration : float or None
-        Keep only the first ``duration`` seconds of the record [s] (None: all of it).
+        Keep only the first ``duration`` seconds of the motion [s] (None: all of it).
     dt : float or None
-        Requested analysis step [s] (None: the building file's, else the record's).
+        Requested analysis step [s] (None: the building file's, else the motion's).
     settings : str
-        :func:`config_fingerprint` of the building.
+        :func:`fingerprint` of the building.
     """
 
-    record_file: str
-    record_digest: str
+    motion: MotionSource
+    digests: tuple[str, ...]
     model: str
     record_factor: float = 1.0
     multiplier: float = 1.0
@@ -234,66 +166,67 @@ class RunSpec(SuiteRun):
     settings: str = ""
 
     @property
-    def files(self) -> tuple[str, ...]:
-        """The record file."""
-        return (self.record_file,)
-
-    @property
-    def record(self) -> str:
-        """The record's name: its file name without the extension."""
-        return Path(self.record_file).stem
+    def scale(self) -> float:
+        """Amplitude scale factor of the ground motion, ``record_factor * multiplier`` [-]."""
+        return self.record_factor * self.multiplier
 
     @cached_property
     def run_id(self) -> str:
-        """Stable id: ``<record>_x<scale>_<model>_m<modifier>-<hash>``, e.g.
-        ``A-BEN360_x2_precise_m1-3f9a2c1b07``. The hash covers the record's bytes (not its
-        folder), the exact scale and modifier, the truncation, the step and the building."""
-        key = {f.name: getattr(self, f.name) for f in fields(self)}
-        key["record_file"] = Path(self.record_file).name
-        return self._run_id(self.record, key)
+        """Stable id: ``<name>_x<scale>_<model>_m<modifier>-<hash>``, e.g.
+        ``A-BEN360_x2_precise_m1-3f9a2c1b07``. The hash covers the motion's files by name
+        (not their folder) and bytes, how a pair is read, the exact scale and modifier, the
+        truncation, the step and the building (:meth:`MotionSource.identity`,
+        :func:`fingerprint`)."""
+        key = self.motion.identity(self.digests) | {
+            name: getattr(self, name) for name in ("model", "record_factor", "multiplier",
+                                                   "modifier", "duration", "dt", "settings")}
+        return (f"{_safe(self.motion.name)}_x{self.scale:.4g}_{self.model}"
+                f"_m{self.modifier:.4g}-{_hash(key, 10)}")
 
     def row(self) -> dict[str, Any]:
         """The peaks-table row of this run before it runs (peaks and status empty)."""
-        row: dict[str, Any] = dict.fromkeys(COLUMNS)
-        row.update(run_id=self.run_id, record=self.record,
-                   record_file=Path(self.record_file).name, scale=self.scale,
-                   record_factor=self.record_factor, multiplier=self.multiplier,
-                   model=self.model, modifier=self.modifier, duration=self.duration)
-        return row
+        return dict.fromkeys(COLUMNS[self.motion.kind]) | {"run_id": self.run_id} | (
+            self.motion.columns()) | {
+            "scale": self.scale, "record_factor": self.record_factor,
+            "multiplier": self.multiplier, "model": self.model, "modifier": self.modifier,
+            "duration": self.duration}
 
-    # What the Dask side (structures.suites.tasks, .dispatch) asks of any run of a suite.
+    def failure(self, reason: str, row: dict[str, Any] | None = None,
+                kind: str = "error") -> dict[str, Any]:
+        """The row of a failed run, with its ``reason`` and ``kind`` (:data:`FAILURE_KINDS`)."""
+        return (row or self.row()) | {"status": "failed", "reason": reason, "failure": kind}
 
-    @property
-    def source(self) -> str:
-        """The key of the run's ground motion, its record file: the runs of one source share
-        a read and a Dask task."""
-        return self.record_file
-
-    def read(self) -> GroundMotion:
-        """The run's record, unscaled and untruncated (raises if it cannot be read)."""
-        from groundmotions.readers import read_record
-
-        return read_record(self.record_file)
-
-    def execute(self, motion: GroundMotion | None, config: BuildingConfig,
-                time_limit: float | None = None, max_steps: int = DEFAULT_MAX_STEPS,
-                ) -> tuple[dict[str, Any], bytes | None]:
-        """:func:`execute_run` of this run."""
-        return execute_run(self, motion, config, time_limit, max_steps)
+    def cost(self, motion: Any, config: BuildingConfig) -> int:
+        """Estimated cost, steps (or, for a motion not read here, its files' bytes) x model
+        weight: the longest runs start first, so fewer workers idle at the end of the suite."""
+        if motion is None:
+            try:
+                size = sum(os.path.getsize(f) for f in self.motion.files)
+            except OSError:
+                return 0
+            return int(size * MODEL_COST[self.model])
+        length = motion.duration if self.duration is None else min(self.duration,
+                                                                  motion.duration)
+        step = analysis_step(self.dt if self.dt is not None else config.dt, motion.dt)
+        return int(length / step * MODEL_COST[self.model])
 
 
-def execute_run(spec: RunSpec, motion: GroundMotion | None, config: BuildingConfig,
+def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
                 time_limit: float | None = None, max_steps: int = DEFAULT_MAX_STEPS,
                 ) -> tuple[dict[str, Any], bytes | None]:
     """Compute one run (the work of a Dask task).
+
+    It runs what ``structures.run(config, motion, model=..., dt=..., scale=...)`` runs, with
+    the friction coefficient times the modifier: a record on the building in one direction (a
+    file's ``[plan]`` table left out), a pair on the building in plan, each bearing on its
+    share of the weight.
 
     Parameters
     ----------
     spec : RunSpec
         What to run.
-    motion : GroundMotion or None
-        The record read from ``spec.record_file`` (unscaled, untruncated), or None to read
-        it here.
+    motion : GroundMotion or GroundMotionPair or None
+        The motion read from the spec's files (unscaled, untruncated), or None to read it here.
     config : BuildingConfig
         The building file.
     time_limit : float, optional
@@ -306,43 +239,51 @@ def execute_run(spec: RunSpec, motion: GroundMotion | None, config: BuildingConf
     Returns
     -------
     row : dict
-        The peaks-table row: status ``"done"``, or ``"failed"`` with the ``reason`` (any
-        exception, e.g. an unreadable record, or a run that stopped early: ``success == 0``
-        in the result attributes, in which case the peaks of the part that ran are kept)
-        and the ``failure`` kind and time ``failed_at`` [s].
+        The peaks-table row (:data:`COLUMNS`, and every key of
+        :func:`structures.analysis.peaks`): status ``"done"``, or ``"failed"`` with the
+        ``reason`` (any exception, e.g. a motion that cannot be read, or a run that stopped
+        early, whose peaks up to then are kept), the ``failure`` kind and the time
+        ``failed_at`` [s].
     data : bytes or None
         The result as netCDF (:data:`NETCDF_ENGINE`), None for a failed run.
     """
-    from groundmotions.readers import read_record
     from structures.analysis import peaks, run
 
     start = time.perf_counter()
     row = spec.row() | {"worker": f"{socket.gethostname()}:{os.getpid()}"}
+    kind = spec.motion.kind
     try:
         if motion is None:
-            motion = read_record(spec.record_file)
+            motion = spec.motion.read()
         if spec.duration is not None:
             motion = motion.truncated(min(spec.duration, motion.duration))
         if spec.scale != 1.0:
             motion = motion.scaled(spec.scale)
         step = analysis_step(spec.dt if spec.dt is not None else config.dt, motion.dt)
-        bearing = modified_bearing(config, spec.model, spec.modifier)
-        result = run(config.building, bearing, motion, config.integrator,
-                     n_bearings=config.n_bearings, dt=step, time_limit=time_limit,
-                     max_steps=max_steps)
+        in_plan = kind == "pair"
+        building = config.building if in_plan else dataclasses.replace(config.building,
+                                                                        plan=None)
+        bearing = config.bearing(spec.model)
+        bearing = dataclasses.replace(bearing, friction=bearing.friction.scaled(spec.modifier),
+                                      axial_load=None)  # each its share of the weight
+        result = run(building, bearing, motion, config.integrator,
+                     n_bearings=None if in_plan else config.n_bearings, dt=step,
+                     time_limit=time_limit, max_steps=max_steps)
         row.update(peaks(result), dt=float(result.attrs["dt"]))
         if not result.attrs["success"]:
             row["task_time"] = time.perf_counter() - start
-            kind = failure_kind({"failure": row["failure"]})
+            failure = failure_kind({"failure": row["failure"]})
             reason = f"run stopped early: {result.attrs['message']}"
-            if kind == "timeout":
+            if failure == "timeout":
                 reason = (f"timeout after {time_limit:g} s: the run was stopped at t = "
-                          f"{row['failed_at']:.6g} s of the record (its peaks are those up "
+                          f"{row['failed_at']:.6g} s of the {kind} (its peaks are those up "
                           "to then)")
-            return spec.failure(reason, row, kind), None
-        result.attrs.update(run_id=spec.run_id, record_file=row["record_file"],
-                            scale=spec.scale, property_modifier=spec.modifier,
+            return spec.failure(reason, row, failure), None
+        result.attrs.update(building=config.name, run_id=spec.run_id, scale=spec.scale,
+                            property_modifier=spec.modifier,
                             building_fingerprint=spec.settings)
+        for name, value in spec.motion.columns().items():  # the run's own "record" kept
+            result.attrs.setdefault(name, "" if value is None else value)
         data = bytes(result.to_netcdf(engine=NETCDF_ENGINE))
     except Exception as error:  # any failure is this run's, reported, and the suite goes on
         row["task_time"] = time.perf_counter() - start

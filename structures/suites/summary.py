@@ -28,25 +28,21 @@ if TYPE_CHECKING:
 
 QUANTITIES = {
     "peak_isolator_displacement": "m",
-    "peak_base_shear": "N",
-    "peak_roof_acceleration": "m/s^2",
-    "peak_storey_drift": "m",
-}
-"""Peak responses summarised, with their units."""
-
-PLAN_QUANTITIES = {
-    "peak_isolator_displacement": "m",
     "peak_centre_displacement": "m",
     "peak_base_shear": "N",
+    "peak_roof_acceleration": "m/s^2",
     "peak_roof_acceleration_x": "m/s^2",
     "peak_roof_acceleration_y": "m/s^2",
+    "peak_storey_drift": "m",
     "peak_storey_drift_x": "m",
     "peak_storey_drift_y": "m",
     "peak_base_rotation": "rad",
 }
-"""Peak responses of a suite of pairs (:func:`structures.spatial.peaks.plan_peaks`) summarised,
-with their units: the corner bearing's resultant displacement, the centre's, the resultant base
-shear, roof acceleration and storey drift per direction, the base rotation."""
+"""Peak responses summarised, with their units: those among the columns of a peaks table. A
+suite of records (runs in one direction) has the isolator displacement, base shear, roof
+acceleration and storey drift; one of pairs (runs in plan) the corner bearing's and the centre's
+resultant displacement, the resultant base shear, roof acceleration and storey drift per
+direction and the base rotation (:func:`structures.analysis.peaks`)."""
 
 GROUP_KEYS = ("model", "modifier", "multiplier")
 COUNT_COLUMNS = ("n_runs", "n_failed", *(f"n_{kind}" for kind in FAILURE_KINDS))
@@ -57,16 +53,14 @@ STATISTICS_OVER = "successful runs"
 """What the statistics are over (the label the reports print)."""
 
 
-def summarize(peaks: pd.DataFrame, quantities: dict[str, str] | None = None) -> pd.DataFrame:
+def summarize(peaks: pd.DataFrame) -> pd.DataFrame:
     """Mean, median and 84th percentile of the peak responses, per group of runs.
 
     Parameters
     ----------
     peaks : pandas.DataFrame
-        The peaks table of a suite (``SuiteResult.peaks``), one row per run.
-    quantities : dict, optional
-        The columns summarised and their units: :data:`QUANTITIES` (default, a suite of
-        records) or :data:`PLAN_QUANTITIES` (a suite of pairs).
+        The peaks table of a suite (``SuiteResult.peaks``), one row per run; its columns
+        among :data:`QUANTITIES` are summarised.
 
     Returns
     -------
@@ -80,7 +74,7 @@ def summarize(peaks: pd.DataFrame, quantities: dict[str, str] | None = None) -> 
     """
     import pandas as pd
 
-    quantities = QUANTITIES if quantities is None else quantities
+    quantities = {q: units for q, units in QUANTITIES.items() if q in peaks.columns}
     rows = []
     for key, group in peaks.groupby(list(GROUP_KEYS), sort=False):
         done = group[group["status"] == "done"]

@@ -1,11 +1,6 @@
-"""The Dask side of a suite (:func:`structures.suites.suite.run_suite`,
-:func:`structures.suites.pairs.suite.run_pair_suite`): the cluster, and the tasks, each a batch
-of runs of one record (or pair) computed and stored one by one, and their order.
-
-A run is anything with the interface of :class:`structures.suites.runs.RunSpec` (and
-:class:`structures.suites.pairs.runs.PairRunSpec`): ``run_id``, ``source`` (the key of its
-ground motion), ``read()``, ``execute(motion, config, time_limit, max_steps)``,
-``cost(motion, config)`` and ``failure(reason)``.
+"""The Dask side of a suite (:func:`structures.suites.suite.run_suite`): the cluster, and the
+tasks, each a batch of runs (:class:`structures.suites.runs.RunSpec`) of one record or pair
+computed and stored one by one.
 
 A worker lost in the middle of a batch (killed, out of memory) has its task redone by Dask on
 another worker; :func:`compute_and_store` then keeps the runs of the batch that were stored
@@ -22,6 +17,7 @@ from typing import Any
 from dcfpb.common.validation import check_int
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
+from structures.suites.runs import RunSpec, execute_run
 from structures.suites.store import RunStore
 
 
@@ -58,22 +54,7 @@ BATCH_SIZE = 6
 """Runs of one ground motion handed to a worker as one task (see :func:`run_batch`)."""
 
 
-def cost(spec: Any, motion: Any, config: BuildingConfig) -> int:
-    """Estimated cost of a run (``spec.cost``: steps, or file bytes for a motion not read
-    here, x model weight): the longest runs start first, so fewer workers idle at the end
-    of the suite."""
-    return int(spec.cost(motion, config))
-
-
-def execute(spec: Any, motion: Any, config: BuildingConfig, time_limit: float | None = None,
-            max_steps: int = DEFAULT_MAX_STEPS) -> tuple[dict[str, Any], bytes | None]:
-    """The task of ``write="client"``: compute a run, its row and netCDF bytes travel back
-    (``spec.execute``: :func:`structures.suites.runs.execute_run` for a record,
-    :func:`structures.suites.pairs.runs.execute_pair_run` for a pair)."""
-    return spec.execute(motion, config, time_limit, max_steps)
-
-
-def compute_and_store(spec: Any, motion: Any, config: BuildingConfig,
+def compute_and_store(spec: RunSpec, motion: Any, config: BuildingConfig,
                        out_dir: str, time_limit: float | None = None,
                        max_steps: int = DEFAULT_MAX_STEPS) -> dict[str, Any]:
     """The task of ``write="workers"``: compute a run and write its files where it ran.
@@ -85,32 +66,33 @@ def compute_and_store(spec: Any, motion: Any, config: BuildingConfig,
     row = store.completed_row(spec.run_id)
     if row is not None:
         return row
-    row, data = spec.execute(motion, config, time_limit, max_steps)
+    row, data = execute_run(spec, motion, config, time_limit, max_steps)
     return store.save_failure(row) if data is None else store.save_done(row, data)
 
 
-def run_batch(task: Any, specs: list[Any], motion: Any, config: BuildingConfig,
+def run_batch(task: Any, specs: list[RunSpec], motion: Any, config: BuildingConfig,
               *extra: Any) -> list[Any]:
-    """One Dask task: the runs of one ground motion (a record, or a pair), in turn, each
-    saved as soon as it is done.
+    """One Dask task: ``task`` (:func:`compute_and_store`, or
+    :func:`~structures.suites.runs.execute_run` when the client writes) of each run of one
+    ground motion (a record, or a pair), in turn.
 
-    The motion is read once for all of them (``specs[0].read()``; one that cannot be read
+    The motion is read once for all of them (``specs[0].motion.read()``; one that cannot be read
     is left to each run, which then fails with the reader's reason). Batching the runs of a
     motion cuts the scheduling overhead per run, which matters for runs of a few tens of
     milliseconds.
     """
     if motion is None:
         try:
-            motion = specs[0].read()
+            motion = specs[0].motion.read()
         except Exception:
             motion = None
     return [task(spec, motion, config, *extra) for spec in specs]
 
 
-def batches(pending: list[Any], size: int) -> list[list[Any]]:
-    """The pending runs grouped by ground motion (``spec.source``: a record file, a pair),
-    in chunks of at most ``size`` runs."""
-    groups: dict[str, list[Any]] = {}
+def batches(pending: list[RunSpec], size: int) -> list[list[RunSpec]]:
+    """The pending runs grouped by ground motion (``spec.motion``), in chunks of at most
+    ``size`` runs."""
+    groups: dict[Any, list[RunSpec]] = {}
     for spec in pending:
-        groups.setdefault(spec.source, []).append(spec)
+        groups.setdefault(spec.motion, []).append(spec)
     return [group[i:i + size] for group in groups.values() for i in range(0, len(group), size)]

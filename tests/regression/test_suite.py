@@ -37,15 +37,17 @@ from groundmotions import scaling
 from groundmotions.readers import read_record
 from structures.analysis import peaks, run
 from structures.config import load_config
-from structures.suites.runs import PEAK_COLUMNS, RunSpec, execute_run, file_digest
+from structures.suites.runs import PEAK_COLUMNS, RunSpec, execute_run
+from structures.suites.sources import MotionSource, file_digest, motion_sources
 from structures.suites.store import RunStore
-from structures.suites.suite import Suite, local_cluster, record_files, run_suite
+from structures.suites.suite import Suite, run_suite
 from structures.suites.summary import summarize
+from structures.suites.tasks import local_cluster
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "five_storey.toml"
 ELCENTRO = REPO / "groundmotions" / "data" / "elcentro_1940_ns.at2"
-PHYSICS = [c for c in PEAK_COLUMNS if c != "wall_time"]
+PHYSICS = [c for c in PEAK_COLUMNS["record"] if c != "wall_time"]
 SAME = ["run_id", "record", "scale", "model", "modifier", "dt", "status", *PHYSICS]
 
 
@@ -63,7 +65,7 @@ def scheduler():
 
 def _single(config, spec: RunSpec) -> dict:
     """The peaks of a plain single run of what ``spec`` describes."""
-    motion = read_record(spec.record_file)
+    motion = read_record(spec.motion.files[0])
     if spec.duration is not None:
         motion = motion.truncated(min(spec.duration, motion.duration))
     result = run(config.building, config.bearing(spec.model), motion.scaled(spec.scale),
@@ -73,7 +75,7 @@ def _single(config, spec: RunSpec) -> dict:
 
 
 def _assert_equals_single_runs(config, suite, result):
-    specs, _, _ = suite.plan()
+    specs, _, _ = suite.runs()
     assert list(result.peaks["run_id"]) == [s.run_id for s in specs]
     assert (result.peaks["status"] == "done").all(), result.failures
     for spec, row in zip(specs, result.peaks.to_dict("records"), strict=True):
@@ -106,7 +108,7 @@ def test_elcentro_suite_on_the_default_local_cluster(config, tmp_path, monkeypat
 
     row = result.peaks.iloc[-1]
     with xr.open_dataset(tmp_path / "runs" / f"{row['run_id']}.nc") as ds:
-        assert float(abs(ds["isolator_displacement"]).max()) == row["peak_isolator_displacement"]
+        assert float(abs(ds["bearing_displacement"]).max()) == row["peak_isolator_displacement"]
         assert ds.attrs["run_id"] == row["run_id"] and ds.attrs["scale"] == 2.0
     summary = pd.read_parquet(tmp_path / "summary.parquet")
     pd.testing.assert_frame_equal(summary, pd.read_csv(tmp_path / "summary.csv"))
@@ -141,7 +143,7 @@ def test_killed_suite_resumes_without_recomputing(config, scheduler, tmp_path):
                                                                                   "")])}
     suite = Suite(config, [ELCENTRO], models=("constant", "simplified"),
                   scales=tuple(0.5 + 0.25 * k for k in range(8)), duration=12.0, dt=0.005)
-    specs, _, _ = suite.plan()
+    specs, _, _ = suite.runs()
     store = RunStore(out)
     proc = subprocess.Popen([sys.executable, str(script), str(EXAMPLE), str(ELCENTRO), str(out)],
                             env=env, start_new_session=True)
@@ -186,7 +188,7 @@ def _bad_set(tmp_path: Path) -> Path:
 
 
 def test_bad_records_are_reported_and_the_others_finish(config, scheduler, tmp_path):
-    suite = Suite(config, record_files(_bad_set(tmp_path)), models=("constant",),
+    suite = Suite(config, motion_sources(_bad_set(tmp_path)), models=("constant",),
                   scales=(1.0, 2.0), duration=4.0, dt=0.02)
     out = tmp_path / "out"
     result = run_suite(suite, out, scheduler_address=scheduler, write="client", progress=False)
@@ -207,7 +209,8 @@ def test_bad_records_are_reported_and_the_others_finish(config, scheduler, tmp_p
 
 def test_failures_inside_a_worker_are_rows_with_their_reason(config, monkeypatch):
     motion = read_record(ELCENTRO).truncated(2.0)
-    spec = RunSpec(str(ELCENTRO), file_digest(ELCENTRO), "constant", modifier=30.0, dt=0.02)
+    source = MotionSource.record(ELCENTRO)
+    spec = RunSpec(source, source.digests(), "constant", modifier=30.0, dt=0.02)
     row, data = execute_run(spec, motion, config)  # mu0 = 30 x 0.041 > 1
     assert data is None and row["status"] == "failed" and "'mu0'" in row["reason"]
 
@@ -221,7 +224,7 @@ def test_failures_inside_a_worker_are_rows_with_their_reason(config, monkeypatch
         return result
 
     monkeypatch.setattr(analysis, "run", stopping)
-    row, data = execute_run(RunSpec(str(ELCENTRO), "x", "constant", dt=0.02), motion, config)
+    row, data = execute_run(RunSpec(source, ("x",), "constant", dt=0.02), motion, config)
     assert data is None and row["reason"].endswith("Newton did not converge at step 7")
     assert row["steps"] == 100  # the peaks of the part that ran are kept
 
@@ -229,7 +232,8 @@ def test_failures_inside_a_worker_are_rows_with_their_reason(config, monkeypatch
 def test_a_run_past_max_steps_fails_with_its_step_count(config):
     """The suite's --max-steps reaches each run: refused before anything is allocated."""
     motion = read_record(ELCENTRO).truncated(2.0)
-    spec = RunSpec(str(ELCENTRO), file_digest(ELCENTRO), "constant", dt=0.02)
+    source = MotionSource.record(ELCENTRO)
+    spec = RunSpec(source, source.digests(), "constant", dt=0.02)
     row, data = execute_run(spec, motion, config, max_steps=50)  # 2 s at 0.02 s: 100 steps
     assert data is None and row["status"] == "failed"
     assert "100 steps" in row["reason"] and "limit of 50 steps" in row["reason"]
@@ -243,19 +247,23 @@ def test_errors_before_any_work(config, tmp_path):
     with pytest.raises(ValueError, match="'models'"):
         Suite(config, [ELCENTRO], models=("exact",))
     with pytest.raises(ValueError, match="more than once"):
-        Suite(config, [ELCENTRO], models=("constant",), scales=(1.0, 1.0)).plan()
+        Suite(config, [ELCENTRO], models=("constant",), scales=(1.0, 1.0)).runs()
     with pytest.raises(ValueError, match="no such folder"):
-        record_files(tmp_path / "nowhere")
+        motion_sources(tmp_path / "nowhere")
+    with pytest.raises(ValueError, match="at least one"):
+        Suite(config, [])
 
 
 def test_run_ids_are_stable_and_say_what_changed(config, tmp_path):
     moved = tmp_path / ELCENTRO.name
     shutil.copy(ELCENTRO, moved)
-    spec = RunSpec(str(ELCENTRO), file_digest(ELCENTRO), "precise", 1.5, 2.0, 1.2)
+    spec = RunSpec(MotionSource.record(ELCENTRO), (file_digest(ELCENTRO),), "precise", 1.5,
+                   2.0, 1.2)
     assert spec.run_id.startswith("elcentro_1940_ns_x3_precise_m1.2-")
-    assert RunSpec(str(moved), file_digest(moved), "precise", 1.5, 2.0, 1.2).run_id == spec.run_id
+    assert RunSpec(MotionSource.record(moved), (file_digest(moved),), "precise", 1.5, 2.0,
+                   1.2).run_id == spec.run_id
     changed = [dataclasses.replace(spec, **{k: v}) for k, v in
-               [("record_digest", "0"), ("multiplier", 2.0000001), ("model", "constant"),
+               [("digests", ("0",)), ("multiplier", 2.0000001), ("model", "constant"),
                 ("modifier", 1.1), ("duration", 5.0), ("dt", 0.01), ("settings", "x")]]
     assert len({spec.run_id, *(s.run_id for s in changed)}) == 8
 

@@ -1,7 +1,7 @@
-"""Suites of pairs (issue 13 point 5): a building in plan under pairs of records, run as suites of
-single records are.
+"""Suites of pairs (issue 13 point 5): a building in plan under pairs of records, run by the one
+suite of :mod:`structures.suites` as records are.
 
-- a suite's row of a pair is ``plan_peaks(structures.run(config, pair, model=..., dt=...,
+- a suite's row of a pair is ``structures.peaks(structures.run(config, pair, model=..., dt=...,
   scale=...))`` to the last digit (synthetic pairs written to files; a recorded Chi-Chi pair of
   ../shared when it is there);
 - a pair that cannot be read (a missing component, components of two time steps) is a failed
@@ -19,6 +19,7 @@ reference engine of the building in plan runs about 150 steps a second here.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import shutil
 from pathlib import Path
@@ -36,15 +37,20 @@ from groundmotions.pairs import read_pair
 from groundmotions.records import GroundMotion
 from groundmotions.scaling import asce7_design_spectrum, scale_suite
 from groundmotions.synthetic import synthetic_pair
+from structures.analysis import peaks
 from structures.config import load_config
-from structures.spatial.peaks import PLAN_PEAK_KEYS, plan_peaks
-from structures.suites.pairs.runs import PLAN_PEAK_COLUMNS, execute_pair_run, truncated_pair
-from structures.suites.pairs.suite import PairSuite, pair_sources, run_pair_suite
+from structures.suites.runs import PEAK_COLUMNS, execute_run
+from structures.suites.sources import motion_sources
 from structures.suites.store import RunStore
-from structures.suites.suite import local_cluster
+from structures.suites.suite import Suite, run_suite
+from structures.suites.tasks import local_cluster
 
 REPO = Path(__file__).resolve().parents[2]
-PHYSICS = [c for c in PLAN_PEAK_COLUMNS if c != "wall_time"]
+PHYSICS = [c for c in PEAK_COLUMNS["pair"] if c != "wall_time"]
+
+
+def pair_sources(manifest):
+    return motion_sources(manifest, pairs=True)
 
 BUILDING = """
 name = "two-storey test building in plan"
@@ -131,20 +137,20 @@ def scheduler():
 @pytest.fixture(scope="module")
 def good_suite(files, config, scheduler, tmp_path_factory):
     """The two synthetic pairs at 1.5 times, simplified model, run on the cluster."""
-    suite = PairSuite(config, pair_sources(files / "good.csv"), models=("simplified",),
-                      scales=(1.5,))
+    suite = Suite(config, pair_sources(files / "good.csv"), models=("simplified",),
+                  scales=(1.5,))
     out = tmp_path_factory.mktemp("good") / "out"
-    return run_pair_suite(suite, out, scheduler_address=scheduler, progress=False)
+    return run_suite(suite, out, scheduler_address=scheduler, progress=False)
 
 
-def test_a_row_is_plan_peaks_of_structures_run(files, config, good_suite):
+def test_a_row_is_the_peaks_of_structures_run(files, config, good_suite):
     result = good_suite
     assert (result.computed, result.skipped, result.failures) == (2, 0, [])
-    assert set(PLAN_PEAK_KEYS) <= set(result.peaks.columns)
+    keys = set(peaks(structures.run(config, _pair(1), model="constant", dt=0.01)))
+    assert keys - {"failed_at", "failure"} <= set(result.peaks.columns)
     for row in result.peaks.to_dict("records"):
         pair = read_pair(files / row["x_file"], files / row["y_file"], name=row["pair"])
-        single = plan_peaks(structures.run(config, pair, model="simplified", dt=0.01,
-                                           scale=1.5))
+        single = peaks(structures.run(config, pair, model="simplified", dt=0.01, scale=1.5))
         assert {k: row[k] for k in PHYSICS} == {k: single[k] for k in PHYSICS}, row["run_id"]
         assert (row["scale"], row["dt"], row["status"]) == (1.5, 0.01, "done")
     import xarray as xr
@@ -165,9 +171,9 @@ def test_a_row_is_plan_peaks_of_structures_run(files, config, good_suite):
 
 def test_broken_pairs_fail_with_their_reason_and_a_rerun_resumes(files, config, scheduler,
                                                                  tmp_path):
-    suite = PairSuite(config, pair_sources(files / "broken.csv"), models=("simplified",))
+    suite = Suite(config, pair_sources(files / "broken.csv"), models=("simplified",))
     out = tmp_path / "out"
-    result = run_pair_suite(suite, out, scheduler_address=scheduler, progress=False)
+    result = run_suite(suite, out, scheduler_address=scheduler, progress=False)
     status = dict(zip(result.peaks["pair"], result.peaks["status"], strict=True))
     assert status == {"s1": "done", "missing": "failed", "two-steps": "failed"}
     reasons = {f["run"].split("_x")[0]: f["reason"] for f in result.failures}
@@ -176,8 +182,8 @@ def test_broken_pairs_fail_with_their_reason_and_a_rerun_resumes(files, config, 
     assert "two-steps" in reasons["two-steps"] and "one time step" in reasons["two-steps"]
     assert json.loads((out / "failures.json").read_text()) == result.failures
 
-    again = run_pair_suite(suite, out, scheduler_address=scheduler, write="client",
-                           progress=False)  # read here this time: the bad ones fail here
+    again = run_suite(suite, out, scheduler_address=scheduler, write="client",
+                      progress=False)  # read here this time: the bad ones fail here
     assert (again.skipped, again.computed, len(again.failures)) == (1, 0, 2)
     assert [f["reason"] for f in again.failures] == [f["reason"] for f in result.failures]
     events = RunStore(out).events()
@@ -190,13 +196,14 @@ def test_broken_pairs_fail_with_their_reason_and_a_rerun_resumes(files, config, 
 def test_target_factors_are_those_of_scale_suite(files, config):
     spectrum = asce7_design_spectrum(1.0, 0.6, 8.0)
     periods, sa_g = np.asarray(spectrum.periods)[1:], np.asarray(spectrum.sa)[1:] / STANDARD_GRAVITY
-    suite = PairSuite(config, pair_sources(files / "broken.csv"), models=("constant",),
-                      scales=(1.0, 2.0), pair_factors=target_hook(periods, sa_g, (0.8, 2.0)))
-    specs, pairs, unreadable = suite.plan(read=False)  # the hook reads the pairs
-    assert set(pairs) == {"s1"} and set(unreadable) == {"missing", "two-steps"}
+    suite = Suite(config, pair_sources(files / "broken.csv"), models=("constant",),
+                  scales=(1.0, 2.0), factors=target_hook(periods, sa_g, (0.8, 2.0)))
+    specs, pairs, unreadable = suite.runs(read=False)  # the hook reads the pairs
+    pairs = {source.name: pair for source, pair in pairs.items()}
+    assert set(pairs) == {"s1"} and {s.name for s in unreadable} == {"missing", "two-steps"}
     target = (periods, sa_g * STANDARD_GRAVITY)  # as the hook makes it
     expected = scale_suite([pairs["s1"]], target, (0.8, 2.0)).scale_factors[0]
-    factors = {(s.pair, s.multiplier): (s.record_factor, s.scale) for s in specs}
+    factors = {(s.motion.name, s.multiplier): (s.record_factor, s.scale) for s in specs}
     assert factors[("s1", 1.0)] == (expected, expected)
     assert factors[("s1", 2.0)] == (expected, 2.0 * expected)
     assert factors[("missing", 1.0)][0] == 1.0  # its runs fail with the reason
@@ -209,20 +216,23 @@ def test_run_timeout_and_max_steps_reach_a_run(files, config, tmp_path):
     _write_record(long_pair.x, tmp_path / "long-x.AT2")
     _write_record(long_pair.y, tmp_path / "long-y.AT2")
     (tmp_path / "long.csv").write_text("name,x,y\nlong,long-x.AT2,long-y.AT2\n")
-    suite = PairSuite(config, pair_sources(tmp_path / "long.csv"), models=("simplified",))
-    row, data = execute_pair_run(suite.plan(read=False)[0][0], None, config, time_limit=1e-3)
+    suite = Suite(config, pair_sources(tmp_path / "long.csv"), models=("simplified",))
+    row, data = execute_run(suite.runs(read=False)[0][0], None, config, time_limit=1e-3)
     assert data is None and row["failure"] == "timeout"
     assert row["reason"].startswith("timeout after 0.001 s: the run was stopped at t = ")
-    suite = PairSuite(config, pair_sources(files / "good.csv"), models=("simplified",))
-    spec = suite.plan(read=False)[0][0]
-    row, data = execute_pair_run(spec, None, config, max_steps=50)
+    assert row["reason"].endswith(" s of the pair (its peaks are those up to then)")
+    suite = Suite(config, pair_sources(files / "good.csv"), models=("simplified",))
+    spec = suite.runs(read=False)[0][0]
+    row, data = execute_run(spec, None, config, max_steps=50)
     assert data is None and row["status"] == "failed" and "150 steps" in row["reason"]
 
 
 def test_errors_before_any_work(files, config, tmp_path):
     planar = load_config(REPO / "examples" / "five_storey.toml")
     with pytest.raises(InputError, match=r"no \[plan\] table"):
-        PairSuite(planar, pair_sources(files / "good.csv"))
+        Suite(planar, pair_sources(files / "good.csv"))
+    with pytest.raises(InputError, match="all records or all pairs"):
+        Suite(config, [*pair_sources(files / "good.csv"), REPO / "examples" / "x.AT2"])
     bad = tmp_path / "bad.csv"
     bad.write_text("name,x,horizontal\na,b,c\n")
     with pytest.raises(InputError, match=r"bad\.csv, line 1: the header"):
@@ -233,7 +243,10 @@ def test_errors_before_any_work(files, config, tmp_path):
     with pytest.raises(InputError, match="does not exist"):
         pair_sources(tmp_path / "nowhere.csv")
     with pytest.raises(ValueError, match="more than once"):
-        PairSuite(config, pair_sources(files / "good.csv"), scales=(1.0, 1.0)).plan()
+        Suite(config, pair_sources(files / "good.csv"), scales=(1.0, 1.0)).runs()
+    good = pair_sources(files / "good.csv")
+    with pytest.raises(InputError, match="pair names must differ"):
+        Suite(config, [good[0], dataclasses.replace(good[1], name=good[0].name)])
 
 
 def test_cli_pairs_resumes_the_suite_with_tables_and_plots(files, good_suite, scheduler,
@@ -306,12 +319,11 @@ def test_a_recorded_pair_equals_its_single_run(config, shared_dir, scheduler, tm
     manifest = tmp_path / "chichi.csv"
     manifest.write_text(f"name,x,y\nTAP094,{folder / 'TAP094-E.AT2'},"
                         f"{folder / 'TAP094-N.AT2'}\n")
-    suite = PairSuite(config, pair_sources(manifest), models=("simplified",), scales=(8.0,),
-                      duration=1.5)
-    result = run_pair_suite(suite, tmp_path / "out", scheduler_address=scheduler,
-                            progress=False)
+    suite = Suite(config, pair_sources(manifest), models=("simplified",), scales=(8.0,),
+                  duration=1.5)
+    result = run_suite(suite, tmp_path / "out", scheduler_address=scheduler, progress=False)
     row = result.peaks.iloc[0]
-    pair = truncated_pair(read_pair(folder / "TAP094-E.AT2", folder / "TAP094-N.AT2"), 1.5)
-    single = plan_peaks(structures.run(config, pair, model="simplified", dt=0.005, scale=8.0))
+    pair = read_pair(folder / "TAP094-E.AT2", folder / "TAP094-N.AT2").truncated(1.5)
+    single = peaks(structures.run(config, pair, model="simplified", dt=0.005, scale=8.0))
     assert row["status"] == "done" and row["dt"] == 0.005  # the record's step, finer
     assert {k: row[k] for k in PHYSICS} == {k: single[k] for k in PHYSICS}

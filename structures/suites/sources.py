@@ -1,0 +1,148 @@
+"""Where the ground motions of a suite are: record files, or the component files of pairs.
+
+A :class:`MotionSource` names one ground motion of a suite and the files it is read from: one
+record file (a run of the building in one direction), or the x, y (and z) component files of a
+pair (a run of the building in plan). :func:`motion_sources` lists them, without reading them,
+from the two list formats a suite takes:
+
+- records: a folder (its ``*.AT2`` files, any case) or a CSV whose first column holds record
+  files relative to it (a first row whose first cell is ``file``, ``filename``,
+  ``file_name``, ``record`` or ``path`` is a header; other columns are ignored);
+- pairs: the manifest of :func:`groundmotions.pairs.read_pair_manifest` (a header naming the
+  columns ``name``, ``x``, ``y`` and optionally ``z``, ``dt`` [s], ``units``), read by
+  :func:`groundmotions.pairs.pair.manifest_rows`.
+
+A list that cannot be understood is an error before any work; a file that is missing or cannot
+be read is not: its runs fail with the reason and the others carry on.
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from dcfpb.common.errors import InputError
+
+__all__ = ["MOTION_COLUMNS", "MotionSource", "file_digest", "motion_sources"]
+
+MOTION_COLUMNS = {"record": ("record", "record_file"),
+                  "pair": ("pair", "x_file", "y_file", "z_file")}
+"""The columns naming a motion in a row of the peaks table, by its kind
+(:meth:`MotionSource.columns`)."""
+_LIST_HEADERS = {"file", "filename", "file_name", "record", "path"}
+
+
+def file_digest(path: str | Path) -> str:
+    """sha256 of a file's bytes (16 hex digits), or ``"missing"`` if it cannot be read."""
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:16]
+    except OSError:
+        return "missing"
+
+
+@dataclass(frozen=True)
+class MotionSource:
+    """One ground motion of a suite and where it is read from.
+
+    Parameters
+    ----------
+    name : str
+        The motion's name: a record file's stem, a pair's name (from its manifest).
+    files : tuple of str
+        Absolute paths: one record file; or a pair's x and y (and z, vertical) components.
+    dt : float, optional
+        Time step of one-column text records [s].
+    units : str, optional
+        Units of files whose header states none.
+    """
+
+    name: str
+    files: tuple[str, ...]
+    dt: float | None = None
+    units: str | None = None
+
+    def __post_init__(self) -> None:
+        if not 1 <= len(self.files) <= 3:
+            raise InputError(f"The 'files' parameter of MotionSource must hold one record file "
+                             f"or the 2 or 3 components of a pair. Got {self.files!r} instead.")
+        object.__setattr__(self, "files", tuple(str(Path(f).absolute()) for f in self.files))
+
+    @classmethod
+    def record(cls, path: str | Path) -> MotionSource:
+        """The source of one record file, named by its stem."""
+        return cls(Path(path).stem, (str(path),))
+
+    @property
+    def kind(self) -> str:
+        """``"record"`` (one file: the building runs in one direction) or ``"pair"``
+        (the building runs in plan)."""
+        return "record" if len(self.files) == 1 else "pair"
+
+    def columns(self) -> dict[str, Any]:
+        """The columns naming the motion in a row of the peaks table: ``record`` (the stem)
+        and ``record_file``, or ``pair`` and ``x_file``, ``y_file``, ``z_file`` (None
+        without a vertical); file names without their folder."""
+        names = [self.name, *(Path(f).name for f in self.files), None]
+        return dict(zip(MOTION_COLUMNS[self.kind], names, strict=False))
+
+    def identity(self, digests: tuple[str, ...]) -> dict[str, Any]:
+        """What of the motion a run's id covers (:attr:`structures.suites.runs.RunSpec.run_id`):
+        the files' names and ``digests`` of their bytes, and how a pair is read."""
+        columns = self.columns()
+        if self.kind == "record":
+            return {"record_file": columns["record_file"], "record_digest": digests[0]}
+        return columns | {"digests": list(digests), "read_dt": self.dt, "units": self.units}
+
+    def digests(self) -> tuple[str, ...]:
+        """:func:`file_digest` of each file."""
+        return tuple(file_digest(f) for f in self.files)
+
+    def read(self) -> Any:
+        """The motion, unscaled and untruncated: a ``GroundMotion`` or a ``GroundMotionPair``
+        (raises if it cannot be read: a missing or unreadable file, a pair's components of
+        different steps or lengths)."""
+        if self.kind == "record":
+            from groundmotions.readers import read_record
+
+            return read_record(self.files[0], dt=self.dt, units=self.units)
+        from groundmotions.pairs import read_pair
+
+        return read_pair(*self.files[:2], *self.files[2:], name=self.name, dt=self.dt,
+                         units=self.units)
+
+
+def motion_sources(path: str | Path, *, pairs: bool = False) -> tuple[MotionSource, ...]:
+    """The motions of a record list (a folder or a CSV) or, with ``pairs``, of a pair
+    manifest (see the module docstring), without reading them.
+
+    Raises
+    ------
+    InputError
+        Records: no such folder or file, or no records in it. Pairs: no such file, an empty
+        manifest, an unknown, missing or repeated column, a row of the wrong number of cells,
+        an empty required cell, a repeated pair name, a bad ``dt``; the message starts with
+        ``"<manifest>, line <n>"``.
+    """
+    if pairs:
+        from groundmotions.pairs.pair import manifest_rows
+
+        return tuple(MotionSource(row.name, tuple(map(str, row.files.values())), row.dt,
+                                  row.units) for row in manifest_rows(path))
+    path = Path(path)
+    if path.is_dir():
+        files = sorted(p for p in path.iterdir() if p.is_file() and p.suffix.lower() == ".at2")
+    elif path.is_file():
+        with open(path, newline="", encoding="utf-8") as handle:
+            rows = [row for row in csv.reader(handle) if row and row[0].strip()]
+        if rows and rows[0][0].strip().lower() in _LIST_HEADERS:
+            rows = rows[1:]
+        files = [path.parent / row[0].strip() for row in rows
+                 if not row[0].lstrip().startswith("#")]
+    else:
+        raise InputError(f"{path}: no such folder of records or manifest file.")
+    if not files:
+        raise InputError(f"{path}: no record files (*.AT2 in a folder, or rows of a manifest).")
+    return tuple(MotionSource.record(f) for f in files)
