@@ -27,7 +27,9 @@ these are our storeys at O (``k``, ``a1 k``) and ``a0 M_j`` at floor j's centre 
 mass-proportional part included and the isolation modes undamped (OpenSees's own ``rayleigh``
 would damp them). Modal damping is a full matrix on the drifts: still exact in one direction
 (coefficients of either sign) and in plan whenever its level blocks are symmetric, as for
-every level with the same eccentricity and stiffness proportions; otherwise refused.
+every level with the same eccentricity and stiffness proportions; otherwise the network takes
+their symmetric part, with a warning saying how much is left out (the whole stays symmetric
+and acts on the drifts only).
 
 Bearings. At each bearing position a fixed node and a node of the base slab free vertically
 (massless, on the stiff axial material of the element under its gravity load): the elements of
@@ -42,11 +44,13 @@ from __future__ import annotations
 
 import itertools
 import math
+import warnings
 from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
 
+from dcfpb.common.errors import InputWarning
 from dcfpb.common.validation import check_choice
 from structures.isolated_building import IsolatedShearBuilding
 from structures.opensees.elements import add_bearing, element_kind, fpbearingptv_equivalent
@@ -55,7 +59,7 @@ __all__ = ["PENDULUMS", "Link", "Twin", "build_model", "pair_network"]
 
 PENDULUMS = ("singlefp", "spring")
 _PAIR_CUTOFF = 1.0e-12  # coefficients below this share of the largest are round-off
-_ASYMMETRY = 1.0e-9  # an antisymmetric part above this share of the largest is refused
+_ASYMMETRY = 1.0e-9  # an antisymmetric part above this share of the largest is a warning
 _FIXED, _FREE = 1, 0
 _SAME_POINT = 1.0e-9  # [m] a point this close to a master is the master's
 
@@ -156,8 +160,13 @@ def pair_network(stiffness: np.ndarray, damping: np.ndarray, level_dofs: int) ->
     Raises
     ------
     ValueError
-        If a matrix is not symmetric, acts on a rigid motion, or couples two levels
-        unsymmetrically (no network of two-node elements reproduces it).
+        If a matrix is not symmetric or acts on a rigid motion.
+
+    Warns
+    -----
+    InputWarning
+        If a matrix couples two levels unsymmetrically (no network of two-node elements
+        reproduces that part: the network takes the symmetric part of each level block).
     """
     size = stiffness.shape[0] // level_dofs
     frames = []
@@ -170,14 +179,15 @@ def pair_network(stiffness: np.ndarray, damping: np.ndarray, level_dofs: int) ->
             raise ValueError("The matrices of pair_network must be symmetric with zero block-row "
                              "sums (they act on the drifts only). Got block-row sums "
                              f"{blocks.sum(axis=1).tolist()!r} instead.")
-        asymmetry = np.max(np.abs(blocks - blocks.transpose(0, 1, 3, 2)), initial=0.0)
+        asymmetry = 0.5 * np.max(np.abs(blocks - blocks.transpose(0, 1, 3, 2)), initial=0.0)
         if asymmetry > _ASYMMETRY * scale:
-            raise ValueError(
+            warnings.warn(InputWarning(
                 f"The {('stiffness', 'damping')[index]} of the building couples its levels "
-                "unsymmetrically (an antisymmetric part of "
-                f"{asymmetry / scale:.3g} of its largest coefficient), which no network of "
-                "two-node elements reproduces: modal damping in plan needs every level with "
-                "the same eccentricity and stiffness proportions. Use RayleighDamping.")
+                "unsymmetrically, which no network of two-node elements reproduces: the "
+                "OpenSees twin takes the symmetric part of each level block and leaves out "
+                f"{asymmetry / scale:.3g} of its largest coefficient (modal damping in plan is "
+                "exact with every level of the same eccentricity and stiffness proportions, "
+                "Rayleigh damping always)."), stacklevel=2)
         frames.append({(i, j): _frame(-0.5 * (blocks[i, j] + blocks[i, j].T), scale)
                        for i in range(size) for j in range(i + 1, size)
                        if np.max(np.abs(blocks[i, j])) > _PAIR_CUTOFF * scale})
