@@ -40,8 +40,8 @@ The pre-sliding branch differs by formulation: ours is ``mu(v, T) N z`` with z m
 ``du / u_y``, so its stiffness follows mu; OpenSees's is a spring of fixed stiffness capped at
 mu N. The mu that sets kInit is ``"rest"``, mu at zero speed, the initial temperature and the
 bearing's pressure (mu_slow for VelDependent), which a sticking bearing has (the building
-twin), or ``"reference"``, VelDependent's mu_fast and FPBearingPTV's MuRef (the bearing test,
-as first written).
+twin), or ``"reference"``, VelDependent's mu_fast and FPBearingPTV's MuRef (the bearing
+test).
 """
 
 from __future__ import annotations
