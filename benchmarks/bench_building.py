@@ -176,12 +176,12 @@ def _bare_analyze(frame, constant, record) -> float:
     for _ in range(3):
         ops.wipe()
         start = time.perf_counter()
-        model = build_model(ops, frame, native.bearing, N_BEARINGS, "singlefp")
+        model = build_model(ops, native, "singlefp")
         ops.timeSeries("Path", 2, "-dt", DT, "-values", *acceleration.tolist(), "-useLast")
         ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
         for tag in model.nodes:
             ops.setNodeAccel(tag, 1, -float(acceleration[0]), "-commit")
-        for command in (("constraints", "Plain"), ("numberer", "Plain"),
+        for command in (("constraints", "Transformation"), ("numberer", "Plain"),
                         ("system", "FullGeneral"), ("test", "NormDispIncr", 1e-10, 50),
                         ("algorithm", "Newton"), ("integrator", "Newmark", 0.5, 0.25),
                         ("analysis", "Transient")):
@@ -221,15 +221,7 @@ def fpbearingptv_comparison() -> list[str]:
         u, v = 0.2 * np.sin(w * t), 0.2 * w * np.cos(w * t)
         ops.wipe()
         # the module's own builders, so the element is exactly the comparison's
-        ob._build_fpbearingptv(ops, twin, "ptv", twin.axial_load)
-        ob._impose(ops, t, u, v, dof=1)
-        for command, *arguments in (("constraints", "Transformation"), ("numberer", "Plain"),
-                                    ("system", "FullGeneral"),
-                                    ("test", "NormDispIncr", 1.0e-12, 25),
-                                    ("algorithm", "Newton"),
-                                    ("integrator", "Newmark", 0.5, 0.25),
-                                    ("analysis", "Transient")):
-            getattr(ops, command)(*arguments)
+        ob.build_test(ops, twin, twin.axial_load, t, u, v, "ptv")
         start = time.perf_counter()
         status = ops.analyze(n, 0.005)
         opensees = time.perf_counter() - start

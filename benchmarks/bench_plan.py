@@ -14,7 +14,7 @@ vertical (PGA 4 m/s^2) at dt = 5 ms. Best of interleaved repeats, each a whole `
     target (b) / (a) <= 3;
 (c) the building in plan with constant friction, compiled, 30 s;
 (d) OpenSees 3D (``singleFPBearing`` Coulomb,
-    :func:`structures.opensees.building3d.run_opensees_3d`) on the same building with
+    :func:`structures.opensees.building.run_opensees`) on the same building with
     constant friction, 30 s; target (d) / (c) >= 20;
 (e) the cost per step of (b) and (c) on 10 s against 30 s of the pair; target: flat.
 
@@ -101,9 +101,9 @@ def cases(with_opensees: bool, with_reference: bool) -> dict:
                                                  dt=DT, engine="compiled"),
                 motions[d].x.acceleration.size)
     if with_opensees:
-        from structures.opensees.building3d import run_opensees_3d
+        from structures.opensees.building import run_opensees
 
-        out["d OpenSees singleFPBearing 3D 30 s"] = (lambda: run_opensees_3d(
+        out["d OpenSees singleFPBearing 3D 30 s"] = (lambda: run_opensees(
             spatial, bearing("constant", frame.weight), motions[30.0], dt=DT),
             motions[30.0].x.acceleration.size)
     if with_reference:

@@ -1,95 +1,52 @@
-"""One bearing in OpenSees under an imposed horizontal displacement history.
+"""One bearing in OpenSees under an imposed history, along one axis or in the plane.
 
-:func:`run_opensees_test` is the OpenSees twin of :func:`isolator.testrig.run_test`: it builds
-one element from a :class:`~isolator.bearing.DCFPBearing` (the one source of truth), loads it
-with the bearing's constant axial load, drives its top node through the history and returns a
-:class:`~isolator.testrig.BearingTestResult`. Elements:
+:func:`run_opensees_test` is the OpenSees twin of :func:`isolator.testrig.run_test`: it
+builds one element (:func:`structures.opensees.elements.add_bearing`) from a
+:class:`~isolator.bearing.DCFPBearing` between two coincident nodes of a 3D model, loads it
+with the bearing's constant axial load, drives the top node through the history (X; or X and
+Y for an orbit, :mod:`isolator.orbits`) and returns a
+:class:`~isolator.testrig.BearingTestResult` of the same shape as ours.
 
-``"coulomb"``
-    ``singleFPBearing`` (2D) with ``frictionModel Coulomb``, for a :class:`ConstantFriction`.
-``"velocity"``
-    ``singleFPBearing`` (2D) with ``frictionModel VelDependent``, for a :class:`PTVFriction`
-    whose mu varies with velocity only (:func:`velocity_dependent_parameters`).
-``"ptv"``
-    ``FPBearingPTV`` (3D only), pressure, velocity and temperature dependent with Kumar's
-    factors, for a :class:`PTVFriction` shaped as it models one (:func:`fpbearingptv_equivalent`).
-
-A flat slider (``effective_radius = inf``) becomes ``flatSliderBearing`` for the first two.
-
-Driving. A static analysis gives the element zero velocity (``ubdotAbs = 0``: VelDependent sits
-at mu_slow, FPBearingPTV falls back to displacement differences), so the analysis is transient
-(Newmark 1/2, 1/4). The top node's horizontal DOF follows ``imposedMotion`` in a
-``MultipleSupport`` pattern whose ground motion holds displacement, velocity and acceleration as
-``Path`` series: ``ImposedMotionSP::applyConstraint`` writes the velocity into the node and the
-``Transformation`` handler the displacement, so the element sees the imposed velocity exactly,
-not a Newmark difference of displacements (the trapezoidal rule would oscillate about it for
-ever after a wrong start). The vertical DOF is free and massless on a stiff elastic axial
-material under the constant load; all other DOFs are fixed.
-
-Conventions read in ``SRC/element/frictionBearing/`` of OpenSees:
-
-- ``SingleFPSimple2d.cpp``: ``kInit`` is the *total* initial stiffness, the friction part has
-  ``kInit - N/R``; so ``kInit = mu N / u_y + N / R`` gives it our yield displacement u_y. The
-  normal force is ``N = W + F u / R`` (``-qb(0) + qb(1)/Reff*ub(1)``, iterated inside the
-  element), whatever drives the node (:func:`singlefp_normal_force`); restoring force
-  ``N u / R``, friction ``mu N`` at the speed ``|v| sqrt(1 + (u/R)^2)``.
-- ``VelDependent.cpp``: ``frictionModel VelDependent tag muSlow muFast transRate``,
-  ``mu = muFast - (muFast - muSlow) exp(-transRate |v|)``, transRate in s/m.
-- ``FPBearingPTV.cpp``: ``MuRef IsPDependent pRef IsTDependent Diffusivity Conductivity
-  IsVDependent rateParameter Reff rContact kInitial matP matT matMy matMz x1 x2 x3 y1 y2 y3
-  shearDist doRayleigh mass iter tol unit``. With unit 1 (N, m, s, degC) pRef is in Pa, the
-  diffusivity in m^2/s, the conductivity in W/(m degC), the rate in s/m; ``mu = MuRef kp kT kv``
-  (MuRef = our ``mu_t0``) with p = N / (22/7 r^2) and the speed ``|v| R / sqrt(R^2 - u^2)``.
-  N = W; restoring force ``N u / sqrt(R^2 - u^2)``, friction part ``kInitial - N/sqrt(R^2-u^2)``.
-  The factors of a step are frozen at its first update with an axial force (the predictor); the
-  flux ``q = mu p v`` uses the previous step's mu and heats one surface while
-  ``|u| < r sqrt(22/28)``; the temperature ``20 + sqrt(7 D/22)/k sum_j q_(n-j) dt / sqrt(t_j)``
-  is a rectangle rule re-summed over the whole history every step, with the times
-  t_j = (j+1) dt as lags (the time must start at 0) and the current dt for every interval. It
-  stays 20 degC on the first two steps and whenever u is exactly 0. Responses
-  ``temperature``, ``MuFactors`` (kp, kT, kv), ``MuAdjusted``, ``HeatFlux``.
+Driving. A static analysis gives the element zero velocity (VelDependent would sit at mu_slow,
+FPBearingPTV falls back to displacement differences), so the analysis is transient (Newmark
+1/2, 1/4). Each driven DOF of the top node follows ``imposedMotion`` in one
+``MultipleSupport`` pattern whose ground motions hold displacement, velocity and acceleration
+as ``Path`` series: ``ImposedMotionSP::applyConstraint`` writes the velocity into the node and
+the ``Transformation`` handler the displacement, so the element sees the imposed velocity
+exactly, not a Newmark difference of displacements (the trapezoidal rule would oscillate about
+it for ever after a wrong start). The vertical DOF is free and massless on the stiff axial
+material under the load; the rotations (and Y along one axis) are fixed. kInit takes the
+element's reference mu (VelDependent's mu_fast, FPBearingPTV's MuRef).
 
 openseespy keeps one global model: every call wipes it before and after.
 """
 
 from __future__ import annotations
 
-import math
 import time as _time
 
 import numpy as np
 
 from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
-from isolator.friction import ConstantFriction
-from isolator.testrig import HISTORY_FIELDS, BearingTestResult, imposed_history
-from structures.opensees.equivalents import (
-    ELEMENT_ITERATIONS,
-    ELEMENT_TOLERANCE,
+from isolator.orbits import Orbit
+from isolator.testrig import BearingTestResult, imposed_history
+from structures.opensees.elements import (
+    ELEMENTS,
     FPBEARINGPTV_AMBIENT,
-    VelDependentParameters,
-    add_fpbearingptv,
+    BearingElements,
+    add_bearing,
     constant_axial_load,
+    element_kind,
     fpbearingptv_equivalent,
-    singlefp_normal_force,
-    velocity_dependent_parameters,
     warn_if_steps_vary,
 )
 from structures.opensees.runtime import import_opensees
 
-__all__ = [
-    "ELEMENTS",
-    "FPBEARINGPTV_AMBIENT",
-    "VelDependentParameters",
-    "fpbearingptv_equivalent",
-    "run_opensees_test",
-    "singlefp_normal_force",
-    "velocity_dependent_parameters",
-]
+__all__ = ["build_test", "fpbearingptv_equivalent", "opensees_orbit", "run_opensees_test"]
 
-ELEMENTS = ("coulomb", "velocity", "ptv")
-_AXIAL_SHORTENING = 1.0e-6  # [m] shortening of the stiff axial spring under the axial load
 _BOTTOM, _TOP = 1, 2  # node tags
+_FIRST_TAG = 10  # first tag of materials, friction models, elements, series, patterns
 
 
 def run_opensees_test(
@@ -98,7 +55,7 @@ def run_opensees_test(
     displacement: np.ndarray,
     velocity: np.ndarray | None = None,
     *,
-    element: str = "coulomb",
+    element: str | None = None,
     name: str = "imposed history",
 ) -> BearingTestResult:
     """Drive ``bearing`` built as an OpenSees element through an imposed history.
@@ -106,28 +63,31 @@ def run_opensees_test(
     Parameters
     ----------
     bearing : DCFPBearing
-        The bearing; its friction model must be one the element represents (see the module
-        docstring) and its axial load constant.
-    time : array_like
+        The bearing, with a constant axial load; its friction model must be one the element
+        represents (:mod:`structures.opensees.elements`).
+    time : array_like, shape (n,)
         Strictly increasing sample times [s]; OpenSees runs from 0 (the times are shifted).
-    displacement : array_like
-        Imposed horizontal displacement [m], starting at 0 (the element starts at rest).
+    displacement : array_like, shape (n,) or (n, 2)
+        Imposed displacement [m] along x, or (x, y), starting at 0 (the element starts at rest).
     velocity : array_like, optional
-        Imposed velocity [m/s]; by default ``numpy.gradient`` of the displacement (as
-        :func:`~isolator.testrig.run_test`). Give the analytic velocity where it is known.
-    element : {"coulomb", "velocity", "ptv"}
-        Which OpenSees element (see the module docstring).
+        Imposed velocity [m/s], the shape of ``displacement``; by default ``numpy.gradient`` of
+        the displacement (as :func:`~isolator.testrig.run_test`). Give the analytic velocity
+        where it is known.
+    element : {"coulomb", "velocity", "ptv"}, optional
+        The element; by default the one for the bearing's friction model
+        (:func:`~structures.opensees.elements.element_kind`).
     name : str
         Name of the history, kept in the result (prefixed with the element).
 
     Returns
     -------
     BearingTestResult
-        One value per sample. Sample 0 is the initial state (zero force, the axial load, mu
-        NaN). ``mu`` is the friction model's COF (``MuAdjusted`` for FPBearingPTV),
-        ``axial_load`` the normal force the element uses (W + F u/R for singleFPBearing),
-        ``friction_force`` the force less the element's restoring force, ``temperature`` and
-        ``heat_flux`` FPBearingPTV's (NaN for the other elements).
+        One value (or (x, y) row) per sample. Sample 0 is the initial state (zero force, the
+        axial load, mu NaN). ``mu`` is the friction model's COF (``MuAdjusted`` for
+        FPBearingPTV), ``axial_load`` the normal force the element uses (N = W + F . u / R for
+        singleFPBearing), ``friction_force`` the force less the element's own restoring force,
+        ``z`` that over mu N, ``temperature`` and ``heat_flux`` FPBearingPTV's (NaN for the
+        other elements).
 
     Raises
     ------
@@ -141,156 +101,115 @@ def run_opensees_test(
     Warns
     -----
     UserWarning
-        For ``"ptv"`` with a non-uniform time step (see the module docstring).
+        For ``"ptv"`` with a non-uniform time step (its heat history assumes a uniform one).
     """
     owner = "run_opensees_test"
-    element = check_choice(element, "element", owner, ELEMENTS)
-    t, u, v = _history(time, displacement, velocity, owner)
+    element = element_kind(bearing) if element is None else check_choice(
+        element, "element", owner, ELEMENTS)
+    t, u, v = imposed_history(time, displacement, velocity, owner)
+    if np.any(u[0] != 0.0):
+        start = "0" if u.ndim == 1 else "(0, 0)"
+        raise ValueError(f"The 'displacement' parameter of {owner} must start at {start} (the "
+                         f"element starts at rest). Got {u[0]!r} instead.")
     weight = constant_axial_load(bearing, owner)
     warn_if_steps_vary(element, t, owner)
-    build = _build_fpbearingptv if element == "ptv" else _build_singlefp
+    axes = u.ndim  # driven horizontal DOFs: X, or X and Y
     ops = import_opensees()
     start = _time.perf_counter()
     ops.wipe()
     try:
-        record = build(ops, bearing, element, weight)
-        _impose(ops, t - t[0], u, v, dof=1)
-        imposed_analysis(ops)
-        out = {n: np.full(t.size, np.nan) for n in HISTORY_FIELDS}
-        out["force"][0] = out["friction_force"][0] = 0.0
-        out["displacement"][0], out["velocity"][0], out["axial_load"][0] = u[0], v[0], weight
-        if element == "ptv":
-            out["temperature"][0], out["heat_flux"][0] = FPBEARINGPTV_AMBIENT, 0.0
-        record_steps(ops, t, record, out, owner, element)
+        elements = build_test(ops, bearing, weight, t, u, v, element, owner)
+        out = _record(ops, t, elements.read, element, owner)
     finally:
         ops.wipe()
-    out["time"] = t
-    label = {"coulomb": "singleFPBearing Coulomb", "velocity": "singleFPBearing VelDependent",
-             "ptv": "FPBearingPTV"}[element]
-    return BearingTestResult(**out, bearing=bearing, name=f"OpenSees {label}: {name}",
+    out["displacement"][0], out["velocity"][0] = 0.0, 0.0
+    out["velocity"][0, :axes] = v[0]
+    out["axial_load"][0] = weight
+    if element == "ptv":
+        out["temperature"][0], out["heat_flux"][0] = FPBEARINGPTV_AMBIENT, 0.0
+    else:  # the element has no temperature
+        out["temperature"][:] = np.nan
+    yield_force = (out["mu"] * out["axial_load"])[1:, None]
+    out["z"][1:] = np.divide(out["friction_force"][1:], yield_force,
+                             out=np.zeros_like(out["friction_force"][1:]),
+                             where=yield_force > 0.0)
+    if axes == 1:
+        out = {key: values[:, 0] if values.ndim == 2 else values for key, values in out.items()}
+    label = elements.name + (" 3D" if axes == 2 and element != "ptv" else "")
+    label += f" {elements.friction}" if elements.friction else ""
+    return BearingTestResult(t, **out, bearing=bearing, name=f"OpenSees {label}: {name}",
                              wall_time=_time.perf_counter() - start)
 
 
-def imposed_analysis(ops) -> None:
-    """The transient analysis of a test with imposed displacements (planar or 3D): Newmark
-    (1/2, 1/4), Newton on the displacement increment to 1e-12 in at most 25 iterations."""
-    ops.constraints("Transformation")
-    ops.numberer("Plain")
-    ops.system("FullGeneral")
-    ops.test("NormDispIncr", 1.0e-12, 25)
-    ops.algorithm("Newton")
-    ops.integrator("Newmark", 0.5, 0.25)
-    ops.analysis("Transient")
+def build_test(ops, bearing: DCFPBearing, weight: float, time: np.ndarray,
+               displacement: np.ndarray, velocity: np.ndarray, element: str,
+               owner: str = "build_test") -> BearingElements:
+    """Build the test of :func:`run_opensees_test` in the (wiped) openseespy domain, up to
+    the transient analysis: the element under ``weight`` [N], its top node driven through the
+    (checked) history (times [s] from 0; displacement [m] and velocity [m/s] of shape (n,) or
+    (n, 2)). Returns the element's reader."""
+    axes = displacement.ndim
+    ops.model("basic", "-ndm", 3, "-ndf", 6)
+    ops.node(_BOTTOM, 0.0, 0.0, 0.0)
+    ops.node(_TOP, 0.0, 0.0, 0.0)  # zero length: the orientation vectors hold
+    ops.fix(_BOTTOM, 1, 1, 1, 1, 1, 1)
+    ops.fix(_TOP, 0, 0 if axes == 2 else 1, 0, 1, 1, 1)
+    tags = iter(range(_FIRST_TAG, 10**6))
+    elements = add_bearing(ops, lambda: next(tags), _BOTTOM, _TOP, bearing, weight,
+                           kind=element, kinit="reference", owner=owner)
+    series = next(tags)
+    ops.timeSeries("Constant", series)
+    ops.pattern("Plain", next(tags), series)
+    ops.load(_TOP, 0.0, 0.0, -weight, 0.0, 0.0, 0.0)
+    _impose(ops, tags, time - time[0], displacement.reshape(time.size, axes),
+            velocity.reshape(time.size, axes))
+    for command, *values in (("constraints", "Transformation"), ("numberer", "Plain"),
+                             ("system", "FullGeneral"), ("test", "NormDispIncr", 1.0e-12, 25),
+                             ("algorithm", "Newton"), ("integrator", "Newmark", 0.5, 0.25),
+                             ("analysis", "Transient")):
+        getattr(ops, command)(*values)
+    return elements
 
 
-def record_steps(ops, t: np.ndarray, record, out: dict, owner: str, element: str) -> None:
-    """Analyse one step per interval of the times ``t`` [s], writing what ``record(ops)``
-    returns into row k of ``out``; RuntimeError naming the step where OpenSees fails."""
+def opensees_orbit(bearing: DCFPBearing, orbit: Orbit, *,
+                   element: str | None = None) -> BearingTestResult:
+    """:func:`run_opensees_test` on an :class:`~isolator.orbits.Orbit` (its exact velocity)."""
+    return run_opensees_test(bearing, orbit.time, orbit.displacement, orbit.velocity,
+                             element=element, name=orbit.name)
+
+
+def _impose(ops, tags, time: np.ndarray, displacement: np.ndarray,
+            velocity: np.ndarray) -> None:
+    """Drive X (and Y) of the top node through the history (exact velocity, module docstring)."""
+    acceleration = np.gradient(velocity, time, axis=0)  # only completes the ground motion
+    ops.pattern("MultipleSupport", next(tags))
+    for axis in range(displacement.shape[1]):
+        series = []
+        for values in (displacement, velocity, acceleration):
+            series.append(next(tags))
+            ops.timeSeries("Path", series[-1], "-time", *time.tolist(), "-values",
+                           *values[:, axis].tolist(), "-useLast")  # summed steps may pass the end
+        ops.groundMotion(axis + 1, "Plain", "-disp", series[0], "-vel", series[1],
+                         "-accel", series[2])
+        ops.imposedMotion(_TOP, axis + 1, axis + 1)
+
+
+def _record(ops, t: np.ndarray, read, element: str, owner: str) -> dict[str, np.ndarray]:
+    """Analyse one step per interval of ``t`` [s] and record the element after each."""
+    out = {key: np.full((t.size, 2), np.nan) for key in ("displacement", "velocity", "force",
+                                                         "friction_force", "z")}
+    out |= {key: np.full(t.size, np.nan) for key in ("mu", "temperature", "heat_flux",
+                                                     "axial_load")}
+    for key in ("force", "friction_force", "z"):
+        out[key][0] = 0.0
     for k, dt in enumerate(np.diff(t), start=1):
         if ops.analyze(1, float(dt)) != 0:
             raise RuntimeError(f"OpenSees failed at step {k} (t = {t[k] - t[0]:g} s) of "
                                f"{owner} with element {element!r}.")
-        for field, value in record(ops).items():
-            out[field][k] = value
-
-
-def _history(time, displacement, velocity, owner):
-    t, u, v = imposed_history(time, displacement, velocity, owner)
-    if u[0] != 0.0:
-        raise ValueError(f"The 'displacement' parameter of {owner} must start at 0 (the "
-                         f"element starts at rest). Got {u[0]!r} instead.")
-    return t, u, v
-
-
-def _friction_model(ops, bearing: DCFPBearing, element: str, weight: float) -> float:
-    """Define friction model 1 for singleFPBearing; return the mu that sets kInit."""
-    friction, owner = bearing.friction, "run_opensees_test"
-    if element == "coulomb":
-        if not isinstance(friction, ConstantFriction):
-            raise ValueError(f"Element 'coulomb' of {owner} needs a ConstantFriction. "
-                             f"Got {friction!r} instead.")
-        ops.frictionModel("Coulomb", 1, friction.mu)
-        return friction.mu
-    parameters = velocity_dependent_parameters(friction, weight / bearing.contact_area)
-    ops.frictionModel("VelDependent", 1, *parameters)
-    return parameters.mu_fast
-
-
-def _build_singlefp(ops, bearing: DCFPBearing, element: str, weight: float):
-    """singleFPBearing (flatSliderBearing if R is infinite) in 2D; return the recorder."""
-    if bearing.restoring != "linear":
-        raise ValueError(f"Element {element!r} of run_opensees_test has the linear restoring "
-                         f"law N u / R. Got a bearing with {bearing.restoring!r} instead.")
-    radius = bearing.effective_radius
-    flat = math.isinf(radius)
-    mu = _friction_model(ops, bearing, element, weight)
-    ops.model("basic", "-ndm", 2, "-ndf", 3)
-    ops.node(_BOTTOM, 0.0, 0.0)
-    ops.node(_TOP, 0.0, 1.0)  # vertical: local x up, local y = -global X (signs cancel)
-    ops.fix(_BOTTOM, 1, 1, 1)
-    ops.fix(_TOP, 0, 0, 1)
-    ops.uniaxialMaterial("Elastic", 1, weight / _AXIAL_SHORTENING)
-    ops.uniaxialMaterial("Elastic", 2, weight / _AXIAL_SHORTENING)
-    pendulum = 0.0 if flat else weight / radius
-    k_initial = mu * weight / bearing.yield_displacement + pendulum
-    if flat:
-        ops.element("flatSliderBearing", 1, _BOTTOM, _TOP, 1, k_initial, "-P", 1, "-Mz", 2,
-                    "-iter", ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * weight)
-    else:
-        ops.element("singleFPBearing", 1, _BOTTOM, _TOP, 1, radius, k_initial,
-                    "-P", 1, "-Mz", 2, "-iter", ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * weight)
-    ops.timeSeries("Constant", 1)
-    ops.pattern("Plain", 1, 1)
-    ops.load(_TOP, 0.0, -weight, 0.0)
-
-    def record(ops) -> dict[str, float]:
-        force = ops.eleResponse(1, "force")[3]
-        normal = ops.eleResponse(1, "frictionModel", "normalForce")[0]
-        u = ops.nodeDisp(_TOP, 1)
-        restoring = 0.0 if flat else normal * u / radius
-        return {"displacement": u, "velocity": ops.nodeVel(_TOP, 1), "force": force,
-                "friction_force": force - restoring, "axial_load": normal,
-                "mu": ops.eleResponse(1, "frictionModel", "COF")[0]}
-
-    return record
-
-
-def _build_fpbearingptv(ops, bearing: DCFPBearing, element: str, weight: float):
-    """FPBearingPTV in 3D (x vertical, y = global X); return the recorder."""
-    radius = bearing.effective_radius
-    ops.model("basic", "-ndm", 3, "-ndf", 6)
-    ops.node(_BOTTOM, 0.0, 0.0, 0.0)
-    ops.node(_TOP, 0.0, 0.0, 0.0)  # zero length: the orientation vectors below hold
-    ops.fix(_BOTTOM, 1, 1, 1, 1, 1, 1)
-    ops.fix(_TOP, 0, 1, 0, 1, 1, 1)
-    ops.uniaxialMaterial("Elastic", 1, weight / _AXIAL_SHORTENING)
-    ops.uniaxialMaterial("Elastic", 2, weight / _AXIAL_SHORTENING)
-    add_fpbearingptv(ops, _BOTTOM, _TOP, bearing, weight, "run_opensees_test")
-    ops.timeSeries("Constant", 1)
-    ops.pattern("Plain", 1, 1)
-    ops.load(_TOP, 0.0, 0.0, -weight, 0.0, 0.0, 0.0)
-
-    def record(ops) -> dict[str, float]:
-        force = ops.eleResponse(1, "force")[6]
-        normal = -ops.eleResponse(1, "basicForce")[0]
-        u = ops.nodeDisp(_TOP, 1)
-        restoring = normal * u / math.sqrt(radius**2 - u * u)
-        return {"displacement": u, "velocity": ops.nodeVel(_TOP, 1), "force": force,
-                "friction_force": force - restoring, "axial_load": normal,
-                "mu": ops.eleResponse(1, "MuAdjusted")[0],
-                "temperature": ops.eleResponse(1, "temperature")[0],
-                "heat_flux": ops.eleResponse(1, "HeatFlux")[0]}
-
-    return record
-
-
-def _impose(ops, time: np.ndarray, displacement: np.ndarray, velocity: np.ndarray,
-            dof: int) -> None:
-    """Drive ``dof`` of the top node through the history (exact velocity, see module doc)."""
-    acceleration = np.gradient(velocity, time)  # only completes the ground motion: no mass
-    for tag, values in ((2, displacement), (3, velocity), (4, acceleration)):
-        ops.timeSeries("Path", tag, "-time", *time.tolist(), "-values", *values.tolist(),
-                       "-useLast")  # rounding of the summed steps must not fall off the end
-    ops.pattern("MultipleSupport", 2)
-    ops.groundMotion(1, "Plain", "-disp", 2, "-vel", 3, "-accel", 4)
-    ops.imposedMotion(_TOP, dof, 1)
+        force, friction_force, normal, mu, temperature, heat_flux = read(ops)
+        out["displacement"][k] = ops.nodeDisp(_TOP, 1), ops.nodeDisp(_TOP, 2)
+        out["velocity"][k] = ops.nodeVel(_TOP, 1), ops.nodeVel(_TOP, 2)
+        out["force"][k], out["friction_force"][k], out["axial_load"][k] = (force, friction_force,
+                                                                           normal)
+        out["mu"][k], out["temperature"][k], out["heat_flux"][k] = mu, temperature, heat_flux
+    return out

@@ -1,32 +1,35 @@
-"""The native time-history analysis repeated in OpenSees, returned in the same form.
+"""The analysis of :func:`structures.analysis.run` repeated in OpenSees, returned in the same
+form.
 
-:func:`run_opensees` builds the building and its isolation level in openseespy from the very
-objects :func:`structures.analysis.run` takes (:mod:`structures.opensees.model` describes the
-model), drives it with the same ground-acceleration samples and the same integrator, and
-returns an ``xarray.Dataset`` with the variables, dimensions and attributes of
-:func:`~structures.analysis.run`, the energy balance computed from the recorded histories with
-our matrices by :func:`structures.energy.energy_balance`.
+:func:`run_opensees` builds the building on its bearings in openseespy
+(:mod:`structures.opensees.model`) from the very objects :func:`structures.analysis.run`
+takes, drives it with the same ground-acceleration samples and the same integrator, and returns
+the Dataset of :func:`structures.results.response_dataset`, whose energy balance is computed
+from the recorded histories with our matrices (a check of both the model and the recording).
 
 Conventions (read in ``SRC/analysis/integrator`` and ``SRC/domain/pattern`` of OpenSees):
 
-- Ground motion: ``timeSeries Path -dt dt -values ...`` of the samples the native run uses
-  (resampled the same way) in m/s^2 and ``pattern UniformExcitation 2 1 -accel``; OpenSees
-  then solves for the motion relative to the ground, as we do, and absolute accelerations are
-  the relative ones plus the ground's.
+- Ground motion: the x (and y) samples on the analysis step (resampled as ours) as ``timeSeries
+  Path -dt dt -values ...`` in m/s^2 and ``pattern UniformExcitation`` in directions 1 (and
+  2); only the masters carry mass, so the load is ``-m a_g`` at each centre of mass, ours
+  ``-M R a_g``, and absolute accelerations are the relative ones plus the ground's. A vertical
+  component is a quasi-static load ``-P_i a_z / g`` on each bearing position (our building is
+  rigid vertically: ``P_i (1 + a_z / g)``), its samples at the record's own times, linear
+  between them and held after the end, as ours.
 - Initial state: our integrator starts from the acceleration in equilibrium with the first
-  sample, ``a_0 = -r a_g(0)``; OpenSees's Newmark and HHT start from the nodes' committed
+  sample, ``a_0 = -R a_g(0)``; OpenSees's Newmark and HHT start from the nodes' committed
   accelerations, so they are set to that (``setNodeAccel ... -commit``).
-- ``Newmark(gamma, beta)`` is ``integrator Newmark gamma beta``. ``HHT(alpha)`` with our
-  alpha in [-1/3, 0] is ``integrator HHT (1 + alpha)``: OpenSees's alpha in [2/3, 1] weights
-  the new step (``gamma = 3/2 - alpha_OS``, ``beta = (2 - alpha_OS)^2 / 4`` give ours). For a
-  linear model both are the same method; for the isolator they differ in one respect:
-  OpenSees evaluates the element at the weighted state ``u_(n + alpha_OS)``, ours weights the
-  forces, ``(1 + alpha) f(u_(n+1)) - alpha f(u_n)``.
-- Solution: Newton with ``NormDispIncr`` (``tolerance`` in m); a step that fails is retried as
-  two halves, recursively up to ``max_subdivisions`` times, as our integrator does.
+- ``Newmark(gamma, beta)`` is ``integrator Newmark gamma beta``. ``HHT(alpha)`` with our alpha
+  in [-1/3, 0] is ``integrator HHT (1 + alpha)``: OpenSees's alpha in [2/3, 1] weights the new
+  step (``gamma = 3/2 - alpha_OS``, ``beta = (2 - alpha_OS)^2 / 4`` give ours). For a linear
+  model both are the same method; for the isolator OpenSees evaluates the element at the
+  weighted state ``u_(n + alpha_OS)``, ours weights the forces,
+  ``(1 + alpha) f(u_(n+1)) - alpha f(u_n)``.
+- Solution: the ``Transformation`` constraint handler (the rigid diaphragms), Newton with
+  ``NormDispIncr`` (``tolerance`` in m); a step that fails is retried as two halves,
+  recursively up to ``max_subdivisions`` times, as our integrator does.
 
-The run is recorded after each full step (nodal displacement, velocity and acceleration, the
-bearing state of :class:`~structures.opensees.model.BearingRecord`).
+The run is recorded after each full step: the levels at O and one bearing of each position.
 """
 
 from __future__ import annotations
@@ -35,33 +38,29 @@ import time as _time
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
+from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.common.validation import check_int, check_real
+from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
-from structures.analysis import resampled_record
-from structures.integrators import HHT, METHODS, Newmark
+from structures.analysis import ground_record
+from structures.integrators import HHT, METHODS, Newmark, as_method
 from structures.isolated_building import IsolatedShearBuilding
-from structures.opensees.model import BearingRecord, build_model, element_kind
+from structures.opensees.elements import element_kind
+from structures.opensees.model import Twin, build_model
 from structures.opensees.runtime import import_opensees
-from structures.results import response_dataset
+from structures.results import BEARING_RECORD, response_dataset
 from structures.shear_building import ShearBuilding
 
-__all__ = ["halving_step", "opensees_integrator", "run_opensees", "transient_analysis"]
+__all__ = ["halving_step", "opensees_integrator", "run_opensees"]
+
+_FIRST_SERIES = 10  # time-series and pattern tags of the ground motion
 
 
 def opensees_integrator(method: str | Newmark | HHT) -> tuple:
-    """Arguments of OpenSees's ``integrator`` command for one of our methods.
-
-    Parameters
-    ----------
-    method : {"newmark", "hht"} or Newmark or HHT
-        As :func:`structures.integrators.integrate`.
-
-    Returns
-    -------
-    tuple
-        ``("Newmark", gamma, beta)`` or ``("HHT", 1 + alpha)``.
-    """
+    """``("Newmark", gamma, beta)`` or ``("HHT", 1 + alpha)``: the arguments of OpenSees's
+    ``integrator`` command for one of our methods (``"newmark"``, ``"hht"`` or an instance)."""
     if isinstance(method, str):
         method = METHODS[method]() if method in METHODS else method
     if isinstance(method, HHT):
@@ -70,20 +69,6 @@ def opensees_integrator(method: str | Newmark | HHT) -> tuple:
         return ("Newmark", method.gamma, method.beta)
     raise TypeError(f"The 'integrator' parameter of run_opensees must be one of {tuple(METHODS)} "
                     f"or a Newmark or HHT instance. Got {method!r} instead.")
-
-
-def transient_analysis(ops, integrator: tuple, tolerance: float,
-                       constraints: str = "Plain") -> None:
-    """Set up the transient analysis of a twin: ``constraints`` handler, plain numbering, a
-    full system, Newton on ``NormDispIncr`` to ``tolerance`` [m] in 50 iterations, the
-    ``integrator`` of :func:`opensees_integrator`."""
-    ops.constraints(constraints)
-    ops.numberer("Plain")
-    ops.system("FullGeneral")
-    ops.test("NormDispIncr", tolerance, 50)
-    ops.algorithm("Newton")
-    ops.integrator(*integrator)
-    ops.analysis("Transient")
 
 
 def halving_step(ops, dt: float, depth: int, limit: int, counts: list[int]) -> bool:
@@ -103,10 +88,10 @@ def halving_step(ops, dt: float, depth: int, limit: int, counts: list[int]) -> b
 def run_opensees(
     building: ShearBuilding,
     bearing: DCFPBearing,
-    motion: GroundMotion,
+    motion: GroundMotion | GroundMotionPair,
     integrator: str | Newmark | HHT = "newmark",
     *,
-    n_bearings: int = 1,
+    n_bearings: int | None = None,
     dt: float | None = None,
     pendulum: str = "singlefp",
     tolerance: float = 1e-10,
@@ -117,11 +102,12 @@ def run_opensees(
     Parameters
     ----------
     building, bearing, motion, integrator, n_bearings, dt
-        As :func:`structures.analysis.run`. The bearing's friction model selects the element
-        (:func:`~structures.opensees.model.element_kind`).
+        As :func:`structures.analysis.run`: one record for a building in one direction, a
+        pair (x, y, optionally z) for a building in plan. The bearing's friction model selects
+        the element (:func:`~structures.opensees.elements.element_kind`).
     pendulum : {"singlefp", "spring"}
-        singleFPBearing (N = W + F u / R) or flatSliderBearing plus a linear spring (N = W,
-        our law); see :mod:`structures.opensees.model`. Ignored for FPBearingPTV.
+        singleFPBearing (N = P + F . u / R) or flatSliderBearing plus linear springs (N = P,
+        our law); see :mod:`structures.opensees.model`. Not used for FPBearingPTV.
     tolerance : float
         Displacement-increment tolerance of Newton's method [m].
     max_subdivisions : int
@@ -130,80 +116,115 @@ def run_opensees(
     Returns
     -------
     xarray.Dataset
-        As :func:`structures.analysis.run`, with the attributes ``program``, ``element`` and
-        ``pendulum`` besides; ``heat_flux`` is NaN for elements without heating.
+        As :func:`structures.analysis.run` without overturning (the model has none), with the
+        attributes ``program``, ``element``, ``pendulum`` (``"spherical"`` for
+        FPBearingPTV), ``newton_iterations``, ``subdivisions``, ``wall_time`` [s] (model
+        building included) and ``engine = "opensees"``; ``heat_flux`` is NaN for elements
+        without heating.
 
     Raises
     ------
     ImportError
         Without openseespy.
     ValueError, TypeError
-        For a bearing or method OpenSees cannot represent here (HHT with FPBearingPTV
-        among them: on the example its temperature peak falls from 119 to 111 degC).
+        For a model OpenSees cannot represent here (HHT with FPBearingPTV among them: on the
+        five-storey example its temperature peak falls from 119 to 111 degC).
     """
     owner = "run_opensees"
-    n_bearings = check_int(n_bearings, "n_bearings", owner, low=1)
+    pair = isinstance(motion, GroundMotionPair)
+    if pair != (building.plan is not None):
+        raise InputError(f"The 'motion' parameter of {owner} must be a GroundMotionPair for a "
+                         "building in plan and one GroundMotion for a building in one "
+                         f"direction. Got {type(motion).__name__} for a building "
+                         f"{'in plan' if building.plan is not None else 'in one direction'}.")
     check_real(tolerance, "tolerance", owner, low=0.0, low_open=True)
     check_int(max_subdivisions, "max_subdivisions", owner, low=0)
     arguments = opensees_integrator(integrator)
-    method = integrator if not isinstance(integrator, str) else METHODS[integrator]()
-    native = IsolatedShearBuilding(building, bearing, n_bearings)  # our matrices, W / n
+    native = IsolatedShearBuilding(building, bearing, n_bearings, overturning=False,
+                                   vertical=motion.z if pair else None)
     if arguments[0] == "HHT" and element_kind(native.bearing) == "ptv":
         raise ValueError(
             f"The 'integrator' parameter of {owner} must be Newmark for FPBearingPTV: the "
             "element appends to its heat history whenever the domain time advances, and "
             "OpenSees's HHT moves it to t + alpha dt within each step, so the history gets "
-            f"two uneven entries per step. Got {integrator!r} instead."
-        )
-    acceleration, step = resampled_record(motion, dt)
+            f"two uneven entries per step. Got {integrator!r} instead.")
+    acceleration, step = ground_record(motion, dt)
+    acceleration = acceleration.reshape(acceleration.shape[0], -1)  # (nt, directions)
     ops = import_opensees()
     ops.wipe()
     start = _time.perf_counter()
     try:
-        model = build_model(ops, building, native.bearing, n_bearings, pendulum)
-        ops.timeSeries("Path", 2, "-dt", step, "-values", *acceleration.tolist(),
-                       "-useLast")  # the summed steps may pass the last sample by round-off
-        ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
-        for tag in model.nodes:  # a_0 = -r a_g(0), as our integrator starts
-            ops.setNodeAccel(tag, 1, -float(acceleration[0]), "-commit")
-        transient_analysis(ops, arguments, tolerance)
-        histories, records, counts, message = _integrate(ops, model, step, acceleration.size,
-                                                         max_subdivisions)
+        twin = build_model(ops, native, pendulum)
+        _ground_motion(ops, twin, acceleration, step, motion.z if pair else None)
+        for tag in twin.nodes:  # a_0 = -R a_g(0), as our integrator starts
+            for axis, value in enumerate(acceleration[0]):
+                ops.setNodeAccel(tag, axis + 1, -float(value), "-commit")
+        for command, *values in (("constraints", "Transformation"), ("numberer", "Plain"),
+                                 ("system", "FullGeneral"), ("test", "NormDispIncr", tolerance,
+                                                             50),
+                                 ("algorithm", "Newton"), ("integrator", *arguments),
+                                 ("analysis", "Transient")):
+            getattr(ops, command)(*values)
+        histories, bearings, counts, message = _integrate(ops, twin, step, acceleration.shape[0],
+                                                          max_subdivisions)
         wall = _time.perf_counter() - start
         version = ops.version()
     finally:
         ops.wipe()
-    kept = records.shape[0]
     u, v, a = histories
+    kept = u.shape[0]
     ag = acceleration[:kept]
-    bearing = {name: records[:, i] for i, name in enumerate(BearingRecord._fields)}
+    influence = np.reshape(native.influence, (u.shape[1], -1))
+    success = kept == acceleration.shape[0]
     return response_dataset(
-        native, motion, step, ag, u, v, a + ag[:, None], bearing, integrator=repr(method),
-        success=kept == acceleration.size, message=message,
-        attrs={"program": f"OpenSees {version} (openseespy)", "element": model.element,
-               "pendulum": pendulum if "FPBearingPTV" not in model.element else "spherical",
+        native, motion, step, ag, u, v, a + ag @ influence.T, bearings,
+        integrator=repr(as_method(integrator)), success=success, message=message,
+        failure="" if success else "convergence", failed_at=None if success else step * kept,
+        attrs={"program": f"OpenSees {version} (openseespy)", "element": twin.element,
+               "pendulum": "spherical" if "FPBearingPTV" in twin.element else pendulum,
                "newton_iterations": counts[0], "subdivisions": counts[1], "wall_time": wall,
-               "compile_time": 0.0},  # nothing to compile: the attrs of analysis.run
-    )
+               "compile_time": 0.0, "engine": "opensees"})
 
 
-def _integrate(ops, model, step: float, nt: int, max_subdivisions: int):
-    """The step loop: (u, v, a) histories (3, nt, m), bearing records (kept, 6), counts."""
-    m = len(model.nodes)
-    histories = np.zeros((3, nt, m))
-    for i, tag in enumerate(model.nodes):
-        histories[2, 0, i] = ops.nodeAccel(tag, 1)
-    records = [model.initial]
+def _ground_motion(ops, twin: Twin, acceleration: np.ndarray, step: float,
+                   vertical: GroundMotion | None) -> None:
+    """Uniform excitation per direction; the vertical as quasi-static loads on the bearings."""
+    for axis in range(acceleration.shape[1]):
+        tag = _FIRST_SERIES + axis
+        ops.timeSeries("Path", tag, "-dt", step, "-values", *acceleration[:, axis].tolist(),
+                       "-useLast")  # the summed steps may pass the last sample by round-off
+        ops.pattern("UniformExcitation", tag, axis + 1, "-accel", tag)
+    if vertical is not None:
+        tag = _FIRST_SERIES + 2
+        ops.timeSeries("Path", tag, "-time", *vertical.time.tolist(), "-values",
+                       *(vertical.acceleration / STANDARD_GRAVITY).tolist(), "-useLast")
+        ops.pattern("Plain", tag, tag)
+        for node, load in zip(twin.tops, twin.loads, strict=True):
+            ops.load(node, 0.0, 0.0, -float(load), 0.0, 0.0, 0.0)
+
+
+def _integrate(ops, twin: Twin, step: float, nt: int, max_subdivisions: int):
+    """The step loop: (u, v, a) on our degrees of freedom (3, kept, n_dof), the bearings'
+    records (:data:`~structures.results.BEARING_RECORD`), counts and the message."""
+    dofs = [(tag, dof) for tag in twin.levels for dof in twin.dofs]
+    histories = np.zeros((3, nt, len(dofs)))
+    histories[2, 0] = [ops.nodeAccel(tag, dof) for tag, dof in dofs]
+    record = {name: np.zeros((nt, *np.shape(value))) for name, value in twin.initial.items()}
+    for name, value in twin.initial.items():
+        record[name][0] = value
     counts = [0, 0]
     message = "The integration reached the end of the record."
+    kept = nt
     for k in range(1, nt):
         if not halving_step(ops, step, 0, max_subdivisions, counts):
             message = (f"Step {k}: OpenSees did not converge in the step to t = {k * step:.6g} s "
                        f"after {max_subdivisions} halvings.")
+            kept = k
             break
-        for i, tag in enumerate(model.nodes):
-            histories[:, k, i] = (ops.nodeDisp(tag, 1), ops.nodeVel(tag, 1),
-                                  ops.nodeAccel(tag, 1))
-        records.append(model.record(ops))
-    table = np.array(records, dtype=float)
-    return histories[:, : table.shape[0]], table, counts, message
+        histories[:, k] = [[ops.nodeDisp(tag, dof) for tag, dof in dofs],
+                           [ops.nodeVel(tag, dof) for tag, dof in dofs],
+                           [ops.nodeAccel(tag, dof) for tag, dof in dofs]]
+        for name, value in twin.read(ops).items():
+            record[name][k] = value
+    return (histories[:, :kept], {name: record[name][:kept] for name in BEARING_RECORD},
+            counts, message)

@@ -1,6 +1,7 @@
-"""Our building analysis side by side with OpenSees: which bearing, both runs, the differences.
+"""Ours side by side with OpenSees: which bearing, both runs, the differences.
 
-The friction models compared (``model``), each as the OpenSees element that represents it:
+The friction models compared (``model``), each as the OpenSees element that represents it
+(:mod:`structures.opensees.elements`):
 
 ``"constant"``
     The building file's constant model (Eq. 8) as ``frictionModel Coulomb``.
@@ -9,20 +10,28 @@ The friction models compared (``model``), each as the OpenSees element that repr
     paper's factors, velocity dependent only (constant pressure), as ``VelDependent``.
 ``"ptv"``
     Eq. 7 with Kumar's factors (``KumarFactors()``) shaped as FPBearingPTV models it
-    (:func:`~structures.opensees.bearing.fpbearingptv_equivalent`: one surface heated at its
+    (:func:`~structures.opensees.elements.fpbearingptv_equivalent`: one surface heated at its
     centre while |u| < sqrt(pi)/2 r, spherical restoring law), as ``FPBearingPTV``.
 
-Differences are those of OpenSees from ours, relative to ours:
+Differences are OpenSees's relative to ours, over the common time samples (both runs share
+their time grid):
 
-- relative peak difference ``max|x_OS| / max|x_ours| - 1``;
-- normalised RMS difference ``NRMSE = sqrt(mean((x_OS - x_ours)^2)) / max|x_ours|``, over
-  the common time samples (the two runs share their time grid);
+- **peak** ``max|x_OS| / max|x_ours| - 1`` of the peaks of :func:`structures.analysis.peaks`
+  (resultants in plan: the isolator displacement of the largest bearing, of the base slab at
+  the centre of stiffness and of the corner bearing, ours's largest; the base shear; per
+  direction the roof's absolute acceleration and the storey drift; the base slab's rotation);
+- **NRMSE** ``sqrt(mean((x_OS - x_ours)^2)) / max|x_ours|`` of each component (:func:`nrmse`):
+  the isolator displacement (the largest over the bearings; in plan also the corner bearing's
+  and the centre's, and the base slab's rotation), the base shear and the roof acceleration;
+- the largest gap of the contact temperature [degC].
 
-for the isolator displacement, the base shear and the roof's absolute acceleration, and the
-largest gap of the contact temperature [degC]. ``wall_time_ratio`` is our wall time over
-OpenSees's (each run's ``wall_time`` attribute: the integration with its recording, model
-building included for OpenSees; :func:`run_comparison` warms our engine up first, so that a
-compiled engine's one-off compilation is not counted).
+One bearing under an imposed history (:func:`run_bearing_comparison`: our test rig against
+:func:`~structures.opensees.bearing.run_opensees_test` on the same samples) is measured by
+:func:`compare_tests` (resultant force peak, NRMSE per component, largest force gap, the
+energy over the history's closed blocks, temperature gap) and, for a sine, by
+:func:`bearing_summary` (peak force, energy dissipated per cycle, temperature).
+
+``wall_time_ratio`` is our wall time over OpenSees's (model building included for OpenSees).
 """
 
 from __future__ import annotations
@@ -33,38 +42,30 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from dcfpb.common.validation import check_choice
+from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
 from isolator.factors import KumarFactors
-from isolator.friction import ConstantFriction, PTVFriction
+from isolator.testrig import BearingTestResult, path_integral, run_test
 from structures.analysis import peaks, run
 from structures.integrators import HHT, Newmark
+from structures.opensees.bearing import run_opensees_test
 from structures.opensees.building import run_opensees
-from structures.opensees.equivalents import fpbearingptv_equivalent
+from structures.opensees.elements import ELEMENTS, element_kind, fpbearingptv_equivalent
+from structures.opensees.singlefp import singlefp_normal_force
 
-__all__ = ["COMPARED", "MODELS", "Comparison", "compare", "comparison_bearing", "nrmse",
-           "run_comparison", "shaped_bearing"]
+__all__ = ["MODELS", "Comparison", "bearing_summary", "closed_blocks", "compare",
+           "compare_tests", "comparison_bearing", "nrmse", "run_bearing_comparison",
+           "run_comparison", "shaped_bearing", "truncated"]
 
 MODELS = ("constant", "velocity", "ptv")
-COMPARED = {
-    "isolator_displacement": lambda ds: ds["isolator_displacement"].values,
-    "base_shear": lambda ds: ds["base_shear"].values,
-    "roof_acceleration": lambda ds: ds["absolute_acceleration"].isel(floor=-1).values,
-}
-"""The histories compared, each read from a result Dataset."""
+_ZERO_COMPONENT = 1.0e-9  # a component below this fraction of the peak resultant counts as zero
+_PTV_COLD_SAMPLES = 3  # the initial state and FPBearingPTV's first two steps (held at 20 degC)
 
 
 class Comparison(NamedTuple):
-    """Both runs and their differences.
-
-    Attributes
-    ----------
-    ours, opensees : xarray.Dataset
-        Results of :func:`structures.analysis.run` and
-        :func:`structures.opensees.building.run_opensees`.
-    summary : dict
-        :func:`compare` of the two (JSON-ready).
-    """
+    """Both runs (building Datasets or :class:`~isolator.testrig.BearingTestResult`) and the
+    JSON-ready summary of their differences."""
 
     ours: Any
     opensees: Any
@@ -72,28 +73,23 @@ class Comparison(NamedTuple):
 
 
 def shaped_bearing(bearing: DCFPBearing, model: str) -> DCFPBearing:
-    """``bearing`` with the friction model ``model`` that an OpenSees element represents.
-
-    Parameters
-    ----------
-    bearing : DCFPBearing
-        A bearing with ConstantFriction for ``"constant"``, with PTVFriction (its mu_t0,
-        dependencies and thermal properties are kept) for ``"velocity"`` and ``"ptv"``.
-    model : {"constant", "velocity", "ptv"}
-        See the module docstring.
+    """``bearing`` with the friction model ``model`` (module docstring) that an OpenSees
+    element represents: the constant model as it is, Eq. 7 without heating, or Eq. 7 with
+    Kumar's factors shaped as FPBearingPTV (mu_t0, dependencies, thermal properties kept).
 
     Raises
     ------
     ValueError
-        If the bearing's friction is of the other family.
+        If the bearing's friction is of the other family (the constant model for
+        ``"velocity"`` and ``"ptv"``, Eq. 7 for ``"constant"``).
     """
     owner = "shaped_bearing"
     model = check_choice(model, "model", owner, MODELS)
     friction = bearing.friction
-    wanted = ConstantFriction if model == "constant" else PTVFriction
-    if not isinstance(friction, wanted):
-        raise ValueError(f"The 'bearing' parameter of {owner} must have a {wanted.__name__} for "
-                         f"model {model!r}. Got {friction!r} instead.")
+    if (friction.name == "constant") != (model == "constant"):
+        wanted = "ConstantFriction" if model == "constant" else "PTVFriction"
+        raise ValueError(f"The 'bearing' parameter of {owner} must have a {wanted} for model "
+                         f"{model!r}. Got {friction!r} instead.")
     if model == "constant":
         return bearing
     if model == "velocity":
@@ -103,21 +99,9 @@ def shaped_bearing(bearing: DCFPBearing, model: str) -> DCFPBearing:
 
 
 def comparison_bearing(config, model: str) -> DCFPBearing:
-    """The bearing of a building file for ``model``.
-
-    Parameters
-    ----------
-    config : BuildingConfig
-        A building file read by :func:`structures.config.load_config`.
-    model : {"constant", "velocity", "ptv"}
-        See the module docstring.
-
-    Returns
-    -------
-    DCFPBearing
-        The file's constant model, or its simplified model (mu_t0, thermal properties)
-        reshaped by :func:`shaped_bearing`; loaded by W / count as the file's bearings.
-    """
+    """The bearing of a building file (:func:`structures.config.load_config`) for ``model``:
+    the file's constant model, or its simplified model (mu_t0, thermal properties) reshaped by
+    :func:`shaped_bearing`."""
     model = check_choice(model, "model", "comparison_bearing", MODELS)
     return shaped_bearing(config.bearing("constant" if model == "constant" else "simplified"),
                           model)
@@ -140,33 +124,85 @@ def nrmse(reference: np.ndarray, other: np.ndarray) -> float:
     return rms / scale if scale > 0.0 else rms
 
 
+def truncated(motion: GroundMotion | GroundMotionPair, duration: float):
+    """The first ``duration`` [s] of a record, or of each component of a pair."""
+    if isinstance(motion, GroundMotionPair):
+        parts = [None if m is None else m.truncated(duration) for m in (motion.x, motion.y,
+                                                                         motion.z)]
+        return GroundMotionPair(*parts, name=motion.name)
+    return motion.truncated(duration)
+
+
+def _peaks(ds, corner: int | None) -> dict[str, Any]:
+    """:func:`~structures.analysis.peaks` with, in plan, the resultant displacement of bearing
+    ``corner`` (``peak_corner_displacement`` [m]), and the run's success and message."""
+    out = peaks(ds)
+    if corner is not None:
+        reach = np.hypot(*np.moveaxis(ds["bearing_displacement"].values[:, corner], -1, 0))
+        out["peak_corner_displacement"] = float(reach.max())
+    out["success"], out["message"] = bool(ds.attrs["success"]), str(ds.attrs["message"])
+    return out
+
+
 def compare(ours, opensees) -> dict[str, Any]:
-    """Peaks of both runs, their differences and the wall-time ratio (JSON-ready).
+    """Peaks of both building runs, their differences (module docstring) and the wall-time
+    ratio.
 
     Returns
     -------
     dict
-        ``{"ours": peaks, "opensees": peaks, "difference": {...}, "wall_time_ratio": r}``
-        with ``difference`` holding ``peak_<name>`` (relative peak difference) and
-        ``nrmse_<name>`` for each history of :data:`COMPARED`, and ``max_temperature_gap``
-        [degC]; the runs are cut to their common length.
+        ``{"ours": peaks, "opensees": peaks, "difference": {...}, "wall_time_ratio": r}``:
+        each side's :func:`~structures.analysis.peaks` with ``success`` and ``message``
+        (OpenSees's with its ``element``); ``difference`` holds ``peak_<name>``,
+        ``nrmse_<history>`` (``_x``/``_y`` per component in plan) and
+        ``max_temperature_gap`` [degC]. In plan also ``corner_bearing`` (ours's largest,
+        whose ``peak_corner_displacement`` both sides report) and ours's ``overturning``.
+
+    Raises
+    ------
+    ValueError
+        If the runs do not share their time step or their bearings.
     """
     if not np.allclose(ours["time"].values[:2], opensees["time"].values[:2]):
         raise ValueError("The runs compared must share their time step. Got "
                          f"{ours.attrs['dt']!r} s and {opensees.attrs['dt']!r} s instead.")
+    if not all(np.array_equal(ours[name].values, opensees[name].values)
+               for name in ("bearing_x", "bearing_y", "bearing_count")):
+        raise ValueError("The runs compared must have the same bearings.")
     n = min(ours.sizes["time"], opensees.sizes["time"])
     a, b = ours.isel(time=slice(0, n)), opensees.isel(time=slice(0, n))
-    difference: dict[str, float] = {}
-    for name, read in COMPARED.items():
-        x, y = read(a), read(b)
-        difference[f"peak_{name}"] = float(np.max(np.abs(y)) / np.max(np.abs(x)) - 1.0)
-    for name, read in COMPARED.items():
-        difference[f"nrmse_{name}"] = nrmse(read(a), read(b))
+    plan = ours.sizes["direction"] == 2
+    corner = peaks(a)["corner_bearing"] if plan else None
+    pa, pb = _peaks(a, corner), _peaks(b, corner)
+    difference: dict[str, float] = {
+        key: pb[key] / pa[key] - 1.0 if pa[key] > 0.0 else float(pb[key] - pa[key])
+        for key in pa if key.startswith("peak_")}
+    suffixes = [f"_{d}" if plan else "" for d in ours["direction"].values]
+    ua, ub = a["bearing_displacement"].values, b["bearing_displacement"].values
+    for k, s in enumerate(suffixes):
+        difference[f"nrmse_isolator_displacement{s}"] = max(
+            nrmse(ua[:, i, k], ub[:, i, k]) for i in range(ua.shape[1]))
+        if plan:
+            difference[f"nrmse_corner_displacement{s}"] = nrmse(ua[:, corner, k],
+                                                                ub[:, corner, k])
+            difference[f"nrmse_centre_displacement{s}"] = nrmse(
+                a["displacement"].values[:, 0, k], b["displacement"].values[:, 0, k])
+    if plan:
+        difference["nrmse_base_rotation"] = nrmse(a["rotation"].values[:, 0],
+                                                  b["rotation"].values[:, 0])
+    for k, s in enumerate(suffixes):
+        difference[f"nrmse_base_shear{s}"] = nrmse(a["base_shear"].values[:, k],
+                                                   b["base_shear"].values[:, k])
+        difference[f"nrmse_roof_acceleration{s}"] = nrmse(
+            a["absolute_acceleration"].values[:, -1, k],
+            b["absolute_acceleration"].values[:, -1, k])
     gap = np.abs(b["temperature"].values - a["temperature"].values)
     difference["max_temperature_gap"] = float(np.nanmax(gap))
-    summary = {"ours": peaks(ours), "opensees": peaks(opensees), "difference": difference}
-    for side, ds in (("ours", ours), ("opensees", opensees)):
-        summary[side].update(success=bool(ds.attrs["success"]), message=ds.attrs["message"])
+    summary = {"ours": _peaks(ours, corner), "opensees": _peaks(opensees, corner),
+               "difference": difference}
+    if plan:
+        summary["corner_bearing"] = corner
+        summary["ours"]["overturning"] = bool(ours.attrs["overturning"])
     summary["opensees"]["element"] = opensees.attrs["element"]
     summary["wall_time_ratio"] = ours.attrs["wall_time"] / opensees.attrs["wall_time"]
     return summary
@@ -175,35 +211,197 @@ def compare(ours, opensees) -> dict[str, Any]:
 def run_comparison(
     building,
     bearing: DCFPBearing,
-    motion: GroundMotion,
+    motion: GroundMotion | GroundMotionPair,
     integrator: str | Newmark | HHT = "newmark",
     *,
-    n_bearings: int = 1,
+    n_bearings: int | None = None,
     dt: float | None = None,
     pendulum: str = "singlefp",
+    overturning: bool = False,
     warm_up: bool = True,
     **run_options: Any,
 ) -> Comparison:
     """Run ``bearing`` (already shaped, see :func:`shaped_bearing`) under the building both
-    ways and compare.
+    ways and compare (:func:`compare`).
 
     Parameters
     ----------
-    building, bearing, motion, integrator, n_bearings, dt
-        As :func:`structures.analysis.run`.
+    building, motion, integrator, n_bearings, dt
+        As :func:`structures.analysis.run`: one record, or a pair for a building in plan.
+    bearing : DCFPBearing
+        The bearing of every position; each takes its share of the weight (a load given on
+        it is dropped).
     pendulum : {"singlefp", "spring"}
         As :func:`structures.opensees.building.run_opensees`.
+    overturning : bool
+        Run ours with the overturning of the floors' inertia forces (in plan; OpenSees has
+        none, so the comparison then measures it too). Default False.
     warm_up : bool
         Run ours first on the record's first 3 samples, so that the timed run does not
-        include a one-off compilation of a compiled engine.
+        include a one-off compilation.
     **run_options
-        Passed to :func:`structures.analysis.run` only (e.g. ``tolerance``).
+        Passed to :func:`structures.analysis.run` only (``tolerance``, ``max_steps``, ...).
     """
+    bearing = replace(bearing, axial_load=None)
+    options = {"n_bearings": n_bearings, "overturning": overturning, **run_options}
     if warm_up and motion.npts >= 3:
-        run(building, bearing, motion.truncated(2 * motion.dt), integrator,
-            n_bearings=n_bearings, **run_options)
-    ours = run(building, bearing, motion, integrator, n_bearings=n_bearings, dt=dt,
-               **run_options)
+        run(building, bearing, truncated(motion, 2 * motion.dt), integrator, **options)
+    ours = run(building, bearing, motion, integrator, dt=dt, **options)
     opensees = run_opensees(building, bearing, motion, integrator, n_bearings=n_bearings, dt=dt,
                             pendulum=pendulum)
     return Comparison(ours, opensees, compare(ours, opensees))
+
+
+def bearing_summary(ours: BearingTestResult, opensees: BearingTestResult) -> dict[str, Any]:
+    """Peak force [N], energy dissipated per cycle (EDC, along x) [J] and largest temperature
+    [degC] of both tests, their differences (relative peak force, force NRMSE, largest EDC gap
+    over the largest EDC, temperature gap [degC]) and the wall-time ratio (JSON-ready)."""
+
+    def side(result: BearingTestResult) -> dict[str, Any]:
+        heated = np.isfinite(result.temperature)  # NaN where an element has no temperature
+        return {"peak_force": float(np.max(np.abs(result.force))),
+                "EDC": [c.EDC for c in result.characteristics()],
+                "max_temperature": float(np.max(result.temperature[heated]))
+                if heated.any() else None, "wall_time": result.wall_time}
+
+    a, b = side(ours), side(opensees)
+    edc = [abs(y - x) / max(a["EDC"]) for x, y in zip(a["EDC"], b["EDC"], strict=False)]
+    temperatures = (a["max_temperature"], b["max_temperature"])
+    difference = {"peak_force": b["peak_force"] / a["peak_force"] - 1.0,
+                  "nrmse_force": nrmse(ours.force, opensees.force),
+                  "edc": max(edc, default=np.nan),
+                  "max_temperature": None if None in temperatures
+                  else temperatures[1] - temperatures[0]}
+    ratio = a["wall_time"] / b["wall_time"] if b["wall_time"] > 0 else np.nan
+    return {"ours": a, "opensees": b, "difference": difference, "wall_time_ratio": ratio}
+
+
+def closed_blocks(history) -> list[slice]:
+    """The closed blocks of an imposed history or orbit: every segment but the ``lead-in``
+    (the whole history if it has no segments)."""
+    blocks = [slice(start, stop) for label, start, stop in history.segments
+              if label != "lead-in"]
+    return blocks or [slice(None)]
+
+
+def _resultant(values: np.ndarray) -> np.ndarray:
+    return np.abs(values[:, 0]) if values.shape[1] == 1 else np.hypot(values[:, 0],
+                                                                       values[:, 1])
+
+
+def compare_tests(ours: BearingTestResult, opensees: BearingTestResult,
+                  cycles: list[slice] | None = None) -> dict[str, Any]:
+    """Peaks, energies and differences of two bearing tests on the same samples (JSON-ready).
+
+    Differences are OpenSees's relative to ours: ``peak_resultant_force``
+    (``max|F_OS| / max|F_ours| - 1``), ``nrmse_force_x`` (and ``_y`` in the plane: relative
+    to our peak resultant where our component is zero, as across a line along an axis),
+    ``largest_force_gap`` (``max|F_OS - F_ours|`` over our peak resultant), ``energy`` (the
+    work of the force over the ``cycles``, the energy they dissipate) and
+    ``max_temperature_gap`` [degC] where both sides have a temperature (FPBearingPTV), else
+    None, left out the samples where FPBearingPTV computes none (its first two steps and u
+    exactly at the centre).
+
+    Returns
+    -------
+    dict
+        ``{"ours": {...}, "opensees": {...}, "difference": {...}, "wall_time_ratio": r}``;
+        each side holds its ``name``, ``peak_resultant_force`` [N], ``energy`` [J] and
+        ``peak_temperature`` [degC] (None without one).
+
+    Raises
+    ------
+    ValueError
+        If the two tests do not share their samples.
+    """
+    if ours.time.shape != opensees.time.shape or not np.allclose(ours.time, opensees.time,
+                                                                 rtol=0.0, atol=1e-12):
+        raise ValueError("The tests compared by compare_tests must share their samples. Got "
+                         f"{ours.time.size} and {opensees.time.size} samples instead.")
+    cycles = [slice(None)] if cycles is None else cycles
+    size = ours.time.size
+    forces = {side: np.reshape(r.force, (size, -1)) for side, r in (("ours", ours),
+                                                                      ("opensees", opensees))}
+    resultant = {side: _resultant(force) for side, force in forces.items()}
+    peak = float(np.max(resultant["ours"]))
+    gap = forces["opensees"] - forces["ours"]
+    difference: dict[str, Any] = {
+        "peak_resultant_force": float(np.max(resultant["opensees"])) / peak - 1.0}
+    for i, axis in enumerate("xy"[:gap.shape[1]]):
+        scale = float(np.max(np.abs(forces["ours"][:, i])))
+        scale = scale if scale > _ZERO_COMPONENT * peak else peak
+        difference[f"nrmse_force_{axis}"] = float(np.sqrt(np.mean(gap[:, i] ** 2))) / scale
+    difference["largest_force_gap"] = float(np.max(_resultant(gap))) / peak
+    energy = {side: sum(path_integral(r.displacement[s], r.force[s]) for s in cycles)
+              for side, r in (("ours", ours), ("opensees", opensees))}
+    difference["energy"] = energy["opensees"] / energy["ours"] - 1.0
+    both = np.isfinite(ours.temperature) & np.isfinite(opensees.temperature)
+    both[:_PTV_COLD_SAMPLES] = False
+    both &= np.any(np.reshape(opensees.displacement, (size, -1)) != 0.0, axis=1)
+    heated = bool(np.any(np.isfinite(opensees.temperature)))
+    difference["max_temperature_gap"] = (
+        float(np.max(np.abs(opensees.temperature - ours.temperature)[both])) if heated
+        else None)
+    summary: dict[str, Any] = {"difference": difference}
+    for side, r in (("ours", ours), ("opensees", opensees)):
+        summary[side] = {"name": r.name, "peak_resultant_force": float(np.max(resultant[side])),
+                         "energy": energy[side],
+                         "peak_temperature": (float(np.nanmax(r.temperature)) if heated
+                                              else None)}
+    summary["wall_time_ratio"] = ours.wall_time / opensees.wall_time
+    return summary
+
+
+def run_bearing_comparison(
+    bearing: DCFPBearing,
+    history,
+    *,
+    element: str | None = None,
+    ours_bearing: DCFPBearing | None = None,
+    match_normal_force: bool = False,
+    grid_orientation: float | None = None,
+) -> Comparison:
+    """Run an imposed history on our test rig and on the OpenSees element; compare
+    (:func:`compare_tests` over the history's closed blocks, :func:`closed_blocks`).
+
+    Parameters
+    ----------
+    bearing : DCFPBearing
+        The bearing OpenSees builds, with a constant axial load
+        (:func:`~structures.opensees.bearing.run_opensees_test`).
+    history : ImposedHistory or Orbit
+        Times [s], displacement (n,) or (n, 2) [m] from the centre and its exact velocity
+        [m/s] (:mod:`isolator.protocols`, :mod:`isolator.orbits`).
+    element : {"coulomb", "velocity", "ptv"}, optional
+        The OpenSees element; by default the bearing's.
+    ours_bearing : DCFPBearing, optional
+        The bearing our element runs; by default ``bearing`` (e.g. the precise model here
+        against FPBearingPTV's centre point).
+    match_normal_force : bool
+        Give our bearing singleFPBearing's normal force ``W + F . u / R``
+        (:func:`~structures.opensees.singlefp.singlefp_normal_force`) instead of W; not with
+        ``"ptv"``.
+    grid_orientation : float or None
+        Orientation of our precise model's monitor grid in the plane [deg]; None follows the
+        motion.
+
+    Raises
+    ------
+    ValueError
+        For ``match_normal_force`` with ``"ptv"`` (FPBearingPTV keeps N = W), and as the runs.
+    """
+    owner = "run_bearing_comparison"
+    element = element_kind(bearing) if element is None else check_choice(
+        element, "element", owner, ELEMENTS)
+    ours_bearing = bearing if ours_bearing is None else ours_bearing
+    t, u, v = history.time, history.displacement, history.velocity
+    if match_normal_force:
+        if element == "ptv":
+            raise ValueError(f"The 'match_normal_force' parameter of {owner} applies to "
+                             "singleFPBearing only (FPBearingPTV keeps N = W). Got element "
+                             f"{element!r} instead.")
+        ours_bearing = replace(ours_bearing,
+                               axial_load=singlefp_normal_force(ours_bearing, t, u, v))
+    opensees = run_opensees_test(bearing, t, u, v, element=element, name=history.name)
+    ours = run_test(ours_bearing, t, u, v, name=history.name, grid_orientation=grid_orientation)
+    return Comparison(ours, opensees, compare_tests(ours, opensees, closed_blocks(history)))

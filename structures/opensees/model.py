@@ -1,355 +1,330 @@
-"""The isolated shear building and its isolation level built in openseespy.
+"""The isolated shear building, in one direction or in plan, built in openseespy
+(``-ndm 3 -ndf 6``) from our dynamic model.
 
-:func:`build_model` turns the objects of a native run (a :class:`ShearBuilding`, one
-:class:`~isolator.bearing.DCFPBearing` and the number of bearings) into an OpenSees model and
-returns what a time-history driver needs to record it. One source of truth: every mass,
-stiffness and damping coefficient is read from the building's own matrices.
+:func:`build_model` turns an :class:`~structures.isolated_building.IsolatedShearBuilding`
+into an OpenSees model whose every mass, stiffness, damping coefficient and gravity load is read
+from it, and returns what a time-history driver needs (:class:`Twin`).
 
-Layout. Every node sits at the origin (all elements have zero length). Node 1 is the ground
-(fixed), node 2 the base slab (free horizontally and vertically; the vertical DOF is massless
-and carries the building's weight W as a nodal load), nodes 3 .. n+2 the floors (horizontal DOF
-only). 2D (``-ndm 2 -ndf 3``) for singleFPBearing / flatSliderBearing, 3D (``-ndm 3 -ndf 6``)
-for FPBearingPTV, which exists in 3D only. Masses are nodal and horizontal only.
+Layout. Every node lies in the plane Z = 0 (every element has zero length). Each level (0: the
+base slab, 1..n: the floors) is a ``rigidDiaphragm`` (perpendicular Z) whose master node sits
+at the level's centre of mass and carries its mass in X and Y and its mass moment of inertia
+about Z: with the diaphragm this is exactly our eccentric mass matrix at the centre of
+stiffness O. The other nodes of a level are constrained to it: one at O, where our degrees of
+freedom are recorded, and those the elements below need. In one direction every level's master
+is at O and moves along X only (its Y and twist fixed), and the other nodes follow its X
+(``equalDOF``: a diaphragm would tie them to the master's fixed DOFs, which the
+``Transformation`` handler does not honour).
 
-Superstructure. Our matrices on ``[u_b, u_1..u_n]`` are ``K = T^T K_fb T`` and
-``C = T^T C_fb T``: symmetric with zero row sums (a rigid-body motion meets no force). Such a
-matrix is the Laplacian of a spring or dashpot network: pair (i, j) gets ``-K_ij`` and ``-C_ij``
-(:func:`pair_coefficients`). Each pair becomes one ``zeroLength`` element with an ``Elastic``
-uniaxial material of stiffness ``-K_ij`` and damping ``eta = -C_ij`` (ZeroLength puts the
-material's damping tangent into its damping matrix and ``eta * strain rate`` into its force).
-For Rayleigh damping ``C_fb = a0 M_fb + a1 K_fb`` this is a dashpot ``a1 k_i`` beside each
-storey spring plus a dashpot ``a0 m_i`` from each floor to the base slab: exactly ours, including
-the mass-proportional part, and the isolation mode is not damped (OpenSees's own ``rayleigh``
-with alphaM would damp every nodal velocity relative to the ground, the isolation mode with it).
-Modal damping gives a full network (coefficients of either sign); it is still exact.
+Superstructure. Our stiffness and damping on the levels, ``K = T^T K_fb T`` and
+``C = T^T C_fb T``, act on the drifts only: their level blocks ``A_kl`` sum to zero along a
+block row, so ``A = sum over level pairs k < l of (e_k - e_l)(e_k - e_l)^T (x) B_kl`` with
+``B_kl = -A_kl``, as long as each ``A_kl`` is symmetric (:func:`pair_network`). Each
+``B_kl`` is one ``zeroLength`` element between levels k and l at the point where its
+translation and twist decouple, turned to its principal axes, with ``Elastic`` materials of
+stiffness ``E`` and damping ``eta`` in local directions 1, 2 and 6 (ZeroLength puts
+``eta * strain rate`` into its force and eta into its damping matrix). For Rayleigh damping
+these are our storeys at O (``k``, ``a1 k``) and ``a0 M_j`` at floor j's centre of mass, the
+mass-proportional part included and the isolation modes undamped (OpenSees's own ``rayleigh``
+would damp them). Modal damping is a full matrix on the drifts: still exact in one direction
+(coefficients of either sign) and in plan whenever its level blocks are symmetric, as for
+every level with the same eccentricity and stiffness proportions; otherwise the network takes
+their symmetric part, with a warning saying how much is left out (the whole stays symmetric
+and acts on the drifts only).
 
-Isolation level (the kind of element follows the friction model, see :func:`element_kind`):
-
-``coulomb`` / ``velocity``
-    ``frictionModel Coulomb mu`` or ``VelDependent muSlow muFast transRate``, and with
-    ``pendulum="singlefp"`` one ``singleFPBearing`` carrying W, whose force is linear in its
-    normal force, so one element stands for the n bearings exactly; its normal force is
-    ``N = W + F u / R`` (SingleFPSimple2d.cpp), ours ``N = W``. With ``pendulum="spring"`` a
-    ``flatSliderBearing`` (N = W) plus an elastic zeroLength spring ``W / R`` in parallel:
-    exactly our linear law. kInit is the total initial stiffness ``mu N / u_y (+ N / R)``.
-``ptv``
-    n parallel ``FPBearingPTV`` elements (pressure N / (pi r^2) must be per bearing), each
-    with W / n, its own heating, MuRef = mu_t0, Kumar factors and the spherical law; its
-    kInitial is ``mu N / u_y + N / R`` likewise.
-
-The pre-sliding branch differs by formulation: ours is ``mu(v, T) N z`` with z moving by
-du / u_y, so its stiffness follows mu; OpenSees's is a spring of fixed stiffness capped at
-mu N. The mu that sets kInit is therefore the one at rest (zero speed, initial temperature,
-the bearing's pressure: mu_slow for VelDependent), which the bearing has when it sticks: on
-the five-storey example it halves the base-shear NRMSE against VelDependent (5.3 % against
-12.8 % with mu_fast) and brings FPBearingPTV's peak displacement from 5.6 % to 1.9 % of ours
-(against MuRef = mu_t0).
+Bearings. At each bearing position a fixed node and a node of the base slab free vertically
+(massless, on the stiff axial material of the element under its gravity load): the elements of
+:func:`structures.opensees.elements.add_bearing` for the position's bearings (one group of
+``n_bearings`` at O in one direction). The overturning of the floors' inertia forces is not
+modelled (zero-length storeys have no lever arm).
 
 openseespy keeps one global model: the caller wipes it.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
+import warnings
 from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
 
+from dcfpb.common.errors import InputWarning
 from dcfpb.common.validation import check_choice
-from isolator.bearing import DCFPBearing
-from isolator.friction import ConstantFriction, PTVFriction
-from structures.opensees.equivalents import (
-    ELEMENT_ITERATIONS,
-    ELEMENT_TOLERANCE,
-    fpbearingptv_equivalent,
-    velocity_dependent_parameters,
-)
-from structures.shear_building import ShearBuilding
+from structures.isolated_building import IsolatedShearBuilding
+from structures.opensees.elements import add_bearing, element_kind, fpbearingptv_equivalent
 
-__all__ = ["PENDULUMS", "BearingRecord", "OpenSeesModel", "build_model", "element_kind",
-           "pair_coefficients"]
+__all__ = ["PENDULUMS", "Link", "Twin", "build_model", "pair_network"]
 
 PENDULUMS = ("singlefp", "spring")
-GROUND, BASE = 1, 2
-_FLOOR_NODE = 3  # first floor's node tag
-_AXIAL_SHORTENING = 1.0e-6  # [m] of the stiff axial spring under its load
-_PAIR_CUTOFF = 1.0e-12  # pair coefficients below this share of the largest are round-off
-_SI_UNITS = 1  # FPBearingPTV unit code: N, m, s, degC
-_FIRST_NETWORK_TAG = 100  # first material and element tag of the storey network
-_ORIENT_2D = (0.0, 1.0, 0.0, -1.0, 0.0, 0.0)  # local x up (axial), local y = -global X
-_ORIENT_3D = (0.0, 0.0, 1.0, 1.0, 0.0, 0.0)  # local x = global Z (axial), local y = global X
+_PAIR_CUTOFF = 1.0e-12  # coefficients below this share of the largest are round-off
+_ASYMMETRY = 1.0e-9  # an antisymmetric part above this share of the largest is a warning
+_FIXED, _FREE = 1, 0
+_SAME_POINT = 1.0e-9  # [m] a point this close to a master is the master's
 
 
-class BearingRecord(NamedTuple):
-    """The isolation level's state after a committed step (all bearings together).
+class Link(NamedTuple):
+    """One two-node element of the superstructure network.
 
     Attributes
     ----------
-    force, friction_force : float
-        Horizontal force of all bearings and its friction part [N].
-    mu : float
-        Friction coefficient [-].
-    temperature, heat_flux : float
-        Contact temperature [degC] and heat flux [W/m^2] (FPBearingPTV only; otherwise the
-        initial temperature and NaN: the other elements do not model heating).
-    axial_load : float
-        Normal force of one bearing [N].
+    levels : tuple of int
+        The two levels (k < l) it joins.
+    point : tuple of float
+        Where it stands in the plan (x, y) [m].
+    angle : float
+        Its local x from the global X [rad].
+    stiffness, damping : tuple of float
+        Its coefficients in the local directions (1,) or (1, 2, 6) [N/m, N m/rad; N s/m, ...].
     """
 
-    force: float
-    friction_force: float
-    mu: float
-    temperature: float
-    heat_flux: float
-    axial_load: float
+    levels: tuple[int, int]
+    point: tuple[float, float]
+    angle: float
+    stiffness: tuple[float, ...]
+    damping: tuple[float, ...]
 
 
-class OpenSeesModel(NamedTuple):
+class Twin(NamedTuple):
     """What the driver needs of a built model.
 
     Attributes
     ----------
+    levels : tuple of int
+        The node at O of each level, base slab first (our degrees of freedom).
+    dofs : tuple of int
+        The recorded degrees of freedom of a level: ``(1,)`` or ``(1, 2, 6)``.
     nodes : tuple of int
-        Node tags of ``[base slab, floor 1 .. floor n]`` (the DOF order of our model).
-    ndf : int
-        Degrees of freedom per node (3 in 2D, 6 in 3D); DOF 1 is the horizontal one.
+        Every node that moves with a level (masters and constrained nodes).
+    tops : tuple of int
+        Each bearing position's top node (its vertical DOF carries the gravity load).
+    loads : numpy.ndarray
+        The gravity load of each position, all its bearings [N].
     element : str
-        Description of the isolation element(s), e.g. ``"singleFPBearing Coulomb"``.
-    record : callable
-        ``record(ops) -> BearingRecord`` at the current (committed) state.
-    initial : BearingRecord
-        The state at rest before the first step (as the native run records it: no force,
-        mu 0, the initial temperature, the weight per bearing).
+        What the bearings are in OpenSees.
+    read : callable
+        ``read(ops) -> dict`` of one bearing at each position (the fields of
+        :data:`structures.results.BEARING_RECORD`, arrays (n_b, 2) and (n_b,)).
+    initial : dict
+        The same at rest before the first step.
     """
 
+    levels: tuple[int, ...]
+    dofs: tuple[int, ...]
     nodes: tuple[int, ...]
-    ndf: int
+    tops: tuple[int, ...]
+    loads: np.ndarray
     element: str
-    record: Callable[[object], BearingRecord]
-    initial: BearingRecord
+    read: Callable[[object], dict]
+    initial: dict
 
 
-def element_kind(bearing: DCFPBearing) -> str:
-    """``"coulomb"``, ``"velocity"`` or ``"ptv"``: the OpenSees element for the friction model.
+def _frame(block: np.ndarray, scale: float) -> tuple[tuple[float, float], float, np.ndarray]:
+    """Point, angle and local coefficients of a symmetric block on (x, y, theta) at O."""
+    if block.shape == (1, 1):
+        return (0.0, 0.0), 0.0, block[0]
+    translation, coupling = block[:2, :2], block[:2, 2]
+    point = (0.0, 0.0)
+    twist = block[2, 2]
+    if np.max(np.abs(coupling)) > _PAIR_CUTOFF * scale:  # move to where they decouple
+        t = -np.linalg.solve(translation, coupling)  # (p_y, -p_x)
+        point = (float(-t[1]), float(t[0]))
+        twist = block[2, 2] + coupling @ t
+    if abs(translation[0, 1]) <= _PAIR_CUTOFF * scale:
+        return point, 0.0, np.array([translation[0, 0], translation[1, 1], twist])
+    angle = 0.5 * math.atan2(2.0 * translation[0, 1], translation[0, 0] - translation[1, 1])
+    c, s = math.cos(angle), math.sin(angle)
+    axes = np.array([[c, -s], [s, c]])
+    local = axes.T @ translation @ axes
+    return point, angle, np.array([local[0, 0], local[1, 1], twist])
 
-    Raises
-    ------
-    ValueError
-        For a friction model no OpenSees element represents.
-    """
-    friction = bearing.friction
-    if isinstance(friction, ConstantFriction):
-        return "coulomb"
-    if isinstance(friction, PTVFriction) and not friction.heats:
-        return "velocity"
-    return "ptv"
 
-
-def pair_coefficients(matrix: np.ndarray) -> list[tuple[int, int, float]]:
-    """The spring or dashpot network ``(i, j, -A_ij)`` whose Laplacian is ``matrix``.
+def pair_network(stiffness: np.ndarray, damping: np.ndarray, level_dofs: int) -> list[Link]:
+    """The two-node elements whose stiffness and damping sum to the given level matrices.
 
     Parameters
     ----------
-    matrix : numpy.ndarray
-        Symmetric matrix with zero row sums, shape (m, m) (stiffness [N/m] or damping
-        [N s/m] on the drifts).
+    stiffness, damping : numpy.ndarray
+        Symmetric matrices on the levels' degrees of freedom acting on the drifts only, shape
+        ((n+1) L, (n+1) L), L = ``level_dofs`` (1: x; 3: x, y, theta at O).
+    level_dofs : int
+        1 or 3.
+
+    Returns
+    -------
+    list of Link
+        One link per level pair whose blocks are not zero, or two where the stiffness and the
+        damping do not share a point and axes.
 
     Raises
     ------
     ValueError
-        If the matrix is not symmetric or its rows do not sum to zero (it would act on a
-        rigid-body motion and cannot be a network of two-node elements).
+        If a matrix is not symmetric or acts on a rigid motion.
+
+    Warns
+    -----
+    InputWarning
+        If a matrix couples two levels unsymmetrically (no network of two-node elements
+        reproduces that part: the network takes the symmetric part of each level block).
     """
-    a = np.asarray(matrix, dtype=float)
-    scale = float(np.max(np.abs(a))) if a.size else 0.0
-    if scale == 0.0:
-        return []
-    if not np.allclose(a, a.T, rtol=0.0, atol=1e-12 * scale) or np.max(
-            np.abs(a.sum(axis=1))) > 1e-9 * scale:
-        raise ValueError("The 'matrix' parameter of pair_coefficients must be symmetric with "
-                         "zero row sums (it acts on drifts only). Got row sums "
-                         f"{a.sum(axis=1)!r} instead.")
-    i, j = np.triu_indices(a.shape[0], k=1)
-    keep = np.abs(a[i, j]) > _PAIR_CUTOFF * scale
-    return [(int(p), int(q), float(-a[p, q])) for p, q in zip(i[keep], j[keep], strict=True)]
+    size = stiffness.shape[0] // level_dofs
+    frames = []
+    for index, matrix in enumerate((stiffness, damping)):
+        a = np.asarray(matrix, dtype=float)
+        scale = float(np.max(np.abs(a))) if a.size else 0.0
+        blocks = a.reshape(size, level_dofs, size, level_dofs).transpose(0, 2, 1, 3)
+        if scale and (not np.allclose(a, a.T, rtol=0.0, atol=1e-12 * scale)
+                      or np.max(np.abs(blocks.sum(axis=1))) > 1e-9 * scale):
+            raise ValueError("The matrices of pair_network must be symmetric with zero block-row "
+                             "sums (they act on the drifts only). Got block-row sums "
+                             f"{blocks.sum(axis=1).tolist()!r} instead.")
+        asymmetry = 0.5 * np.max(np.abs(blocks - blocks.transpose(0, 1, 3, 2)), initial=0.0)
+        if asymmetry > _ASYMMETRY * scale:
+            warnings.warn(InputWarning(
+                f"The {('stiffness', 'damping')[index]} of the building couples its levels "
+                "unsymmetrically, which no network of two-node elements reproduces: the "
+                "OpenSees twin takes the symmetric part of each level block and leaves out "
+                f"{asymmetry / scale:.3g} of its largest coefficient (modal damping in plan is "
+                "exact with every level of the same eccentricity and stiffness proportions, "
+                "Rayleigh damping always)."), stacklevel=2)
+        frames.append({(i, j): _frame(-0.5 * (blocks[i, j] + blocks[i, j].T), scale)
+                       for i in range(size) for j in range(i + 1, size)
+                       if np.max(np.abs(blocks[i, j])) > _PAIR_CUTOFF * scale})
+    links = []
+    zero = (0.0,) * level_dofs
+    for pair in sorted(frames[0].keys() | frames[1].keys()):
+        k_frame, c_frame = frames[0].get(pair), frames[1].get(pair)
+        if k_frame and c_frame and k_frame[:2] == c_frame[:2]:
+            links.append(Link(pair, *k_frame[:2], tuple(k_frame[2]), tuple(c_frame[2])))
+            continue
+        if k_frame:
+            links.append(Link(pair, *k_frame[:2], tuple(k_frame[2]), zero))
+        if c_frame:
+            links.append(Link(pair, *c_frame[:2], zero, tuple(c_frame[2])))
+    return links
 
 
-def build_model(ops, building: ShearBuilding, bearing: DCFPBearing, n_bearings: int,
-                pendulum: str = "singlefp") -> OpenSeesModel:
-    """Build the building on its isolation level in the (wiped) openseespy domain.
+def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -> Twin:
+    """Build the building on its bearings in the (wiped) openseespy domain.
 
     Parameters
     ----------
     ops : module
         ``openseespy.opensees`` from :func:`~structures.opensees.runtime.import_opensees`.
-    building : ShearBuilding
-        Masses [kg], storey stiffnesses [N/m] and superstructure damping.
-    bearing : DCFPBearing
-        One bearing; its axial load is replaced by W / n_bearings as in the native run.
-    n_bearings : int
-        Identical bearings under the base slab.
+    model : IsolatedShearBuilding
+        Our model: masses [kg], inertias [kg m^2], storeys [N/m, N m/rad], superstructure
+        damping, bearing positions [m] with their counts and gravity loads [N], the bearing.
     pendulum : {"singlefp", "spring"}
-        For the 2D elements: singleFPBearing (N = W + F u / R) or flatSliderBearing plus a
-        linear spring W / R (N = W, our law). Ignored for FPBearingPTV.
+        singleFPBearing (N = P + F . u / R), or flatSliderBearing plus linear springs N / R
+        (N = P: our law). Not used for FPBearingPTV.
 
     Raises
     ------
     ValueError
-        If the bearing cannot be represented (see :mod:`structures.opensees.bearing`).
+        For a bearing or damping the model cannot represent.
     """
-    pendulum = check_choice(pendulum, "pendulum", "build_model", PENDULUMS)
-    kind = element_kind(bearing)
-    weight = building.weight
-    ndm, ndf = (3, 6) if kind == "ptv" else (2, 3)
-    ops.model("basic", "-ndm", ndm, "-ndf", ndf)
-    nodes = (BASE, *range(_FLOOR_NODE, _FLOOR_NODE + building.n_storeys))
-    origin = (0.0,) * ndm
-    for tag in (GROUND, *nodes):
-        ops.node(tag, *origin)
-    vertical = ndm  # DOF number of the vertical translation (Y in 2D, Z in 3D)
-    ops.fix(GROUND, *([1] * ndf))
-    ops.fix(BASE, *[0 if d in (1, vertical) else 1 for d in range(1, ndf + 1)])
-    for tag in nodes[1:]:
-        ops.fix(tag, *[0 if d == 1 else 1 for d in range(1, ndf + 1)])
-    masses = np.diag(building.isolated_mass_matrix)
-    for tag, mass in zip(nodes, masses, strict=True):
-        ops.mass(tag, float(mass), *([0.0] * (ndf - 1)))
-    _superstructure(ops, building, nodes, max(_FIRST_NETWORK_TAG, n_bearings + 4))
-    if kind == "ptv":
-        record, element = _fpbearingptv(ops, bearing, n_bearings, weight)
-    else:
-        record, element = _pendulum_2d(ops, bearing, kind, n_bearings, weight, pendulum)
-    ops.timeSeries("Constant", 1)
-    ops.pattern("Plain", 1, 1)
-    load = [0.0] * ndf
-    load[vertical - 1] = -weight
-    ops.load(BASE, *load)
-    initial = BearingRecord(0.0, 0.0, 0.0, _initial_temperature(bearing),
-                            0.0 if kind == "ptv" else math.nan, weight / n_bearings)
-    return OpenSeesModel(nodes, ndf, element, record, initial)
-
-
-def _superstructure(ops, building: ShearBuilding, nodes: tuple[int, ...], first: int) -> None:
-    """zeroLength spring-dashpots with the pair coefficients of K and C (module docstring),
-    tagged from ``first`` on (below it: the isolation level's elements and materials)."""
-    pairs: dict[tuple[int, int], list[float]] = {}
-    for index, matrix in enumerate((building.isolated_stiffness_matrix,
-                                    building.isolated_damping_matrix)):
-        for i, j, value in pair_coefficients(matrix):
-            pairs.setdefault((i, j), [0.0, 0.0])[index] = value
-    for tag, ((i, j), (stiffness, damping)) in enumerate(sorted(pairs.items()), start=first):
-        ops.uniaxialMaterial("Elastic", tag, stiffness, damping)
-        ops.element("zeroLength", tag, nodes[i], nodes[j], "-mat", tag, "-dir", 1)
-
-
-def _axial_materials(ops, load: float) -> None:
-    """Material 1: stiff axial spring (shortens 1e-6 m under ``load``); 2: rotations."""
-    ops.uniaxialMaterial("Elastic", 1, load / _AXIAL_SHORTENING)
-    ops.uniaxialMaterial("Elastic", 2, load / _AXIAL_SHORTENING)
-
-
-def _initial_temperature(bearing: DCFPBearing) -> float:
-    friction = bearing.friction
-    if isinstance(friction, PTVFriction):
-        return friction.thermal.initial_temperature
-    return friction.initial_temperature
-
-
-def _mu_at_rest(friction: PTVFriction, pressure: float) -> float:
-    """mu at zero speed and the initial temperature under ``pressure`` [Pa] (sets kInit)."""
-    factors, mu = friction.factors, friction.mu_t0
-    for name, value in (("pressure", pressure), ("velocity", 0.0),
-                        ("temperature", friction.thermal.initial_temperature)):
-        if name in friction.dependencies:
-            mu *= getattr(factors, name)(value)[0]
-    return mu
-
-
-def _pendulum_2d(ops, bearing: DCFPBearing, kind: str, n_bearings: int, weight: float,
-                 pendulum: str):
-    """singleFPBearing, or flatSliderBearing + spring; one element for all bearings."""
-    if bearing.restoring != "linear":
-        raise ValueError(f"The {kind!r} elements of build_model have the linear restoring law "
-                         f"N u / R. Got a bearing with {bearing.restoring!r} instead.")
-    friction, radius = bearing.friction, bearing.effective_radius
-    if kind == "coulomb":
-        ops.frictionModel("Coulomb", 1, friction.mu)
-        mu, label = friction.mu, "Coulomb"
-    else:  # mu at the pressure of one bearing, as in the native run
-        pressure = weight / n_bearings / bearing.contact_area
-        parameters = velocity_dependent_parameters(friction, pressure)
-        ops.frictionModel("VelDependent", 1, *parameters)
-        mu, label = parameters.mu_slow, "VelDependent"
-    _axial_materials(ops, weight)
-    flat = math.isinf(radius) or pendulum == "spring"
-    stiffness = 0.0 if math.isinf(radius) else weight / radius
-    k_initial = mu * weight / bearing.yield_displacement + (0.0 if flat else stiffness)
-    options = ("-P", 1, "-Mz", 2, "-orient", *_ORIENT_2D,
-               "-iter", ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * weight)
-    if flat:
-        ops.element("flatSliderBearing", 1, GROUND, BASE, 1, k_initial, *options)
-        name = "flatSliderBearing"
-        if stiffness > 0.0:
-            ops.uniaxialMaterial("Elastic", 3, stiffness)
-            ops.element("zeroLength", 2, GROUND, BASE, "-mat", 3, "-dir", 1)
-            name += " + linear spring W/R"
-    else:
-        ops.element("singleFPBearing", 1, GROUND, BASE, 1, radius, k_initial, *options)
-        name = "singleFPBearing"
-    temperature = _initial_temperature(bearing)
-
-    def record(ops) -> BearingRecord:
-        u = ops.nodeDisp(BASE, 1)
-        slider = ops.eleResponse(1, "force")[3]
-        normal = ops.eleResponse(1, "frictionModel", "normalForce")[0]
-        if flat:
-            force, friction_force = slider + stiffness * u, slider
-        else:
-            force, friction_force = slider, slider - normal * u / radius
-        mu = ops.eleResponse(1, "frictionModel", "COF")[0]
-        return BearingRecord(force, friction_force, mu, temperature, math.nan,
-                             normal / n_bearings)
-
-    return record, f"{name} {label}"
-
-
-def _fpbearingptv(ops, bearing: DCFPBearing, n_bearings: int, weight: float):
-    """n parallel FPBearingPTV elements in 3D, each carrying W / n."""
     owner = "build_model"
-    friction = bearing.friction
-    if fpbearingptv_equivalent(bearing) != bearing:  # also checks Kumar factors and 20 degC
+    pendulum = check_choice(pendulum, "pendulum", owner, PENDULUMS)
+    bearing, building = model.bearing, model.building
+    kind = element_kind(bearing)
+    if kind == "ptv" and fpbearingptv_equivalent(bearing) != bearing:
         raise ValueError(f"The bearing of {owner} must be shaped as FPBearingPTV models it "
-                         "(structures.opensees.bearing.fpbearingptv_equivalent: one centre-"
+                         "(structures.opensees.elements.fpbearingptv_equivalent: one centre-"
                          "heated surface, refinement sqrt(pi)/2, spherical law). Got "
                          f"{bearing!r} instead.")
-    load, radius = weight / n_bearings, bearing.effective_radius
-    factors = friction.factors
-    flag = {name: int(name in friction.dependencies)
-            for name in ("pressure", "temperature", "velocity")}
-    k_initial = _mu_at_rest(friction, load / bearing.contact_area) * load / (
-        bearing.yield_displacement) + load / radius
-    _axial_materials(ops, load)
-    tags = range(1, n_bearings + 1)
-    for tag in tags:
-        ops.element(
-            "FPBearingPTV", tag, GROUND, BASE, friction.mu_t0,
-            flag["pressure"], factors.reference_pressure,
-            flag["temperature"], friction.thermal.diffusivity, friction.thermal.conductivity,
-            flag["velocity"], factors.rate_parameter,
-            radius, bearing.contact_radius, k_initial,
-            1, 2, 2, 2,  # materials: axial, torsion, rocking about local y and z
-            *_ORIENT_3D, 0.0, 0, 0.0,  # orientation, shearDist, doRayleigh, mass
-            ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * load, _SI_UNITS,
-        )
+    links = pair_network(building.isolated_stiffness_matrix, building.isolated_damping_matrix,
+                         model.level_dofs)
+    plan = model.level_dofs == 3
+    in_plane = _FREE if plan else _FIXED  # Y and the twist
+    ops.model("basic", "-ndm", 3, "-ndf", 6)
+    node, tag = itertools.count(1).__next__, itertools.count(1).__next__
+    masters, slaves, points = [], [], {}
+    centres = building.level_centres
+    for level, mass in enumerate(building.level_masses):
+        masters.append(node())
+        ops.node(masters[-1], float(centres[level, 0]), float(centres[level, 1]), 0.0)
+        ops.fix(masters[-1], _FREE, in_plane, _FIXED, _FIXED, _FIXED, in_plane)
+        inertia = float(building.level_inertias[level]) if plan else 0.0
+        ops.mass(masters[-1], float(mass), float(mass), 0.0, 0.0, 0.0, inertia)
+        slaves.append([])
 
-    def record(ops) -> BearingRecord:
-        u = ops.nodeDisp(BASE, 1)
-        force = sum(ops.eleResponse(tag, "force")[6] for tag in tags)
-        normal = -ops.eleResponse(1, "basicForce")[0]
-        restoring = n_bearings * normal * u / math.sqrt(radius**2 - u * u)
-        return BearingRecord(force, force - restoring, ops.eleResponse(1, "MuAdjusted")[0],
-                             ops.eleResponse(1, "temperature")[0],
-                             ops.eleResponse(1, "HeatFlux")[0], normal)
+    def node_at(level: int, point: tuple[float, float], vertical: int = _FIXED) -> int:
+        if vertical == _FIXED and math.dist(point, centres[level]) <= _SAME_POINT:
+            return masters[level]
+        if vertical == _FIXED and (level, point) in points:
+            return points[level, point]
+        slaves[level].append(node())
+        ops.node(slaves[level][-1], *point, 0.0)
+        ops.fix(slaves[level][-1], _FREE, in_plane, vertical, _FIXED, _FIXED, in_plane)
+        if vertical == _FIXED:
+            points[level, point] = slaves[level][-1]
+        return slaves[level][-1]
 
-    return record, f"{n_bearings} x FPBearingPTV"
+    levels = tuple(node_at(level, (0.0, 0.0)) for level in range(len(masters)))
+    directions = (1, 2, 6)[:model.level_dofs]
+    for link in links:
+        lower, upper = link.levels
+        materials = []
+        for stiffness, damping in zip(link.stiffness, link.damping, strict=True):
+            materials.append(tag())
+            ops.uniaxialMaterial("Elastic", materials[-1], float(stiffness), float(damping))
+        c, s = math.cos(link.angle), math.sin(link.angle)
+        orient = () if link.angle == 0.0 else ("-orient", c, s, 0.0, -s, c, 0.0)
+        ops.element("zeroLength", tag(), node_at(lower, link.point), node_at(upper, link.point),
+                    "-mat", *materials, "-dir", *directions, *orient)
+    loads = np.asarray(building.gravity_shares, dtype=float)
+    tops, elements = [], []
+    for (x, y), count, load in zip(model.positions, model.multiplicity, loads, strict=True):
+        bottom = node()
+        ops.node(bottom, float(x), float(y), 0.0)
+        ops.fix(bottom, *([_FIXED] * 6))
+        tops.append(node_at(0, (float(x), float(y)), vertical=_FREE))
+        elements.append(add_bearing(ops, tag, bottom, tops[-1], bearing, float(load),
+                                    int(count), kind=kind, pendulum=pendulum, owner=owner))
+    for master, level_slaves in zip(masters, slaves, strict=True):
+        if plan and level_slaves:
+            ops.rigidDiaphragm(3, master, *level_slaves)
+        elif not plan:  # X only (module docstring)
+            for slave in level_slaves:
+                ops.equalDOF(master, slave, 1)
+    ops.timeSeries("Constant", 1)
+    ops.pattern("Plain", 1, 1)
+    for top, load in zip(tops, loads, strict=True):
+        ops.load(top, 0.0, 0.0, -float(load), 0.0, 0.0, 0.0)
+
+    def read(ops) -> dict:
+        values = [e.read(ops) for e in elements]
+        out = {name: np.array([v[i] for v in values])
+               for i, name in enumerate(("force", "friction_force", "axial_load", "mu",
+                                         "temperature", "heat_flux"))}
+        out["displacement"] = np.array([(ops.nodeDisp(t, 1), ops.nodeDisp(t, 2)) for t in tops])
+        return out
+
+    return Twin(levels, directions, tuple(masters) + tuple(n for s in slaves for n in s),
+                tuple(tops), loads, _label(elements[0], plan, model.n_bearings),
+                read, _at_rest(model, kind))
+
+
+def _label(first, plan: bool, n_bearings: int) -> str:
+    """``singleFPBearing Coulomb``, ``flatSliderBearing 3D Coulomb + linear springs N_i/R``,
+    ``6 x FPBearingPTV``, ..."""
+    if first.name == "FPBearingPTV":
+        return f"{n_bearings} x FPBearingPTV"
+    if not plan:
+        spring = " + linear spring W/R" if first.spring else ""
+        return f"{first.name}{spring} {first.friction}"
+    spring = " + linear springs N_i/R" if first.spring else ""
+    return f"{first.name} 3D {first.friction}{spring}"
+
+
+def _at_rest(model: IsolatedShearBuilding, kind: str) -> dict:
+    """One bearing at each position before the first step, as ours records it: no force, mu
+    at rest, the initial temperature, the gravity load."""
+    zero = np.zeros((len(model.elements), 2))
+    states = model.committed_states()
+    return {"displacement": zero, "force": zero, "friction_force": zero,
+            "mu": np.array([s.mu for s in states]),
+            "temperature": np.array([s.temperature for s in states]),
+            "heat_flux": np.full(len(states), 0.0 if kind == "ptv" else math.nan),
+            "axial_load": np.asarray(model.gravity_loads, dtype=float)}

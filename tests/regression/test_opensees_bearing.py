@@ -1,7 +1,8 @@
 """Our virtual test machine against OpenSees, one bearing under one sine.
 
 Script: this file runs both live (no stored fixture), with openseespy 3.7.1.2 (OpenSees 3.7.1)
-through :mod:`structures.opensees.bearing`. Test: 300 mm slider, 60 N/mm^2 (W = 4.24 MN),
+through :mod:`structures.opensees.bearing` (the element in 3D, its top node driven along X).
+Test: 300 mm slider, 60 N/mm^2 (W = 4.24 MN),
 R_eff = 4.5 m, u = 0.2 sin(2 pi t / 4.26 s), 3 cycles, dt = 0.005 s, analytic velocity.
 
 A bearing slides (|z| = 1 in our return map) or sticks in the short pre-sliding branch after
@@ -54,13 +55,10 @@ from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import CentrePoint, MonitorLine, exact_rise
 from isolator.protocols import sine
 from isolator.testrig import run_test
-from structures.opensees.bearing import (
-    fpbearingptv_equivalent,
-    run_opensees_test,
-    singlefp_normal_force,
-    velocity_dependent_parameters,
-)
+from structures.opensees.bearing import run_opensees_test
+from structures.opensees.elements import fpbearingptv_equivalent, velocity_dependent_parameters
 from structures.opensees.runtime import import_opensees
+from structures.opensees.singlefp import singlefp_normal_force
 
 SLIDER_DIAMETER = 0.3
 PRESSURE = 60.0e6

@@ -1,7 +1,7 @@
 """Our bidirectional element against OpenSees 3D, one bearing under imposed orbits.
 
 Script: this file runs both live (no stored fixture), with openseespy 3.7.1.2 (OpenSees 3.7.1)
-through :mod:`structures.opensees.bearing3d` and :mod:`structures.opensees.orbit_comparison`.
+through :mod:`structures.opensees.bearing` and :mod:`structures.opensees.comparison`.
 Test bearing: 300 mm slider, 60 N/mm^2 (W = 4.24 MN), R_eff = 4.5 m, u_y = 0.5 mm.
 
 singleFPBearing 3D with Coulomb friction (ConstantFriction(0.041), mu = 0.0403), dt = 0.005 s:
@@ -27,7 +27,7 @@ is singleFPBearing's restoring law N u_X / sqrt(R^2 - u_Y^2) (ours N u / R), and
 FPBearingPTV (mu_t0 = 0.075, Kumar's factors, 100 s/m) under a circle of radius 0.1 m (the
 slider always covers the plate centre, so its one heated point heats all the time), period
 2 s, three turns, dt = 0.005 s, against ours with one centre point (refinement sqrt(pi)/2, one
-surface, spherical law: :func:`~structures.opensees.equivalents.fpbearingptv_equivalent`):
+surface, spherical law: :func:`~structures.opensees.elements.fpbearingptv_equivalent`):
 peak temperature 262.4 against 265.0 degC, largest gap 6.7 degC (the rectangle rule's bound
 10.4 degC); peak |F| +0.09 %, NRMSE 0.68 % / 0.54 %, energy +0.93 %, the force gap while
 sliding being the temperature gap through kT (to 1.8e-4): kT(T_OS) / kT(T_ours) - 1 at most
@@ -43,20 +43,18 @@ import numpy as np
 import pytest
 
 from isolator.bearing import DCFPBearing
-from isolator.orbits import circle, figure_eight, line, square
 from isolator.factors import KumarFactors
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import MonitorLine
+from isolator.orbits import circle, figure_eight, line, square
 from isolator.protocols import sine
-from structures.opensees.bearing import run_opensees_test
-from structures.opensees.bearing3d import (
+from structures.opensees.bearing import opensees_orbit, run_opensees_test
+from structures.opensees.comparison import compare_tests, run_bearing_comparison
+from structures.opensees.elements import (
+    fpbearingptv_equivalent,
     fpbearingptv_restoring,
-    opensees_orbit,
-    run_opensees_orbit,
-    singlefp3d_restoring,
+    singlefp_restoring,
 )
-from structures.opensees.equivalents import fpbearingptv_equivalent
-from structures.opensees.orbit_comparison import compare_orbit_results, run_orbit_comparison
 from structures.opensees.runtime import import_opensees
 
 SLIDER_DIAMETER = 0.3
@@ -115,23 +113,23 @@ def test_refuses_what_the_elements_cannot_represent(ops):
     ]
     for bearing, element, message in cases:
         with pytest.raises(ValueError, match=message):
-            run_opensees_orbit(bearing, t, u, v, element=element)
+            run_opensees_test(bearing, t, u, v, element=element)
     with pytest.raises(ValueError, match="start at"):
-        run_opensees_orbit(_coulomb(), t, u + 0.01, v)
+        run_opensees_test(_coulomb(), t, u + 0.01, v)
     with pytest.raises(ValueError, match="'element'"):
-        run_opensees_orbit(_coulomb(), t, u, v, element="velocity")
+        run_opensees_test(_coulomb(), t, u, v, element="viscous")
     with pytest.raises(ValueError, match="FPBearingPTV keeps N = W"):
-        run_orbit_comparison(_coulomb(), orbit, element="ptv", match_normal_force=True)
+        run_bearing_comparison(_coulomb(), orbit, element="ptv", match_normal_force=True)
     with pytest.raises(ValueError, match="share their samples"):
         result = opensees_orbit(_coulomb(), orbit)
         shorter = opensees_orbit(_coulomb(), circle(0.1, 2.0, 1, 0.025))
-        compare_orbit_results(result, shorter)
+        compare_tests(result, shorter)
 
 
 def test_flat_slider_agrees_to_round_off(ops):
     """flatSliderBearing 3D: N = W, k0 = kInit = mu N / u_y on both axes, the same radial
     return as ours: nothing differs."""
-    summary = run_orbit_comparison(_coulomb(math.inf), ORBITS["circle"]()).summary
+    summary = run_bearing_comparison(_coulomb(math.inf), ORBITS["circle"]()).summary
     difference = summary["difference"]
     assert max(abs(difference[key]) for key in ("peak_resultant_force", "nrmse_force_x",
                                                 "nrmse_force_y", "largest_force_gap",
@@ -143,8 +141,8 @@ def test_flat_slider_agrees_to_round_off(ops):
 @pytest.fixture(scope="module", params=sorted(ORBITS))
 def coulomb(ops, request):
     orbit = ORBITS[request.param]()
-    constant_n = run_orbit_comparison(_coulomb(), orbit)
-    matched = run_orbit_comparison(_coulomb(), orbit, match_normal_force=True)
+    constant_n = run_bearing_comparison(_coulomb(), orbit)
+    matched = run_bearing_comparison(_coulomb(), orbit, match_normal_force=True)
     return orbit, constant_n, matched
 
 
@@ -187,7 +185,7 @@ def test_coulomb_remaining_gap_is_the_restoring_law(coulomb):
     # OpenSees slides everywhere: |F - its restoring| = mu N confirms its restoring law
     assert np.all(_sliding(opensees)[1:])
     n, u = ours.axial_load, ours.displacement
-    law = singlefp3d_restoring(n, u, EFFECTIVE_RADIUS) - n[:, None] * u / EFFECTIVE_RADIUS
+    law = singlefp_restoring(n, u, EFFECTIVE_RADIUS) - n[:, None] * u / EFFECTIVE_RADIUS
     assert np.max(np.hypot(*law.T)) / _peak(ours) > 1e-4  # 2.6e-4 circle: the law matters
     gap = np.hypot(*(opensees.force - ours.force - law).T) / _peak(ours)
     settled = np.ones(len(orbit), dtype=bool)
@@ -204,11 +202,11 @@ def test_a_square_agrees_within_the_stated_tolerances(ops):
     """Corners turn the sliding direction by 90 degrees at full speed; each costs a few
     pre-sliding steps, the largest gap of the Coulomb orbits."""
     orbit = square(AMPLITUDE, PERIOD, 2, DT)
-    difference = run_orbit_comparison(_coulomb(), orbit).summary["difference"]
+    difference = run_bearing_comparison(_coulomb(), orbit).summary["difference"]
     assert abs(difference["peak_resultant_force"]) <= 0.01  # 0.64 %
     assert max(difference["nrmse_force_x"], difference["nrmse_force_y"]) <= 0.02  # 0.21 %
     assert abs(difference["energy"]) <= 0.01  # 0.33 %
-    matched = run_orbit_comparison(_coulomb(), orbit, match_normal_force=True)
+    matched = run_bearing_comparison(_coulomb(), orbit, match_normal_force=True)
     difference = matched.summary["difference"]
     assert abs(difference["peak_resultant_force"]) <= 1e-3  # 6.2e-4
     assert max(difference["nrmse_force_x"], difference["nrmse_force_y"]) <= 1e-3  # 2.7e-4
@@ -223,7 +221,7 @@ def test_a_line_at_30_degrees_is_the_planar_comparison(ops):
     history = sine(AMPLITUDE, PERIOD, 3, DT)
     planar = run_opensees_test(bearing, history.time, history.displacement, history.velocity)
     orbit = line(AMPLITUDE, PERIOD, 3, DT, angle=angle)
-    comparison = run_orbit_comparison(bearing, orbit)
+    comparison = run_bearing_comparison(bearing, orbit)
     spatial = comparison.opensees
     along = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
     across = np.array([-along[1], along[0]])
@@ -266,7 +264,7 @@ def _ptv_bearing():
 @pytest.fixture(scope="module")
 def ptv(ops):
     orbit = circle(0.1, 2.0, 3, DT)
-    return orbit, run_orbit_comparison(_ptv_bearing(), orbit, element="ptv")
+    return orbit, run_bearing_comparison(_ptv_bearing(), orbit, element="ptv")
 
 
 def _rectangle_shortfall_bound(bearing, opensees, dt):
@@ -349,7 +347,7 @@ def test_fpbearingptv_against_our_precise_grid(ptv):
     orbit, comparison = ptv
     shaped = comparison.ours.bearing
     precise = replace(shaped, friction=replace(shaped.friction, heating=MonitorLine()))
-    grid = run_orbit_comparison(shaped, orbit, element="ptv", ours_bearing=precise)
+    grid = run_bearing_comparison(shaped, orbit, element="ptv", ours_bearing=precise)
     summary = grid.summary
     assert summary["ours"]["peak_temperature"] < 0.8 * summary["opensees"]["peak_temperature"]
     assert summary["difference"]["energy"] < -0.1  # -15 %: 180 against 262 degC

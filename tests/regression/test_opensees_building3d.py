@@ -1,7 +1,7 @@
 """The building in plan against OpenSees 3D (issue 13 point 7, the building side).
 
 Script: this file runs both live (no stored fixture), with openseespy 3.7.1.2 (OpenSees 3.7.1)
-through :mod:`structures.opensees.building3d` and :mod:`structures.opensees.comparison3d`. The
+through :mod:`structures.opensees.building` and :mod:`structures.opensees.comparison`. The
 building: 3 x 400 t floors, 500 t base slab, fixed-base period 0.5 s (x and y), Rayleigh 2 %
 on modes 1 and 2; plan 18 m x 12 m on 6 bearings at x = -9, 0, 9 m and y = -6, 6 m from the
 centre of stiffness; the centre of mass of every level at (0.9, 0.6) m, 5 % of the plan
@@ -16,14 +16,15 @@ Measured (openseespy 3.7.1.2):
 
 - flatSliderBearing 3D + springs N_i / R (our law): every history to 1e-9 of its peak, with a
   vertical component too; the energy balance of the OpenSees histories closes to 1e-12. The
-  rigid diaphragms, the masters at the centres of mass and the damping network are ours.
+  rigid diaphragms, the masters at the centres of mass and the damping network are ours, with
+  modal damping (5 % on every mode) as with Rayleigh's.
 - singleFPBearing 3D, synthetic pair (Kanai-Tajimi, 8 s, PGA 4 m/s^2; 0.34 m): peak
   isolator displacement -0.38 %, centre -0.40 %, base shear +0.79 %; NRMSE of the bearing
   displacement x 0.21 %, y 0.18 %, base rotation 0.71 %. singleFPBearing's normal force is up
   to 0.89 % above the share (N = P + F . u / R), which is the base-shear gap.
 - The same with a vertical (4 s, ratio 2/3): -0.18 %, +0.46 %, NRMSE 0.16 % / 0.15 %; its
   normal force less its lift is our axial load to 1e-8.
-- With singleFPBearing's normal force given to ours (:mod:`structures.opensees.singlefp_plan`):
+- With singleFPBearing's normal force given to ours (:mod:`structures.opensees.singlefp`):
   peak displacement -0.020 %, base shear +0.055 %, NRMSE 0.013 % / 0.043 % (the crossed radii
   and the return map are what is left).
 - TAP094 (Chi-Chi, N and E) scaled by scale_suite to the ASCE 7-16 design spectrum S_DS = 1 g,
@@ -48,14 +49,13 @@ from groundmotions.scaling import asce7_design_spectrum, isolated_period_range, 
 from groundmotions.synthetic import synthetic_pair
 from isolator.bearing import DCFPBearing
 from isolator.experiments import friction_model
-from structures.opensees.building3d import run_opensees_3d
-from structures.opensees.comparison3d import compare_3d, run_comparison_3d
+from structures.analysis import run
+from structures.opensees.building import run_opensees
+from structures.opensees.comparison import compare, run_comparison
 from structures.opensees.runtime import import_opensees
-from structures.opensees.singlefp_plan import run_spatial_singlefp_normal
-from structures.shear_building import ShearBuilding
-from structures.spatial.analysis import run_spatial
-from structures.spatial.building import SpatialBuilding
-from structures.spatial.plan import Plan
+from structures.opensees.singlefp import run_singlefp_normal
+from structures.plan import Plan
+from structures.shear_building import ModalDamping, ShearBuilding
 
 SHARED_PAIRS = Path(__file__).resolve().parents[3] / "shared" / "groundmotions" / "pairs"
 DT = 0.005
@@ -76,11 +76,11 @@ def ops():
 
 
 @functools.cache
-def _building() -> SpatialBuilding:
-    shear = ShearBuilding.from_period([4e5, 4e5, 4e5], 0.5, base_mass=5e5)
+def _building(damping=None) -> ShearBuilding:
     plan = Plan(BEARINGS, eccentricity=(0.9, 0.6), dimensions=(18.0, 12.0),
                 storey_heights=3.5)
-    return SpatialBuilding(shear, plan)
+    extra = {} if damping is None else {"damping": damping}
+    return ShearBuilding.from_period([4e5, 4e5, 4e5], 0.5, base_mass=5e5, plan=plan, **extra)
 
 
 @functools.cache
@@ -102,13 +102,14 @@ def _relative(got: np.ndarray, expected: np.ndarray) -> float:
     return float(np.max(np.abs(got - expected)) / np.max(np.abs(expected)))
 
 
-def test_spring_twin_is_our_building_to_round_off(ops):
+@pytest.mark.parametrize("damping", [None, ModalDamping(0.05)], ids=["rayleigh", "modal"])
+def test_spring_twin_is_our_building_to_round_off(ops, damping):
     """flatSliderBearing 3D + linear springs N_i / R is our law and return map exactly, so
     what is left is the building: masses at the centres of mass under rigid diaphragms, the
     storeys, the damping network and the gravity shares."""
-    pair = _synthetic()
-    ours = run_spatial(_building(), _bearing(), pair, overturning=False, dt=DT)
-    twin = run_opensees_3d(_building(), _bearing(), pair, dt=DT, pendulum="spring")
+    pair = _synthetic() if damping is None else _synthetic(3.0)
+    ours = run(_building(damping), _bearing(), pair, overturning=False, dt=DT)
+    twin = run_opensees(_building(damping), _bearing(), pair, dt=DT, pendulum="spring")
     assert ours.attrs["success"] and twin.attrs["success"]
     assert np.abs(ours["rotation"].values).max() > 1e-4  # the eccentricity turns it
     for name in ("displacement", "rotation", "bearing_displacement", "bearing_force",
@@ -124,7 +125,7 @@ def test_vertical_component_loads_the_bearings_alike(ops):
     N_i (1 + a_z / g): singleFPBearing's normal force less its own lift F . u / R is our
     axial load. (The spring twin is not our law under a vertical: its springs keep N_i / R.)"""
     pair = _synthetic(4.0, vertical=True)
-    comparison = run_comparison_3d(_building(), _bearing(), pair, dt=DT)
+    comparison = run_comparison(_building(), _bearing(), pair, dt=DT)
     ours, opensees = comparison.ours, comparison.opensees
     load = ours["axial_load"].values
     assert np.ptp(load[:, 0]) > 0.2 * load[0, 0]  # the vertical moves the loads
@@ -144,7 +145,7 @@ def _check_within_tolerance(summary: dict) -> None:
 
 
 def test_singlefp_under_a_synthetic_pair(ops):
-    comparison = run_comparison_3d(_building(), _bearing(), _synthetic(), dt=DT)
+    comparison = run_comparison(_building(), _bearing(), _synthetic(), dt=DT)
     summary = comparison.summary
     assert summary["ours"]["success"] and summary["opensees"]["success"]
     assert summary["opensees"]["element"] == "singleFPBearing 3D Coulomb"
@@ -158,10 +159,10 @@ def test_singlefp_under_a_synthetic_pair(ops):
 def test_singlefp_normal_force_given_to_ours_closes_most_of_the_gap(ops):
     """Given singleFPBearing's N, ours differs by the crossed radii and the return map only."""
     pair = _synthetic(4.0)
-    ours = run_spatial(_building(), _bearing(), pair, overturning=False, dt=DT)
-    matched = run_spatial_singlefp_normal(_building(), _bearing(), pair, dt=DT)
-    opensees = run_opensees_3d(_building(), _bearing(), pair, dt=DT)
-    plain, close = compare_3d(ours, opensees), compare_3d(matched, opensees)
+    ours = run(_building(), _bearing(), pair, overturning=False, dt=DT)
+    matched = run_singlefp_normal(_building(), _bearing(), pair, dt=DT)
+    opensees = run_opensees(_building(), _bearing(), pair, dt=DT)
+    plain, close = compare(ours, opensees), compare(matched, opensees)
     assert _relative(matched["axial_load"].values, opensees["axial_load"].values) < 1e-4
     for key in ("peak_base_shear", "nrmse_base_shear_x", "nrmse_base_shear_y",
                 "nrmse_isolator_displacement_x", "nrmse_isolator_displacement_y"):
@@ -185,7 +186,7 @@ def _recorded_pair() -> GroundMotionPair:
 def test_singlefp_under_a_scaled_recorded_pair(ops):
     if not SHARED_PAIRS.is_dir():
         pytest.skip(f"the recorded pairs of ../shared are absent ({SHARED_PAIRS})")
-    comparison = run_comparison_3d(_building(), _bearing(), _recorded_pair(), dt=DT)
+    comparison = run_comparison(_building(), _bearing(), _recorded_pair(), dt=DT)
     summary = comparison.summary
     assert summary["ours"]["success"] and summary["opensees"]["success"]
     assert summary["ours"]["peak_isolator_displacement"] > 0.05

@@ -52,6 +52,9 @@ def files(tmp_path_factory):
 
     folder = tmp_path_factory.mktemp("plan")
     (folder / "plan.toml").write_text(PLAN_FILE)
+    (folder / "modal.toml").write_text(PLAN_FILE.replace(
+        "base_mass = 500e3\n", "base_mass = 500e3\n[building.damping]\nkind = \"modal\"\n"
+        "ratio = 0.05\n"))
     (folder / "planar.toml").write_text(PLANAR_FILE)
     pair = synthetic_pair("kanai-tajimi", 3, duration=2.0, dt=0.005, target_pga=4.0,
                           ground_frequency=15.0, ground_damping=0.6, vertical_ratio=0.5)
@@ -79,6 +82,19 @@ def test_pair_runs_the_building_in_plan_against_opensees_3d(ops, files, capsys):
     assert out["wall_time_ratio"] > 0.0
 
 
+def test_modal_damping_in_plan(ops, files, capsys):
+    """Modal damping in plan is a network of dashpots too (every level with the same
+    eccentricity): the spring twin is ours to round-off."""
+    args = _args(files, "--pendulum", "spring", "--duration", "1", "--json")
+    args[1] = str(files / "modal.toml")
+    assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["opensees"]["element"] == "flatSliderBearing 3D Coulomb + linear springs N_i/R"
+    assert out["ours"]["steps"] == out["opensees"]["steps"] == 200
+    for key, value in out["difference"].items():
+        assert abs(value) < 1e-7, key
+
+
 def test_spring_twin_table(ops, files, capsys):
     assert main(_args(files, "--pendulum", "spring", "--duration", "1")) == 0
     text = capsys.readouterr().out
@@ -87,8 +103,18 @@ def test_spring_twin_table(ops, files, capsys):
     assert "     0.000" in text  # the spring twin is ours
 
 
+def test_velocity_dependent_friction_in_plan(ops, files, capsys):
+    """The element follows the friction model in plan too: VelDependent on singleFPBearing 3D
+    at each bearing's own pressure."""
+    assert main(_args(files, "--model", "velocity", "--duration", "1", "--json")) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["opensees"]["element"] == "singleFPBearing 3D VelDependent"
+    for key in ("peak_isolator_displacement", "peak_base_shear"):
+        assert abs(out["difference"][key]) < 0.02
+
+
 @pytest.mark.parametrize(("extra", "flag"), [
-    (("--model", "ptv"), "--model"),
+    (("--scale", "0"), "--scale"),
     (("--duration", "0"), "--duration"),
     (("--dt", "-1"), "--dt"),
 ])
