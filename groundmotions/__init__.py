@@ -1,12 +1,10 @@
 """Ground motions: records, readers, units, processing, spectra, scaling and synthetics.
 
-Everything listed in ``__all__`` is importable from the package itself
-(``from groundmotions import read_record, spectrum``). The package imports nothing of the
-project but the lowest layer (``dcfpb.common``: errors, units, validation); within
-it, `groundmotions.records` (`GroundMotion`, `RecordFormatError`) imports only
-`groundmotions.processing` (which reads a record through a Protocol), and the readers
-(`groundmotions.readers`, `groundmotions.peer`, `groundmotions.text_records`), the bundled
-records (`groundmotions.bundled`) and the pairs (`groundmotions.pairs`) import it.
+Every name in ``__all__`` is importable from the package (``from groundmotions import
+read_record, spectrum``). Of the project it imports only `dcfpb.common` (errors, units,
+validation). Inside it, `groundmotions.records` imports only `groundmotions.processing` (which
+reads a record through a Protocol); the readers, the bundled records and the pairs import
+`groundmotions.records`.
 """
 
 from groundmotions.bundled import bundled_names, load_bundled

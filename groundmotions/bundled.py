@@ -1,5 +1,5 @@
-"""Records shipped with the package (`load_bundled`, `bundled_names`): they load without any
-data folder of the project."""
+"""Records shipped with the package (`load_bundled`, `bundled_names`), read without any data
+folder of the project."""
 
 from __future__ import annotations
 
@@ -30,24 +30,24 @@ _BUNDLED: dict[str, tuple[str, dict[str, Any]]] = {
 
 
 def bundled_names() -> tuple[str, ...]:
-    """Names of the records shipped in ``groundmotions/data`` (for `load_bundled`)."""
+    """Names of the records in ``groundmotions/data``, for `load_bundled`."""
     return tuple(sorted(_BUNDLED))
 
 
 def load_bundled(name: str = "elcentro") -> GroundMotion:
-    """Load a record shipped with the package (works without any data folder of the project).
+    """Load a record shipped with the package.
 
     Parameters
     ----------
     name : str
-        One of `bundled_names()`; ``"elcentro"`` is El Centro 1940 N-S (1559 samples at
-        0.02 s, PGA 0.319 g).
+        One of `bundled_names()`; ``"elcentro"`` is El Centro 1940 N-S (1559 samples at 0.02 s,
+        PGA 0.319 g).
 
     Returns
     -------
     GroundMotion
-        Acceleration [m/s^2], with the record's title as its name and the metadata of the
-        file plus what is known of the recording (event, station, licence, origin).
+        Acceleration [m/s^2], named by the record's title, with the file's metadata and the
+        recording's event, station, licence and origin.
     """
     check_choice(name, "name", "load_bundled", bundled_names())
     file_name, extra = _BUNDLED[name]

@@ -1,7 +1,7 @@
 """What every record reader needs from a file: its lines, its numbers, the units its header
-states and the plausibility of what was read.
+states, and the plausibility of what was read.
 
-Units of a record (:func:`record_units`), in this order of authority:
+The units of a record (:func:`record_units`), in this order of authority:
 
 1. a *statement* in the header: ``UNITS OF G``, ``The units are (g)``, ``units=cm/sec/sec``,
    ``Units: gal`` (the word ``unit(s)`` followed by ``of``, ``are``, ``is``, ``in``, ``=`` or
@@ -13,8 +13,8 @@ Units of a record (:func:`record_units`), in this order of authority:
    agree with the header when the header states or mentions known units;
 4. otherwise :data:`groundmotions.units.DEFAULT_UNITS` (g, the PEER AT2 convention).
 
-After reading, :func:`check_plausible` refuses a record whose PGA lies outside
-:data:`groundmotions.units.PGA_LIMITS_G` and names the unit that would make it plausible.
+:func:`check_plausible` then refuses a record whose PGA lies outside
+:data:`groundmotions.units.PGA_LIMITS_G`, naming the unit that would make it plausible.
 """
 
 from __future__ import annotations
@@ -81,10 +81,8 @@ class RecordUnits(NamedTuple):
 
 
 def read_lines(path: Path) -> list[str]:
-    """Lines of a text file without their ends; LF, CR LF, CR CR LF and CR all count once.
-
-    UTF-8, or Latin-1 when the bytes are not UTF-8 (every byte string decodes as Latin-1).
-    """
+    """Lines of a text file (UTF-8, else Latin-1) without their ends; LF, CR LF, CR CR LF
+    and CR each count once."""
     raw = path.read_bytes()
     try:
         text = raw.decode("utf-8")
@@ -111,7 +109,7 @@ def line_of_value(line_ends: Sequence[tuple[int, int]], index: int) -> int:
 
 
 def check_finite(path: Path, values: np.ndarray, line_ends: Sequence[tuple[int, int]]) -> None:
-    """Raise on the first NaN or infinite value, naming its line (float() accepts 'nan')."""
+    """Raise on the first NaN or infinite value, naming its line (``float`` reads 'nan')."""
     bad = np.flatnonzero(~np.isfinite(values))
     if bad.size:
         index = int(bad[0])
@@ -120,8 +118,7 @@ def check_finite(path: Path, values: np.ndarray, line_ends: Sequence[tuple[int, 
 
 
 def check_step(dt: object, owner: str) -> float:
-    """A time step given by the caller [s], > 0 and finite; `InputError` otherwise (the
-    message of `dcfpb.common.validation.check_real`)."""
+    """A time step given by the caller [s], > 0 and finite, else `InputError`."""
     try:
         return check_real(dt, "dt", owner, low=0.0, low_open=True)
     except ValueError as error:
@@ -201,25 +198,17 @@ def _from_header(path: Path, header: Sequence[tuple[int, str]],
 
 def record_units(path: Path, header: Sequence[tuple[int, str]], given: object,
                  owner: str) -> RecordUnits:
-    """The units of a record's values (the order of authority is in the module docstring).
+    """The units of a record's values, by the order of authority of the module docstring.
 
-    Parameters
-    ----------
-    path : Path
-        The file (for messages).
-    header : sequence of (int, str)
-        Header lines with their line numbers.
-    given : str or None
-        Units given by the caller (any spelling :func:`groundmotions.units.parse_units`
-        reads), or None.
-    owner : str
-        The function that takes ``given`` (for the message of a bad value).
+    ``header`` holds the header lines with their line numbers; ``given``, the caller's units (any
+    spelling :func:`groundmotions.units.parse_units` reads) or None; ``path`` and ``owner``, the
+    file and the function that takes ``given``, name them in messages.
 
     Raises
     ------
     RecordFormatError
-        A velocity or displacement record, units the readers do not know, statements that
-        disagree, or given units that disagree with the header's.
+        A velocity or displacement record, unknown units, statements that disagree, or given
+        units that disagree with the header's.
     InputError
         ``given`` is not an acceleration unit.
     """
@@ -243,23 +232,10 @@ def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
                     line_ends: Sequence[tuple[int, int]]) -> None:
     """Refuse a record whose PGA lies outside :data:`groundmotions.units.PGA_LIMITS_G`.
 
-    Parameters
-    ----------
-    path : Path
-        The file (for messages).
-    values : numpy.ndarray
-        The finite values as written in the file [file units].
-    units : RecordUnits
-        Their units.
-    line_ends : sequence of (int, int)
-        ``(line number, values up to and including that line)`` (the line of the peak is
-        named).
-
-    Raises
-    ------
-    RecordFormatError
-        Saying the PGA found, the allowed range and the units that would bring the PGA into
-        :data:`groundmotions.units.TYPICAL_PGA_G`.
+    ``values`` are the finite values as written in the file, in ``units`` [file units];
+    ``line_ends`` the ``(line number, values up to and including that line)`` pairs, to name the
+    line of the peak. The `RecordFormatError` gives the PGA, the allowed range and the units that
+    would bring the PGA into :data:`groundmotions.units.TYPICAL_PGA_G`.
     """
     index = int(np.argmax(np.abs(values)))
     peak = float(abs(values[index]))

@@ -1,15 +1,10 @@
 """Reader of PEER .AT2 acceleration records (`read_peer_at2`).
 
-These header layouts are read: ``NPTS=  7996, DT= .00500 SEC``,
-``NPTS=   1451, dt=  .02000``, ``NPTS=   7998, DT=   .0050 SEC,`` (trailing comma), the NGA
-"values first" ``7997 0.0050 NPTS, DT`` and free-text headers of any length (the NPTS/DT line is
-found by search, not by position), a trailing ``*** End Data ***`` line, and LF, CR LF, CR CR LF
-or CR line ends (line numbers in messages count each of these once). The units of the values
-are read from the header (`groundmotions.filetext.record_units`: g, gal, cm/s^2, m/s^2, mm/s^2,
-in/s^2, ft/s^2 in their usual spellings; g when the header states none).
-
-A file that cannot be read as written raises `RecordFormatError` naming the file and the line;
-nothing is silently fixed (a missing value is never padded, an extra one never dropped).
+The NPTS/DT line is found by search after a free-text header of any length, in the layouts
+``NPTS=  7996, DT= .00500 SEC``, ``NPTS=   1451, dt=  .02000``, ``NPTS=   7998, DT=   .0050 SEC,``
+(trailing comma) and the NGA "values first" ``7997 0.0050 NPTS, DT``. A trailing
+``*** End Data ***`` line is allowed; line ends may be LF, CR LF, CR CR LF or CR (each counts
+once in the line numbers of messages).
 """
 
 from __future__ import annotations
@@ -45,8 +40,7 @@ _AGENCY = re.compile(r"\(([^()]*)\)\s*$")
 
 
 def has_npts_line(lines: list[str]) -> bool:
-    """Whether an NPTS line comes before the first row of numbers (a PEER file, whatever its
-    extension)."""
+    """Whether an NPTS line precedes the first row of numbers (a PEER file, any extension)."""
     for line in lines:
         if _NPTS_WORD.search(line):
             return True
@@ -91,12 +85,11 @@ def _find_npts_dt(path: Path, lines: list[str]) -> tuple[int, int, float]:
 def _read_values(
     path: Path, lines: list[str], start: int, npts: int
 ) -> tuple[np.ndarray, list[tuple[int, int]], list[str]]:
-    """Read exactly ``npts`` numbers row by row from ``lines[start:]``; return them, the
-    ``(line number, values so far)`` pairs and the non-numeric trailer (e.g.
-    ``*** End Data ***``) that may follow them.
+    """Exactly ``npts`` numbers read row by row from ``lines[start:]``, their
+    ``(line number, values so far)`` pairs and the non-numeric trailer after them.
 
-    Nothing of size ``npts`` is allocated before the values are there: a header that claims
-    more values than the file holds costs no more than the file.
+    Nothing of size ``npts`` is allocated before the values are read, so a header claiming more
+    values than the file holds costs no more than the file.
     """
     values: list[float] = []
     line_ends: list[tuple[int, int]] = []
@@ -213,32 +206,29 @@ def read_peer_at2(
     name : str, optional
         Name of the record; the file stem by default.
     units : str, optional
-        Units of the values when the header does not state them: ``"g"``, ``"gal"``,
-        ``"cm/s^2"``, ``"m/s^2"``, ``"mm/s^2"``, ``"in/s^2"``, ``"ft/s^2"`` (or another
-        spelling, e.g. ``"CM/S/S"``). By default the header's, else g (the PEER convention);
-        units given that disagree with the header's are refused.
+        Units of the values when the header states none (`groundmotions.units.UNIT_NAMES` or
+        another spelling, e.g. ``"CM/S/S"``); by default g, the PEER convention. Units that
+        disagree with the header's are refused.
 
     Returns
     -------
     GroundMotion
-        Acceleration converted from the file's units to [m/s^2]
-        (`groundmotions.units.TO_M_PER_S2`, with ``dcfpb.common.units.STANDARD_GRAVITY`` for g).
+        Acceleration [m/s^2] (`groundmotions.units.TO_M_PER_S2`).
 
     Raises
     ------
     RecordFormatError
-        No NPTS/DT line, a missing DT, a value count that disagrees with NPTS, a non-numeric,
-        NaN or infinite value, a velocity/displacement file, units the readers do not know, or
-        a PGA outside 1e-4 to 5 g (the message names the units that would fit); the message
-        names the file and the line.
+        Naming the file and the line: no NPTS/DT line or no DT, a value count other than NPTS, a
+        non-numeric or non-finite value, a velocity or displacement file, unknown units, or a PGA
+        outside 1e-4 to 5 g (naming the units that would fit).
     InputError
         ``units`` is not an acceleration unit.
 
     Notes
     -----
-    Event, date, time, station, component and agency are parsed from line 2 when the header has
-    the PEER 4-line layout; the station and component are split at the last comma and only a
-    trailing parenthesised group is the agency (station names may hold parentheses).
+    With the PEER 4-line header, event, date, time, station, component and agency are read from
+    line 2: station and component split at the last comma, and only a trailing parenthesised group
+    is the agency (station names may hold parentheses).
     """
     path = Path(path)
     return parse_peer(path, read_lines(path), name, units)

@@ -1,22 +1,9 @@
-"""Record processing: baseline correction, filtering, resampling, Arias intensity, duration.
+"""Record processing: integration, baseline correction, filtering, resampling, Arias intensity
+and significant durations.
 
-Every function is pure: it returns a NEW `GroundMotion` whose ``processing`` tuple ends with a
-line saying what was done (added only once the work has succeeded); the input is never
-changed. The record is taken, as everywhere in `groundmotions`, as a piecewise-linear
-acceleration between samples, and the integrals below are exact for that interpretation.
-
-``velocity_and_displacement``
-    exact integrals of a piecewise-linear acceleration from rest.
-``baseline_corrected``
-    removal of a least-squares polynomial from the acceleration.
-``zero_residuals``
-    a polynomial displacement correction that makes the final velocity and displacement zero.
-``filtered``
-    zero-phase Butterworth high-, low- or band-pass (``scipy.signal.sosfiltfilt``).
-``resampled``
-    to another time step (linear interpolation; anti-alias filter first when coarser).
-``arias_intensity``, ``significant_duration``
-    cumulative Arias intensity and the D5-75 / D5-95 significant durations.
+The functions are pure: each returns a new record whose ``processing`` ends with what was done
+(added once the work has succeeded). A record is taken, as everywhere in `groundmotions`, as a
+piecewise-linear acceleration between samples, and the integrals here are exact for it.
 """
 
 from __future__ import annotations
@@ -51,9 +38,9 @@ _MOTION_FIELDS = ("acceleration", "dt", "name", "metadata", "processing")
 
 
 class GroundMotion(Protocol):
-    """What the processing reads of a record (:class:`groundmotions.records.GroundMotion`, whose
-    methods call these functions): the acceleration [m/s^2] every ``dt`` [s], its name, metadata
-    and processing steps, and a constructor taking them in that order."""
+    """What the processing reads of a record (`groundmotions.records.GroundMotion`): the
+    acceleration [m/s^2] every ``dt`` [s], name, metadata and processing steps, and a constructor
+    taking them in that order."""
 
     acceleration: np.ndarray
     dt: float
@@ -91,22 +78,11 @@ def _check_motion(motion: object, owner: str) -> GroundMotion:
 def velocity_and_displacement(
     acceleration: np.ndarray, dt: float
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Ground velocity and displacement from rest, exact for an acceleration linear in a step.
+    """Ground velocity [m/s] and displacement [m] from rest of ``acceleration`` [m/s^2] sampled
+    every ``dt`` [s], exact for an acceleration linear between samples.
 
     ``v[i+1] = v[i] + dt (a[i] + a[i+1]) / 2`` and
-    ``d[i+1] = d[i] + dt v[i] + dt^2 (a[i] / 3 + a[i+1] / 6)``.
-
-    Parameters
-    ----------
-    acceleration : numpy.ndarray
-        Acceleration samples [m/s^2].
-    dt : float
-        Time step [s].
-
-    Returns
-    -------
-    velocity, displacement : numpy.ndarray
-        [m/s] and [m] at the sample times, both 0 at the first sample.
+    ``d[i+1] = d[i] + dt v[i] + dt^2 (a[i] / 3 + a[i+1] / 6)``, both 0 at the first sample.
     """
     a = np.asarray(acceleration, dtype=float)
     velocity = np.concatenate(([0.0], np.cumsum(0.5 * dt * (a[1:] + a[:-1]))))
@@ -115,25 +91,11 @@ def velocity_and_displacement(
 
 
 def baseline_corrected(motion: GroundMotion, order: int = 1) -> GroundMotion:
-    """Remove the least-squares polynomial of degree ``order`` from the acceleration.
+    """Remove the least-squares polynomial of degree ``order`` in time from the acceleration.
 
-    Parameters
-    ----------
-    motion : GroundMotion
-        The record.
-    order : int
-        Degree of the polynomial in time, in [0, 10] and below the number of samples
-        (0 removes the mean, 1 a linear drift) [-].
-
-    Returns
-    -------
-    GroundMotion
-        A new record; the fitted polynomial is orthogonal to what remains.
-
-    Notes
-    -----
-    The fit is made in a Legendre basis on time mapped to [-1, 1] (well conditioned for any
-    record length), by ``numpy.polynomial.Legendre.fit``.
+    ``order`` is in [0, 10] and below the number of samples (0 removes the mean, 1 a linear drift).
+    The fit, ``numpy.polynomial.Legendre.fit`` on time mapped to [-1, 1], is well conditioned for
+    any record length; what remains is orthogonal to the fitted polynomial.
     """
     owner = "baseline_corrected"
     motion = _check_motion(motion, owner)
@@ -148,33 +110,21 @@ def baseline_corrected(motion: GroundMotion, order: int = 1) -> GroundMotion:
 def zero_residuals(motion: GroundMotion, order: int = 3) -> GroundMotion:
     """Correct the acceleration so that the final ground velocity and displacement are zero.
 
-    Parameters
-    ----------
-    motion : GroundMotion
-        The record.
-    order : int
-        Degree of the displacement correction P(t), in [3, 10] [-].
-
-    Returns
-    -------
-    GroundMotion
-        ``a(t) - P''(t)``; its final velocity and displacement, integrated exactly from rest by
-        `velocity_and_displacement`, are zero to round-off.
+    Subtracts ``P''(t)``, where the displacement correction P is a polynomial of degree ``order``
+    (3 to 10) in t / T (T the duration) with P(0) = P'(0) = 0, so the record still starts from
+    rest. The final velocity and displacement, integrated by `velocity_and_displacement`, are zero
+    to round-off.
 
     Notes
     -----
-    The correction displacement P(t) is a polynomial of degree ``order`` in t / T (T the
-    duration) with P(0) = P'(0) = 0, so the corrected record still starts from rest (it is
-    built on ``(t / T)^2`` times shifted Legendre polynomials, for conditioning).
-    Its acceleration ``P''`` is sampled and, like the record, taken as linear between samples;
-    the end velocity and displacement of each basis term are computed with the
-    same exact integrals as the record's. The coefficients minimise the least-squares misfit
-    between P and the displacement history, subject to the two linear constraints that the
-    corrected final velocity and displacement vanish (solved as a KKT system). With
-    ``order = 3`` the two constraints fix the two coefficients (the correction acceleration is
-    then a straight line); a higher order also removes more of the long-period drift of the
-    displacement, in the manner of the displacement-fit baseline corrections of strong-motion
-    processing.
+    P is built on ``(t / T)^2`` times shifted Legendre polynomials, for conditioning. ``P''`` is
+    sampled and, like the record, taken as linear between samples, so each basis term's end
+    velocity and displacement come from the same exact integrals as the record's. The coefficients
+    minimise the least-squares misfit between P and the displacement history subject to zero final
+    velocity and displacement (a KKT system). With ``order = 3`` the two constraints fix the two
+    coefficients (a straight-line correction acceleration); a higher order also removes more of the
+    long-period drift of the displacement, as the displacement-fit baseline corrections of
+    strong-motion processing do.
     """
     owner = "zero_residuals"
     motion = _check_motion(motion, owner)
@@ -242,29 +192,12 @@ def _sosfiltfilt(sos: np.ndarray, x: np.ndarray, owner: str) -> np.ndarray:
 def filtered(
     motion: GroundMotion, low: float | None = None, high: float | None = None, order: int = 4
 ) -> GroundMotion:
-    """Zero-phase Butterworth filter: high-pass (``low``), low-pass (``high``) or band-pass.
+    """Zero-phase Butterworth filter: high-pass (``low``), low-pass (``high``) or band-pass (both).
 
-    Parameters
-    ----------
-    motion : GroundMotion
-        The record.
-    low : float, optional
-        High-pass corner [Hz], in (0, Nyquist) with Nyquist = 1 / (2 dt).
-    high : float, optional
-        Low-pass corner [Hz], in (low or 0, Nyquist).
-    order : int
-        Order of the Butterworth design, in [1, 10] [-].
-
-    Returns
-    -------
-    GroundMotion
-        The filtered record (same dt and length).
-
-    Notes
-    -----
-    ``scipy.signal.sosfiltfilt`` runs the filter forward and backward: no phase shift, the
-    magnitude response is squared (twice the roll-off; gain 1/2, -6 dB, at a corner) and the
-    ends are padded by odd extension (scipy's default).
+    The corners are in Hz, 0 < low < high < Nyquist = 1 / (2 dt); the Butterworth ``order`` is
+    in [1, 10]. The result has the record's dt and length. ``scipy.signal.sosfiltfilt``
+    runs the filter forward and backward: no phase shift, the magnitude response squared (twice the
+    roll-off; gain 1/2, -6 dB, at a corner), the ends padded by odd extension.
     """
     owner = "filtered"
     motion = _check_motion(motion, owner)
@@ -276,10 +209,8 @@ def filtered(
 
 
 def _positions(npts_new: int, ratio: float, npts_old: int) -> tuple[np.ndarray, np.ndarray]:
-    """Left indices and fractions of the new sample times on the old grid (ratio = new/old dt).
-
-    Positions within 1e-9 of an old sample are put on it, so old samples that the new grid
-    meets are kept bit for bit (a fraction of exactly 0 or 1).
+    """Left indices and fractions of the new sample times on the old grid (ratio = new / old
+    dt); a position within 1e-9 of an old sample is put on it, which keeps that sample bit for bit.
     """
     position = np.arange(npts_new) * ratio
     nearest = np.rint(position)
@@ -291,32 +222,15 @@ def _positions(npts_new: int, ratio: float, npts_old: int) -> tuple[np.ndarray, 
 
 
 def resampled(motion: GroundMotion, dt: float, *, anti_alias: bool = True) -> GroundMotion:
-    """The record at another time step.
+    """The record at the time step ``dt`` [s], in (0, duration], sampled at every
+    ``k dt <= duration`` (a duration not a multiple of ``dt`` loses its last, shorter step).
 
-    Parameters
-    ----------
-    motion : GroundMotion
-        The record.
-    dt : float
-        New time step [s], in (0, duration].
-    anti_alias : bool
-        When the new step is coarser, low-pass the record first (see Notes). Without it a
-        coarser record simply samples the piecewise-linear record at the new times.
-
-    Returns
-    -------
-    GroundMotion
-        Samples at ``k dt`` for every ``k dt <= duration`` (a record whose duration is not a
-        multiple of ``dt`` loses its last, shorter step).
-
-    Notes
-    -----
-    Finer: linear interpolation, which is exact for the piecewise-linear record (the spectra,
-    Arias intensity and velocity of the record are unchanged). Coarser: with ``anti_alias``
-    a zero-phase Butterworth low-pass (order 8, run forward and backward) with its corner at
-    0.8 of the new Nyquist frequency (gain 1/2 there, 0.03 at the new Nyquist), then
-    decimation (an integer ratio: every m-th sample, exactly) or linear interpolation.
-    Resampling finer and back with ``anti_alias=False`` returns the record exactly.
+    Finer: linear interpolation, exact for the piecewise-linear record (its spectra, Arias intensity
+    and velocity are unchanged). Coarser: with ``anti_alias``, a zero-phase Butterworth low-pass
+    (order 8, forward and backward) with its corner at 0.8 of the new Nyquist frequency (gain 1/2
+    there, 0.03 at the new Nyquist), then decimation (an integer ratio: every m-th sample, exactly)
+    or linear interpolation; without it the record is sampled at the new times. Resampling finer
+    and back with ``anti_alias=False`` returns the record exactly.
     """
     owner = "resampled"
     motion = _check_motion(motion, owner)
@@ -341,11 +255,6 @@ def resampled(motion: GroundMotion, dt: float, *, anti_alias: bool = True) -> Gr
 def arias_intensity(motion: GroundMotion) -> tuple[np.ndarray, np.ndarray]:
     """Cumulative Arias intensity ``I_A(t) = pi / (2 g) * integral_0^t a^2 dt``.
 
-    Parameters
-    ----------
-    motion : GroundMotion
-        The record.
-
     Returns
     -------
     times : numpy.ndarray
@@ -355,8 +264,8 @@ def arias_intensity(motion: GroundMotion) -> tuple[np.ndarray, np.ndarray]:
 
     Notes
     -----
-    The integral of a^2 over a step is exact for the piecewise-linear record:
-    ``dt (a_i^2 + a_i a_{i+1} + a_{i+1}^2) / 3``; g is ``dcfpb.common.units.STANDARD_GRAVITY``.
+    Exact for the piecewise-linear record: ``dt (a_i^2 + a_i a_{i+1} + a_{i+1}^2) / 3`` per step;
+    g is ``dcfpb.common.units.STANDARD_GRAVITY``.
     """
     motion = _check_motion(motion, "arias_intensity")
     a = motion.acceleration
@@ -366,25 +275,11 @@ def arias_intensity(motion: GroundMotion) -> tuple[np.ndarray, np.ndarray]:
 
 
 def significant_duration(motion: GroundMotion, start: float = 0.05, stop: float = 0.95) -> float:
-    """Time for the Arias intensity to grow from ``start`` to ``stop`` of its total.
+    """Time [s] for the Arias intensity to grow from ``start`` to ``stop`` of its total.
 
-    Parameters
-    ----------
-    motion : GroundMotion
-        The record, with non-zero Arias intensity.
-    start, stop : float
-        Fractions of the total Arias intensity, ``0 <= start < stop <= 1`` [-]:
-        (0.05, 0.75) gives D5-75, (0.05, 0.95) gives D5-95.
-
-    Returns
-    -------
-    float
-        Significant duration [s].
-
-    Notes
-    -----
-    The crossing times are found by linear interpolation of the cumulative intensity between
-    samples (within a fraction of one step of the exact crossing of the cubic in between).
+    ``0 <= start < stop <= 1`` [-]: (0.05, 0.75) gives D5-75, (0.05, 0.95) D5-95. The record must
+    have a non-zero Arias intensity. The crossing times are interpolated linearly between samples
+    (within a fraction of a step of the exact crossing of the cubic in between).
     """
     owner = "significant_duration"
     motion = _check_motion(motion, owner)

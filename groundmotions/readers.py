@@ -1,20 +1,12 @@
-"""Readers of ground-motion record files: `read_record` chooses between the PEER .AT2 reader
-(`groundmotions.peer`) and the text reader (`groundmotions.text_records`), re-exported here.
+"""Reading a record file: `read_record` chooses `read_peer_at2` (PEER .AT2,
+`groundmotions.peer`) or `read_text_record` (one or two columns, `groundmotions.text_records`),
+both re-exported here.
 
-``read_peer_at2``
-    PEER .AT2 files in the header layouts listed in `groundmotions.peer`.
-``read_text_record``
-    one column (acceleration; ``dt`` required) or two columns (time, acceleration; ``dt``
-    inferred and checked to be uniform).
-``read_record``
-    dispatches on the extension and the content.
-
-Every reader takes the units of the values from the header (g, gal, cm/s^2, m/s^2, mm/s^2,
-in/s^2, ft/s^2 in their usual spellings; `groundmotions.units`), or from ``units=`` when the
-header states none, else g; and refuses a record whose PGA is outside 1e-4 to 5 g, naming the
-units that would fit. A file that cannot be read as written raises `RecordFormatError` naming
-the file and the line; nothing is silently fixed (a missing value is never padded, an extra
-one never dropped).
+Every reader takes the units of the values from the header (`groundmotions.filetext`), else
+from ``units=``, else g, and refuses a record whose PGA is outside 1e-4 to 5 g, naming the units
+that would fit. A file that cannot be read as written raises `RecordFormatError` naming the file
+and the line: nothing is silently fixed (a missing value is never padded, an extra one never
+dropped).
 """
 
 from __future__ import annotations
@@ -38,22 +30,19 @@ def read_record(
     path: PathLike, *, dt: float | None = None, units: str | None = None,
     name: str | None = None,
 ) -> GroundMotion:
-    """Read a record, choosing the reader from the extension and the content.
-
-    A ``.at2`` file, or any file with an NPTS line before its first row of numbers, goes to
-    `read_peer_at2`; anything else to `read_text_record`.
+    """Read a record: a ``.at2`` file, or any file with an NPTS line before its first row of
+    numbers, with `read_peer_at2`; any other with `read_text_record`.
 
     Parameters
     ----------
     path : str or path-like
         The file.
     dt : float, optional
-        Time step [s]: required for a one-column text record; for a two-column text record or
-        a PEER file it must agree with the file's to 0.1 % (and the file's is used).
+        Time step [s]: required for a one-column text record; for a two-column text record or a
+        PEER file it must agree with the file's to 0.1 % (a PEER file keeps its own DT).
     units : str, optional
-        Units of the values when the header does not state them (``"g"``, ``"gal"``,
-        ``"cm/s^2"``, ``"m/s^2"``, ``"mm/s^2"``, ``"in/s^2"``, ``"ft/s^2"`` or another
-        spelling); by default the header's, else g.
+        Units of the values when the header states none (`groundmotions.units.UNIT_NAMES` or
+        another spelling); by default g. Units that disagree with the header's are refused.
     name : str, optional
         Name of the record; the file stem by default.
 

@@ -1,14 +1,11 @@
-"""Ground-motion records: the `GroundMotion` object and the error its readers raise.
+"""`GroundMotion`, one ground-acceleration record, and `RecordFormatError`, the error of its
+readers.
 
-A record is an acceleration array [m/s^2] at a fixed time step plus a checked header. Methods
-return new objects and append what was done to ``processing`` (as obspy does), so a scaled or
-truncated record still says where it came from. Nothing is cached and nothing is changed in
-place: the acceleration array is read-only. ``baseline_corrected``, ``filtered`` and
-``resampled`` delegate to the pure functions of `groundmotions.processing`.
-
-This module imports no reader: the readers (`groundmotions.readers`: `read_record`,
-`read_peer_at2`, `read_text_record`) and the records shipped with the package
-(`groundmotions.bundled`: `load_bundled`, `bundled_names`) import it.
+A record is a read-only acceleration array [m/s^2] at a fixed time step with a checked header.
+Its methods return new records and append what they did to ``processing`` (as obspy does), so a
+scaled or truncated record still says where it came from; ``baseline_corrected``, ``filtered``
+and ``resampled`` call the pure functions of `groundmotions.processing`. The readers
+(`groundmotions.readers`) and the bundled records (`groundmotions.bundled`) import this module.
 """
 
 from __future__ import annotations
@@ -32,11 +29,8 @@ PathLike = str | os.PathLike[str]
 
 
 class RecordFormatError(InputError):
-    """A record file that cannot be read as written.
-
-    The message reads ``"<file name>, line <n>: <what is wrong>"``; the parts are kept in the
-    attributes ``file``, ``line`` and ``reason``.
-    """
+    """A record file that cannot be read as written: the message reads
+    ``"<file name>, line <n>: <reason>"``, the parts kept as ``file``, ``line`` and ``reason``."""
 
     def __init__(self, file: PathLike, line: int, reason: str) -> None:
         self.file = Path(file).name
@@ -65,10 +59,10 @@ class GroundMotion:
     dt : float
         Time step [s], > 0.
     name : str
-        Short name (by default the readers use the file stem).
+        Short name (the readers use the file stem).
     metadata : dict
-        Header information: ``event``, ``date``, ``station``, ``component``, ``source_file``,
-        ``units_in_file``, ``header_lines`` ... (a shallow copy is stored).
+        Header information (``event``, ``date``, ``station``, ``component``, ``source_file``,
+        ``units_in_file``, ``header_lines`` ...); a shallow copy is stored.
     processing : tuple of str
         What was done to the record, oldest first.
 
@@ -127,29 +121,24 @@ class GroundMotion:
         return float(np.max(np.abs(self.acceleration)))
 
     def derived(self, acceleration: np.ndarray, step: str) -> GroundMotion:
-        """A new record of this step, name and metadata with ``acceleration`` [m/s^2] and
+        """A new record of this step, name and metadata with ``acceleration`` [m/s^2], and
         ``step`` (what was done) appended to ``processing``."""
         return GroundMotion(
             acceleration, self.dt, self.name, dict(self.metadata), (*self.processing, step)
         )
 
     def scaled(self, factor: float) -> GroundMotion:
-        """Return a new record with the acceleration multiplied by ``factor`` [-]."""
+        """A new record with the acceleration multiplied by ``factor`` [-]."""
         k = check_real(factor, "factor", "GroundMotion.scaled")
         return self.derived(self.acceleration * k, f"scaled by {k:.12g}")
 
     def negated(self) -> GroundMotion:
-        """Return a new record with the sign of the acceleration reversed."""
+        """A new record with the sign of the acceleration reversed."""
         return self.derived(-self.acceleration, "negated")
 
     def truncated(self, duration: float) -> GroundMotion:
-        """Return the first ``duration`` seconds (samples with t <= duration) as a new record.
-
-        Parameters
-        ----------
-        duration : float
-            Kept length [s], in [dt, self.duration].
-        """
+        """A new record of the samples at t <= ``duration`` [s], ``duration`` in
+        [dt, self.duration]."""
         d = check_real(
             duration, "duration", "GroundMotion.truncated", low=self.dt, high=self.duration
         )

@@ -1,22 +1,12 @@
 """Target spectra and amplitude scaling of a ground-motion suite (ASCE 7-16 for isolation).
 
-``TargetSpectrum``
-    a pseudo-acceleration table [m/s^2] with log-log interpolation.
-``asce7_design_spectrum``
-    the ASCE 7-16 Section 11.4.6 design spectrum (or the MCE_R spectrum, 1.5 times it).
-``isolated_period_range``
-    the ASCE 7-16 Section 17.3.3 period range 0.75 T_M ... 1.25 T_M of an isolated structure.
-``scale_suite``
-    one amplitude factor per record, or per pair of records (every component of a pair scaled
-    alike), so that the mean spectral measure of the scaled suite is nowhere below the target
-    in the period range and touches it at its tightest period: a record's own spectrum, a
-    pair's maximum-direction (RotD100) spectrum by default (`suite_spectra`).
-
-ASCE 7-16 Section 17.3.3 (isolated structures): for three-dimensional analysis a
-maximum-direction spectrum is formed for each pair, one factor scales both components, and over
-0.75 T_M (upper-bound properties) to 1.25 T_M (lower-bound properties) the average of the
-suite's spectra may not fall below the target. Section 16.2.3.1 (fixed-base structures) asks
-for 90 % of the target over its own range: ``fraction=0.9`` and that range.
+`scale_suite` scales each record, or each pair (every component alike), so that the suite's mean
+spectrum (of pairs: RotD100 by default) is nowhere below the target over the period range.
+ASCE 7-16 Section 17.3.3 (isolated structures): for an analysis in plan a maximum-direction
+spectrum is formed for each pair, one factor scales both components, and over 0.75 T_M
+(upper-bound properties) to 1.25 T_M (lower-bound properties) the average of the suite's
+spectra may not fall below the target. Section 16.2.3.1 (fixed-base structures) asks for 90 %
+of the target over its own range: ``fraction=0.9`` and that range.
 """
 
 from __future__ import annotations
@@ -68,19 +58,19 @@ class TargetSpectrum:
     Parameters
     ----------
     periods : array_like
-        Periods, > 0 and strictly increasing, at least 2 [s].
+        At least 2 periods, > 0 and strictly increasing [s].
     sa : array_like
         Pseudo-spectral acceleration at those periods, > 0 [m/s^2].
     name : str
-        A label for reports and plots.
+        Label for reports and plots.
     damping : float
-        Damping ratio the spectrum is defined for, in [0, 1) [-].
+        Damping ratio of the spectrum, in [0, 1) [-].
 
     Notes
     -----
-    Between table periods ``sa`` is interpolated linearly in log(T)-log(Sa), which is exact for
-    the power-law branches of code spectra (constant, 1/T, 1/T^2). Outside the table it is
-    not extrapolated: asking for it raises ``ValueError``.
+    ``sa_at`` interpolates linearly in log(T)-log(Sa), which is exact for the power-law branches
+    of code spectra (constant, 1/T, 1/T^2), and does not extrapolate: a period outside the table
+    raises ``ValueError``.
     """
 
     periods: np.ndarray
@@ -125,32 +115,27 @@ def asce7_design_spectrum(
     *,
     level: str = "design",
 ) -> TargetSpectrum:
-    """The ASCE 7-16 design (Section 11.4.6) or MCE_R (Section 11.4.7) response spectrum.
+    """The ASCE 7-16 design (Section 11.4.6) or MCE_R (Section 11.4.7) response spectrum:
+    a `TargetSpectrum` of ``sa`` [m/s^2] at 5 % damping.
 
     Parameters
     ----------
     S_DS, S_D1 : float
-        Design spectral acceleration parameters at short periods and at 1 s, > 0 [g] (as the
-        standard gives them; the result is converted to m/s^2).
+        Design spectral acceleration parameters at short periods and at 1 s, > 0 [g].
     T_L : float
         Long-period transition period, > T_S = S_D1 / S_DS [s].
     periods : array_like, optional
-        Periods of the table, > 0 [s]; by default 300 log-spaced from 0.01 s to
-        max(20 s, 2 T_L). The corner periods T_0, T_S and T_L within their range are added.
+        Periods of the table, > 0 [s]; by default 300 log-spaced from 0.01 s to max(20 s, 2 T_L).
+        The corner periods T_0, T_S and T_L within their range are added.
     level : {"design", "mce"}
         The design spectrum, or the MCE_R spectrum (1.5 times the design spectrum).
 
-    Returns
-    -------
-    TargetSpectrum
-        ``sa`` [m/s^2] with 5 % damping.
-
     Notes
     -----
-    With ``T_0 = 0.2 S_D1 / S_DS`` and ``T_S = S_D1 / S_DS`` (ASCE 7-16 Eq. 11.4-5 to 11.4-8):
-    ``Sa = S_DS (0.4 + 0.6 T / T_0)`` for T < T_0, ``S_DS`` for T_0 <= T <= T_S,
-    ``S_D1 / T`` for T_S < T <= T_L, and ``S_D1 T_L / T^2`` for T > T_L. Log-log
-    interpolation of the table is exact except on the rising branch below T_0.
+    With ``T_0 = 0.2 S_D1 / S_DS`` and ``T_S = S_D1 / S_DS`` (Eq. 11.4-5 to 11.4-8):
+    ``Sa = S_DS (0.4 + 0.6 T / T_0)`` for T < T_0, ``S_DS`` for T_0 <= T <= T_S, ``S_D1 / T`` for
+    T_S < T <= T_L, and ``S_D1 T_L / T^2`` for T > T_L. Log-log interpolation of the table is exact
+    except on the rising branch below T_0.
     """
     owner = "asce7_design_spectrum"
     s_ds = check_real(S_DS, "S_DS", owner, low=0.0, low_open=True)
@@ -177,20 +162,12 @@ def asce7_design_spectrum(
 def isolated_period_range(
     lower_bound_period: float, upper_bound_period: float
 ) -> tuple[float, float]:
-    """The ASCE 7-16 Section 17.3.3 scaling period range of an isolated structure.
+    """The ASCE 7-16 Section 17.3.3 scaling period range of an isolated structure,
+    ``(0.75 lower_bound_period, 1.25 upper_bound_period)`` [s].
 
-    Parameters
-    ----------
-    lower_bound_period : float
-        The shorter effective isolated period T_M, > 0 [s]: the one computed with the
-        upper-bound isolator properties (stiffer, more friction).
-    upper_bound_period : float
-        The longer T_M, >= ``lower_bound_period`` [s]: computed with the lower-bound properties.
-
-    Returns
-    -------
-    (float, float)
-        ``(0.75 lower_bound_period, 1.25 upper_bound_period)`` [s].
+    ``lower_bound_period`` [s], > 0, is the shorter effective isolated period T_M, computed with the
+    upper-bound isolator properties (stiffer, more friction); ``upper_bound_period`` [s], not
+    shorter, is the T_M computed with the lower-bound properties.
     """
     owner = "isolated_period_range"
     lower = check_real(lower_bound_period, "lower_bound_period", owner, low=0.0, low_open=True)
@@ -207,18 +184,17 @@ class ScalingReport:
     names : tuple of str
         Names of the records or pairs, in the order given.
     individual_factors : numpy.ndarray
-        Step 1: the factor that matches each one's ``measure`` to the target on average over
-        the range (geometric mean of target / measure) [-].
+        Step 1: each one's factor matching its ``measure`` to the target on average over the range
+        (geometric mean of target / measure) [-].
     common_factor : float
-        Step 2: the one factor applied to all so the mean touches the target [-].
+        Step 2: the one factor applied to all so that the mean touches the target [-].
     scale_factors : numpy.ndarray
         The factors applied, ``common_factor * individual_factors`` [-].
     periods, target_sa : numpy.ndarray
         The period grid [s] and ``fraction`` times the target on it [m/s^2].
     spectra : dict of str to numpy.ndarray
         The spectral measures of the scaled suite on the grid (`suite_spectra`), each of shape
-        (len(names), len(periods)) [m/s^2]: ``"sa"`` of records, ``"rotd100"`` and
-        ``"rotd50"`` of pairs.
+        (len(names), len(periods)) [m/s^2].
     ratio : numpy.ndarray
         ``mean_sa / target_sa`` on the grid [-].
     min_ratio, tightest_period : float
@@ -226,9 +202,9 @@ class ScalingReport:
         ``"individual"``) [-] and the grid period where it occurs [s].
     motions : tuple of GroundMotion or of GroundMotionPair
         The scaled records or pairs.
-    period_range : (float, float)
-        [s]. Also ``damping`` [-], ``fraction`` [-], ``method``, ``measure`` (the key of
-        ``spectra`` the factors are fitted on) and ``target_name``.
+    period_range, damping, fraction, method, measure, target_name
+        As `scale_suite` took them (``period_range`` [s], ``damping`` and ``fraction`` [-]):
+        ``measure`` is the key of ``spectra`` fitted, ``target_name`` the target's name.
     """
 
     names: tuple[str, ...]
@@ -260,10 +236,10 @@ class ScalingReport:
         return self.spectra[self.measure].mean(axis=0)
 
     def to_frame(self) -> Any:
-        """One row per record (index ``record``) or pair (index ``pair``): individual, common
-        and final factors, the PGA of the scaled record (``scaled_pga``) or of the scaled
-        pair's x and y (``scaled_pga_x``, ``scaled_pga_y``) [m/s^2]; the summary (min ratio,
-        tightest period ...) in ``attrs``."""
+        """One row per record (index ``record``) or pair (index ``pair``): the individual,
+        common and final factors and the PGA [m/s^2] of the scaled record (``scaled_pga``) or of the
+        pair's x and y (``scaled_pga_x``, ``scaled_pga_y``); the summary (min ratio, tightest period
+        ...) in ``attrs``."""
         import pandas as pd
 
         pairs = isinstance(self.motions[0], GroundMotionPair)
@@ -287,9 +263,8 @@ class ScalingReport:
         return frame
 
     def spectrum_frame(self) -> Any:
-        """One row per period [s]: ``target_sa``, the mean of each spectral measure
-        (``mean_sa`` of records; ``mean_rotd100``, ``mean_rotd50`` of pairs) [m/s^2] and
-        ``ratio`` [-]."""
+        """One row per period [s]: ``target_sa``, the mean of each spectral measure (``mean_sa``;
+        ``mean_rotd100``, ``mean_rotd50`` of pairs) [m/s^2] and ``ratio`` [-]."""
         import pandas as pd
 
         means = {f"mean_{name}": sa for name, sa in self.mean_spectra.items()}
@@ -299,17 +274,10 @@ class ScalingReport:
 
 def scaling_grid(target: object, period_range: object, n_periods: object, owner: str,
                  ) -> tuple[TargetSpectrum, np.ndarray, tuple[float, float]]:
-    """The target and the log-spaced period grid a suite is scaled on, checked for ``owner``.
-
-    Returns
-    -------
-    target : TargetSpectrum
-        ``target``, or the one made of a (periods [s], sa [m/s^2]) pair.
-    periods : numpy.ndarray
-        ``n_periods`` periods from T_min to T_max, log-spaced (one when they are equal) [s].
-    period_range : tuple of float
-        (T_min, T_max) [s], within the target's periods.
-    """
+    """The target, the period grid and the range a suite is scaled on, checked for ``owner``:
+    ``target`` (or the one made of a (periods [s], sa [m/s^2]) pair), ``n_periods`` log-spaced
+    periods from T_min to T_max (one when they are equal) [s], and (T_min, T_max) [s] within the
+    target's periods."""
     if isinstance(target, tuple) and len(target) == 2:
         target = TargetSpectrum(*target)
     if not isinstance(target, TargetSpectrum):
@@ -329,21 +297,9 @@ def scaling_grid(target: object, period_range: object, n_periods: object, owner:
 
 def suite_factors(spectra: np.ndarray, target_sa: np.ndarray, method: str,
                   ) -> tuple[np.ndarray, float, np.ndarray]:
-    """The two steps of :func:`scale_suite` on spectra of shape (records, periods).
-
-    Step 1: each record's geometric-mean factor to the target over the grid; step 2: one
-    common factor so that the mean of the scaled spectra touches the target at one period
-    (``"mean"``), or a factor per record so that each does (``"individual"``).
-
-    Returns
-    -------
-    individual : numpy.ndarray
-        The step-1 factors [-].
-    common : float
-        The step-2 factor [-] (1 for ``"individual"``).
-    factors : numpy.ndarray
-        The scale factor of each record [-].
-    """
+    """The two steps of `scale_suite` on ``spectra`` of shape (records, periods): the step-1
+    factors [-], the step-2 common factor [-] (1 for ``"individual"``) and each record's scale
+    factor [-]."""
     individual = np.exp(np.mean(np.log(target_sa / spectra), axis=1))
     scaled = individual[:, None] * spectra
     if method == "mean":
@@ -357,10 +313,9 @@ def suite_spectra(motions: Sequence[Motion], periods: np.ndarray, damping: float
     """The spectral measures of a suite, each of shape (len(motions), len(periods)) [m/s^2].
 
     Records give ``{"sa": ...}``, each its own pseudo-acceleration spectrum
-    (`groundmotions.spectrum`); pairs give ``{"rotd100": ..., "rotd50": ...}``, the
-    orientation-independent spectra of their horizontals (`groundmotions.rotd_spectra`, the
-    directions ``angle_step`` [deg] apart). ``periods`` [s] and ``damping`` [-] as those take
-    them; ``motions`` are all records or all pairs (:data:`MEASURES`).
+    (`groundmotions.spectrum`); pairs give ``{"rotd100": ..., "rotd50": ...}`` of their horizontals
+    (`groundmotions.rotd_spectra`, directions ``angle_step`` [deg] apart). ``periods`` [s] and
+    ``damping`` [-] as those take them; ``motions`` are all records or all pairs (:data:`MEASURES`).
     """
     if isinstance(motions[0], GroundMotionPair):
         rotd = [rotd_spectra(p, periods, damping, (50, 100), angle_step=angle_step)
@@ -392,24 +347,23 @@ def scale_suite(
     n_periods: int = 60,
     angle_step: float = 1.0,
 ) -> ScalingReport:
-    """Amplitude-scale a suite so its mean spectrum envelopes the target over a period range.
+    """Amplitude-scale a suite so that its mean spectrum envelopes the target over a period range.
 
     Parameters
     ----------
     motions : sequence of GroundMotion, or sequence of GroundMotionPair
-        The records, or the pairs (one factor for every component of a pair), at least one.
+        At least one record, or pair (one factor for every component of a pair).
     target : TargetSpectrum or (array_like, array_like)
-        The target, or a ``(periods [s], sa [m/s^2])`` table made into one; its periods must
-        cover ``period_range``.
+        The target, or a ``(periods [s], sa [m/s^2])`` table; its periods must cover
+        ``period_range``.
     period_range : (float, float)
         ``(T_min, T_max)`` with 0 < T_min <= T_max [s], e.g. `isolated_period_range`.
     damping : float
         Damping ratio of the spectra, in [0, 1) [-].
     method : {"mean", "individual"}
-        ``"mean"`` (ASCE 7-16 17.3.3): the arithmetic mean spectrum of the scaled suite is not
-        below ``fraction`` times the target anywhere on the grid and equals it at the tightest
-        period. ``"individual"``: each record's (pair's) own spectrum satisfies that (more
-        conservative).
+        ``"mean"`` (ASCE 7-16 17.3.3): the arithmetic mean spectrum of the scaled suite is nowhere
+        on the grid below ``fraction`` times the target and equals it at the tightest period.
+        ``"individual"``: each record's (pair's) own spectrum does so (more conservative).
     measure : {"sa", "rotd100", "rotd50"}, optional
         The spectrum the factors are fitted on: ``"sa"``, a record's own (the only one of
         records); ``"rotd100"`` (the default of pairs, ASCE 7-16 17.3.3) or ``"rotd50"``, a
@@ -419,7 +373,7 @@ def scale_suite(
     n_periods : int
         Number of log-spaced grid periods over the range, in [2, 1000] (1 if T_min = T_max).
     angle_step : float
-        Step of the directions of a pair's RotD spectra [deg] (see `rotd_spectra`).
+        Step of the directions of a pair's RotD spectra [deg] (`rotd_spectra`).
 
     Returns
     -------
@@ -428,15 +382,14 @@ def scale_suite(
 
     Notes
     -----
-    Step 1 scales each record (pair) to match the target on average over the range: its
-    factor is the geometric mean over the log-spaced grid of ``target / measure`` (a
-    least-squares fit in log(Sa), so no single period dominates). Step 2 multiplies all by one
-    common factor ``1 / min_T(mean_i(Sa_i) / target)``, so the mean touches the target at one
-    grid period and is above it at the others. With ``"individual"`` step 2 is made per
-    record. A spectrum, and a RotD spectrum (|k u_theta| = |k| |u_theta| at every angle),
-    scales with its record, so the spectra are computed once, unscaled, and multiplied by the
-    factors. The criterion is checked on the grid only; between grid periods the mean may dip
-    by the spectrum's variation over one grid interval.
+    Step 1 scales each record (pair) to the target on average over the range: its factor is the
+    geometric mean over the log-spaced grid of ``target / measure`` (a least-squares fit in
+    log(Sa), so no single period dominates). Step 2 multiplies all by one common factor
+    ``1 / min_T(mean_i(Sa_i) / target)``, so the mean touches the target at one grid period and is
+    above it at the others; with ``"individual"`` step 2 is made per record. A spectrum, RotD
+    spectra included (|k u_theta| = |k| |u_theta| at every angle), scales with its record, so the
+    spectra are computed once, unscaled. The criterion is checked on the grid only: between grid
+    periods the mean may dip by the spectrum's variation over one grid interval.
     """
     owner = "scale_suite"
     suite, kind = _suite(motions, owner)

@@ -1,20 +1,20 @@
 """Elastic response spectra and peak ground values: pure functions on arrays.
 
-The response of a linear single-degree-of-freedom oscillator to a ground acceleration sampled at
-a fixed step is computed with the exact recurrence of Nigam & Jennings (1969): between samples
-the ground acceleration is taken as linear, and over each step the equation of motion
+The response of a linear oscillator to a ground acceleration sampled at a fixed step is computed
+with the exact recurrence of Nigam & Jennings (1969): with the ground acceleration linear between
+samples, the equation of motion
 
     u'' + 2 zeta omega u' + omega^2 u = -a_g(t)
 
-is solved in closed form, so the only approximation is the piecewise-linear input itself (no
-step-size condition, no period elongation). The recurrence is vectorised over periods: one pass
-over the record updates every oscillator at once.
+is solved in closed form over each step, so the only approximation is the piecewise-linear
+input (no step-size condition, no period elongation). One pass over the record updates every
+oscillator at once.
 
 References
 ----------
 N. C. Nigam and P. C. Jennings (1969), "Calculation of response spectra from strong-motion
 earthquake records", Bull. Seismol. Soc. Am. 59(2), 909-922.
-A. K. Chopra, "Dynamics of Structures", Sec. 5.2 and Table 5.2.1 (the coefficients below, with
+A. K. Chopra, "Dynamics of Structures", Sec. 5.2 and Table 5.2.1 (the coefficients, with
 m = 1, k = omega^2 and p(t) = -a_g(t)).
 """
 
@@ -50,10 +50,9 @@ class Spectrum(NamedTuple):
         Oscillator periods [s].
     sd : numpy.ndarray
         Spectral displacement, max |u| of the relative displacement [m].
-    sv : numpy.ndarray
-        Pseudo-spectral velocity, omega * sd [m/s].
-    sa : numpy.ndarray
-        Pseudo-spectral acceleration, omega^2 * sd [m/s^2]; PGA at period 0.
+    sv, sa : numpy.ndarray
+        Pseudo-spectral velocity omega sd [m/s] and acceleration omega^2 sd [m/s^2] (the PGA at
+        period 0).
     damping : float
         Damping ratio [-].
     """
@@ -89,29 +88,22 @@ def _check_damping(damping: object, owner: str, size: int | None = None) -> floa
 
 
 def nigam_jennings_coefficients(omega: np.ndarray, damping: float, dt: float) -> np.ndarray:
-    """Coefficients of the exact recurrence for a piecewise-linear load, per oscillator.
-
-    Parameters
-    ----------
-    omega : numpy.ndarray
-        Circular frequencies, > 0 [rad/s].
-    damping : float or numpy.ndarray
-        Damping ratio in [0, 1) [-], or one per frequency.
-    dt : float
-        Time step [s].
+    """Coefficients of the exact recurrence for a piecewise-linear load, per oscillator of
+    circular frequency ``omega`` > 0 [rad/s] and damping ratio ``damping`` in [0, 1) [-] (one, or
+    one per frequency), over a time step ``dt`` [s].
 
     Returns
     -------
     numpy.ndarray, shape (2, 4, len(omega))
-        ``[[A, B, C, D], [A', B', C', D']]`` such that, with p = -a_g,
+        ``[[A, B, C, D], [A', B', C', D']]`` such that, with p = -a_g (Chopra, Table 5.2.1),
         ``u[i+1] = A u[i] + B v[i] + C p[i] + D p[i+1]`` and
-        ``v[i+1] = A' u[i] + B' v[i] + C' p[i] + D' p[i+1]`` (Chopra, Table 5.2.1).
+        ``v[i+1] = A' u[i] + B' v[i] + C' p[i] + D' p[i+1]``.
 
     Notes
     -----
-    C, D, C' and D' are differences of nearly equal terms when omega * dt is small: they keep
-    about ``-log10(1e-16 / (omega * dt)**2)`` digits, i.e. ~1e-9 relative at T = 10 s with
-    dt = 0.005 s and ~1e-6 at T = 100 s.
+    C, D, C' and D' are differences of nearly equal terms when omega dt is small: they keep about
+    ``-log10(1e-16 / (omega dt)^2)`` digits, ~1e-9 relative at T = 10 s with dt = 0.005 s and ~1e-6
+    at T = 100 s.
     """
     owner = "nigam_jennings_coefficients"
     w = check_array(np.atleast_1d(omega), "omega", owner, low=0.0, low_open=True)
@@ -146,12 +138,12 @@ def oscillator_recurrence(
     damping: float,
     out: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
-    """Run the recurrence from rest over the record, all oscillators at once.
+    """Run the recurrence from rest over the record, all oscillators at once; return max |u|
+    per oscillator [m].
 
-    Returns max |u| per oscillator [m]; if ``out = (u, v)`` arrays of shape (npts, n) are
-    given, the histories are written into them as well. A record of shape (npts, m) (m
-    records side by side) drives every oscillator with each of them and returns shape
-    (m, n): element by element the arithmetic is that of the single record.
+    Given ``out = (u, v)`` of shape (npts, n), the histories are written into them too. A record of
+    shape (npts, m), m records side by side, drives every oscillator with each and gives shape
+    (m, n), element by element the arithmetic of the single record.
     """
     (a, b, c, d), (a1, b1, c1, d1) = nigam_jennings_coefficients(omega, damping, dt)
     p = -acceleration
@@ -187,23 +179,12 @@ def sdof_response(
     acceleration: np.ndarray, dt: float, periods: np.ndarray,
     damping: float | np.ndarray = 0.05,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Relative displacement and velocity histories of linear oscillators starting from rest.
+    """Relative displacement [m] and velocity [m/s] histories, each of shape
+    (npts, len(periods)), of linear oscillators starting from rest.
 
-    Parameters
-    ----------
-    acceleration : array_like
-        Ground acceleration samples [m/s^2], linear between samples.
-    dt : float
-        Time step [s].
-    periods : array_like
-        Oscillator periods, > 0 [s].
-    damping : float or array_like
-        Damping ratio in [0, 1) [-], or one per period (e.g. the modes of a building).
-
-    Returns
-    -------
-    u, v : numpy.ndarray, shape (npts, len(periods))
-        Relative displacement [m] and velocity [m/s] at the sample times.
+    ``acceleration`` [m/s^2] is sampled every ``dt`` [s] and linear between samples; ``periods``
+    [s] are > 0; ``damping`` is a ratio in [0, 1) [-], or one per period (e.g. the modes of a
+    building).
     """
     owner = "sdof_response"
     acc, step = _check_record(acceleration, dt, owner)
@@ -218,7 +199,8 @@ def sdof_response(
 def response_spectrum(
     acceleration: np.ndarray, dt: float, periods: np.ndarray, damping: float = 0.05
 ) -> Spectrum:
-    """Elastic displacement, pseudo-velocity and pseudo-acceleration spectra.
+    """Elastic displacement, pseudo-velocity and pseudo-acceleration spectra (a `Spectrum`)
+    of a record.
 
     Parameters
     ----------
@@ -227,19 +209,14 @@ def response_spectrum(
     dt : float
         Time step [s].
     periods : array_like
-        Oscillator periods, >= 0 [s]; at period 0 (a rigid oscillator) sd = sv = 0, sa = PGA.
+        Oscillator periods, >= 0 [s]; at 0 (a rigid oscillator) sd = sv = 0 and sa = PGA.
     damping : float
         Damping ratio in [0, 1) [-].
 
-    Returns
-    -------
-    Spectrum
-        ``sd`` [m], ``sv = omega sd`` [m/s], ``sa = omega^2 sd`` [m/s^2].
-
     Notes
     -----
-    Peaks are taken at the sample times; for periods shorter than a few dt the true peak may
-    fall between samples (the usual limitation; resample the record if that matters).
+    Peaks are taken at the sample times: for periods shorter than a few dt the true peak may fall
+    between samples (resample the record if that matters).
     """
     owner = "response_spectrum"
     acc, step = _check_record(acceleration, dt, owner)
@@ -267,26 +244,12 @@ def _spectra(acc: np.ndarray, step: float, t: np.ndarray, zeta: float,
 def response_spectra(
     accelerations: np.ndarray, dt: float, periods: np.ndarray, damping: float = 0.05
 ) -> Spectrum:
-    """`response_spectrum` of several records sampled alike, in one pass over the samples.
+    """`response_spectrum` of m records sampled alike, in one pass over the samples (every floor
+    of a run, say); each row of the result is `response_spectrum` of that record.
 
-    Used for floor response spectra (every floor of a run at once). Each row of the result is
-    what :func:`response_spectrum` gives for that record, which is this computation on one.
-
-    Parameters
-    ----------
-    accelerations : array_like, shape (npts, m)
-        ``m`` acceleration histories side by side [m/s^2], linear between samples.
-    dt : float
-        Time step [s].
-    periods : array_like
-        Oscillator periods, >= 0 [s] (0: the peak absolute acceleration).
-    damping : float
-        Damping ratio in [0, 1) [-].
-
-    Returns
-    -------
-    Spectrum
-        ``sd`` [m], ``sv`` [m/s], ``sa`` [m/s^2], each of shape (m, len(periods)).
+    ``accelerations`` has shape (npts, m) [m/s^2]; ``dt`` [s], ``periods`` [s] (0: the peak
+    acceleration) and ``damping`` [-] are as for `response_spectrum`. The `Spectrum`'s ``sd`` [m],
+    ``sv`` [m/s] and ``sa`` [m/s^2] have shape (m, len(periods)).
     """
     owner = "response_spectra"
     acc = check_array(accelerations, "accelerations", owner, ndim=2, min_length=2)
@@ -302,24 +265,12 @@ def spectrum(motion: GroundMotion, periods: np.ndarray, damping: float = 0.05) -
 
 
 def peak_ground_values(acceleration: np.ndarray, dt: float) -> tuple[float, float, float]:
-    """Peak ground acceleration, velocity and displacement.
+    """Peak ground acceleration [m/s^2], velocity [m/s] and displacement [m] of ``acceleration``
+    [m/s^2] sampled every ``dt`` [s].
 
-    Velocity and displacement are integrated with the trapezoid rule from rest (v0 = d0 = 0),
-    without baseline correction or filtering: the velocity is exact for an acceleration linear
-    between samples, the displacement has an O(dt^2) error, and both follow any baseline drift
-    the record carries.
-
-    Parameters
-    ----------
-    acceleration : array_like
-        Ground acceleration samples [m/s^2].
-    dt : float
-        Time step [s].
-
-    Returns
-    -------
-    pga, pgv, pgd : float
-        max |a| [m/s^2], max |v| [m/s], max |d| [m].
+    Velocity and displacement are integrated from rest by the trapezoid rule, without baseline
+    correction or filtering: the velocity is exact for an acceleration linear between samples, the
+    displacement has an O(dt^2) error, and both follow any baseline drift the record carries.
     """
     acc, step = _check_record(acceleration, dt, "peak_ground_values")
     velocity = np.concatenate(([0.0], np.cumsum(0.5 * step * (acc[1:] + acc[:-1]))))

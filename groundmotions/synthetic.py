@@ -1,15 +1,12 @@
 """Synthetic ground motions: filtered white noise (Kanai-Tajimi, Clough-Penzien) with an envelope.
 
-A stationary Gaussian process with the Kanai-Tajimi (or Clough-Penzien) power spectral density
-is multiplied by a deterministic time envelope. The white noise comes from
-``numpy.random.Generator(PCG64(seed))``, so a record is reproducible bit for bit from its
-seed (with the same numpy version and platform); every parameter and the seed are written to
-the record's ``metadata``.
-
-``synthetic_pair`` draws a horizontal pair (and optionally a vertical) from one generator with
-the same parameters and the seeds ``seed``, ``seed + 1`` (and ``seed + 2``): independent
-realisations of one process, so no direction is preferred (each a PCG64 stream; numpy's
-seeding hashes the seed, so neighbouring seeds give unrelated streams).
+A record is a stationary Gaussian process of the Kanai-Tajimi (or Clough-Penzien) power spectral
+density times a deterministic time envelope. The white noise comes from
+``numpy.random.Generator(PCG64(seed))``: a record is reproducible bit for bit from its seed
+(with the same numpy version and platform), and every parameter and the seed are in its
+``metadata``. `synthetic_pair` draws its components with the seeds ``seed``, ``seed + 1`` (and
+``seed + 2``): independent realisations of one process, so no direction is preferred (numpy
+hashes the seed, so neighbouring seeds give unrelated streams).
 
 Power spectral densities are two-sided and per rad/s: the variance of a process is
 ``integral_{-inf}^{inf} S(omega) d omega``. With the white-noise intensity S0
@@ -17,10 +14,9 @@ Power spectral densities are two-sided and per rad/s: the variance of a process 
 
     S_KT(omega) = S0 (w_g^4 + 4 z_g^2 w_g^2 omega^2) / ((w_g^2 - omega^2)^2 + 4 z_g^2 w_g^2 omega^2)
 
-and Clough-Penzien multiplies it by the high-pass term
-``omega^4 / ((w_f^2 - omega^2)^2 + 4 z_f^2 w_f^2 omega^2)``, which removes the finite
-acceleration PSD at omega = 0 of Kanai-Tajimi (and with it the unbounded ground velocity and
-displacement variance).
+and Clough-Penzien multiplies it by ``omega^4 / ((w_f^2 - omega^2)^2 + 4 z_f^2 w_f^2 omega^2)``,
+which removes Kanai-Tajimi's finite acceleration PSD at omega = 0 (and with it the unbounded
+variance of ground velocity and displacement).
 
 References
 ----------
@@ -63,9 +59,8 @@ __all__ = [
 
 @dataclass(frozen=True)
 class PiecewiseEnvelope:
-    """Amin-Ang / Jennings envelope: ``(t/t1)^2`` rise, plateau of 1, exponential decay.
-
-    ``e(t) = (t / t1)^2`` for t < t1, ``1`` for t1 <= t <= t2, ``exp(-c (t - t2))`` after.
+    """Amin-Ang / Jennings envelope: ``e(t) = (t / t1)^2`` for t < t1, ``1`` for t1 <= t <= t2,
+    ``exp(-c (t - t2))`` after.
 
     Parameters
     ----------
@@ -116,9 +111,9 @@ class SaragoniHartEnvelope:
     duration : float
         T_w, the window length, > 0 [s].
     peak_fraction : float
-        epsilon: the envelope peaks (at 1) at ``epsilon T_w``, in (0, 1) [-].
+        epsilon: the envelope peaks, at 1, at ``epsilon T_w``; in (0, 1) [-].
     end_value : float
-        eta: the envelope value at T_w, in (0, 1) [-].
+        eta: the envelope's value at T_w, in (0, 1) [-].
 
     Notes
     -----
@@ -150,17 +145,9 @@ class SaragoniHartEnvelope:
 def kanai_tajimi_psd(
     omega: Any, ground_frequency: float, ground_damping: float, intensity: float = 1.0
 ) -> np.ndarray:
-    """Two-sided Kanai-Tajimi PSD of ground acceleration [m^2/s^3] at ``omega`` [rad/s].
-
-    Parameters
-    ----------
-    omega : array_like
-        Circular frequencies [rad/s].
-    ground_frequency, ground_damping : float
-        Filter (soil) circular frequency w_g [rad/s] and damping ratio z_g [-].
-    intensity : float
-        White-noise intensity S0 [m^2/s^3].
-    """
+    """Two-sided Kanai-Tajimi PSD of ground acceleration [m^2/s^3] at ``omega`` [rad/s]: soil
+    filter of circular frequency ``ground_frequency`` w_g [rad/s] and damping ratio
+    ``ground_damping`` z_g [-], white-noise intensity ``intensity`` S0 [m^2/s^3]."""
     return intensity * np.abs(_kanai_tajimi_filter(np.asarray(omega, dtype=float),
                                                    ground_frequency, ground_damping)) ** 2
 
@@ -265,25 +252,18 @@ def kanai_tajimi(
 
     Parameters
     ----------
-    duration : float
-        Record length, > 0 [s] (samples at ``k dt <= duration``).
-    dt : float
-        Time step, in (0, duration / 2] [s].
-    ground_frequency : float
-        w_g, circular frequency of the soil filter, in (0, pi / dt) [rad/s]
-        (e.g. 15.6 rad/s and 0.6 for firm ground).
-    ground_damping : float
-        z_g, damping ratio of the soil filter, > 0 [-].
-    intensity : float, optional
-        S0, two-sided white-noise intensity [m^2/s^3]. Give exactly one of ``intensity`` and
-        ``target_pga``.
-    target_pga : float, optional
-        Scale the final record to this peak acceleration [m/s^2] (the equivalent S0 is
-        recorded in ``metadata["intensity"]``).
+    duration, dt : float
+        Record length, > 0 [s] (samples at ``k dt <= duration``), and time step, in
+        (0, duration / 2] [s].
+    ground_frequency, ground_damping : float
+        w_g, circular frequency of the soil filter, in (0, pi / dt) [rad/s], and z_g, its damping
+        ratio, > 0 [-] (e.g. 15.6 rad/s and 0.6 for firm ground).
+    intensity, target_pga : float, optional
+        Exactly one of: S0, the two-sided white-noise intensity [m^2/s^3]; the peak acceleration
+        of the final record [m/s^2] (the equivalent S0 goes to ``metadata["intensity"]``).
     envelope : {"jennings", "saragoni-hart", "none"} or PiecewiseEnvelope or SaragoniHartEnvelope
-        Time envelope: ``"jennings"`` is ``PiecewiseEnvelope.for_duration(duration)``,
-        ``"saragoni-hart"`` is ``SaragoniHartEnvelope(duration)``, ``"none"`` (or None) keeps
-        the process stationary.
+        ``"jennings"`` is ``PiecewiseEnvelope.for_duration(duration)``, ``"saragoni-hart"``
+        ``SaragoniHartEnvelope(duration)``; ``"none"`` (or None) keeps the process stationary.
     seed : int
         Seed of the PCG64 generator, >= 0.
     name : str, optional
@@ -296,11 +276,11 @@ def kanai_tajimi(
 
     Notes
     -----
-    The white noise (variance ``2 pi S0 / dt``, i.e. PSD S0 up to the Nyquist frequency) is
-    filtered in the frequency domain by the complex Kanai-Tajimi transfer function
+    The white noise (variance ``2 pi S0 / dt``: PSD S0 up to the Nyquist frequency) is filtered in
+    the frequency domain by the Kanai-Tajimi transfer function
     ``(w_g^2 + 2i z_g w_g w) / (w_g^2 - w^2 + 2i z_g w_g w)``. The filtering is a circular
-    convolution over the record, so the process is stationary from the first sample (no
-    filter start-up transient) and its expected PSD is exactly S_KT at the FFT frequencies.
+    convolution over the record, so the process is stationary from the first sample (no filter
+    start-up transient) and its expected PSD is exactly S_KT at the FFT frequencies.
     """
     return _filtered_white_noise(
         "Kanai-Tajimi", duration, dt,
@@ -316,10 +296,10 @@ def clough_penzien(
 ) -> GroundMotion:
     """A Clough-Penzien filtered white-noise record with a time envelope.
 
-    As `kanai_tajimi`, with the Kanai-Tajimi output passed through a second-order high-pass
-    filter of circular frequency ``filter_frequency`` (w_f, in (0, pi / dt) [rad/s], typically
-    about w_g / 10) and damping ratio ``filter_damping`` (z_f > 0 [-]), which suppresses the
-    low-frequency content and so the drift of ground velocity and displacement.
+    As `kanai_tajimi`, with the output passed through a second-order high-pass filter of circular
+    frequency ``filter_frequency`` (w_f, in (0, pi / dt) [rad/s], typically about w_g / 10) and
+    damping ratio ``filter_damping`` (z_f > 0 [-]), which suppresses the low-frequency content and
+    so the drift of ground velocity and displacement.
     """
     return _filtered_white_noise(
         "Clough-Penzien", duration, dt,
@@ -350,24 +330,22 @@ def synthetic_pair(
     Parameters
     ----------
     generator : {"kanai-tajimi", "clough-penzien"} or callable
-        The generator, by name or as the function (`kanai_tajimi`, `clough_penzien` or one
-        with their signature: ``(duration, dt, *, seed, name, **parameters) -> GroundMotion``).
+        The generator, by name or as a function with the signature of `kanai_tajimi`:
+        ``(duration, dt, *, seed, name, **parameters) -> GroundMotion``.
     seed : int
         Seed of the pair, >= 0: x uses ``seed``, y ``seed + 1``, z ``seed + 2``.
-    duration : float
-        Record length, > 0 [s].
-    dt : float
-        Time step [s] (see the generator).
+    duration, dt : float
+        Record length, > 0 [s], and time step [s] (see the generator).
     vertical_ratio : float, optional
-        If given, add a vertical component: a third realisation of the same process
-        multiplied by this ratio, > 0 [-] (e.g. 2/3, the classical vertical-to-horizontal
-        ratio; with ``target_pga`` the vertical's PGA is ``vertical_ratio * target_pga``).
+        Adds a vertical component: a third realisation of the same process times this ratio,
+        > 0 [-] (e.g. 2/3, the classical vertical-to-horizontal ratio; with ``target_pga`` the
+        vertical's PGA is ``vertical_ratio * target_pga``).
     name : str, optional
         The pair's name; ``"<generator> pair (seed <seed>)"`` by default.
     **parameters
-        Keyword parameters of the generator (``ground_frequency`` [rad/s],
-        ``ground_damping`` [-], ``intensity`` [m^2/s^3] or ``target_pga`` [m/s^2],
-        ``envelope`` ...), the same for every component.
+        Keyword parameters of the generator, the same for every component (``ground_frequency``
+        [rad/s], ``ground_damping`` [-], ``intensity`` [m^2/s^3] or ``target_pga`` [m/s^2],
+        ``envelope`` ...).
 
     Returns
     -------

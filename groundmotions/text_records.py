@@ -1,11 +1,5 @@
-"""Reader of text records (`read_text_record`): one column (acceleration at a step ``dt``) or
-two columns (time, acceleration).
-
-Leading non-numeric lines and lines starting with ``#`` or ``%`` before the data are the header;
-it may state the units of the acceleration (``# units: gal``, ``# acceleration [m/s^2]``,
-``time, acc (g)``; see `groundmotions.filetext.record_units`). Columns may be separated by
-blanks, commas or semicolons.
-"""
+"""Reader of text records (`read_text_record`): one column (acceleration) or two (time,
+acceleration)."""
 
 from __future__ import annotations
 
@@ -33,8 +27,7 @@ _OWNER = "read_text_record"
 def _read_columns(
     path: Path, lines: list[str]
 ) -> tuple[np.ndarray, list[int], list[tuple[int, str]]]:
-    """Numeric rows of one or two columns (whitespace, comma or semicolon separated), their
-    line numbers, and the header lines with theirs."""
+    """Numeric rows of one or two columns, their line numbers, and the header lines with theirs."""
     header: list[tuple[int, str]] = []
     rows: list[list[float]] = []
     numbers: list[int] = []
@@ -115,21 +108,21 @@ def read_text_record(
 ) -> GroundMotion:
     """Read a one-column (acceleration) or two-column (time, acceleration) text record.
 
-    Leading non-numeric lines and lines starting with ``#`` or ``%`` are kept as the header;
-    columns may be separated by blanks, commas or semicolons.
+    Columns are separated by blanks, commas or semicolons. The header, kept in the metadata, is the
+    leading non-numeric lines and lines starting with ``#`` or ``%``; it may state the units
+    (``# units: gal``, ``acc [m/s^2]``, ``time, acc (g)``; `groundmotions.filetext`).
 
     Parameters
     ----------
     path : str or path-like
         The file.
     dt : float, optional
-        Time step [s]. Required for one column; for two columns it is inferred from the time
-        column (first to last time over npts - 1) and, if given, must agree with it to 0.1 %.
+        Time step [s]: required for one column; for two it is (last - first time) / (npts - 1)
+        and, if given, must agree with that to 0.1 % (and is used).
     units : str, optional
-        Units of the acceleration column: ``"g"``, ``"gal"``, ``"cm/s^2"``, ``"m/s^2"``,
-        ``"mm/s^2"``, ``"in/s^2"``, ``"ft/s^2"`` (or another spelling, e.g. ``"m/s2"``). By
-        default those the header states (``# units: gal``, ``acc [m/s^2]``), else g; units
-        given that disagree with the header's are refused.
+        Units of the acceleration when the header states none (`groundmotions.units.UNIT_NAMES`
+        or another spelling, e.g. ``"m/s2"``); by default g. Units that disagree with the
+        header's are refused.
     name : str, optional
         Name of the record; the file stem by default.
 
@@ -141,12 +134,11 @@ def read_text_record(
     Raises
     ------
     RecordFormatError
-        A non-numeric, NaN or infinite value, a change in the number of columns, a time
-        column that is not uniform (a sample more than 1 % of a step off the uniform grid),
-        units the readers do not know or a PGA outside 1e-4 to 5 g (the message names the
+        A non-numeric or non-finite value, a change in the number of columns, a time more than
+        1 % of a step off the uniform grid, unknown units, or a PGA outside 1e-4 to 5 g (naming the
         units that would fit).
     InputError
-        ``dt`` missing for one column, or disagreeing with the time column; ``units`` not an
+        ``dt`` missing for one column or disagreeing with the time column; ``units`` not an
         acceleration unit.
     """
     path = Path(path)

@@ -1,8 +1,8 @@
-"""Units of ground acceleration in record files: the table, their spellings, plausibility.
+"""Units of ground acceleration in record files: factors to [m/s^2], spellings, plausibility.
 
-Every reader converts the values of a file to [m/s^2] with :data:`TO_M_PER_S2`; the conversion
-constants come from `dcfpb.common.units` (``STANDARD_GRAVITY`` = 9.80665 m/s^2, the inch
-0.0254 m and the foot 0.3048 m exactly).
+Every reader converts a file's values to [m/s^2] with :data:`TO_M_PER_S2`, whose factors come
+from `dcfpb.common.units` (``STANDARD_GRAVITY`` = 9.80665 m/s^2; the inch 0.0254 m and the foot
+0.3048 m exactly).
 
 =========  ===================  ================================================================
 name       factor to m/s^2      spellings recognised (any case, blanks around ``/ ^ *`` ignored)
@@ -17,7 +17,7 @@ ft/s^2     0.3048               ``FT/S/S``, ``ft/sec/sec``, ``ft/s2``, ``feet/s^
 =========  ===================  ================================================================
 
 Velocity units (``cm/s``, ``m/sec`` ...) and lengths (``cm``, ``in`` ...) are recognised as
-such, so that a velocity or displacement record is refused instead of read as an acceleration.
+such, so that a velocity or displacement record is refused, not read as an acceleration.
 """
 
 from __future__ import annotations
@@ -86,11 +86,8 @@ def _normalised(text: str) -> str:
 
 
 def quantity_of(text: str) -> tuple[str, str] | None:
-    """``(quantity, canonical name)`` of a unit as written, or None when it is not one.
-
-    ``quantity`` is ``"acceleration"``, ``"velocity"`` or ``"displacement"``; the canonical
-    name of an acceleration unit is a key of :data:`TO_M_PER_S2`.
-    """
+    """``(quantity, canonical name)`` of a unit as written, or None when it is not one:
+    ``"acceleration"`` (a key of :data:`TO_M_PER_S2`), ``"velocity"`` or ``"displacement"``."""
     s = _normalised(text)
     if s in _G:
         return "acceleration", "g"
@@ -120,20 +117,9 @@ def describe_units(name: str) -> str:
 
 
 def check_units(units: object, owner: str) -> str:
-    """The canonical name of a unit given by a caller (``units=`` or ``--units``).
-
-    Parameters
-    ----------
-    units : str
-        One of :data:`UNIT_NAMES` or another spelling of them (``"m/s2"``, ``"CM/S/S"`` ...).
-    owner : str
-        The function or option that takes it (for the message).
-
-    Raises
-    ------
-    InputError
-        Naming the value given and the known units.
-    """
+    """The canonical name of a unit a caller gives (``units=``, ``--units``): one of
+    :data:`UNIT_NAMES` or another spelling (``"m/s2"``, ``"CM/S/S"`` ...). Any other value raises
+    `InputError` naming ``owner`` (the function or option), the value and the known units."""
     name = parse_units(units) if isinstance(units, str) else None
     if name is None:
         raise InputError(
@@ -144,20 +130,11 @@ def check_units(units: object, owner: str) -> str:
 
 
 def likely_units(peak: float, current: str) -> list[tuple[str, float]]:
-    """The known units that bring a record's peak into :data:`TYPICAL_PGA_G`, likeliest first.
+    """The known units, other than ``current``, that bring a record's peak into
+    :data:`TYPICAL_PGA_G`, as (canonical unit, PGA [g]) pairs, likeliest first.
 
-    Parameters
-    ----------
-    peak : float
-        max |value| as written in the file [file units].
-    current : str
-        The canonical unit the values were read in (left out of the answer).
-
-    Returns
-    -------
-    list of (str, float)
-        Canonical unit and the PGA it gives [g], ordered by the distance of log10(PGA) from
-        the middle of :data:`TYPICAL_PGA_G` (the geometric mean, about 0.14 g).
+    ``peak`` is max |value| as written in the file [file units]. The likeliest unit gives the PGA
+    nearest, in log10, to the middle of :data:`TYPICAL_PGA_G` (the geometric mean, about 0.14 g).
     """
     low, high = TYPICAL_PGA_G
     middle = math.log10(math.sqrt(low * high))

@@ -1,19 +1,7 @@
-"""Two horizontal components of one recording (and an optional vertical): `GroundMotionPair`.
+"""`GroundMotionPair`, two horizontal components of one recording and an optional vertical,
+and its readers: `read_pair` (two or three record files) and `read_pair_manifest` (the pairs
+listed in a CSV file).
 
-``GroundMotionPair``
-    x, y (and z) as `GroundMotion` objects of one time step and one length, checked on
-    construction; ``scaled`` (one factor for every component), ``truncated`` and
-    ``resampled`` (every component as `GroundMotion` does it), ``rotated`` (the horizontal
-    axes); ``truncated_to_common`` builds a pair from components of unequal length.
-``read_pair``
-    a pair from two (or three) record files, each read with `groundmotions.read_record`.
-``read_pair_manifest``
-    the pairs listed in a CSV file with the columns ``name, x, y`` and optionally ``z``,
-    ``dt`` (for one-column text records) and ``units``; paths relative to the manifest.
-
-Synthetic pairs are made by `groundmotions.synthetic.synthetic_pair`, RotD spectra by
-`groundmotions.pairs.rotd`, the ASCE 7-16 scaling of a suite of pairs by
-`groundmotions.scale_suite`.
 A bad pair is refused, never repaired: components of different time steps or lengths raise
 `dcfpb.common.errors.InputError` naming both components and the way to make them agree.
 """
@@ -53,8 +41,7 @@ class GroundMotionPair:
     Parameters
     ----------
     x, y : GroundMotion
-        The horizontal components [m/s^2]; ``y`` is 90 degrees counter-clockwise from ``x``
-        (the order matters only to ``rotated``).
+        The horizontal components [m/s^2]; ``y`` is 90 degrees counter-clockwise from ``x``.
     z : GroundMotion, optional
         The vertical component [m/s^2].
     name : str
@@ -136,11 +123,8 @@ class GroundMotionPair:
     @classmethod
     def truncated_to_common(cls, x: GroundMotion, y: GroundMotion,
                             z: GroundMotion | None = None, name: str = "") -> GroundMotionPair:
-        """A pair of components of one time step, each cut to the shortest one's samples.
-
-        The components must start at the same time (nothing here can check that); the cut is
-        recorded in each shortened component's ``processing``.
-        """
+        """A pair of components of one time step, each cut to the shortest one's samples (the cut
+        recorded in its ``processing``). They must start together: nothing here can check that."""
         motions = {"x": x, "y": y} if z is None else {"x": x, "y": y, "z": z}
         for role, motion in motions.items():
             if not isinstance(motion, GroundMotion):
@@ -165,8 +149,7 @@ class GroundMotionPair:
         return self._each(lambda motion: motion.scaled(k))
 
     def truncated(self, duration: float) -> GroundMotionPair:
-        """The first ``duration`` seconds of every component, in [dt, self.duration] [s]
-        (`groundmotions.GroundMotion.truncated`)."""
+        """The first ``duration`` [s], in [dt, self.duration], of every component."""
         d = check_real(duration, "duration", "GroundMotionPair.truncated", low=self.dt,
                        high=self.duration)
         return self._each(lambda motion: motion.truncated(d))
@@ -176,10 +159,8 @@ class GroundMotionPair:
         return self._each(lambda motion: motion.resampled(dt, anti_alias=anti_alias))
 
     def rotated(self, angle_deg: float) -> GroundMotionPair:
-        """The horizontal components along axes turned by ``angle_deg`` [deg] counter-clockwise.
-
-        ``x' = cos(a) x + sin(a) y`` and ``y' = -sin(a) x + cos(a) y``; the vertical is kept.
-        """
+        """The horizontal components along axes turned by ``angle_deg`` [deg] counter-clockwise:
+        ``x' = cos(a) x + sin(a) y``, ``y' = -sin(a) x + cos(a) y``; the vertical is kept."""
         a = check_real(angle_deg, "angle_deg", "GroundMotionPair.rotated")
         c, s = math.cos(math.radians(a)), math.sin(math.radians(a))
         ax, ay = self.x.acceleration, self.y.acceleration
@@ -234,31 +215,25 @@ def read_pair(
 
     Parameters
     ----------
-    x_path, y_path : str or path-like
-        The horizontal components (PEER .AT2 or text; see `groundmotions.read_record`).
-    z_path : str or path-like, optional
-        The vertical component.
+    x_path, y_path, z_path : str or path-like
+        The horizontal components and the optional vertical, each read by `read_record` (PEER
+        .AT2 or text).
     name : str, optional
-        The pair's name; by default the common start of the file stems
-        (``CHY023-N``, ``CHY023-W`` -> ``CHY023``).
-    dt : float, optional
-        Time step of one-column text records [s] (passed to `read_record`).
-    units : str, optional
-        Units of files whose header states none (passed to `read_record`).
+        The pair's name; by default the common start of the file stems (``CHY023-N``,
+        ``CHY023-W`` -> ``CHY023``).
+    dt, units : optional
+        Time step of one-column text records [s] and units of files whose header states none,
+        passed to `read_record`.
     resample_to : float, optional
-        Resample every component whose step differs to this step [s] (anti-aliased).
+        Resample (anti-aliased) every component whose step differs to this step [s].
     truncate : bool
         Cut the components to the shortest one (they must start together).
-
-    Returns
-    -------
-    GroundMotionPair
 
     Raises
     ------
     InputError
-        A missing file or a component that cannot be read (the message names the component
-        and the file), or components of different steps or lengths.
+        A missing file or a component that cannot be read (naming the component and the file), or
+        components of different steps or lengths.
     """
     paths = {"x": Path(x_path), "y": Path(y_path)}
     if z_path is not None:
@@ -287,22 +262,10 @@ def _read_pair(paths: dict[str, Path], name: str, dt: float | None, units: str |
 
 
 class ManifestRow(NamedTuple):
-    """One pair of a manifest, checked but not read (:func:`manifest_rows`).
-
-    Attributes
-    ----------
-    name : str
-        The pair's name.
-    files : dict of str to Path
-        The component files by role (``x``, ``y`` and ``z`` when given), relative to the
-        current folder.
-    dt : float or None
-        Time step of one-column text records [s].
-    units : str or None
-        Units of files whose header states none.
-    where : str
-        ``"<manifest>, line <n>"``, to start the messages about this row.
-    """
+    """One pair of a manifest, checked but not read (`manifest_rows`): its ``name``, its
+    component ``files`` by role (``x``, ``y``, ``z`` when given; paths from the current folder),
+    ``dt`` of one-column text records [s] and ``units`` of files whose header states none (or None),
+    and ``where``, ``"<manifest>, line <n>"``, which starts the messages about the row."""
 
     name: str
     files: dict[str, Path]
@@ -312,16 +275,12 @@ class ManifestRow(NamedTuple):
 
 
 def manifest_rows(path: PathLike) -> tuple[ManifestRow, ...]:
-    """The rows of a pair manifest (see :func:`read_pair_manifest`), checked, without
-    reading a component file.
+    """The rows of a pair manifest (`read_pair_manifest`), checked without reading a component.
 
-    Raises
-    ------
-    InputError
-        No such file, an empty manifest, an unknown, missing or repeated column, a row of the
-        wrong number of cells, an empty required cell, a repeated pair name, a bad ``dt``, no
-        rows: the message starts with ``"<manifest>, line <n>"`` (the header's messages go on
-        with ``"the header"``) and names the column.
+    No such file, an empty manifest, an unknown, missing or repeated column, a row of the wrong
+    number of cells, an empty required cell, a repeated pair name, a bad ``dt`` or no rows raise
+    `InputError` starting with ``"<manifest>, line <n>"`` (``"..., the header"`` for the header) and
+    naming the column.
     """
     path = Path(path)
     if not path.is_file():
@@ -379,28 +338,18 @@ def manifest_rows(path: PathLike) -> tuple[ManifestRow, ...]:
 
 
 def read_pair_manifest(path: PathLike) -> tuple[GroundMotionPair, ...]:
-    """Read every pair listed in a CSV manifest.
+    """Read every pair listed in a CSV manifest, in the order of the rows.
 
-    Parameters
-    ----------
-    path : str or path-like
-        A CSV file with a header row naming its columns: ``name``, ``x``, ``y`` (required),
-        ``z`` (vertical, may be left empty), ``dt`` (time step of one-column text records
-        [s], may be empty) and ``units`` (of files whose header states none, may be empty).
-        File paths are relative to the manifest's folder. Blank lines and lines starting with
-        ``#`` are skipped.
-
-    Returns
-    -------
-    tuple of GroundMotionPair
-        In the order of the rows.
+    The header row names the columns: ``name``, ``x``, ``y`` (required), ``z`` (vertical), ``dt``
+    (time step of one-column text records [s]) and ``units`` (of files whose header states none);
+    cells of the last three may be empty. Paths are relative to the manifest's folder; blank lines
+    and lines starting with ``#`` are skipped.
 
     Raises
     ------
     InputError
-        A missing or unknown column, an empty required cell, a repeated pair name, a bad
-        ``dt``, a missing or unreadable file, a bad pair: the message starts with
-        ``"<manifest>, line <n>"`` and names the column or the component.
+        A bad manifest (`manifest_rows`), a missing or unreadable file or a bad pair: the message
+        starts with ``"<manifest>, line <n>"`` and names the column or the component.
     """
     return tuple(_read_pair(row.files, row.name, row.dt, row.units, None, False, row.where)
                  for row in manifest_rows(path))

@@ -1,12 +1,10 @@
 """Orientation-independent response spectra of a horizontal pair: RotD50, RotD100 (Boore 2010).
 
-The oscillator is linear, so its displacement under the ground motion projected on the
-direction theta is ``u_theta(t) = cos(theta) u_x(t) + sin(theta) u_y(t)``: each component's
-displacement history is computed once per period (the exact piecewise-linear recurrence of
-`groundmotions.spectra`, as `sdof_response` gives it, both components in one pass) and
-combined for every angle. For each period the peak ``max_t |u_theta(t)|`` is taken at every
-angle of ``0, step, ..., 180 - step`` degrees (theta and theta + 180 give the same peak), and
-RotDnn is the nn-th percentile of those peaks over the angles: RotD100 the largest (the
+The oscillator is linear, so its displacement under the ground motion projected on the direction
+theta is ``u_theta(t) = cos(theta) u_x(t) + sin(theta) u_y(t)``: both components' histories are
+computed in one pass of the recurrence of `groundmotions.spectra` and combined at every angle
+``0, step, ..., 180 - step`` deg (theta + 180 gives the same peak). RotDnn is the nn-th
+percentile over the angles of the peaks ``max_t |u_theta(t)|``: RotD100 the largest (the
 maximum-direction spectrum of ASCE 7-16), RotD50 the median.
 
 References
@@ -95,28 +93,18 @@ def _projected_peaks(u_x: np.ndarray, u_y: np.ndarray, c: np.ndarray,
 
 
 def rotd_peaks(u_x: np.ndarray, u_y: np.ndarray, angles_deg: np.ndarray) -> np.ndarray:
-    """Peak over time of ``|cos(theta) u_x + sin(theta) u_y|`` for every angle and column.
+    """Peak over time of ``|cos(theta) u_x + sin(theta) u_y|`` for every angle and column,
+    shape (n, len(angles_deg)), in the units of the histories.
 
-    Parameters
-    ----------
-    u_x, u_y : numpy.ndarray, shape (npts, n)
-        Histories of the two components (e.g. oscillator displacements [m], one column per
-        period).
-    angles_deg : numpy.ndarray
-        The directions theta [deg].
-
-    Returns
-    -------
-    numpy.ndarray, shape (n, len(angles_deg))
-        The peaks, in the units of the histories.
+    ``u_x``, ``u_y`` of shape (npts, n) are the histories of the two components (e.g. oscillator
+    displacements [m], a column per period); ``angles_deg`` the directions theta [deg].
 
     Notes
     -----
-    A sample whose radius ``hypot(u_x, u_y)`` is below the smallest peak over the angles
-    cannot be the peak at any angle (its projection is at most its radius). The smallest peak
-    is bounded from below by the peaks of the ``_CANDIDATES`` samples of largest radius, and
-    only the samples at or above that bound (less a round-off margin of 1e-12) are projected
-    on every angle: the result is the full computation's, typically 10 times faster.
+    A sample whose radius ``hypot(u_x, u_y)`` is below the smallest peak over the angles cannot be
+    the peak at any angle. That smallest peak is bounded from below by the peaks of the
+    ``_CANDIDATES`` samples of largest radius, and only the samples at or above the bound (less a
+    round-off margin of 1e-12) are projected on every angle: the result is the full computation's.
     """
     theta = np.radians(np.asarray(angles_deg, dtype=float))
     c, s = np.cos(theta), np.sin(theta)
@@ -140,33 +128,29 @@ def rotd_spectra(
     *,
     angle_step: float = 1.0,
 ) -> RotDSpectrum:
-    """RotDnn pseudo-acceleration spectra of the horizontal components of a pair.
+    """RotDnn pseudo-acceleration spectra (a `RotDSpectrum`) of the horizontal components of
+    a pair.
 
     Parameters
     ----------
     pair : GroundMotionPair
-        The pair; its vertical component, if any, is not used.
+        The pair; a vertical component is not used.
     periods : array_like
         Oscillator periods, >= 0 [s] (at 0 the peak ground acceleration over the directions).
     damping : float
         Damping ratio in [0, 1) [-].
     percentiles : sequence of float
-        The nn of the RotDnn to report, each in [0, 100] [%]; np.percentile's linear
-        interpolation between the sorted peaks (RotD50 of 180 angles is the mean of the 90th
-        and 91st).
+        The nn of the RotDnn to report, each in [0, 100] [%], interpolated linearly between the
+        sorted peaks as by ``np.percentile`` (RotD50 of 180 angles is the mean of the 90th and
+        91st).
     angle_step : float
-        Step of the directions [deg], in (0, 90], dividing 180 into a whole number of steps.
-
-    Returns
-    -------
-    RotDSpectrum
-        ``sa`` [m/s^2] per percentile and period, the peaks per angle and the angles.
+        Step of the directions [deg], in (0, 90] and dividing 180 into a whole number of steps.
 
     Notes
     -----
-    With ``u_y = 0`` the angle 0 gives ``u_x`` itself (cos 0 = 1, sin 0 = 0 exactly), so
-    RotD100 is the x component's `groundmotions.spectrum` to the last digit. Rotating the pair
-    by a whole number of steps permutes the angles, so RotDnn is unchanged to round-off.
+    With ``u_y = 0`` the angle 0 gives ``u_x`` itself (cos 0 = 1, sin 0 = 0 exactly), so RotD100
+    is the x component's `groundmotions.spectrum` to the last digit. Rotating the pair by a whole
+    number of steps permutes the angles, so RotDnn is unchanged to round-off.
     """
     owner = "rotd_spectra"
     if not isinstance(pair, GroundMotionPair):
