@@ -1,5 +1,4 @@
-"""What every layer of the project builds on, and which imports nothing of ours: the errors and
-warnings (:mod:`~dcfpb.common.errors`), physical constants and unit factors
-(:mod:`~dcfpb.common.units`), the parameter checks with their one error template
-(:mod:`~dcfpb.common.validation`) and the lazy imports of the packages' public names
-(:mod:`~dcfpb.common.lazy`)."""
+"""The lowest layer, importing nothing of the project: errors and warnings
+(:mod:`~dcfpb.common.errors`), constants and unit factors (:mod:`~dcfpb.common.units`),
+parameter checks with their one error template (:mod:`~dcfpb.common.validation`) and lazy
+package exports (:mod:`~dcfpb.common.lazy`)."""

@@ -1,17 +1,13 @@
-"""The project's own exceptions: bad input (exit status 2) and a run that fails on its own terms
-(exit status 1).
+"""The project's exceptions: bad input (exit status 2) and a run that fails on its own terms
+(exit status 1). The module imports nothing of the project.
 
-Every error a user can cause derives from :class:`InputError`, itself a ``ValueError`` so that
-code written against the standard exceptions keeps working: records
+Every error a user can cause derives from :class:`InputError`, a ``ValueError`` (so code written
+against the standard exceptions catches it): records
 (:class:`groundmotions.records.RecordFormatError`), building files
 (:class:`structures.config.ConfigError`), bearing-test data
-(:class:`isolator.diagnosis.data.DataError`) and parameters checked by
-:mod:`dcfpb.common.validation`.
-A run that was given good input but cannot finish (a bearing pushed past its displacement
-capacity, a run past its time limit) raises :class:`RunFailure`.
-
-This module sits in the lowest layer with :mod:`dcfpb.common.validation` and
-:mod:`dcfpb.common.units`: every package may import it, and it imports nothing of the project.
+(:class:`isolator.diagnosis.data.DataError`) and the parameters checked by
+:mod:`dcfpb.common.validation`. A run with good input that cannot finish (a bearing past its
+displacement capacity, a run past its time limit) raises :class:`RunFailure`.
 """
 
 from __future__ import annotations
@@ -36,10 +32,10 @@ class InputTypeError(InputError, TypeError):
 class RunFailure(RuntimeError):
     """A run with good input that cannot finish; the message says why and when.
 
-    Raised inside a time integration (by the model or by the ``on_commit`` hook), it ends
-    the run with ``success=False`` and the message, keeping the steps already committed
+    Raised inside a time integration (by the model or by the ``on_commit`` hook), it ends the run
+    with ``success=False`` and the message, keeping the steps already committed
     (:func:`structures.integrators.integrate`). ``kind`` names the reason for tables:
-    ``"capacity"``, ``"timeout"``, ``"model"``...
+    ``"capacity"``, ``"timeout"``, ``"model"`` ...
     """
 
     kind = "error"
@@ -47,18 +43,12 @@ class RunFailure(RuntimeError):
 
 class CapacityExceeded(RunFailure, ValueError):
     """A bearing pushed past its displacement capacity, or past the range its model covers
-    (the precise model's monitor line, the spherical law's radius).
+    (the precise model's monitor line, the spherical law's radius). Also a ``ValueError``, which
+    callers of the element catch.
 
-    Also a ``ValueError``, as the element and the heating model raised before a run could
-    end on it: callers of the element that catch ``ValueError`` keep working.
-
-    Parameters
-    ----------
-    message : str
-        What was exceeded, by which displacement [m], at what time [s].
-    kind : str
-        ``"capacity"`` (beyond the displacement capacity) or ``"model"`` (within it, but
-        beyond the model's range, e.g. a monitor line given shorter than the capacity).
+    ``message`` says what was exceeded, by which displacement [m], at what time [s]; ``kind`` is
+    ``"capacity"`` (beyond the displacement capacity) or ``"model"`` (within it, but beyond the
+    model's range, e.g. a monitor line shorter than the capacity).
     """
 
     def __init__(self, message: str, kind: str = "capacity") -> None:
@@ -73,5 +63,5 @@ class TimeLimitExceeded(RunFailure):
 
 
 class InputWarning(UserWarning):
-    """A value given that does not apply, or is replaced, where the run goes on regardless: the
+    """A value given that does not apply, or is replaced, where the run goes on regardless; the
     message names it and what is used instead."""

@@ -1,9 +1,6 @@
-"""Package-level names imported on first use (PEP 562), for packages whose modules are costly to
-import (numba, xarray): ``import structures`` stays cheap, ``structures.run`` works.
-
-Used by ``structures/__init__.py`` and ``isolator/__init__.py``; static tools read the same names
-from their ``if TYPE_CHECKING:`` imports.
-"""
+"""Package-level names imported on first use (PEP 562), for packages whose modules are costly
+to import (numba, xarray): ``import structures`` stays cheap, ``structures.run`` works. Static
+tools read the same names from the packages' ``if TYPE_CHECKING:`` imports."""
 
 from __future__ import annotations
 
@@ -22,9 +19,9 @@ def lazy_exports(
     package : str
         The package's name (for the error message).
     exports : mapping of str to str
-        Public name -> ``"module"`` or ``"module:attribute"`` (when the name differs).
+        Public name -> ``"module"``, or ``"module:attribute"`` when the name differs.
     namespace : dict
-        The package's ``globals()``: a name, once imported, is stored there.
+        The package's ``globals()``, where a name is stored once imported.
     """
 
     def __getattr__(name: str) -> Any:

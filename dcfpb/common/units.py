@@ -1,7 +1,7 @@
 """Physical constants and unit factors: the one home of every conversion constant.
 
-SI is used at every public boundary (N, m, s, kg, degC, Pa). The paper's equations are in
-N/mm^2 and mm/s; they convert with the factors below at their own door.
+SI at every public boundary (N, m, s, kg, degC, Pa); the paper's equations, in N/mm^2 and mm/s,
+convert with the factors below at their own door.
 """
 
 STANDARD_GRAVITY = 9.80665

@@ -1,12 +1,10 @@
-"""Parameter validation with one error template.
+"""Parameter checks with one error template.
 
-Every bad parameter raises :class:`dcfpb.common.errors.InputError`, a ``ValueError`` (or
-:class:`~dcfpb.common.errors.InputTypeError`, also a ``TypeError``, for a wrong kind), with the
-message
+A bad parameter raises :class:`dcfpb.common.errors.InputError` (a ``ValueError``), or
+:class:`~dcfpb.common.errors.InputTypeError` (also a ``TypeError``) for a wrong kind, with the
+message naming the parameter, its owner, the allowed range and the value given:
 
     The 'mu0' parameter of ConstantFriction must be a float in (0, 1]. Got -0.1 instead.
-
-so the user sees the parameter, its owner, the allowed range and the value given.
 """
 
 from __future__ import annotations
@@ -38,27 +36,13 @@ def check_real(
     high_open: bool = False,
     allow_inf: bool = False,
 ) -> float:
-    """Return ``value`` as a float after checking it lies in the interval given.
+    """``value`` as a float, checked to lie in the interval given.
 
-    Parameters
-    ----------
-    value : object
-        The value given by the user.
-    name, owner : str
-        Parameter name and the class or function that owns it (for the message).
-    low, high : float or None
-        Bounds of the allowed interval; None means unbounded.
-    low_open, high_open : bool
-        Whether the bound itself is excluded.
-    allow_inf : bool
-        Whether +inf is accepted (e.g. a flat slider's effective radius).
-
-    Raises
-    ------
-    TypeError
-        If ``value`` is not a real number.
-    ValueError
-        If ``value`` is NaN, infinite (unless allowed) or outside the interval.
+    ``name`` and ``owner`` (the class or function) name the parameter in the message; ``low`` and
+    ``high`` bound the interval (None: unbounded) and ``low_open``, ``high_open`` exclude the bound
+    itself; ``allow_inf`` accepts +inf (e.g. a flat slider's effective radius). A value that is not
+    a real number raises ``TypeError``; NaN, infinity (unless allowed) or a value outside the
+    interval raises ``ValueError``.
     """
     interval = _interval(low, high, low_open, high_open)
     kind = "a float"
@@ -84,13 +68,7 @@ def check_real(
 def check_int(
     value: object, name: str, owner: str, *, low: int | None = None, high: int | None = None
 ) -> int:
-    """Return ``value`` as an int after checking it lies in ``[low, high]``.
-
-    Raises
-    ------
-    TypeError, ValueError
-        As :func:`check_real`, with "an int" in the message.
-    """
+    """``value`` as an int, checked to lie in ``[low, high]`` (errors as :func:`check_real`)."""
     interval = _interval(low, high, False, False)
     if isinstance(value, bool) or not isinstance(value, Integral):
         raise InputTypeError(
@@ -107,13 +85,7 @@ def check_int(
 
 
 def check_choice(value: object, name: str, owner: str, choices: tuple[str, ...]) -> str:
-    """Return ``value`` after checking it is one of ``choices``.
-
-    Raises
-    ------
-    ValueError
-        Naming the allowed choices and the value given.
-    """
+    """``value``, checked to be one of ``choices`` (a ``ValueError`` names them)."""
     if value not in choices:
         allowed = ", ".join(repr(c) for c in choices)
         raise InputError(
@@ -134,13 +106,8 @@ def check_array(
     ndim: int = 1,
     min_length: int = 1,
 ) -> np.ndarray:
-    """Return ``values`` as a float array after checking shape, finiteness and bounds.
-
-    Raises
-    ------
-    ValueError
-        Naming the array, the first offending index and its value.
-    """
+    """``values`` as a float array, checked for ``ndim``, ``min_length``, finiteness and bounds;
+    a ``ValueError`` names the array, the first offending index and its value."""
     arr = np.asarray(values, dtype=float)
     if arr.ndim != ndim:
         raise InputError(

@@ -1,13 +1,8 @@
-"""Figures for the command line: hysteresis loops, temperature and response histories, floor
-spectra, suite distributions.
-
-matplotlib is imported inside each function (Agg backend) so the library runs without it.
-
-Modules: :mod:`~dcfpb.plotting.base` (pyplot, margins, colours), :mod:`~dcfpb.plotting.bearing`
-(a bearing test), :mod:`~dcfpb.plotting.building` (building runs),
+"""Figures of the command line: :mod:`~dcfpb.plotting.bearing` (a bearing test's loops and
+temperature), :mod:`~dcfpb.plotting.building` and :mod:`~dcfpb.plotting.plan` (building runs),
 :mod:`~dcfpb.plotting.spectra` (floor spectra, isolation effect), :mod:`~dcfpb.plotting.suite`
-(suite distributions).
-"""
+(suite distributions, scaled spectra), on the shared :mod:`~dcfpb.plotting.base`. matplotlib is
+imported inside each function (Agg backend), so the library runs without it."""
 
 from dcfpb.plotting.bearing import plot_bearing_test
 from dcfpb.plotting.building import plot_runs

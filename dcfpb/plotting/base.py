@@ -1,8 +1,6 @@
-"""What every figure of the command line shares: pyplot on the Agg backend, PNG options,
-fixed margins and the colours of the friction models.
-
-matplotlib is imported on first use (:func:`pyplot`), so the library runs without it.
-"""
+"""What every figure of the command line shares: pyplot on the Agg backend, PNG options, fixed
+margins and the colours of the friction models. matplotlib is imported on first use
+(:func:`pyplot`), so the library runs without it."""
 
 from __future__ import annotations
 
@@ -13,7 +11,7 @@ from pathlib import Path
 
 
 def pyplot():
-    """matplotlib's pyplot on the Agg backend (imported on first use: about 1 s)."""
+    """matplotlib's pyplot on the Agg backend, imported on first use (it is slow to import)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -23,12 +21,12 @@ def pyplot():
 
 
 PNG_OPTIONS = {"pil_kwargs": {"compress_level": 1}}
-"""A fast zlib level for the PNGs: about 0.03 s less a figure than level 6, files ~25 % larger."""
+"""A fast zlib level for the PNGs: quicker to write than the default, files a little larger."""
 
 
 def margins(fig, *, left: float = 0.85, right: float = 0.2, bottom: float = 0.6,
              top: float = 0.85, **spacing: float) -> None:
-    """Fixed margins in inches (a constrained layout costs about 0.25 s per figure)."""
+    """Fixed margins in inches (quicker to draw than a constrained layout)."""
     width, height = fig.get_size_inches()
     fig.subplots_adjust(left=left / width, right=1.0 - right / width, bottom=bottom / height,
                         top=1.0 - top / height, **spacing)
@@ -56,13 +54,13 @@ def draw(figures: Sequence[tuple[Path, Callable[[], object], float]], *,
          processes: int = 1) -> list[Path]:
     """Draw figures and return their files, in the order given.
 
-    ``figures`` are (file, function, weight): the function draws the figure and saves it to
-    the file; the weight is its share of the drawing time (any unit). With ``processes=2``
-    (and ``os.fork``, so not on Windows) they are split in two shares of about equal weight:
-    a forked copy of this process draws one share while this process draws the other, on a
-    second core (matplotlib's drawing and PNG compression hold the GIL, so a thread would
-    not overlap them). The files are the same as drawn one after the other. Should the copy
-    fail, this process draws its share again, so that the error is raised here.
+    ``figures`` are (file, function, weight): the function draws the figure and saves it to the
+    file; the weight is its share of the drawing time (any unit). With ``processes=2`` (and
+    ``os.fork``, so not on Windows) they are split in two shares of about equal weight, one drawn
+    by a forked copy of this process on a second core (matplotlib's drawing and PNG compression
+    hold the GIL, so a thread would not overlap them). The files are those drawn one after the
+    other. Should the copy fail, this process draws its share again, so that the error is raised
+    here.
     """
     if processes < 2 or len(figures) < 2 or not hasattr(os, "fork"):
         for _, function, _ in figures:

@@ -9,17 +9,11 @@ from dcfpb.plotting.base import PNG_OPTIONS, pyplot
 
 
 def plot_bearing_test(result: Any, path: str | Path, *, title: str = "") -> Path:
-    """Hysteresis loop (force against displacement; one per axis for an orbit) and the
-    temperature history of a bearing test.
+    """Hysteresis loop (force against displacement; one per direction for an orbit) and the
+    temperature history of a bearing test, written to the PNG file ``path``.
 
-    Parameters
-    ----------
-    result : BearingTestResult
-        Output of :func:`isolator.testrig.run_test` (a history or an orbit).
-    path : str or Path
-        PNG file to write.
-    title : str
-        Figure title.
+    ``result`` is the `BearingTestResult` of :func:`isolator.testrig.run_test` or of an orbit;
+    ``title`` the figure's title.
     """
     plt = pyplot()
     axes_names = ("x", "y")[:result.dimension]

@@ -1,8 +1,8 @@
 """The figures of building runs, in one direction or in plan: hysteresis, temperature, roof
-acceleration, storey drift, response histories, and (with floor spectra) the spectra and the
+acceleration, storey drift, response histories, and with floor spectra the spectra and the
 effect of isolation; in plan also the bearings' orbits, the force orbits and the plate's
-temperature field (:mod:`dcfpb.plotting.plan`). Quantities with a direction get a panel (or a
-line style) per direction."""
+temperature field (:mod:`dcfpb.plotting.plan`). A quantity with a direction gets a panel, or a
+line style, per direction."""
 
 from __future__ import annotations
 
@@ -19,34 +19,19 @@ DIRECTION_STYLES = {"x": "-", "y": "--"}
 
 def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = "",
               fixed_base: Any = None, processes: int = 1) -> list[Path]:
-    """Figures comparing building runs (one Dataset per friction model or program).
+    """Figures comparing building runs, one Dataset of :func:`structures.analysis.run` per
+    label (friction model or program), written to ``directory`` (made if missing) under
+    ``title``; returns the files written, in the order below.
 
-    Writes ``isolator_hysteresis.png``, ``temperature.png``, ``roof_acceleration.png``,
-    ``storey_drift.png`` and ``response_histories.png`` to ``directory``; when the runs carry
-    floor spectra (:func:`structures.floor_spectra.with_floor_spectra`), ``floor_spectra.png``;
-    with a ``fixed_base`` run, ``isolation_effect.png`` (see :mod:`dcfpb.plotting.spectra`);
-    in plan, ``bearing_orbits.png``, ``force_orbits.png`` and, when a run holds the plate's
-    temperature field, ``plate_temperature.png`` (:mod:`dcfpb.plotting.plan`).
-
-    Parameters
-    ----------
-    results : dict of str to xarray.Dataset
-        Output of :func:`structures.analysis.run`, keyed by a label.
-    directory : str or Path
-        Folder for the PNG files (created if missing).
-    title : str
-        Figure title.
-    fixed_base : xarray.Dataset, optional
-        :func:`structures.fixed_base.run_fixed_base` of the same superstructure, with floor
-        spectra: drawn beside the isolated runs' floor spectra, and as their reference.
-    processes : int
-        2: a forked copy of this process draws about half of the figures meanwhile
-        (:func:`dcfpb.plotting.base.draw`); the same files either way.
-
-    Returns
-    -------
-    list of Path
-        The files written, in the order above.
+    ``isolator_hysteresis.png``, ``temperature.png``, ``roof_acceleration.png``,
+    ``storey_drift.png`` and ``response_histories.png``; when the runs carry floor spectra
+    (:func:`structures.floor_spectra.with_floor_spectra`) ``floor_spectra.png``, and with a
+    ``fixed_base`` run (:func:`structures.fixed_base.run_fixed_base` of the same superstructure,
+    with floor spectra) ``isolation_effect.png`` (:mod:`dcfpb.plotting.spectra`); in plan
+    ``bearing_orbits.png``, ``force_orbits.png`` and, when a run holds the plate's temperature
+    field, ``plate_temperature.png`` (:mod:`dcfpb.plotting.plan`). With ``processes=2`` a forked
+    copy of this process draws about half of the figures (:func:`dcfpb.plotting.base.draw`); the
+    files are the same.
     """
     import numpy as np
 

@@ -1,10 +1,7 @@
 """The figures only a building in plan has: the bearings' orbits coloured by their contact
-temperature, the force orbits and the temperature field left on a plate.
-
-Each function takes the Datasets of :func:`structures.analysis.run` in plan keyed by a label
-(one per friction model, say) and writes one PNG; :func:`dcfpb.plotting.building.plot_runs`
-draws them beside the figures every building has.
-"""
+temperature, the force orbits and the temperature field left on a plate. Each function takes
+the Datasets of :func:`structures.analysis.run` in plan keyed by a label (one per friction
+model, say) and writes one PNG beside those of :func:`dcfpb.plotting.building.plot_runs`."""
 
 from __future__ import annotations
 
@@ -74,8 +71,8 @@ def plot_bearing_orbits(results: dict[str, Any], directory: Path, title: str = "
 
 
 def plot_force_orbits(results: dict[str, Any], directory: Path, title: str = "") -> Path:
-    """``force_orbits.png``: the base shear (the sum of the bearings' forces) in the plane,
-    and the corner bearing's force against its displacement along x and y."""
+    """``force_orbits.png``: the base shear (the sum of the bearings' forces) in plan, and the
+    corner bearing's force against its displacement along x and y."""
     plt = pyplot()
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.4))
     margins(fig, left=0.8, bottom=0.6, top=0.95, wspace=0.35)
@@ -104,10 +101,9 @@ def plot_force_orbits(results: dict[str, Any], directory: Path, title: str = "")
 def plot_plate_temperature(results: dict[str, Any], directory: Path,
                            title: str = "") -> Path | None:
     """``plate_temperature.png``: the temperature field left on the corner bearing's plate at
-    the end of each run that holds one (``plate_temperature`` on the monitor points under
-    ``plate_point_x``, ``plate_point_y``; the precise model), with the bearing's orbit on
-    the plate (the slider's centre moves by half the bearing displacement). None when no
-    run holds a field."""
+    the end of each run that holds one (the precise model's ``plate_temperature`` at the monitor
+    points ``plate_point_x``, ``plate_point_y``), with the bearing's orbit on the plate (the
+    slider's centre moves by half the bearing displacement). None when no run holds a field."""
     import numpy as np
 
     runs = [(label, r) for label, r in results.items() if "plate_temperature" in r]

@@ -1,11 +1,8 @@
 """Figures of floor response spectra and of what the isolation buys against a fixed base.
 
-:func:`plot_floor_spectra` draws the 5 %-damped spectra of every floor beside the ground's, one
-panel per run; :func:`plot_isolation_effect` draws the isolated peaks as ratios to the fixed
-base, the peak profiles up the height and the roof's spectrum. Both take the Datasets of
-:func:`structures.analysis.run` and :func:`structures.fixed_base.run_fixed_base` with
-:func:`structures.floor_spectra.with_floor_spectra` applied. matplotlib is imported inside each
-function (:func:`dcfpb.plotting.base.pyplot`, Agg backend).
+Both take the Datasets of :func:`structures.analysis.run` and
+:func:`structures.fixed_base.run_fixed_base` with
+:func:`structures.floor_spectra.with_floor_spectra` applied.
 """
 
 from __future__ import annotations
@@ -23,7 +20,7 @@ GROUND_STYLE = {"color": "black", "lw": 1.4, "ls": "--"}
 
 def _period_axis(ax) -> None:
     """A logarithmic period axis with plain labels at ``PERIOD_TICKS`` and no minor ticks
-    (a log axis's default minor ticks and mathtext labels take most of a figure's time)."""
+    (a log axis's default minor ticks and mathtext labels are slow to draw)."""
     from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullLocator
 
     ax.set_xscale("log")
@@ -34,18 +31,12 @@ def _period_axis(ax) -> None:
 
 
 def plot_floor_spectra(results: dict[str, Any], path: str | Path, *, title: str = "") -> Path:
-    """Floor response spectra (Sa of each floor's absolute acceleration) and the ground's: one
-    panel per run and direction (a row per direction), sharing the Sa axis.
+    """Floor response spectra (Sa of each floor's absolute acceleration) beside the ground's,
+    one panel per run and direction (a row per direction), sharing the Sa axis, written to the PNG
+    file ``path`` under ``title``.
 
-    Parameters
-    ----------
-    results : dict of str to xarray.Dataset
-        Runs with ``floor_spectrum`` (floor, direction, period) and ``ground_spectrum``
-        (direction, period), keyed by a label.
-    path : str or Path
-        PNG file to write.
-    title : str
-        Figure title.
+    ``results`` are runs keyed by a label, with ``floor_spectrum`` (floor, direction, period) and
+    ``ground_spectrum`` (direction, period).
     """
     import numpy as np
 
@@ -90,21 +81,12 @@ def plot_floor_spectra(results: dict[str, Any], path: str | Path, *, title: str 
 
 def plot_isolation_effect(results: dict[str, Any], fixed_base: Any, path: str | Path, *,
                           colours: dict[str, str], title: str = "") -> Path:
-    """What the isolation buys: isolated peaks over the fixed base's, profiles and roof spectra
-    (in plan, both directions: x solid, y dashed; the ratios per direction).
+    """What the isolation buys, written to the PNG file ``path`` under ``title``: the isolated
+    peaks as ratios to the fixed base's, the peak profiles up the height and the roof's spectrum
+    (in plan, x solid and y dashed, the ratios per direction).
 
-    Parameters
-    ----------
-    results : dict of str to xarray.Dataset
-        Isolated runs (with floor spectra), keyed by their friction model.
-    fixed_base : xarray.Dataset
-        The same superstructure on a fixed base (with floor spectra).
-    path : str or Path
-        PNG file to write.
-    colours : dict of str to str
-        Colour of each run's label.
-    title : str
-        Figure title.
+    ``results`` are the isolated runs keyed by friction model, ``fixed_base`` the same
+    superstructure on a fixed base, all with floor spectra; ``colours`` gives each run's colour.
     """
     import numpy as np
 

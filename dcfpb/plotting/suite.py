@@ -1,8 +1,6 @@
 """Figures of a ground-motion suite: peak distributions per friction model (of records, or of
-pairs on a building in plan), scaled spectra (of records, or the RotD100 and RotD50 of pairs).
-
-matplotlib is imported inside each function (Agg backend) so the library runs without it.
-"""
+pairs on a building in plan) and scaled spectra (of records, or the RotD100 and RotD50 of
+pairs)."""
 
 from __future__ import annotations
 
@@ -37,21 +35,13 @@ _PLAN_PANELS = (  # a suite of pairs: runs in plan (structures.analysis.peaks)
 
 def plot_peak_distributions(peaks: pd.DataFrame, path: str | Path, *, title: str = "",
                             seed: int = 0) -> Path:
-    """Box plots of the peak responses per friction model, each run drawn as a point.
+    """Box plots of the peak responses per friction model, each run drawn as a point, written
+    to the PNG file ``path`` under ``title``.
 
-    Parameters
-    ----------
-    peaks : pandas.DataFrame
-        The peaks table of a suite (``SuiteResult.peaks``); failed runs are left out. The
-        table of a suite of pairs (columns ``peak_roof_acceleration_x`` and ``_y``) gets the
-        corner bearing's resultant displacement, the resultant base shear and the roof
-        acceleration per direction.
-    path : str or Path
-        PNG file to write.
-    title : str
-        Figure title.
-    seed : int
-        Seed of the horizontal jitter of the points (the figure is reproducible).
+    ``peaks`` is the peaks table of a suite (``SuiteResult.peaks``), failed runs left out; a suite
+    of pairs (columns ``peak_roof_acceleration_x`` and ``_y``) gets the corner bearing's resultant
+    displacement, the resultant base shear and the roof acceleration per direction. ``seed`` seeds
+    the horizontal jitter of the points, so the figure is reproducible.
     """
     plt = _pyplot()
     from structures.suites.summary import group_labels
@@ -90,25 +80,13 @@ def plot_scaled_spectra(
     damping: float = 0.05,
     title: str = "",
 ) -> Path:
-    """Spectra of the scaled suite, their mean, and the target: each record's own spectrum, or
-    each pair's RotD100 with the mean RotD50 beside (`groundmotions.suite_spectra`).
+    """Spectra of the scaled suite, their mean and the target, written to the PNG file ``path``
+    under ``title``: each record's own spectrum, or each pair's RotD100 with the mean RotD50
+    beside (`groundmotions.suite_spectra`).
 
-    Parameters
-    ----------
-    motions : sequence of GroundMotion, or sequence of GroundMotionPair
-        The records or the pairs as scaled for the suite (acceleration [m/s^2]).
-    target_periods : array_like
-        Periods of the target spectrum [s].
-    target_sa : array_like
-        Target pseudo-spectral acceleration [g].
-    path : str or Path
-        PNG file to write.
-    period_range : (float, float), optional
-        Period range of the scaling [s], shaded.
-    damping : float
-        Damping ratio of the spectra [-].
-    title : str
-        Figure title.
+    ``motions`` are the records or pairs as scaled for the suite [m/s^2]; the target is given by
+    ``target_periods`` [s] and ``target_sa`` [g]; ``period_range`` [s], the scaling's, is shaded;
+    ``damping`` [-] is the spectra's damping ratio.
     """
     from groundmotions.pairs import GroundMotionPair
     from groundmotions.scaling import suite_spectra
