@@ -1,23 +1,16 @@
 """The ``dcfpb`` command line: parses, calls the library, prints and plots.
 
 One module per sub-command, each with ``register(subparsers)`` and its handler:
-
-- :mod:`~dcfpb.cli.protocol`: a virtual bearing test and its per-cycle characteristics;
-- :mod:`~dcfpb.cli.run`: a building file under a recorded ground motion (and what the other
-  building commands share: inputs, integrator flags, the peaks table);
-- :mod:`~dcfpb.cli.demo`: the main job on bundled data, three friction models and the fixed base;
-- :mod:`~dcfpb.cli.spectrum`, :mod:`~dcfpb.cli.suite`, :mod:`~dcfpb.cli.opensees`,
-  :mod:`~dcfpb.cli.diagnose`.
-
-Parsing one of the light commands (:data:`OWN_COMMANDS`) registers those three only, so that
-it does not import the others' modules (``dcfpb diagnose`` alone costs about 2 s of imports);
-``dcfpb --help`` and the other commands see them all.
+:mod:`~dcfpb.cli.protocol` (a virtual bearing test), :mod:`~dcfpb.cli.run` (a building file
+under a ground motion, and what the other building commands share), :mod:`~dcfpb.cli.demo`
+(the bundled example), :mod:`~dcfpb.cli.spectrum`, :mod:`~dcfpb.cli.suite`,
+:mod:`~dcfpb.cli.opensees` and :mod:`~dcfpb.cli.diagnose`. Parsing one of the light commands
+(:data:`OWN_COMMANDS`) imports none of the other modules.
 
 Exit status: 0 for success, 1 for a run that failed on its own terms
-(:class:`dcfpb.common.errors.RunFailure`, or a run that stopped early), 2 for bad input.
-Errors print as one line ``dcfpb <command>: error: <message>`` on stderr, and warnings (e.g.
-a building-file setting without effect, :class:`dcfpb.common.errors.InputWarning`) as
-``dcfpb <command>: warning: <message>``.
+(:class:`dcfpb.common.errors.RunFailure`, or a run that stopped early), 2 for bad input. An
+error prints as one line ``dcfpb <command>: error: <message>`` on stderr, a warning
+(:class:`dcfpb.common.errors.InputWarning`) as ``dcfpb <command>: warning: <message>``.
 """
 
 from __future__ import annotations
@@ -52,11 +45,8 @@ COMMAND_MODULES: tuple[str, ...] = (
 
 
 def build_parser(*, modules: bool = True) -> argparse.ArgumentParser:
-    """The argument parser of the ``dcfpb`` command.
-
-    ``modules=False`` leaves out the sub-commands of :data:`COMMAND_MODULES` (and their
-    imports): enough to parse one of :data:`OWN_COMMANDS`.
-    """
+    """The argument parser of the ``dcfpb`` command; ``modules=False`` leaves out the
+    sub-commands of :data:`COMMAND_MODULES` and their imports (enough for :data:`OWN_COMMANDS`)."""
     parser = argparse.ArgumentParser(
         prog="dcfpb",
         description="Time-history analysis of buildings on double concave friction pendulum "
@@ -80,9 +70,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     warnings.formatwarning = _warning_line(args.command)
     try:
         return args.handler(args)
-    except RunFailure as error:  # good input, a run that cannot finish; caught first, as
-        print(f"dcfpb {args.command}: run failed: {error}", file=sys.stderr)  # a capacity
-        return 1  # failure is a ValueError too
+    except RunFailure as error:  # caught first: a CapacityExceeded is a ValueError too
+        print(f"dcfpb {args.command}: run failed: {error}", file=sys.stderr)
+        return 1
     except (ValueError, TypeError, OSError) as error:
         print(f"dcfpb {args.command}: error: {error}", file=sys.stderr)
         return 2
@@ -91,18 +81,15 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def console() -> None:
-    """The ``dcfpb`` program (console script and ``python -m dcfpb.cli``): :func:`main` on the
-    command line's arguments, then the process exits with its status.
+    """The ``dcfpb`` program (console script, ``python -m dcfpb.cli``): :func:`main` on the
+    command line's arguments, then exit with its status.
 
-    The garbage collector runs less often (``gc.set_threshold(50_000, 20, 20)`` instead of
-    700, 10, 10): numba's compilation on a cold cache allocates millions of objects, and the
-    default thresholds spent about 1.5 s of a first run walking them (0.4 s after the change),
-    while a short-lived program gains nothing from collecting cycles early. Before exiting,
-    every object left is frozen out of the garbage collector (``gc.freeze``):
-    the interpreter's teardown would otherwise walk them all in a last collection (numba's
-    compiled engine, xarray and matplotlib make that about 0.4 to 1 s after ``dcfpb demo``)
-    to free memory the operating system takes back anyway. Output is flushed and ``atexit``
-    handlers run as usual.
+    The garbage collector runs at :data:`PROGRAM_GC_THRESHOLDS` rather than (700, 10, 10): numba's
+    compilation on a cold cache allocates millions of objects that frequent collections would walk
+    again and again, and a short-lived program gains nothing from collecting cycles early. Before
+    exit every object left is frozen (``gc.freeze``), so that the interpreter's teardown does not
+    walk them all in a last collection to free memory the operating system takes back anyway;
+    output is flushed and ``atexit`` handlers run as usual.
     """
     gc.set_threshold(*PROGRAM_GC_THRESHOLDS)
     status = main()
@@ -112,7 +99,7 @@ def console() -> None:
 
 def _warning_line(command: str):
     """``warnings.formatwarning`` for the command line: one line, ``dcfpb <command>: warning:
-    <message>``, the category named unless it is one of ours (an ``InputWarning``)."""
+    <message>``, with the category named unless it is an ``InputWarning``."""
 
     def line(message, category, filename, lineno, text=None) -> str:
         from dcfpb.common.errors import InputWarning

@@ -2,23 +2,18 @@
 ``dcfpb demo --plan``: the same building in plan under a synthetic pair.
 
 The bundled building runs on its bearings with the precise, simplified and constant friction
-models, and the same superstructure runs on a fixed base (:mod:`structures.fixed_base`). The
-command prints the peaks table with the fixed base as a fourth row, then each isolated peak
-(storey drift, storey shear, roof acceleration, base shear) as a ratio to the fixed base, and
-writes the plots of :func:`dcfpb.plotting.plot_runs` with the fixed base beside the isolated
-runs: among them the 5 %-damped floor response spectra (``floor_spectra.png``) and the ratios
-(``isolation_effect.png``).
+models, and its superstructure on a fixed base (:mod:`structures.fixed_base`). The command
+prints the peaks table with the fixed base as a fourth row and each isolated peak (storey drift,
+storey shear, roof acceleration, base shear) as a ratio to the fixed base, and writes the plots
+of :func:`dcfpb.plotting.plot_runs` with the fixed base beside the isolated runs, among them the
+5 %-damped floor response spectra and the ratios. On a cold numba cache the engine compiles in a
+second process meanwhile (:mod:`structures.compiled.ahead`).
 
-With ``--plan`` the bundled ``five_storey_plan.toml`` (the demo building on six bearings at
-their plan positions, its centre of mass 5 % of the plan off the centre of stiffness) does the
-same in plan under a seeded synthetic Kanai-Tajimi pair (about the El Centro 1940 PGA in x, 0.8
-of it in y): the peaks in plan, the corner bearing against the centre, the ratios to the fixed
-base per direction, and the figures of :func:`dcfpb.plotting.plot_runs` in plan (with the
-bearing orbits and the plate's temperature field).
-
-On a cold numba cache the engine compiles in a second process while this one reads the
-record and computes the fixed base (:mod:`structures.compiled.ahead`). :func:`register` adds the
-command, :func:`run` is its handler.
+With ``--plan`` the bundled ``five_storey_plan.toml`` (six bearings at their plan positions, the
+centre of mass 5 % of the plan off the centre of stiffness) runs under a seeded synthetic
+Kanai-Tajimi pair (about the El Centro 1940 PGA in x, 0.8 of it in y): the peaks in plan, the
+corner bearing against the centre, the ratios per direction, and the figures in plan (bearing
+orbits, the plate's temperature field).
 """
 
 from __future__ import annotations
@@ -77,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
         motion = plan_demo_pair() if args.plan else load_bundled("elcentro")
         dt = PLAN_STEP if args.plan else config.dt
         fixed = run_fixed_base(config.building, motion, dt=dt)  # no compiled code
-        if ahead.started:  # idle until the engine is compiled: spectra and matplotlib now
+        if ahead.started:  # while the engine compiles: the spectra and matplotlib
             from dcfpb.plotting.base import pyplot
 
             fixed = with_floor_spectra(fixed, motion)
@@ -125,7 +120,7 @@ def _heading(config, motion, bearing, dt: float, plan: bool) -> str:
 
 
 def _print_torsion(rows: dict[str, dict], plan) -> None:
-    """The corner bearing against the centre, and why the eccentric building hardly turns."""
+    """Print the corner bearing against the centre, and why the eccentric building hardly turns."""
     for model, summary in rows.items():
         corner = summary["corner_bearing"]
         x, y = plan.bearing_coordinates[corner]
@@ -145,7 +140,7 @@ PLAN_PGA_X, PLAN_PGA_Y = 3.1, 2.5
 """Peak ground accelerations of the two components [m/s^2] (El Centro 1940 N-S: 3.13)."""
 
 PLAN_STEP = 0.01
-"""The analysis step of ``--plan`` [s] (the record's; the building file's 5 ms halves it)."""
+"""The analysis step of ``--plan`` [s]: the record's (the building file's 5 ms would halve it)."""
 
 
 def plan_demo_pair():

@@ -4,16 +4,14 @@
                    [--axial-load N] [--without EFFECT ...] [--json] [--report DIR]
     dcfpb diagnose --manifest CAMPAIGN.csv|.toml --model BASELINE [...]
 
-Each FILE is one test of a campaign, in the order run (CSV with ``time``, ``displacement``,
-``force`` and optionally ``axial_force``, ``velocity``, ``temperature``; SI units); a
-manifest lists them instead, with each test's axial load, initial temperature and rest before
-it (:mod:`isolator.diagnosis.manifest`). The
-command calibrates the baseline, says where the held-out gap lies, which candidate effect
-closes it and how far it shrinks (see :mod:`isolator.diagnosis`). ``--json`` prints the
-summary (keys ``baseline``, ``gap``, ``where``, ``effects``, ``verdict``, ...); ``--report``
-writes ``summary.md``, ``diagnosis.json`` and plots to a folder.
-
-The module registers itself through :data:`dcfpb.cli.COMMAND_MODULES` (``register``).
+Each FILE is one test of a campaign, in the order run: a CSV with ``time``, ``displacement``,
+``force`` and optionally ``axial_force``, ``velocity``, ``temperature`` [SI units]. A manifest
+lists them instead, with each test's axial load, initial temperature and rest before it
+(:mod:`isolator.diagnosis.manifest`). The command calibrates the baseline and says where the
+held-out gap lies, which candidate effect closes it and how far it shrinks
+(:mod:`isolator.diagnosis`). ``--json`` prints the summary (keys ``baseline``, ``gap``,
+``where``, ``effects``, ``verdict`` ...); ``--report`` writes ``summary.md``,
+``diagnosis.json`` and plots to a folder.
 """
 
 from __future__ import annotations
@@ -63,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
     """Run the diagnosis for parsed arguments; returns the exit status."""
     from dcfpb.cli.outputs import check_outputs
 
-    check_outputs(folders={"--report": args.report})  # before the 2 s of imports
+    check_outputs(folders={"--report": args.report})  # before the slow imports
     from isolator.diagnosis import BaselineSpec, DataError, diagnose, load_campaign
     from isolator.diagnosis.manifest import load_manifest
 

@@ -1,22 +1,18 @@
 """Output paths checked before any work starts, so that a bad one does not lose a run.
 
-Every command calls :func:`check_outputs` on its output flags first thing (before it reads
-its inputs or starts the analysis). A file (``--output``, ``--plot FILE.png``) or a folder
-(``--plot DIR``, ``--report``, ``--out``) is accepted when it can be written:
+Every command calls :func:`check_outputs` on its output flags first. A file (``--output``,
+``--plot FILE.png``) or a folder (``--plot DIR``, ``--report``, ``--out``) is accepted when:
 
-- a file must not be a folder, and an existing one must be writable; a folder must not be a
-  file;
-- the folder it goes in (for a folder: itself) exists, or can be created: its nearest
-  existing ancestor is a folder (not a file) and every missing name fits the file system;
-- that folder is writable, tried by creating and removing a temporary file in it (an
-  access-rights check alone says yes to root on a read-only file system, /proc or /sys);
-- a new file's own name is tried the same way (created and removed at once);
-- a figure's file name ends in a format matplotlib writes (or in none: PNG).
+- a file is not a folder, and an existing one is writable; a folder is not a file;
+- the folder it goes in (a folder: itself) exists, or can be made: its nearest existing
+  ancestor is a folder and every missing name fits the file system;
+- that folder takes a temporary file, created and removed (an access-rights check alone says
+  yes to root on a read-only file system, /proc or /sys), and so does a new file's own name;
+- a figure's name ends in a format matplotlib writes, or in none (PNG).
 
-A folder asked for is not made here (its writer makes it, with the results); the missing
-folders above a file are, once checked, since the file writers (netCDF, CSV, a figure) do
-not make them. A bad path is an :class:`dcfpb.common.errors.InputError` naming the flag and the
-path (exit status 2).
+A folder asked for is left to its writer to make; the missing folders above a file are made once
+checked, since the file writers (netCDF, CSV, a figure) do not make them. A bad path raises
+:class:`dcfpb.common.errors.InputError` naming the flag and the path (exit status 2).
 """
 
 from __future__ import annotations
@@ -68,8 +64,8 @@ def _name_max(folder: Path) -> int:
 
 
 def _kind(path: Path, flag: str, shown: Path) -> str:
-    """``"dir"``, ``"file"`` (anything else that exists) or ``"missing"``; a path the system
-    refuses to look at (a name too long, no access) is refused."""
+    """``"dir"``, ``"file"`` (anything else that exists) or ``"missing"``; refuses a path the
+    system will not look at (a name too long, no access)."""
     try:
         return "dir" if stat.S_ISDIR(os.stat(path).st_mode) else "file"
     except (FileNotFoundError, NotADirectoryError):
@@ -100,26 +96,9 @@ def _existing_ancestor(path: Path, flag: str, shown: Path) -> Path:
 
 
 def check_output_dir(path: str | os.PathLike, flag: str) -> Path:
-    """Check that the folder ``path`` exists and is writable, or can be created.
-
-    Parameters
-    ----------
-    path : str or path-like
-        The folder asked for.
-    flag : str
-        The option that named it (for the message), e.g. ``"--out"``.
-
-    Returns
-    -------
-    Path
-        The path.
-
-    Raises
-    ------
-    dcfpb.common.errors.InputError
-        Naming ``flag`` and ``path``: a file in its place, under a file, not writable,
-        a name too long.
-    """
+    """``path``, checked to be a folder that exists and is writable, or can be made; an
+    :class:`~dcfpb.common.errors.InputError` naming ``flag`` (the option, e.g. ``"--out"``) and the
+    path refuses a file in its place, a folder under a file, no write access or a name too long."""
     folder = _as_path(path, flag)
     if _kind(folder, flag, folder) == "file":
         raise _refuse(flag, folder, "is a file, not a folder; give a folder.")
@@ -128,32 +107,13 @@ def check_output_dir(path: str | os.PathLike, flag: str) -> Path:
 
 
 def check_output_file(path: str | os.PathLike, flag: str, *, figure: bool = False) -> Path:
-    """Check that the file ``path`` can be written (created, or overwritten).
+    """``path``, checked to be a file that can be written (created, or overwritten).
 
-    Parameters
-    ----------
-    path : str or path-like
-        The file asked for.
-    flag : str
-        The option that named it (for the message), e.g. ``"--output"``.
-    figure : bool
-        The file is a figure: its suffix must be one of :data:`FIGURE_FORMATS` (or none).
-
-    Returns
-    -------
-    Path
-        The path.
-
-    Raises
-    ------
-    dcfpb.common.errors.InputError
-        Naming ``flag`` and ``path``: a folder in its place, its folder a file or not
-        writable, a read-only file, a name too long, a figure format not known.
-
-    Notes
-    -----
-    The missing folders above the file are made (once the nearest existing one proved
-    writable), since the writers of files do not make them.
+    ``flag`` is the option that named it (e.g. ``"--output"``); with ``figure`` its suffix must be
+    one of :data:`FIGURE_FORMATS`, or none. An :class:`~dcfpb.common.errors.InputError` naming
+    ``flag`` and the path refuses a folder in its place, a folder above it that is a file or not
+    writable, a read-only file, a name too long or an unknown figure format. The missing folders
+    above the file are made once the nearest existing one proved writable.
     """
     file = _as_path(path, flag)
     kind = _kind(file, flag, file)
@@ -186,10 +146,8 @@ def check_output_file(path: str | os.PathLike, flag: str, *, figure: bool = Fals
 def check_outputs(files: dict[str, object] | None = None,
                   folders: dict[str, object] | None = None,
                   figures: dict[str, object] | None = None) -> None:
-    """Check the output paths a command was given, keyed by flag; None values are skipped.
-
-    ``files`` are data files, ``figures`` figure files, ``folders`` folders.
-    """
+    """Check the output paths a command was given, keyed by flag: ``files`` (data files),
+    ``figures`` and ``folders``; None values are skipped."""
     for flag, path in (files or {}).items():
         if path is not None:
             check_output_file(path, flag)

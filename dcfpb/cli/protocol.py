@@ -1,10 +1,13 @@
 """``dcfpb protocol``: a virtual bearing test and its per-cycle force-deflection
-characteristics: a sine displacement history along one axis, or with ``--orbit circle|figure8|
-square|line [--angle DEG]`` an orbit in the plane (:mod:`isolator.orbits`), whose size is
+characteristics.
+
+The bearing follows a sine displacement history in one direction or, with ``--orbit circle|
+figure8|square|line [--angle DEG]``, an orbit in two directions (:mod:`isolator.orbits`) of size
 ``--amplitude`` (the circle's radius, the figure-eight's and the line's amplitude, the square's
-half side) and whose period, cycles and step are those of the sine. An orbit's report gives the
-characteristics along x and along y and the energy dissipated, integral of F . du, over the
-whole orbit and per cycle."""
+half side) and of the sine's period, cycles and step. An orbit's report gives the
+characteristics along x and along y and the energy dissipated, the integral of F . du, over the
+whole orbit and per cycle.
+"""
 
 from __future__ import annotations
 
@@ -60,8 +63,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 ORBIT_CHOICES = ("circle", "figure8", "square", "line")
-"""The orbits of :data:`isolator.orbits.ORBITS`, written out so that parsing imports
-nothing."""
+"""The orbits of :data:`isolator.orbits.ORBITS`, written out so that parsing imports nothing."""
 
 
 _FLAGS = {  # flag: (low, high, low_open); None: unbounded; finite but for a flat slider's radius
@@ -80,7 +82,7 @@ _FLAGS = {  # flag: (low, high, low_open); None: unbounded; finite but for a fla
 
 def check_sine_flags(args: argparse.Namespace, command: str) -> None:
     """Check the flags of a sine test (``dcfpb protocol``, ``dcfpb compare-opensees-bearing``)
-    by their names and ranges, and its length against ``--max-steps``, before any work."""
+    by name and range, and its length against ``--max-steps``, before any work."""
     from dcfpb.common.validation import check_int, check_real
     from isolator.limits import DEFAULT_MAX_STEPS, history_steps
 
@@ -158,8 +160,8 @@ def _run_protocol(args: argparse.Namespace) -> int:
 
 
 def _cycles(result, axis: str) -> list[dict]:
-    """The characteristics of the loops along ``axis`` (none when there is no complete loop
-    along it: a line across it)."""
+    """The characteristics of the loops along ``axis``; none without a complete loop along it
+    (a line across it)."""
     try:
         return [c.to_dict() for c in result.characteristics(axis)]
     except ValueError:

@@ -46,14 +46,14 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 RECORD_UNITS = ("g", "gal", "cm/s^2", "m/s^2", "mm/s^2", "in/s^2", "ft/s^2")
-"""The ``--units`` choices: `groundmotions.units.UNIT_NAMES` written out (parsing imports no
-numpy; a test holds the two equal)."""
+"""The ``--units`` choices: `groundmotions.units.UNIT_NAMES` written out, so that parsing
+imports no numpy (a test holds the two equal)."""
 
 
 def add_record_options(p: argparse.ArgumentParser, dt_flags: tuple[str, ...] = ("--record-dt",),
                        ) -> None:
-    """Add ``--units`` and ``--record-dt`` (the record's own step, not the analysis step) to
-    a command that reads ``--record``/``FILE`` with :func:`read_record_from_args`."""
+    """Add ``--units`` and ``--record-dt`` (the record's own step, not the analysis step) to a
+    command that reads its record with :func:`read_record_from_args`."""
     p.add_argument("--units", choices=RECORD_UNITS,
                    help="units of the record's values when its header states none (default: "
                    "the header's, else g); units that disagree with the header are refused")
@@ -81,9 +81,9 @@ def add_max_steps(p: argparse.ArgumentParser, what: str = "the run") -> None:
 
 
 def analysis_dt(args: argparse.Namespace, config, motion=None) -> float | None:
-    """The analysis step [s]: ``--dt`` when given, else the building file's, at most the step
-    of ``motion`` (a record or a pair; the run says so when it caps it), None for the
-    analysis's default (:func:`structures.analysis.default_step`)."""
+    """The analysis step [s]: ``--dt`` when given, else the building file's capped at the step
+    of ``motion`` (a record or a pair; the run says so when it caps it), else None for
+    :func:`structures.analysis.default_step`."""
     if args.dt is not None or config.dt is None:
         return args.dt
     return config.dt if motion is None else min(config.dt, motion.dt)
@@ -106,8 +106,8 @@ def check_run_length(args: argparse.Namespace, config, motion, command: str) -> 
 
 
 def integrator_from_args(config, kind: str | None, alpha: float | None):
-    """The building file's integrator, or the one ``--integrator``/``--alpha`` ask for (with
-    the file's alpha when the file runs HHT and ``--alpha`` is not given)."""
+    """The building file's integrator, or the one ``--integrator``/``--alpha`` ask for (HHT
+    with the file's alpha when the file runs HHT and ``--alpha`` is not given)."""
     from structures.integrators import HHT, Newmark
 
     if kind is None and alpha is None:
@@ -122,19 +122,13 @@ def integrator_from_args(config, kind: str | None, alpha: float | None):
 
 
 def building_run_inputs(args: argparse.Namespace, command: str):
-    """The building file, the integrator and the (scaled) record or pair of a building command.
+    """The building file, the integrator and the (scaled) record or pair of a building command,
+    ``(config, integrator, motion)``, every value checked before any work starts.
 
     Reads ``args.building``, ``args.integrator``, ``args.alpha``, ``args.record`` (with
-    ``args.units`` and ``args.record_dt`` when given; ``args.record_y`` and ``args.record_z``
-    read a pair, :func:`pair_from_args`) and ``args.scale``, and checks ``args.dt`` and
-    ``args.max_steps`` when the command has them; every value is checked before any work
-    starts.
-
-    Returns
-    -------
-    config : BuildingConfig
-    integrator : Newmark or HHT
-    motion : GroundMotion or GroundMotionPair
+    ``args.units`` and ``args.record_dt``; with ``args.record_y`` or ``args.record_z`` a pair,
+    :func:`pair_from_args`) and ``args.scale``, and checks ``args.dt`` and ``args.max_steps``
+    where the command has them.
     """
     from dcfpb.common.validation import check_int, check_real
     from structures.config import load_config
@@ -155,8 +149,8 @@ def building_run_inputs(args: argparse.Namespace, command: str):
 
 
 def add_pair_options(p: argparse.ArgumentParser) -> None:
-    """Add ``--record-y``, ``--record-z``, ``--resample`` and ``--truncate`` to a command that reads
-    ``--record``."""
+    """Add ``--record-y``, ``--record-z``, ``--resample`` and ``--truncate`` to a command that
+    reads ``--record``."""
     p.add_argument("--record-y", metavar="FILE",
                    help="second horizontal component (y of the plan); with --record (x) it "
                    "runs a building file with a [plan] table in plan")
@@ -169,13 +163,8 @@ def add_pair_options(p: argparse.ArgumentParser) -> None:
 
 
 def pair_from_args(args: argparse.Namespace, config, command: str):
-    """The (scaled) pair of ``--record``/``--record-y``/``--record-z``, checked against the
-    building file before anything is read: a pair needs a ``[plan]`` table, and
-    ``--record-z`` needs ``--record-y``.
-
-    Returns
-    -------
-    GroundMotionPair
+    """The (scaled) `GroundMotionPair` of ``--record``/``--record-y``/``--record-z``, checked
+    before anything is read: a pair needs a ``[plan]`` table, ``--record-z`` needs ``--record-y``.
     """
     from dcfpb.common.errors import InputError
     from groundmotions.pairs import read_pair
@@ -259,8 +248,8 @@ def _run_building(args: argparse.Namespace) -> int:
 
 
 def print_failure(summary: dict, message: str) -> None:
-    """Say that a run failed, why, and that its peaks are those up to the failure (nothing
-    for a run that finished). ``summary`` is :func:`structures.analysis.peaks` of it."""
+    """Say that a run failed, why, and that its peaks are those up to the failure; nothing for
+    a run that finished. ``summary`` is :func:`structures.analysis.peaks` of the run."""
     if not summary.get("peaks_up_to_failure"):
         return
     print(f"RUN FAILED ({summary['failure']}) at t = {summary['failed_at']:.6g} s: the peaks "
@@ -269,13 +258,10 @@ def print_failure(summary: dict, message: str) -> None:
 
 
 def print_peaks(rows: dict[str, dict], heading: str, *, fixed_base=None) -> None:
-    """Print a peaks table, one row per run (:func:`structures.analysis.peaks` of each), under
-    ``heading``: in plan with the centre's displacement and the roof acceleration and drift
-    per direction.
-
-    ``fixed_base`` (a :func:`structures.fixed_base.run_fixed_base` Dataset) adds its row: the
-    first-storey shear in the base-shear column, no isolator, temperature or energy.
-    """
+    """Print a peaks table under ``heading``, one row per run (:func:`structures.analysis.peaks`
+    of each); in plan with the centre's displacement and the roof acceleration and drift per
+    direction. ``fixed_base`` (a :func:`structures.fixed_base.run_fixed_base` Dataset) adds its
+    row: the first-storey shear as base shear, no isolator, temperature or energy."""
     plan = "peak_centre_displacement" in next(iter(rows.values()))
     directions = ("_x", "_y") if plan else ("",)
     columns = [("isol. disp", "[mm]", 10,
@@ -316,17 +302,10 @@ def print_peaks(rows: dict[str, dict], heading: str, *, fixed_base=None) -> None
 
 
 def print_ratios(ratios: dict[str, dict[str, float]], fixed_base, pga: float) -> None:
-    """Print each isolated run's peaks over the fixed base's, and the roof over the ground.
-
-    Parameters
-    ----------
-    ratios : dict of str to dict
-        :func:`structures.fixed_base.ratios_to_fixed_base` of each run, keyed by its label.
-    fixed_base : xarray.Dataset
-        The fixed-base run.
-    pga : float
-        Peak ground acceleration [m/s^2] (the larger component's in plan).
-    """
+    """Print each isolated run's peaks over the fixed base's, and the roof acceleration over
+    ``pga`` [m/s^2] (in plan the larger component's). ``ratios`` holds
+    :func:`structures.fixed_base.ratios_to_fixed_base` of each run by label; ``fixed_base`` is the
+    fixed-base run."""
     from structures.fixed_base import superstructure_peaks
 
     first = next(iter(ratios.values()))

@@ -1,14 +1,9 @@
-"""The ``dcfpb spectrum`` command: peak values, Arias intensity, durations and spectra of a record.
+"""``dcfpb spectrum``: peak values, Arias intensity, durations and spectra of a record.
 
-``dcfpb spectrum FILE [--units U] [--dt DT] [--damping 0.05] [--periods T ...] [--json]
-[--plot FILE.png]`` reads a PEER .AT2 or text record (`groundmotions.readers.read_record`;
-``--units`` when the header states none, ``--dt`` or ``--record-dt`` the step of a one-column
-text record) and prints PGA, PGV, PGD, the
-Arias intensity, the D5-75 and D5-95 significant durations and a table of Sd, Sv and Sa at
-standard (or the given) periods; ``--plot`` draws the three spectra on a dense period grid.
-The record is used as read: no baseline correction or filtering.
-
-Registered by adding ``"dcfpb.cli.spectrum"`` to ``dcfpb.cli.COMMAND_MODULES``.
+Reads a PEER .AT2 or text record (`groundmotions.readers.read_record`) and prints PGA, PGV, PGD,
+the Arias intensity, the D5-75 and D5-95 significant durations and Sd, Sv and Sa at standard (or
+the given) periods; ``--plot`` draws the three spectra on a dense period grid. The record is
+used as read: no baseline correction or filtering.
 """
 
 from __future__ import annotations
@@ -111,17 +106,8 @@ def print_summary(summary: dict[str, Any]) -> None:
 
 
 def plot_spectra(motion: Any, path: str | Path, *, damping: float = 0.05) -> Path:
-    """Draw the pseudo-acceleration, pseudo-velocity and displacement spectra of a record.
-
-    Parameters
-    ----------
-    motion : GroundMotion
-        The record.
-    path : str or Path
-        PNG file to write.
-    damping : float
-        Damping ratio [-].
-    """
+    """Draw the pseudo-acceleration, pseudo-velocity and displacement spectra of a record
+    (`GroundMotion`) at damping ratio ``damping`` [-] to the PNG file ``path``."""
     import matplotlib
 
     matplotlib.use("Agg")

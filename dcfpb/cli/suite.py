@@ -1,9 +1,9 @@
 """``dcfpb suite``: a building file under a suite of records, scale factors and friction models,
 or, with ``--pairs``, a building file with a ``[plan]`` table under a suite of pairs.
 
-Registered through ``dcfpb.cli.COMMAND_MODULES``. Runs go through Dask (a local cluster, or
-``--scheduler ADDRESS``); results, peaks table, per-model statistics and plots go to
-``--out``. Running the same command again finishes an interrupted suite and retries failures.
+Runs go through Dask (a local cluster, or ``--scheduler ADDRESS``); results, peaks table,
+per-model statistics and plots go to ``--out``. Running the same command again finishes an
+interrupted suite and retries its failures.
 """
 
 from __future__ import annotations
@@ -88,13 +88,10 @@ def _floats(text: str, option: str) -> tuple[float, ...]:
 
 
 def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
-    """A target spectrum: periods [s], Sa [g].
-
-    Either a CSV of ``period,sa`` rows (rows that are not two numbers, such as a header or
-    comments, are skipped; periods must increase), or ``asce7:S_DS,S_D1,T_L`` for the ASCE 7-16
-    design spectrum (``asce7-mce:...`` for the MCE_R spectrum, 1.5 times it), S_DS and S_D1 in
-    g and T_L in s.
-    """
+    """A target spectrum as periods [s] and Sa [g]: from a CSV of ``period,sa`` rows (rows that are
+    not two numbers, such as a header or comments, are skipped; periods must increase), or from
+    ``asce7:S_DS,S_D1,T_L`` (S_DS and S_D1 [g], T_L [s]) for the ASCE 7-16 design spectrum
+    (``asce7-mce:...`` for the MCE_R spectrum, 1.5 times it)."""
     text = str(path)
     if text.lower().startswith(("asce7:", "asce7-mce:")):
         from groundmotions.scaling import asce7_design_spectrum
@@ -126,9 +123,9 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
 
 
 def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float, float]):
-    """The factor hook of a target spectrum [s, g] for a suite of records or of pairs: the
-    factors of ``groundmotions.scaling.scale_suite`` (each record on its spectrum, each pair
-    on its RotD100, over ``period_range`` [s]), in the order of the motions."""
+    """The factor hook of a target spectrum (periods [s], Sa [g]) for a suite of records or of
+    pairs: the factors of ``groundmotions.scaling.scale_suite`` over ``period_range`` [s] (a
+    record on its spectrum, a pair on its RotD100), in the order of the motions."""
     try:
         from groundmotions.scaling import scale_suite
     except ImportError as error:
@@ -156,8 +153,8 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
 
 
 def _suite(args: argparse.Namespace, config, factors):
-    """The suite of the command line: of records, or of pairs (``--pairs``), the latter
-    refused before any work on a building file without ``[plan]``."""
+    """The suite of records, or of pairs (``--pairs``; refused before any work for a building
+    file without ``[plan]``)."""
     from structures.suites.sources import motion_sources
     from structures.suites.suite import Suite
 
@@ -291,8 +288,8 @@ _PLAN_COLUMNS = (  # a suite of pairs: the corner bearing, the centre, per direc
 
 
 def _print_statistics(summary: dict) -> None:
-    """The median and 84th percentile of each group, over its successful runs, with the
-    group's runs that finished ('ok'), all its runs and its failures beside them."""
+    """Print the median and 84th percentile of each group over its successful runs, with its
+    finished ('ok') and all runs, and its failures."""
     in_plan = any("peak_roof_acceleration_x" in q for q in summary.values())
     table = _PLAN_COLUMNS if in_plan else _COLUMNS
     names, headings, units, factors, widths, digits = zip(*table, strict=True)
