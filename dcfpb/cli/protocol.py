@@ -53,7 +53,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--plot", metavar="FILE.png", help="draw the hysteresis loop(s) and the "
                    "temperature")
     p.add_argument("--orbit", choices=ORBIT_CHOICES, default=None,
-                   help="impose an orbit in the plane instead of the sine: circle (radius "
+                   help="impose an orbit in two directions instead of the sine: circle (radius "
                    "--amplitude), figure8, square (half side --amplitude) or line (the sine "
                    "along --angle); reports each axis and the orbit's energy")
     p.add_argument("--angle", type=float, default=None,

@@ -176,7 +176,7 @@ def pair_from_args(args: argparse.Namespace, config, command: str):
         raise InputError(
             "--record-y runs a building in plan, but the building file "
             f"{args.building!r} has no [plan] table (bearing_coordinates, eccentricity, ...; "
-            "see README, 'A building in plan'). Drop --record-y to run it planar.")
+            "see README, 'A building in plan'). Drop --record-y to run it in one direction.")
     step = None
     if args.resample:
         from groundmotions.readers import read_record
