@@ -35,20 +35,10 @@ def bundled_names() -> tuple[str, ...]:
 
 
 def load_bundled(name: str = "elcentro") -> GroundMotion:
-    """Load a record shipped with the package.
-
-    Parameters
-    ----------
-    name : str
-        One of `bundled_names()`; ``"elcentro"`` is El Centro 1940 N-S (1559 samples at 0.02 s,
-        PGA 0.319 g).
-
-    Returns
-    -------
-    GroundMotion
-        Acceleration [m/s^2], named by the record's title, with the file's metadata and the
-        recording's event, station, licence and origin.
-    """
+    """The record ``name`` shipped with the package, one of `bundled_names()`: acceleration
+    [m/s^2], named by the record's title, with the file's metadata and the recording's event,
+    station, licence and origin. ``"elcentro"`` is El Centro 1940 N-S (1559 samples at 0.02 s,
+    PGA 0.319 g)."""
     check_choice(name, "name", "load_bundled", bundled_names())
     file_name, extra = _BUNDLED[name]
     resource = resources.files("groundmotions").joinpath("data", file_name)
