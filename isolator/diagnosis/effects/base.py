@@ -1,18 +1,11 @@
 """What an effect of the diagnosis is: its parameters, where it acts, its physical reading.
 
-An :class:`Effect` is one candidate explanation of a gap between a calibrated baseline and
-measured bearing tests. It acts where the physics acts:
-
-- on the **kinematics** before the return map (``kinematic``): the displacement the bearing
-  really undergoes differs from the one measured (a play in the load train, a time offset
-  between the channels); the model's z, pendulum force and load path are recomputed from it;
-- on the **friction coefficient** (``factor``): mu(t) = c mu_base(t) m(t), m a function of the
-  effect's own variable (temperature rise, speed, pressure, travel);
-- on the **force** (``extra`` adds a force, ``transform`` maps the force parts): a restoring
-  stiffness other than N / R_eff, the spherical surface's geometry.
-
-Parameters are fitted on a scale where they are of order one; scale parameters as their
-base-10 logarithm. ``reading`` turns a fit into the values engineers read, with units.
+An :class:`Effect` is one candidate explanation of the gap between a calibrated baseline and
+measured bearing tests. It acts where the physics acts: on the **kinematics** (the
+displacement the bearing really undergoes: a play, a channel offset), on the **friction
+coefficient**, mu(t) = c mu_base(t) m(t) with m a function of the effect's own variable, or
+on the **force** (a restoring stiffness other than N / R_eff, the spherical geometry).
+Parameters are fitted on a scale where they are of order one, scale parameters as log10.
 """
 
 from __future__ import annotations
@@ -41,9 +34,8 @@ class Parameter:
         Further start values of a multistart fit (on the fitting scale).
     edge_ok : bool
         Whether a fit at a bound is still a physical reading (a weight at 0 or 1, a
-        transition at its rigid-plastic limit, a drift that is linear). Otherwise an effect
-        fitted at a bound of this parameter is not named: the data ask for more than the
-        physics of that effect gives.
+        rigid-plastic transition, a linear drift); otherwise an effect fitted at a bound is
+        not named, since the data ask for more than its physics gives.
     """
 
     name: str
@@ -85,13 +77,12 @@ class Context:
     nominal_mu : float
         Mean friction coefficient of the calibrated baseline [-].
     tests : int
-        Number of tests of the campaign.
+        Number of tests.
     channel_lag : float
-        Time offset of the force channel behind the displacement channel that the baseline
-        calibrated [s].
+        The baseline's calibrated lag of the force channel behind the displacement [s].
     kinematics : object or None
-        The full, contiguous histories kinematic effects recompute the return map on
-        (:class:`isolator.diagnosis.fitting.Kinematics`).
+        The contiguous histories (:class:`isolator.diagnosis.fitting.Kinematics`) on which
+        kinematic effects recompute the return map.
     """
 
     reference_pressure: float
@@ -109,8 +100,8 @@ class Context:
 
     @classmethod
     def of(cls, features, effective_radius: float, **known) -> Context:
-        """The constants of a whole campaign (``features``: a
-        :class:`~isolator.diagnosis.features.Features`); ``known`` sets the others."""
+        """The constants of a campaign's :class:`~isolator.diagnosis.features.Features`;
+        ``known`` sets the others."""
         p5, p50, p95 = np.percentile(features.pressure, [5, 50, 95])
         return cls(float(p50), float(p95 / p5 - 1.0),
                    float(np.percentile(np.abs(features.displacement), 99)),
@@ -134,27 +125,25 @@ class Effect:
     description : str
         One line for reports.
     physical_reading : str
-        What the effect is physically, for the documentation and reports.
+        What the effect is physically.
     parameters : tuple of Parameter
-        Its own parameters (the baseline's scale is added by the fit).
+        Its own parameters (the fit adds the baseline's scale c).
     acts_on : {"kinematics", "mu", "force"}
-        Where it acts.
+        Where it acts; the hooks below that act there must not all be None.
     factor : callable or None
-        ``factor(theta, features, context) -> m`` [-], on mu.
+        ``factor(theta, features, context) -> m`` [-], multiplying mu.
     extra : callable or None
         ``extra(theta, features, context) -> e`` [N], added to the force.
     transform : callable or None
-        ``transform(theta, features, context, pendulum, friction) -> force`` [N]: the force
-        from its parts (pendulum force and friction force mu N z).
+        ``transform(theta, features, context, pendulum, friction) -> force`` [N] from the
+        pendulum force and the friction force mu N z.
     kinematic : callable or None
-        ``kinematic(theta, context) -> {"shift": s, "half_width": h}``: a time offset of the
-        force channel behind the displacement channel [s] and/or the half width of a dead
-        band in the load path [m]; the return map, the pendulum force and the load path are
-        recomputed from the displacement so changed
-        (:class:`isolator.diagnosis.fitting.Kinematics`).
+        ``kinematic(theta, context) -> {"shift": s, "half_width": h, ...}``: a further lag
+        of the force channel [s], the half width of a play [m] and/or a yield displacement
+        [m], from which the return map and the pendulum force are recomputed.
     variable : callable or None
-        ``variable(features, context) -> x``: the effect's own variable, for its flexible
-        monotone form (:mod:`isolator.diagnosis.flexible`).
+        ``variable(features, context) -> x``: the variable of its flexible monotone form
+        (:mod:`isolator.diagnosis.flexible`).
     requires : callable or None
         ``requires(context) -> reason or None``: why the campaign cannot show the effect.
     reading : callable or None
