@@ -58,8 +58,7 @@ class BaselineSpec:
     model : {"constant", "simplified", "precise"}
         The paper's friction model.
     without : tuple of str
-        Effects of a ``simplified`` or ``precise`` model switched off: ``"heating"``,
-        ``"velocity"``, ``"pressure"``.
+        Effects of a ``simplified`` or ``precise`` model switched off (``REMOVABLE_EFFECTS``).
     yield_displacement : float or None
         Yield displacement u_y of the return map [m]; None calibrates it.
     """
@@ -116,18 +115,17 @@ class BaselineFit:
 
     Attributes
     ----------
-    spec : BaselineSpec
-        The baseline.
-    parameters : dict
-        ``mu`` (constant) or ``mu_t0`` (others) [-] and ``yield_displacement`` [m].
+    spec, parameters : BaselineSpec, dict
+        The baseline and its calibrated ``mu`` (constant) or ``mu_t0`` [-] and
+        ``yield_displacement`` [m].
     features : Features
-        The campaign's features with z, the pendulum force, the baseline's mu(t) and the
-        temperature rise filled in.
+        The campaign's features with the baseline's z, pendulum force, mu(t) and temperature
+        rises.
     iterations : int
         Runs of the virtual test machine (0 for the constant model).
     lag : float
-        Time offset of the force channel behind the displacement channel [s], within
-        ``NUISANCE_LAG_SAMPLES`` samples; the features' displacement has it applied.
+        Calibrated lag of the force channel behind the displacement [s], applied to the
+        features' displacement.
     sample_interval : float
         Median sampling interval [s].
     """

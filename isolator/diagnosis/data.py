@@ -42,14 +42,9 @@ class BearingRecord:
     ----------
     name : str
         Name of the test (the file name for a CSV).
-    time : array_like
-        Strictly increasing sample times [s].
-    displacement : array_like
-        Relative displacement of the plates [m].
-    force : array_like
-        Horizontal force [N].
-    axial_force : array_like
-        Compressive axial load [N], positive.
+    time, displacement, force, axial_force : array_like
+        Strictly increasing sample times [s], relative displacement of the plates [m],
+        horizontal force [N], compressive axial load [N] > 0.
     velocity : array_like or None
         Relative velocity [m/s]; None derives it (:func:`derived_velocity`).
     temperature : array_like or None
@@ -58,8 +53,7 @@ class BearingRecord:
         Temperature of the plates at the start of the test [degC] (a campaign manifest's);
         None: the measured temperature's first value, else 20 degC.
     rest_before : float or None
-        Rest since the end of the previous test [s]; None: long enough for the plates to
-        cool.
+        Rest since the end of the previous test [s]; None: long enough to cool.
     """
 
     name: str
@@ -119,18 +113,9 @@ class BearingRecord:
 
 @dataclass(frozen=True, eq=False)
 class Campaign:
-    """The tests of one bearing in the order run (wear accumulates across them), with its
-    geometry.
-
-    Parameters
-    ----------
-    tests : sequence of BearingRecord
-        At least one test.
-    effective_radius : float
-        Effective radius R_eff [m]; ``inf`` for a flat slider or a friction damper.
-    slider_diameter : float
-        Slider diameter [m]; the contact radius is half of it.
-    """
+    """The tests of one bearing, at least one, in the order run (wear accumulates across
+    them), with its effective radius R_eff [m] (``inf`` for a flat slider or a friction
+    damper) and slider diameter [m]."""
 
     tests: tuple[BearingRecord, ...]
     effective_radius: float
@@ -187,8 +172,7 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
     path : str or Path
         CSV file, optionally gzipped.
     axial_load : float, optional
-        Constant axial load [N] for a file without an ``axial_force`` column. With such a
-        column the column is used and ``axial_load`` must not be given.
+        Constant axial load [N] for a file without an ``axial_force`` column (only then).
     initial_temperature, rest_before : float, optional
         See :class:`BearingRecord` (a campaign manifest gives them).
 
@@ -268,10 +252,9 @@ def check_plausible(campaign: Campaign, where: Sequence[str] | None = None,
     ----------
     campaign : Campaign
         The tests and the effective radius R_eff [m] told.
-    where : sequence of str, optional
-        Per test, the file (and manifest test) to name; default ``test 'name'``.
-    load_sources : sequence of str, optional
-        Per test, where its axial load came from; default "the axial load".
+    where, load_sources : sequence of str, optional
+        Per test, the file (and manifest test) to name, default ``test 'name'``, and where
+        its axial load came from, default "the axial load".
 
     Raises
     ------

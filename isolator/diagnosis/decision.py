@@ -53,10 +53,9 @@ class Problem:
 
     Parameters
     ----------
-    features : Features
-        The calibrated baseline's features (weights set).
-    context : Context
-        The campaign's constants (with its :class:`~isolator.diagnosis.fitting.Kinematics`).
+    features, context : Features, Context
+        The calibrated baseline's features (weights set) and the campaign's constants (with
+        its :class:`~isolator.diagnosis.fitting.Kinematics`).
     effects : tuple of Effect
         The candidates.
     thresholds : Thresholds

@@ -41,10 +41,8 @@ class Features:
 
     Attributes
     ----------
-    sample : ndarray of int
-        Index of the sample in the whole campaign (kept by :meth:`take`).
-    test : ndarray of int
-        Index of the test of each sample.
+    sample, test : ndarray of int
+        Index of the sample in the whole campaign (kept by :meth:`take`), and of its test.
     time, displacement, velocity, speed, force, axial_force, pressure : ndarray
         [s], [m], [m/s], [m/s] (|v|), [N], [N], [Pa] (N / contact area).
     since_reversal, travel, campaign_travel : ndarray
@@ -60,15 +58,11 @@ class Features:
         Return-map variable [-], N u / R_eff [N], the calibrated baseline's friction
         coefficient [-].
     temperature_rise, centre_rise : ndarray
-        Contact-temperature rise from the measured friction power [degC], averaged over the
-        contact on the precise model's monitor line, and at the plate centre (the simplified
-        model's point, lambda = 0.5).
-    noise_variance : ndarray
-        Variance of the force error measurement noise alone leaves [N^2]
-        (:mod:`isolator.diagnosis.noise`).
-    weight : ndarray
-        Weight of each sample in the fits and the selection, 1 / (noise variance + the
-        baseline's excess variance) [1/N^2] (:mod:`isolator.diagnosis.selection`).
+        Contact-temperature rise from the measured friction power [degC] over the contact on
+        the precise model's monitor line, and at the simplified model's centre point.
+    noise_variance, weight : ndarray
+        Variance of the force error noise alone leaves [N^2] (:mod:`.noise`), and the weight
+        1 / (noise variance + the baseline's excess variance) [1/N^2] of fits and selection.
     """
 
     sample: np.ndarray
@@ -217,10 +211,8 @@ def contact_temperature_rise(
 
     Parameters
     ----------
-    time : ndarray
-        Sample times [s].
-    position : ndarray
-        Slider centre on the plate, from the plate centre [m].
+    time, position : ndarray
+        Sample times [s]; slider centre on the plate, from the plate centre [m].
     flux : ndarray
         Heat flux into the surface over the step ending at each sample [W/m^2], >= 0.
     layout : MonitorLine or CentrePoint
@@ -228,7 +220,7 @@ def contact_temperature_rise(
     contact_radius : float
         Slider radius [m].
     thermal : ThermalProperties
-        Conductivity and diffusivity of the plate.
+        The plate's material.
     heating : SurfaceHeating, optional
         A plate's heating history to continue, updated in place (default: a fresh plate).
     """

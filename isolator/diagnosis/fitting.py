@@ -38,12 +38,8 @@ class Kinematics:
     time, displacement, axial_force : tuple of ndarray
         Per test: sample times [s], the displacement as measured (smoothed, no channel lag
         applied) [m] and the axial force [N].
-    yield_displacement : float
-        The baseline's u_y [m].
-    effective_radius : float
-        R_eff [m].
-    nominal_mu : float
-        Mean friction coefficient of the baseline [-].
+    yield_displacement, effective_radius, nominal_mu : float
+        The baseline's u_y [m], R_eff [m] and mean friction coefficient [-].
     """
 
     time: tuple[np.ndarray, ...]
@@ -174,14 +170,12 @@ class Fit:
 
     Attributes
     ----------
-    theta : ndarray
-        Parameters on their fitting scale.
-    stderr : ndarray
-        Their standard errors (see the module docstring); NaN where not identifiable.
-    sse : float
-        Weighted sum of squared force residuals on the training samples [-].
-    samples : int
-        Training samples.
+    theta, stderr : ndarray
+        Parameters on their fitting scale and their standard errors (NaN where not
+        identifiable).
+    sse, samples : float, int
+        Weighted sum of squared force residuals [-] over the training samples, and their
+        number.
     """
 
     theta: np.ndarray
@@ -271,8 +265,7 @@ class HoldOut:
     Attributes
     ----------
     scheme : str
-        ``"leave-one-test-out"``, ``"tests held out in N groups"`` or
-        ``"alternate cycles"``.
+        ``"leave-one-test-out"``, ``"tests held out in N groups"`` or ``"alternate cycles"``.
     folds : tuple of (ndarray, ndarray)
         (training indices, held-out indices) of each fold.
     training, held_out : tuple of Features

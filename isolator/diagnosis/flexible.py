@@ -41,19 +41,8 @@ def ramps(x: np.ndarray, positions: np.ndarray) -> np.ndarray:
 
 
 def flexible(effect: Effect, features, context: Context, increasing: bool) -> Effect:
-    """``effect`` in its flexible monotone form (rising or falling with its variable).
-
-    Parameters
-    ----------
-    effect : Effect
-        An effect on mu with a ``variable``.
-    features : Features
-        The campaign's features; the knots are quantiles of the variable over them.
-    context : Context
-        The campaign's constants.
-    increasing : bool
-        Whether m rises with the variable.
-    """
+    """``effect`` (on mu, with a ``variable``) in its flexible monotone form, rising with its
+    variable if ``increasing``, with knots at quantiles of the variable over ``features``."""
     if effect.acts_on != "mu" or effect.variable is None:
         raise ValueError(f"Effect {effect.name!r} has no flexible form (it must act on mu "
                          "and name its variable).")

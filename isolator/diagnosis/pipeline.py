@@ -56,10 +56,8 @@ def diagnose(
         The measured tests of one bearing, in the order run.
     baseline : BaselineSpec or str
         The model to diagnose; a string is a model name with all its effects.
-    candidates : sequence of str
-        Names of the library's effects to try.
-    exclude : sequence of str
-        Effects withheld from the library.
+    candidates, exclude : sequence of str
+        Names of the library's effects to try, and of those withheld.
     thresholds : Thresholds, optional
         The decision thresholds (default: :func:`isolator.diagnosis.thresholds.current`).
     """

@@ -69,10 +69,8 @@ class Levels:
 
     Parameters
     ----------
-    sample_interval : float
-        Median sample interval [s].
-    peak_velocity : float
-        Peak |du/dt| from the displacement and the time [m/s].
+    sample_interval, peak_velocity : float
+        Median sample interval [s]; peak |du/dt| [m/s].
     friction_force : float
         Half-height of the sliding-phase loop, F [N] (negative: the force aids the motion).
     slope : float
@@ -84,10 +82,8 @@ class Levels:
         Mean axial load [N].
     stroke : float
         99th percentile of |u| [m].
-    force_range : float
-        Peak-to-peak force [N] (zero: a dead channel).
-    first_force : float
-        The first force value [N].
+    force_range, first_force : float
+        Peak-to-peak force [N] (zero: a dead channel) and its first value [N].
     """
 
     sample_interval: float
@@ -169,24 +165,11 @@ def _middle_slope(u: np.ndarray, velocity: np.ndarray, force: np.ndarray,
 
 def implausibility(levels: Levels, effective_radius: float, where: str,
                    load_source: str = "the axial load") -> str | None:
-    """The first unit mistake the levels of one test betray, as a message; None if none.
+    """The first unit mistake the ``levels`` of one test betray, or None.
 
-    Parameters
-    ----------
-    levels : Levels
-        From :func:`implied_levels`.
-    effective_radius : float
-        The effective radius R_eff told [m]; ``inf`` for a flat slider or a friction damper.
-    where : str
-        The file (and test of a manifest) to name in the message.
-    load_source : str
-        Where the axial load came from (a column, a flag, a manifest), for the message.
-
-    Returns
-    -------
-    str or None
-        ``where``, the column or value, the implied level, the allowed range and the likely
-        mistake.
+    The message names ``where`` (the file, and test of a manifest), the column or value, the
+    implied level, the allowed range and the likely mistake. ``effective_radius`` is the
+    R_eff told [m] (``inf``: no slope check), ``load_source`` where the axial load came from.
     """
     if levels.force_range == 0.0:
         state = ("all zero" if levels.first_force == 0.0

@@ -110,10 +110,9 @@ class Assessment:
     score, weighted : float
         Held-out standardised and weighted mean squares of the residual [-] (inf when
         untestable).
-    z_score : float
-        Improvement over the reference in standard errors of the summed block differences.
-    explained : float
-        Share of the reference's weighted excess above noise that it closes [-].
+    z_score, explained : float
+        Against the reference: the improvement in standard errors of the summed block
+        differences [-], and the share of its weighted excess above noise closed [-].
     earns_keep : bool
         Whether it qualifies against the reference (:func:`qualifies`).
     untestable : str or None
@@ -207,25 +206,20 @@ class Selection:
     ----------
     stage : Stage
         The sliding-phase stage the verdict was decided on (its samples define the gap).
-    kinematic : Assessment or None
-        The named effects on the kinematics (judged on every sample).
-    kinematic_candidates : dict
-        Each kinematic effect alone, judged on every sample.
+    kinematic, kinematic_candidates : Assessment or None, dict
+        The named effects on the kinematics, and each alone, judged on every sample.
     chosen : Assessment or None
         The final model on the stage's samples (kinematics and friction-law effects).
     verdict : list of str
         See :mod:`isolator.diagnosis.decision`.
-    explained : float
-        Share of the sliding-phase excess closed by ``chosen`` [-].
-    real_gap_remains : bool
-        Whether a real gap is left.
+    explained, real_gap_remains : float, bool
+        Share of the sliding-phase excess closed by ``chosen`` [-]; whether a real gap is left.
     ranking : list of str
         Effect names, best first: the named ones, then the others by held-out error, then the
         untestable ones.
     form : dict
         ``{effect: "paper" | "flexible"}``: the form of each named effect on mu reported.
     thresholds : Thresholds
-        The thresholds used.
     """
 
     stage: Stage

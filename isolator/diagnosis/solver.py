@@ -28,10 +28,8 @@ class Solution:
 
     Attributes
     ----------
-    x : ndarray
-        Parameters at the minimum found.
-    cost : float
-        Sum of squared residuals there.
+    x, cost : ndarray, float
+        Parameters at the minimum found, and the sum of squared residuals there.
     residual, jacobian : ndarray
         Residual vector and forward-difference Jacobian (n x p) there.
     evaluations : int
@@ -68,16 +66,8 @@ def levenberg_marquardt(
 ) -> Solution:
     """Minimise sum(fun(x)^2) for low <= x <= high.
 
-    Parameters
-    ----------
-    fun : callable
-        Residual vector of the parameters.
-    x0 : ndarray
-        Start (projected onto the bounds).
-    low, high : ndarray
-        Bounds.
-    max_iterations : int
-        Largest number of Jacobian evaluations.
+    ``fun(x)`` is the residual vector, ``x0`` the start (projected onto the bounds), and
+    ``max_iterations`` the largest number of Jacobian evaluations.
     """
     x = np.clip(np.asarray(x0, dtype=float), low, high)
     r = fun(x)

@@ -209,10 +209,9 @@ class Diagnosis:
         Where the baseline's held-out residual lies.
     cycles_before, cycles_after : CycleErrors
         Per-cycle characteristic errors of the baseline and of the chosen effects (held out).
-    remaining : Where or None
-        Where the residual left after the chosen effects lies, when a real gap remains.
-    looks_like : list of str
-        What the remaining gap looks like, when a real gap remains.
+    remaining, looks_like : Where or None, list of str
+        When a real gap remains, where the residual left by the chosen effects lies and
+        what it looks like.
     wall_time : float
         Time the diagnosis took [s].
     excluded : tuple of str

@@ -57,10 +57,9 @@ class Where:
     ----------
     breakdowns : dict
         ``{dimension: [Band, ...]}`` in band order.
-    statement : str
-        Where most of the residual sits.
-    focus : list of (str, str)
-        The (dimension, band range) pairs the statement names.
+    statement, focus : str, list of (str, str)
+        The sentence on where most of the residual sits, and the (dimension, band range)
+        pairs it names.
     energy_share, sample_share : float
         Shares of residual energy and samples where all the focus bands hold [-].
     near_reversal : float

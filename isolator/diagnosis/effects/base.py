@@ -27,11 +27,11 @@ class Parameter:
     name : str
         Name on the fitting scale.
     initial, low, high : float
-        Start value and bounds (of log10 of the value when ``log``).
+        Start value and bounds, of log10 of the value when ``log``.
     log : bool
         Whether the parameter is fitted as log10 of its value.
     starts : tuple of float
-        Further start values of a multistart fit (on the fitting scale).
+        Further start values of a multistart fit.
     edge_ok : bool
         Whether a fit at a bound is still a physical reading (a weight at 0 or 1, a
         rigid-plastic transition, a linear drift); otherwise an effect fitted at a bound is
@@ -58,10 +58,8 @@ class Context:
 
     Attributes
     ----------
-    reference_pressure : float
-        Median contact pressure [Pa].
-    pressure_spread : float
-        Ratio of the 95th to the 5th percentile of the pressure, less one [-].
+    reference_pressure, pressure_spread : float
+        Median contact pressure [Pa]; ratio of its 95th to its 5th percentile, less one [-].
     reference_displacement : float
         99th percentile of |u| [m].
     campaign_travel : float
@@ -72,14 +70,10 @@ class Context:
         Largest contact-temperature rise from the measured friction power [degC].
     sample_interval : float
         Median sampling interval [s].
-    yield_displacement : float
-        The baseline's calibrated u_y [m].
-    nominal_mu : float
-        Mean friction coefficient of the calibrated baseline [-].
+    yield_displacement, nominal_mu, channel_lag : float
+        The calibrated baseline's u_y [m], mean mu [-] and lag of the force channel [s].
     tests : int
         Number of tests.
-    channel_lag : float
-        The baseline's calibrated lag of the force channel behind the displacement [s].
     kinematics : object or None
         The contiguous histories (:class:`isolator.diagnosis.fitting.Kinematics`) on which
         kinematic effects recompute the return map.
@@ -120,20 +114,14 @@ class Effect:
 
     Attributes
     ----------
-    name : str
-        Name used in the verdict.
-    description : str
-        One line for reports.
-    physical_reading : str
-        What the effect is physically.
+    name, description, physical_reading : str
+        Name in the verdict, one line for reports, what the effect is physically.
     parameters : tuple of Parameter
         Its own parameters (the fit adds the baseline's scale c).
     acts_on : {"kinematics", "mu", "force"}
         Where it acts; the hooks below that act there must not all be None.
-    factor : callable or None
-        ``factor(theta, features, context) -> m`` [-], multiplying mu.
-    extra : callable or None
-        ``extra(theta, features, context) -> e`` [N], added to the force.
+    factor, extra : callable or None
+        ``(theta, features, context) ->`` a factor m [-] on mu, a force e [N] added.
     transform : callable or None
         ``transform(theta, features, context, pendulum, friction) -> force`` [N] from the
         pendulum force and the friction force mu N z.
