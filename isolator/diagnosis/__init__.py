@@ -1,5 +1,8 @@
 """The sim-to-real gap of a bearing model: where it lies, which effect explains it, how far
-it shrinks (:func:`diagnose` on measured tests, :mod:`.data`; the steps: :mod:`.pipeline`).
+it shrinks.
+
+:func:`diagnose` takes measured tests (:mod:`.data`) and a baseline (:mod:`.baseline`); its
+steps are in :mod:`.pipeline`, the method for users in ``docs/diagnosis.md``.
 """
 
 from isolator.diagnosis.baseline import BASELINE_MODELS, REMOVABLE_EFFECTS, BaselineSpec

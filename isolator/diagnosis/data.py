@@ -230,8 +230,9 @@ def load_campaign(
     slider_diameter: float,
     axial_load: float | None = None,
 ) -> Campaign:
-    """Read the tests of a campaign, in the order run (``axial_load``, errors: see
-    :func:`read_record`, :func:`check_consistent_units` and :func:`check_plausible`)."""
+    """Read the tests of a campaign, in the order run (``axial_load``: see
+    :func:`read_record`), and check them (:func:`check_consistent_units`,
+    :func:`check_plausible`)."""
     if isinstance(paths, str | Path) or not paths:
         raise DataError("load_campaign needs a list of one or more CSV files.")
     tests = tuple(read_record(p, axial_load=axial_load) for p in paths)
@@ -280,9 +281,9 @@ def check_consistent_units(tests: Sequence[BearingRecord],
                            where: Sequence[str] | None = None) -> None:
     """Refuse a campaign whose tests look written in different units.
 
-    Each test's sampling interval, peak displacement and peak force [s, m, N] differing from
-    the campaign's median by more than ``UNIT_RATIO`` (a unit mistake is a factor of 1000) is
-    a ``DataError`` naming the test (``where``, per test; default ``test 'name'``).
+    A test whose sampling interval, peak displacement or peak force [s, m, N] differs from the
+    campaign's median by a factor above ``UNIT_RATIO`` (a unit mistake is 1000) raises a
+    ``DataError`` naming it (``where``: per test; default ``test 'name'``).
     """
     if len(tests) < 2:
         return

@@ -313,7 +313,8 @@ class Problem:
 
     def _extended_fit(self, work: Workspace, current: Assessment,
                       additions: tuple[Assessment, ...]) -> tuple[Model, Fit]:
-        """``current`` extended by the last effect of each of ``additions``, fitted."""
+        """``current`` extended by the last effect of each of ``additions``, fitted on all
+        samples of ``work``."""
         own = [a.model.effects[-1] for a in additions]
         if len(own) == 1 and additions[0].model.effects[:-1] == current.model.effects:
             return additions[0].model, additions[0].fit

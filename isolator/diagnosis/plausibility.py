@@ -37,17 +37,17 @@ friction-damper data 0.011-0.127. The bounds are only 270 apart, so a factor of 
 N) takes any coefficient inside them outside.
 """
 VELOCITY_RANGE = (1.0e-3, 5.0)
-"""Allowed peak |du/dt| of a test [m/s]: below is a creep test, and time in ms puts a
-0.05-1 m/s test at 0.05-1 mm/s; above the fastest rigs (about 2 m/s) is a displacement in
-mm."""
+"""Allowed peak |du/dt| of a test [m/s]: below is a creep test (time in ms puts a 0.05-1 m/s
+test at 0.05-1 mm/s); the fastest rigs reach about 2 m/s (displacement in mm makes a 5 mm/s
+test 5 m/s)."""
 MAX_SAMPLE_INTERVAL = 0.1
 """Largest median sample interval [s] (10 Hz): the diagnosis resolves the force within a few
 mm of each reversal, its thresholds come from 100-500 Hz records, and time in ms makes any
 record sampled below 10 kHz show 0.1 s or more."""
 STIFFNESS_FACTOR = 3.0
 """Largest factor between the loops' slope and N / R_eff [-]: another radius than the one
-told (the ``stiffness`` effect; 0.81-1.25 in the validation panels) or a spherical surface
-stays well inside it; beyond it is a wrong R_eff or axial load."""
+told (the ``stiffness`` effect; 0.81-1.25 in the validation panels) and a spherical surface
+stay well inside it; beyond it is a wrong R_eff or axial load."""
 VISIBLE_FRACTION = 0.5
 """The slope is judged only where |k - N / R_eff| times the stroke exceeds this fraction of
 the loop's half-height F [-]: a mismatch the loop shows, not one lost in a short stroke."""

@@ -30,7 +30,8 @@ def _pyplot():
 
 
 def write_report(diagnosis: Diagnosis, folder: str | Path) -> list[Path]:
-    """Write the summary, the JSON and the plots of ``diagnosis`` to ``folder``; the paths."""
+    """Write the summary, the JSON and the plots of ``diagnosis`` to ``folder``; return the
+    paths written."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     summary = diagnosis.to_json()

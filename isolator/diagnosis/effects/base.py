@@ -121,14 +121,15 @@ class Effect:
     acts_on : {"kinematics", "mu", "force"}
         Where it acts; the hooks below that act there must not all be None.
     factor, extra : callable or None
-        ``(theta, features, context) ->`` a factor m [-] on mu, a force e [N] added.
+        ``factor(theta, features, context) -> m`` [-] multiplying mu, and
+        ``extra(theta, features, context) -> e`` [N] added to the force.
     transform : callable or None
         ``transform(theta, features, context, pendulum, friction) -> force`` [N] from the
         pendulum force and the friction force mu N z.
     kinematic : callable or None
-        ``kinematic(theta, context) -> {"shift": s, "half_width": h, ...}``: a further lag
-        of the force channel [s], the half width of a play [m] and/or a yield displacement
-        [m], from which the return map and the pendulum force are recomputed.
+        ``kinematic(theta, context) -> {"shift": s, "half_width": h, "yield_displacement": y}``
+        (any of them): a further lag of the force channel [s], a play's half width [m], a
+        yield displacement [m]; the return map and the pendulum force are recomputed.
     variable : callable or None
         ``variable(features, context) -> x``: the variable of its flexible monotone form
         (:mod:`isolator.diagnosis.flexible`).
