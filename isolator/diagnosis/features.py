@@ -217,10 +217,8 @@ def contact_temperature_rise(
         Heat flux into the surface over the step ending at each sample [W/m^2], >= 0.
     layout : MonitorLine or CentrePoint
         The monitor points (precise or simplified model).
-    contact_radius : float
-        Slider radius [m].
-    thermal : ThermalProperties
-        The plate's material.
+    contact_radius, thermal : float, ThermalProperties
+        Slider radius [m] and the plate's material.
     heating : SurfaceHeating, optional
         A plate's heating history to continue, updated in place (default: a fresh plate).
     """

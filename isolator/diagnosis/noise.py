@@ -39,10 +39,9 @@ def sample_noise_variance(
 
     Parameters
     ----------
-    features : Features
-        The calibrated baseline's features (z, mu_base and the smoothed displacement set).
-    campaign : Campaign
-        The measured tests (their raw displacement is perturbed).
+    features, campaign : Features, Campaign
+        The calibrated baseline's features (z, mu_base, the smoothed displacement) and the
+        measured tests, whose raw displacement is perturbed.
     force_noise, displacement_noise, axial_noise : ndarray
         Noise standard deviation of each test's force [N], displacement [m], axial force [N].
     yield_displacement : float

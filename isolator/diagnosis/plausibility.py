@@ -78,10 +78,8 @@ class Levels:
         stroke or a history too short to tell.
     scatter : float
         RMS of the sliding-phase force about the fit [N].
-    axial_load : float
-        Mean axial load [N].
-    stroke : float
-        99th percentile of |u| [m].
+    axial_load, stroke : float
+        Mean axial load [N]; 99th percentile of |u| [m].
     force_range, first_force : float
         Peak-to-peak force [N] (zero: a dead channel) and its first value [N].
     """

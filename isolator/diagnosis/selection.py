@@ -103,10 +103,8 @@ class Assessment:
     ----------
     model : Model
         The baseline with its effects.
-    fit : Fit or None
-        The fit on all data (parameters and standard errors).
-    prediction : ndarray or None
-        Held-out force of every sample [N].
+    fit, prediction : Fit or None, ndarray or None
+        The fit on all data, and the held-out force of every sample [N].
     score, weighted : float
         Held-out standardised and weighted mean squares of the residual [-] (inf when
         untestable).

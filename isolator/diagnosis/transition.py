@@ -42,10 +42,8 @@ class TransitionFinding:
 
     Attributes
     ----------
-    yield_displacement : float
-        The calibrated u_y [m].
-    rigid_plastic : bool
-        Whether u_y is at the rigid-plastic limit.
+    yield_displacement, rigid_plastic : float, bool
+        The calibrated u_y [m], and whether it is the rigid-plastic limit.
     window_travel, window_samples : float, int
         Extent of the window after a reversal [m], [samples].
     sample_share, energy_share : float

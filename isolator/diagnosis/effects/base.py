@@ -60,10 +60,8 @@ class Context:
     ----------
     reference_pressure, pressure_spread : float
         Median contact pressure [Pa]; ratio of its 95th to its 5th percentile, less one [-].
-    reference_displacement : float
-        99th percentile of |u| [m].
-    campaign_travel : float
-        Total travel of the campaign [m].
+    reference_displacement, campaign_travel : float
+        99th percentile of |u| [m]; total travel of the campaign [m].
     effective_radius : float
         R_eff the user gave [m] (inf for a flat slider).
     largest_rise : float
