@@ -1,11 +1,8 @@
 """The sim-to-real gap of a bearing model: where it lies, which effect explains it, how far
 it shrinks.
 
-Given measured bearing histories (displacement, force, axial force; :mod:`.data`) and a
-baseline friction model (:mod:`.baseline`), :func:`diagnose` calibrates the baseline, locates
-its held-out residual (:mod:`.where`), tries a library of candidate effects (:mod:`.effects`)
-fitted on part of the data and judged on held-out data (:mod:`.fitting`, :mod:`.selection`),
-and reports the verdict with the gap before and after (:mod:`.summary`, :mod:`.report`).
+:func:`diagnose` takes measured tests (:mod:`.data`) and a baseline (:mod:`.baseline`); its
+steps are in :mod:`.pipeline`, the method for users in ``docs/diagnosis.md``.
 """
 
 from isolator.diagnosis.baseline import BASELINE_MODELS, REMOVABLE_EFFECTS, BaselineSpec

@@ -2,17 +2,16 @@
 
 A baseline is one of the paper's friction models, ``constant`` (Eq. 8), ``simplified`` or
 ``precise`` (Eq. 7), possibly without some of its effects (``precise --without heating``).
-Calibration fits the baseline's own parameters so that the gap left is what its *form* cannot
-explain: the friction coefficient mu of the constant model or mu_t0 of the others, and the
-yield displacement u_y of the return map (unless given).
+Calibration fits its own parameters, so that the gap left is what its *form* cannot explain:
+mu (constant model) or mu_t0, the yield displacement u_y (unless given) and a lag of the force
+channel of up to ``NUISANCE_LAG_SAMPLES`` samples, to a fraction of a sample.
 
-For an imposed displacement history z(t) depends on u(t) and u_y only, so
-F = N u / R_eff + mu(t) N z(t). The constant model's mu is then a linear least-squares fit for
-each u_y; u_y is found on a logarithmic grid refined by a bounded scalar search. A
-pressure-velocity-temperature model is run through the virtual test machine
-(:func:`isolator.testrig.run_test`) with the measured displacement, velocity and axial load;
-its mu(t) is proportional to mu_t0 but for the heating, so mu_t0 is rescaled by the fitted
-factor and the run repeated until the factor is 1 to 1e-3.
+For an imposed displacement z(t) depends on u(t) and u_y only, so
+F = N u / R_eff + mu(t) N z(t) and mu is a linear least-squares factor for each u_y; u_y is
+found on a logarithmic grid refined by a bounded scalar search. A PTV model's mu(t) comes from
+the virtual test machine (:func:`isolator.testrig.run_test`) on the measured displacement,
+velocity and axial load; it is proportional to mu_t0 but for the heating, so mu_t0 is
+rescaled by the fitted factor and the run repeated until the factor is 1 to 1e-3.
 """
 
 from __future__ import annotations
@@ -59,8 +58,7 @@ class BaselineSpec:
     model : {"constant", "simplified", "precise"}
         The paper's friction model.
     without : tuple of str
-        Effects of a ``simplified`` or ``precise`` model switched off: ``"heating"``,
-        ``"velocity"``, ``"pressure"``.
+        Effects of a ``simplified`` or ``precise`` model switched off (``REMOVABLE_EFFECTS``).
     yield_displacement : float or None
         Yield displacement u_y of the return map [m]; None calibrates it.
     """
@@ -117,18 +115,17 @@ class BaselineFit:
 
     Attributes
     ----------
-    spec : BaselineSpec
-        The baseline.
-    parameters : dict
-        ``mu`` (constant) or ``mu_t0`` (others) [-] and ``yield_displacement`` [m].
+    spec, parameters : BaselineSpec, dict
+        The baseline and its calibrated ``mu`` (constant) or ``mu_t0`` [-] and
+        ``yield_displacement`` [m].
     features : Features
-        The campaign's features with z, the pendulum force, the baseline's mu(t) and the
-        temperature rise filled in.
+        The campaign's features with the baseline's z, pendulum force, mu(t) and temperature
+        rises.
     iterations : int
         Runs of the virtual test machine (0 for the constant model).
     lag : float
-        Time offset of the force channel behind the displacement channel [s], within
-        ``NUISANCE_LAG_SAMPLES`` samples; the features' displacement has it applied.
+        Calibrated lag of the force channel behind the displacement [s], applied to the
+        features' displacement.
     sample_interval : float
         Median sampling interval [s].
     """
@@ -142,13 +139,8 @@ class BaselineFit:
 
 
 def calibrate(campaign: Campaign, features: Features, spec: BaselineSpec) -> BaselineFit:
-    """Fit the baseline's own parameters to the whole campaign (see the module docstring):
-    mu (or mu_t0), the pre-sliding transition u_y (down to the rigid-plastic limit) and the
-    time offset between the force and displacement channels (to a fraction of a sample).
-
-    The tests' levels are checked first (:func:`~isolator.diagnosis.data.check_plausible`):
-    a unit mistake or a wrong R_eff or axial load would otherwise end in a verdict on
-    nonsense or in a friction coefficient blamed on the sign convention of the force."""
+    """Calibrate the baseline on the whole campaign (see the module docstring), once the
+    tests' levels pass :func:`~isolator.diagnosis.data.check_plausible`."""
     check_plausible(campaign)
     dt = float(np.median(np.diff(features.time)[np.diff(features.test) == 0]))
     t0 = _initial_temperature(campaign)
@@ -191,11 +183,9 @@ def calibrate(campaign: Campaign, features: Features, spec: BaselineSpec) -> Bas
 def _shifted_features(features: Features, lag: float) -> Features:
     """The features with the displacement a force lagging by ``lag`` [s] belongs to.
 
-    The velocity is left as measured: the lag is calibrated before any effect is known, and
-    an unmodelled effect at low speed (near the reversals, where the lag is seen) can bias it
-    by a sample or two; the speed an effect on mu reads is then still the right one, and the
-    sliding phase refits the offset of the pendulum force with every model
-    (:data:`isolator.diagnosis.transition.TIMING`)."""
+    The velocity stays as measured: an unmodelled effect at low speed can bias the lag by a
+    sample or two, so the speed an effect on mu reads stays right, and the sliding phase
+    refits the lag with every model (:data:`isolator.diagnosis.transition.TIMING`)."""
     if lag == 0.0:
         return features
     u = np.empty(len(features))

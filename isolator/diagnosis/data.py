@@ -1,19 +1,12 @@
 """Measured bearing histories for the diagnosis: one record per test, checked on the way in.
 
-A test is a CSV file with a header line and the columns ``time`` [s], ``displacement`` [m]
-(relative displacement of the plates), ``force`` [N] (horizontal), and optionally
-``axial_force`` [N], ``velocity`` [m/s] and ``temperature`` [degC]; other columns are ignored.
-Gzipped files (``.csv.gz``) are read as they are. Every problem is reported with the file, the
-column and the row (the first data row is row 2, after the header), before any fitting starts:
-missing columns, non-numeric values, NaNs, columns of different lengths, time that does not
-increase, a non-positive axial force, a displacement that looks like millimetres; then the
-levels a campaign's tests imply (velocity, friction coefficient, pendulum slope), which betray
-time in ms, force in kN, a dead force channel, a wrong R_eff or axial load
-(:func:`check_plausible`).
-
-A :class:`Campaign` is the tests of one bearing in the order they were run (wear accumulates
-across them), with the bearing's effective radius (``inf`` for a flat slider or a friction
-damper) and slider diameter.
+A test is a CSV file (or ``.csv.gz``) with a header line and the columns ``time`` [s],
+``displacement`` [m] (relative displacement of the plates), ``force`` [N] (horizontal) and
+optionally ``axial_force`` [N], ``velocity`` [m/s] and ``temperature`` [degC]; other columns
+are ignored. Every problem is reported before any fitting, naming the file, the column and
+the row (the first data row is row 2): a missing column, a non-numeric value or NaN, unequal
+lengths, time that does not increase, a non-positive axial force, a displacement in mm, and
+levels that betray a unit mistake or a wrong R_eff or axial load (:func:`check_plausible`).
 """
 
 from __future__ import annotations
@@ -49,25 +42,18 @@ class BearingRecord:
     ----------
     name : str
         Name of the test (the file name for a CSV).
-    time : array_like
-        Strictly increasing sample times [s].
-    displacement : array_like
-        Relative displacement of the plates [m].
-    force : array_like
-        Horizontal force [N].
-    axial_force : array_like
-        Compressive axial load [N], positive.
+    time, displacement, force, axial_force : array_like
+        Strictly increasing sample times [s], relative displacement of the plates [m],
+        horizontal force [N], compressive axial load [N] > 0.
     velocity : array_like or None
-        Relative velocity [m/s]; None derives it from the displacement (a local quadratic
-        least-squares derivative over about 40 ms, or ``numpy.gradient`` for uneven steps).
+        Relative velocity [m/s]; None derives it (:func:`derived_velocity`).
     temperature : array_like or None
         Measured temperature [degC], if any.
     initial_temperature : float or None
         Temperature of the plates at the start of the test [degC] (a campaign manifest's);
         None: the measured temperature's first value, else 20 degC.
     rest_before : float or None
-        Rest before the test since the end of the previous one [s]; None: long enough for
-        the plates to cool (the heat of earlier tests is forgotten).
+        Rest since the end of the previous test [s]; None: long enough to cool.
     """
 
     name: str
@@ -127,17 +113,9 @@ class BearingRecord:
 
 @dataclass(frozen=True, eq=False)
 class Campaign:
-    """The tests of one bearing, in the order they were run, with its geometry.
-
-    Parameters
-    ----------
-    tests : sequence of BearingRecord
-        At least one test.
-    effective_radius : float
-        Effective radius R_eff [m]; ``inf`` for a flat slider or a friction damper.
-    slider_diameter : float
-        Slider diameter [m]; the contact radius is half of it.
-    """
+    """The tests of one bearing, at least one, in the order run (wear accumulates across
+    them), with its effective radius R_eff [m] (``inf`` for a flat slider or a friction
+    damper) and slider diameter [m]."""
 
     tests: tuple[BearingRecord, ...]
     effective_radius: float
@@ -187,15 +165,14 @@ def derived_velocity(time: np.ndarray, displacement: np.ndarray) -> np.ndarray:
 def read_record(path: str | Path, *, axial_load: float | None = None,
                 initial_temperature: float | None = None,
                 rest_before: float | None = None) -> BearingRecord:
-    """Read one test from a CSV file (see the module docstring for the columns).
+    """Read one test from a CSV file (columns: see the module docstring).
 
     Parameters
     ----------
     path : str or Path
         CSV file, optionally gzipped.
     axial_load : float, optional
-        Constant axial load [N] for a file without an ``axial_force`` column. With such a
-        column the column is used and ``axial_load`` must not be given.
+        Constant axial load [N] for a file without an ``axial_force`` column (only then).
     initial_temperature, rest_before : float, optional
         See :class:`BearingRecord` (a campaign manifest gives them).
 
@@ -253,11 +230,9 @@ def load_campaign(
     slider_diameter: float,
     axial_load: float | None = None,
 ) -> Campaign:
-    """Read the tests of a campaign, in the order given (the order they were run).
-
-    See :func:`read_record` for ``axial_load`` and the errors; the tests' physical levels are
-    then checked against unit mistakes (:func:`check_plausible`).
-    """
+    """Read the tests of a campaign, in the order run (``axial_load``: see
+    :func:`read_record`), and check them (:func:`check_consistent_units`,
+    :func:`check_plausible`)."""
     if isinstance(paths, str | Path) or not paths:
         raise DataError("load_campaign needs a list of one or more CSV files.")
     tests = tuple(read_record(p, axial_load=axial_load) for p in paths)
@@ -271,25 +246,21 @@ def load_campaign(
 
 def check_plausible(campaign: Campaign, where: Sequence[str] | None = None,
                     load_sources: Sequence[str] | None = None) -> None:
-    """Refuse tests whose implied physical levels betray a unit mistake, before any fitting.
-
-    The sample interval, the peak velocity, the friction coefficient the loops imply and
-    their slope against N / R_eff are checked (:mod:`isolator.diagnosis.plausibility`).
+    """Refuse tests whose implied levels betray a unit mistake or a wrong R_eff or axial load
+    (:mod:`isolator.diagnosis.plausibility`).
 
     Parameters
     ----------
     campaign : Campaign
         The tests and the effective radius R_eff [m] told.
-    where : sequence of str, optional
-        Per test, the file (and manifest test) to name; default ``test 'name'``.
-    load_sources : sequence of str, optional
-        Per test, where its axial load [N] came from; default "the axial load".
+    where, load_sources : sequence of str, optional
+        Per test, the file (and manifest test) to name, default ``test 'name'``, and where
+        its axial load came from, default "the axial load".
 
     Raises
     ------
     DataError
-        Naming the file, the column or value, the implied level, the allowed range and the
-        likely mistake ("time looks like milliseconds", "force looks like kN", ...).
+        Naming the test, the implied level, the allowed range and the likely mistake.
     """
     from isolator.diagnosis.plausibility import implausibility, implied_levels
 
@@ -310,10 +281,9 @@ def check_consistent_units(tests: Sequence[BearingRecord],
                            where: Sequence[str] | None = None) -> None:
     """Refuse a campaign whose tests look written in different units.
 
-    The sampling interval, the peak displacement and the peak force of every test are
-    compared with the campaign's medians; a factor above ``UNIT_RATIO`` (ms against s, mm
-    against m, kN against N are factors of 1000) is an error naming the test (``where``: per
-    test, the file or manifest test to name; default ``test 'name'``).
+    A test whose sampling interval, peak displacement or peak force [s, m, N] differs from the
+    campaign's median by a factor above ``UNIT_RATIO`` (a unit mistake is 1000) raises a
+    ``DataError`` naming it (``where``: per test; default ``test 'name'``).
     """
     if len(tests) < 2:
         return

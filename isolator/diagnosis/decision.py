@@ -1,10 +1,21 @@
-"""The two-stage decision of the diagnosis: kinematics on every sample, then the friction law
-on the sliding phase (see :mod:`isolator.diagnosis.selection` for the criteria).
+"""The two-stage decision of the diagnosis and its verdict (criteria: :mod:`.selection`).
 
-:class:`Problem` holds what every decision on one campaign shares (features, folds, context,
-the candidates' fits, cached) so that :meth:`Problem.select` can be repeated cheaply with
-other thresholds or with effects withheld (a leave-one-effect-out check, the tuning of the
-thresholds on the validation panel).
+1. **Kinematics** (``backlash``, ``lag``), judged on every sample since they act at the
+   reversals (``kinematic_*`` thresholds): a play of at least ``backlash_min`` or a channel
+   offset of at least ``lag_min_samples``, beyond what the baseline's transition and lag
+   absorb. When none is named but stage 2 names a friction law, they are looked for again
+   beside it (an asymmetry can hide a play).
+2. **The friction law** (effects on mu and on the force), judged on the sliding phase, outside
+   the transition window (:mod:`.transition`), with the kinematics of stage 1 applied and the
+   channel timing refitted. Effects join by forward selection (a pair when no single one
+   qualifies); a second one must earn its keep, by the stricter ``second_*`` thresholds,
+   over the first in its flexible monotone form when that fits better (:mod:`.flexible`).
+   Effects fitted at a bound of a parameter are not named, nor effects that together close
+   less than ``name_min`` of the excess.
+
+The verdict: ``["none"]`` when nothing is named and the sliding-phase gap is within the noise
+or practically negligible; the named effects, then ``"unexplained"`` when a real gap remains;
+``["unexplained"]`` when a real gap remains that no candidate closes.
 """
 
 from __future__ import annotations
@@ -37,14 +48,14 @@ from isolator.diagnosis.transition import TIMING, in_transition
 
 
 class Problem:
-    """Everything one campaign's decisions share; see the module docstring.
+    """What every decision on one campaign shares (features, folds, the candidates' fits,
+    cached), so that :meth:`select` repeats cheaply with other thresholds or effects withheld.
 
     Parameters
     ----------
-    features : Features
-        The calibrated baseline's features (weights set).
-    context : Context
-        The campaign's constants (with its :class:`~isolator.diagnosis.fitting.Kinematics`).
+    features, context : Features, Context
+        The calibrated baseline's features (weights set) and the campaign's constants (with
+        its :class:`~isolator.diagnosis.fitting.Kinematics`).
     effects : tuple of Effect
         The candidates.
     thresholds : Thresholds
@@ -169,8 +180,7 @@ class Problem:
 
     def select(self, exclude: tuple[str, ...] = (),
                thresholds: Thresholds | None = None) -> Selection:
-        """The decision with ``exclude`` withheld, under ``thresholds`` (default: the
-        problem's)."""
+        """The decision with ``exclude`` withheld, under ``thresholds`` (default: the problem's)."""
         th = thresholds or self.thresholds
         kinematic = self._stage_one(tuple(exclude), th)
         for _ in range(2):  # a second pass when the friction law hid a kinematic effect
@@ -304,7 +314,7 @@ class Problem:
     def _extended_fit(self, work: Workspace, current: Assessment,
                       additions: tuple[Assessment, ...]) -> tuple[Model, Fit]:
         """``current`` extended by the last effect of each of ``additions``, fitted on all
-        data."""
+        samples of ``work``."""
         own = [a.model.effects[-1] for a in additions]
         if len(own) == 1 and additions[0].model.effects[:-1] == current.model.effects:
             return additions[0].model, additions[0].fit

@@ -1,17 +1,10 @@
-"""Sample-by-sample covariates of a campaign, concatenated over its tests.
+"""Sample-by-sample covariates of a campaign, its tests one after the other.
 
-:class:`Features` holds what the baseline and the candidate effects need at every sample:
-the measured force, displacement, velocity and axial load, the return-map variable z, the
-pendulum force N u / R_eff, the baseline's friction coefficient, the contact-temperature rise
-from the measured friction power, the travel since the last reversal, the accumulated travel
-(within the test and over the campaign), the cycle of each sample and the noise variance and
-weight each sample is judged with. Everything but z, the pendulum force, mu, the temperature
-rises and the noise comes from the kinematics alone (:func:`kinematic_features`); the
-baseline calibration and the noise model fill in the rest (:func:`with_baseline`).
-
-The displacement used is the measured one through a short cubic smoothing filter
-(:func:`smoothed_displacement`); reversals are found with a noise threshold, so sensor noise
-neither makes reversals nor accumulates as travel.
+:func:`kinematic_features` computes what the measured histories alone decide; the baseline
+calibration and the noise model fill in the rest (:func:`with_baseline`). The displacement
+is the measured one through a short smoothing filter (:func:`smoothed_displacement`), and a
+reversal must come back by several times the displacement noise, so sensor noise neither
+makes reversals nor accumulates as travel.
 """
 
 from __future__ import annotations
@@ -44,14 +37,12 @@ SMOOTHING_WINDOW = 7  # samples of the cubic Savitzky-Golay filter on the displa
 
 @dataclass(frozen=True, eq=False)
 class Features:
-    """Covariates per sample (all tests one after the other); see the module docstring.
+    """Covariates per sample, all tests one after the other.
 
     Attributes
     ----------
-    sample : ndarray of int
-        Index of the sample in the whole campaign (kept by :meth:`take`).
-    test : ndarray of int
-        Index of the test of each sample.
+    sample, test : ndarray of int
+        Index of the sample in the whole campaign (kept by :meth:`take`), and of its test.
     time, displacement, velocity, speed, force, axial_force, pressure : ndarray
         [s], [m], [m/s], [m/s] (|v|), [N], [N], [Pa] (N / contact area).
     since_reversal, travel, campaign_travel : ndarray
@@ -67,15 +58,11 @@ class Features:
         Return-map variable [-], N u / R_eff [N], the calibrated baseline's friction
         coefficient [-].
     temperature_rise, centre_rise : ndarray
-        Contact-temperature rise from the measured friction power [degC], averaged over the
-        contact on the precise model's monitor line, and at the plate centre (the simplified
-        model's point, lambda = 0.5).
-    noise_variance : ndarray
-        Variance of the force error measurement noise alone leaves [N^2]
-        (:mod:`isolator.diagnosis.noise`).
-    weight : ndarray
-        Weight of each sample in the fits and the selection, 1 / (noise variance + the
-        baseline's excess variance) [1/N^2] (:mod:`isolator.diagnosis.selection`).
+        Contact-temperature rise from the measured friction power [degC] over the contact on
+        the precise model's monitor line, and at the simplified model's centre point.
+    noise_variance, weight : ndarray
+        Variance of the force error noise alone leaves [N^2] (:mod:`.noise`), and the weight
+        1 / (noise variance + the baseline's excess variance) [1/N^2] of fits and selection.
     """
 
     sample: np.ndarray
@@ -121,7 +108,7 @@ class Features:
 
 @dataclass(frozen=True)
 class KinematicInfo:
-    """Per-test scalars found with the features.
+    """Per-test scalars found with the kinematic features.
 
     Attributes
     ----------
@@ -179,12 +166,11 @@ def kinematic_features(campaign: Campaign) -> tuple[Features, KinematicInfo]:
 
 
 def smoothed_displacement(time: np.ndarray, displacement: np.ndarray) -> np.ndarray:
-    """The displacement through a cubic Savitzky-Golay filter of ``SMOOTHING_WINDOW`` samples.
+    """The displacement [m] through a cubic Savitzky-Golay filter of ``SMOOTHING_WINDOW``
+    samples (uneven steps: unfiltered).
 
-    A displacement-driven history is smooth in time, so the filter hardly biases it (the
-    error is of the order of its fourth derivative times the window to the fourth), while it
-    cuts the sensor noise that the stiff elastic branch of the return map (d z / d u = 1/u_y)
-    would turn into force noise at every reversal. Uneven steps are left as they are.
+    The bias on a smooth imposed history is of order d^4u/dt^4 window^4, while the filter cuts
+    the noise the return map's stiff elastic branch (dz/du = 1/u_y) turns into force noise.
     """
     steps = np.diff(time)
     if displacement.size < 2 * SMOOTHING_WINDOW or np.ptp(steps) > 1e-6 * steps.mean():
@@ -225,21 +211,16 @@ def contact_temperature_rise(
 
     Parameters
     ----------
-    time : ndarray
-        Sample times [s].
-    position : ndarray
-        Slider centre on the plate, from the plate centre [m].
+    time, position : ndarray
+        Sample times [s]; slider centre on the plate, from the plate centre [m].
     flux : ndarray
         Heat flux into the surface over the step ending at each sample [W/m^2], >= 0.
     layout : MonitorLine or CentrePoint
         The monitor points (precise or simplified model).
-    contact_radius : float
-        Slider radius [m].
-    thermal : ThermalProperties
-        Conductivity and diffusivity of the plate.
+    contact_radius, thermal : float, ThermalProperties
+        Slider radius [m] and the plate's material.
     heating : SurfaceHeating, optional
-        A heating history to continue (the plate of an earlier test, after a rest); it is
-        updated in place. By default a fresh one.
+        A plate's heating history to continue, updated in place (default: a fresh plate).
     """
     if heating is None:
         heating = new_heating(position, layout, contact_radius, thermal)
@@ -271,13 +252,11 @@ def measured_temperature_rise(
 ) -> np.ndarray:
     """Contact-temperature rise of every test from its measured friction power [degC].
 
-    The heat flux into each of the two sliding surfaces is the measured friction force (the
-    force less the pendulum force) times the velocity, over the contact area, halved; only
-    dissipated power heats (negative power is set to zero). A test whose ``rest_before`` is
-    given (a campaign manifest) continues the plate of the test before it after that rest
-    (up to 10^4 s); otherwise it starts cold. A test's ``initial_temperature`` above the first
-    test's counts as a rise. A test with a measured ``temperature`` that changes by more than
-    1 degC uses that rise instead.
+    The flux into each of the two sliding surfaces is half the dissipated power
+    max((F - N u / R_eff) v, 0) over the contact area. A test with ``rest_before`` (up to
+    10^4 s) continues the previous test's plate after that rest, else starts cold; an
+    ``initial_temperature`` above the first test's counts as a rise; a measured
+    ``temperature`` changing by more than 1 degC is used instead.
     """
     rise = np.zeros(len(features))
     power = np.maximum((features.force - features.pendulum) * features.velocity, 0.0)

@@ -1,17 +1,9 @@
 """Fitting a baseline extended by candidate effects, on training data, judged on held-out data.
 
-A :class:`Model` is the calibrated baseline with a set of effects; its parameter vector is the
-baseline's scale c followed by each effect's parameters. :func:`fit` is a bounded
-Levenberg-Marquardt fit (:mod:`isolator.diagnosis.solver`) of the force residual, each sample
-weighted by
-``Features.weight`` (noise and model error, :mod:`isolator.diagnosis.selection`: the samples
-right after a reversal carry the displacement noise through the return map and count less
-while the model is nearly right).
-:class:`HoldOut` holds the folds: leave-one-test-out when the campaign has at least three
-tests (in at most six groups of tests), else alternate cycles (odd cycles against even cycles
-of every test). :meth:`HoldOut.predict` gives every sample's force as predicted by the fit
-that did not see it, so errors of any kind (RMS, per cycle) are measured on held-out data
-only.
+:func:`fit` is a bounded Levenberg-Marquardt fit (:mod:`isolator.diagnosis.solver`) of a
+:class:`Model`'s force residual, each sample weighted by ``Features.weight``.
+:meth:`HoldOut.predict` gives every sample's force from the fit that did not see it, so every
+error (RMS, per cycle) is measured on held-out data.
 
 Standard errors come from the Jacobian at the fit on all data, (J^T J)^-1 s^2, inflated for
 the serial correlation of the residual by sqrt((1 + rho) / (1 - rho)), rho its lag-one
@@ -46,12 +38,8 @@ class Kinematics:
     time, displacement, axial_force : tuple of ndarray
         Per test: sample times [s], the displacement as measured (smoothed, no channel lag
         applied) [m] and the axial force [N].
-    yield_displacement : float
-        The baseline's u_y [m].
-    effective_radius : float
-        R_eff [m].
-    nominal_mu : float
-        Mean friction coefficient of the baseline [-] (where a play re-engages).
+    yield_displacement, effective_radius, nominal_mu : float
+        The baseline's u_y [m], R_eff [m] and mean friction coefficient [-].
     """
 
     time: tuple[np.ndarray, ...]
@@ -104,7 +92,10 @@ def kinematic_change(parts, theta: np.ndarray, context: Context) -> dict[str, fl
 
 @dataclass(frozen=True)
 class Model:
-    """The calibrated baseline times the factors of ``effects`` plus their extra forces."""
+    """The calibrated baseline with ``effects`` acting on its kinematics, mu or force.
+
+    The parameter vector is the baseline's scale c of mu, then each effect's parameters.
+    """
 
     effects: tuple[Effect, ...] = ()
 
@@ -179,14 +170,12 @@ class Fit:
 
     Attributes
     ----------
-    theta : ndarray
-        Parameters on their fitting scale.
-    stderr : ndarray
-        Their standard errors (see the module docstring); NaN where not identifiable.
-    sse : float
-        Weighted sum of squared force residuals on the training samples [-].
-    samples : int
-        Training samples.
+    theta, stderr : ndarray
+        Parameters on their fitting scale and their standard errors (NaN where not
+        identifiable).
+    sse, samples : float, int
+        Weighted sum of squared force residuals [-] over the training samples, and their
+        number.
     """
 
     theta: np.ndarray
@@ -276,14 +265,11 @@ class HoldOut:
     Attributes
     ----------
     scheme : str
-        ``"leave-one-test-out"``, ``"tests held out in N groups"`` or
-        ``"alternate cycles"``.
+        ``"leave-one-test-out"``, ``"tests held out in N groups"`` or ``"alternate cycles"``.
     folds : tuple of (ndarray, ndarray)
         (training indices, held-out indices) of each fold.
-    training : tuple of Features
-        The training features of each fold.
-    held_out : tuple of Features
-        The held-out features of each fold.
+    training, held_out : tuple of Features
+        The training and the held-out features of each fold.
     """
 
     scheme: str
@@ -293,12 +279,8 @@ class HoldOut:
 
     @classmethod
     def of(cls, features: Features) -> HoldOut:
-        """Leave-one-test-out with three or more tests, else alternate cycles.
-
-        With more than ``MAX_FOLDS`` tests, the tests are held out in ``MAX_FOLDS`` groups
-        (test k, in the order run, in group k mod ``MAX_FOLDS``): still whole tests held out,
-        at a bounded cost.
-        """
+        """Leave-one-test-out with three or more tests (beyond ``MAX_FOLDS`` tests, test k
+        in group k mod ``MAX_FOLDS``), else odd against even cycles of every test."""
         tests = np.unique(features.test)
         if tests.size >= _MIN_TESTS_FOR_TEST_HOLDOUT:
             groups = min(tests.size, MAX_FOLDS)

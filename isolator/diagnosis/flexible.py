@@ -1,18 +1,15 @@
 """Flexible monotone forms of the effects on mu: shapes that do not leak.
 
-A candidate's own form (the paper's alpha(v), an exponential wear law) need not be the
-truth's shape; what a wrong shape leaves behind can leak into other candidates, which then
-seem to earn their keep. So each effect on mu is also fitted in a flexible monotone form in
-its own variable x (the temperature rise, log speed, log pressure, the travel since a
-reversal, the campaign's travel):
+An effect's own form (the paper's alpha(v), an exponential wear law) need not be the truth's
+shape, and what a wrong shape leaves can make another candidate seem to earn its keep. So
+each effect on mu also has a flexible monotone form in its own variable x:
 
     m(x) = exp(sum_k c_k h_k(x)),   h_k(x) = clip((x - x_k) / (x_(k+1) - x_k), 0, 1),
 
-with knots x_k at quantiles of x and all c_k of one sign (the direction of the effect's own
-fit), so m is monotone and positive. For wear the knots also include the start of every test
-after the first, so a drop from test to test is a shape the form has. A second effect is named
-only if it still earns its keep over the first one in this form
-(:mod:`isolator.diagnosis.selection`).
+with knots x_k at quantiles of x (for wear also at the start of every test after the first:
+a drop from test to test) and all c_k of the sign of the effect's own fit, so m is monotone
+and positive. A second effect is named only if it earns its keep over the first in this form
+(:mod:`isolator.diagnosis.decision`).
 """
 
 from __future__ import annotations
@@ -44,19 +41,8 @@ def ramps(x: np.ndarray, positions: np.ndarray) -> np.ndarray:
 
 
 def flexible(effect: Effect, features, context: Context, increasing: bool) -> Effect:
-    """``effect`` in its flexible monotone form (rising or falling with its variable).
-
-    Parameters
-    ----------
-    effect : Effect
-        An effect on mu with a ``variable``.
-    features : Features
-        The campaign's features (the knots are quantiles of the variable over them).
-    context : Context
-        The campaign's constants.
-    increasing : bool
-        Whether m rises with the variable.
-    """
+    """``effect`` (on mu, with a ``variable``) in its flexible monotone form, rising with its
+    variable if ``increasing``, with knots at quantiles of the variable over ``features``."""
     if effect.acts_on != "mu" or effect.variable is None:
         raise ValueError(f"Effect {effect.name!r} has no flexible form (it must act on mu "
                          "and name its variable).")

@@ -1,11 +1,8 @@
 """What an imposed displacement history alone decides: return-map variable, reversals, travel.
 
-For a displacement-driven bearing the hysteretic variable z of the elastic-plastic return map
-depends only on u(t) and the yield displacement u_y (never on mu), so the force of any friction
-model is F = N u / R_eff + mu(t) N z(t) and a friction model is a modulation of mu(t). This
-module computes z, the reversals (turning points, found with a noise threshold so that sensor
-noise does not make reversals), the travel since the last reversal, the accumulated travel,
-and the noise level of a signal, all as pure functions on arrays.
+For a displacement-driven bearing the return map's z depends only on u(t) and the yield
+displacement u_y, never on mu, so any friction model's force is F = N u / R_eff + mu(t) N z(t)
+and a friction model is a modulation of mu(t). Pure functions on arrays.
 """
 
 from __future__ import annotations
@@ -85,15 +82,8 @@ def _turning_points(u, threshold):
 def turning_points(displacement: np.ndarray, threshold: float) -> np.ndarray:
     """Indices where the motion reverses, the start (index 0) included.
 
-    A reversal is confirmed once the displacement has come back by more than ``threshold``
-    [m] from its extreme since the last reversal; the reversal lies at that extreme.
-
-    Parameters
-    ----------
-    displacement : ndarray
-        Displacement history [m].
-    threshold : float
-        Smallest return that makes a reversal [m], > 0: a few times the displacement noise.
+    A reversal lies at the extreme of ``displacement`` [m] since the last one, confirmed once
+    the motion has come back from it by more than ``threshold`` [m] (a few times the noise).
     """
     return _turning_points(np.ascontiguousarray(displacement, dtype=float), float(threshold))
 
@@ -101,9 +91,8 @@ def turning_points(displacement: np.ndarray, threshold: float) -> np.ndarray:
 def reversal_travel(
     displacement: np.ndarray, turns: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Travel since the last reversal, accumulated travel and half-cycle number per sample.
-
-    Travel is measured between turning points, so sensor noise does not accumulate.
+    """Travel since the last reversal, accumulated travel and half-cycle number per sample,
+    measured between the turning points ``turns`` so that noise does not accumulate.
 
     Returns
     -------
@@ -142,14 +131,13 @@ def noise_std(signal: np.ndarray, order: int = 3) -> float:
 def play_return_map(displacement, half_width, yield_displacement, inverse_radius, nominal_mu):
     """An elastic-plastic bearing behind a play of half width h: (u_b, z, engaged) per sample.
 
-    The load path is a gap of width 2 h in series with the pre-sliding spring of the return
-    map. A displacement increment against the current force first unloads the spring
-    (z towards 0 over u_y of travel), then crosses the gap with no force transmitted
-    (``engaged`` = 0, the bearing standing still), then loads the spring the other way
-    (z towards the new sliding level). The bearing's displacement u_b is the actuator's less
-    the position in the gap. The start is in the middle of the gap with no force.
-    ``inverse_radius`` and ``nominal_mu`` are kept for the call signature of the kinematic
-    effects (a pendulum's force is taken as transmitted only with the gap closed).
+    The load path is a gap of width 2 h [m] in series with the return map's pre-sliding
+    spring. A displacement increment against the force first unloads the spring (z towards 0
+    over u_y [m]), then crosses the gap with no force transmitted (``engaged`` = 0, the bearing
+    standing still), then loads the spring the other way. u_b is the actuator's displacement
+    less the position in the gap, which starts in the middle. ``inverse_radius`` and
+    ``nominal_mu`` are unused, kept for the callers' signature (the pendulum force too is
+    transmitted only with the gap closed).
     """
     n = displacement.size
     ub = np.empty(n)

@@ -5,18 +5,15 @@ A CSV manifest has a header line and one row per test, in the order the tests we
 ``file``
     The test's CSV file, relative to the manifest (required).
 ``axial_load``
-    Constant axial load of that test [N], for a file without an ``axial_force`` column (a
-    file with the column uses it; a manifest value that disagrees with it by more than 2 %
-    is an error).
+    Constant axial load of the test [N] for a file without an ``axial_force`` column (with
+    the column, a value disagreeing with it by more than 2 % is an error).
 ``initial_temperature``
     Temperature of the plates at the start of the test [degC].
 ``rest_before``
     Rest since the end of the previous test [s]; empty: long enough to cool down.
 
-A TOML manifest says the same with a ``[[test]]`` table per test (same keys) and may give the
-bearing (``effective_radius`` [m], ``slider_diameter`` [m]) at the top. So pressure can be
-tested across tests at a constant load each, heating restarts cool after a long rest, and
-wear follows the real order.
+A TOML manifest has a ``[[test]]`` table per test (same keys) and may give the bearing's
+``effective_radius`` [m] and ``slider_diameter`` [m] at the top.
 """
 
 from __future__ import annotations
@@ -108,18 +105,18 @@ def load_manifest(
     slider_diameter: float | None = None,
     axial_load: float | None = None,
 ) -> Campaign:
-    """The campaign a manifest lists (see the module docstring).
+    """The campaign a manifest lists.
 
-    ``effective_radius`` and ``slider_diameter`` are taken from the arguments, else from a
+    ``effective_radius`` [m] and ``slider_diameter`` [m] come from the arguments, else from a
     TOML manifest; ``axial_load`` [N] applies to the tests whose row gives none and whose file
     has no ``axial_force`` column.
 
     Raises
     ------
     DataError
-        Naming the manifest, the test and the problem: a missing file, a load that disagrees
-        with the file's column, a campaign that mixes units, levels that betray a unit
-        mistake or a wrong R_eff or axial load (:func:`~isolator.diagnosis.data.check_plausible`).
+        Naming the manifest, the test and the problem: a missing file, a load disagreeing
+        with the file's column, mixed units, implausible levels
+        (:func:`~isolator.diagnosis.data.check_plausible`).
     """
     path = Path(path)
     rows, top = read_manifest(path)

@@ -1,19 +1,15 @@
 """How much of a force error measurement noise alone explains, sample by sample.
 
-Three sources: the force sensor's own noise (white, estimated for each test from the
-high-order differences of its force, :func:`isolator.diagnosis.kinematics.noise_std`), the
-noise of a measured axial force carried into the model's force (d F / d N = mu z + u / R), and
-the noise of the displacement sensor carried into the model's force. The model is driven by
-the measured displacement, not the true one (errors in the variables), and the elastic branch
-of the return map is stiff (d z / d u = 1 / u_y), so a displacement error of a few hundredths of a
-millimetre moves the predicted force by a good part of mu N for the few samples right after a
-reversal. That part is estimated by Monte Carlo: the measured displacement is perturbed by its
-estimated noise, smoothed as the features are, and the mean square change of the baseline's
-force is averaged over the replicates (the mean square change, not the variance, so the bias
-that noise brings to the clipped return map counts too).
-
-The result, one variance per sample, standardises the residuals the selection judges: under
-noise alone their mean square is one whatever the sample.
+Three sources add up: the force sensor's white noise
+(:func:`isolator.diagnosis.kinematics.noise_std` of each test's force), a measured axial
+force's noise through d F / d N = mu z + u / R, and the displacement sensor's noise through
+the model. The model is driven by the measured displacement (errors in the variables) and
+the return map's elastic branch is stiff (dz/du = 1 / u_y), so a few hundredths of a mm move
+the force by a good part of mu N right after a reversal. That part is a Monte Carlo estimate:
+the displacement perturbed by its noise and smoothed as the features are, the mean square
+change of the baseline's force averaged over replicates (not the variance, so the bias noise
+brings to the clipped return map counts too). Standardised by this variance, the residual of
+noise alone has a mean square of one at every sample.
 """
 
 from __future__ import annotations
@@ -43,22 +39,17 @@ def sample_noise_variance(
 
     Parameters
     ----------
-    features : Features
-        The calibrated baseline's features (z, mu_base and the smoothed displacement set).
-    campaign : Campaign
-        The measured tests (their raw displacement is perturbed).
+    features, campaign : Features, Campaign
+        The calibrated baseline's features (z, mu_base, the smoothed displacement) and the
+        measured tests, whose raw displacement is perturbed.
     force_noise, displacement_noise, axial_noise : ndarray
-        Noise standard deviation of each test's force [N], displacement [m] and axial force
-        [N].
+        Noise standard deviation of each test's force [N], displacement [m], axial force [N].
     yield_displacement : float
         The baseline's u_y [m].
-    replicates : int
-        Monte Carlo replicates.
-    seed : int
-        Seed of the perturbations (the diagnosis is deterministic).
+    replicates, seed : int
+        Monte Carlo replicates and their seed (the diagnosis is deterministic).
     lag : float
-        The baseline's channel lag [s], applied to the perturbed displacement as to the
-        features'.
+        The baseline's channel lag [s], applied to the perturbed displacement too.
     """
     rng = np.random.default_rng(seed)
     variance = np.empty(len(features))

@@ -1,16 +1,10 @@
 """The diagnosis from start to end: calibrate, locate, explain, measure the shrink.
 
-:func:`diagnose` runs the steps on a :class:`~isolator.diagnosis.data.Campaign`:
-
-1. calibrate the baseline's own parameters on all data (:mod:`.baseline`);
-2. judge the baseline on held-out data and locate its residual (:mod:`.where`);
-3. fit every candidate effect of the library (:mod:`.effects`) on training folds, judge it on
-   held-out data, combine the leaders, decide (:mod:`.selection`);
-4. measure the gap before and after on held-out data: force NRMSE and the per-cycle
-   characteristics (:mod:`.where`).
-
-:func:`reselect` repeats step 3's decision with effects withheld from the library (a
-leave-one-effect-out check) without refitting the others.
+:func:`diagnose` calibrates the baseline on all data (:mod:`.baseline`), weighs each sample
+by its noise (:mod:`.noise`), decides which candidate effects (:mod:`.effects`) explain the
+held-out residual (:mod:`.decision`), and measures where the gap lies and how far it shrinks
+on held-out data: force NRMSE and per-cycle characteristics (:mod:`.where`), with the
+confidence of each named effect (:mod:`.uncertainty`).
 """
 
 from __future__ import annotations
@@ -62,16 +56,10 @@ def diagnose(
         The measured tests of one bearing, in the order run.
     baseline : BaselineSpec or str
         The model to diagnose; a string is a model name with all its effects.
-    candidates : sequence of str
-        Names of the library's effects to try.
-    exclude : sequence of str
-        Effects withheld from the library.
+    candidates, exclude : sequence of str
+        Names of the library's effects to try, and of those withheld.
     thresholds : Thresholds, optional
         The decision thresholds (default: :func:`isolator.diagnosis.thresholds.current`).
-
-    Returns
-    -------
-    Diagnosis
     """
     start = _time.perf_counter()
     th = thresholds or Thresholds.load()
@@ -107,9 +95,8 @@ def diagnose(
 
 def reselect(diagnosis: Diagnosis, exclude: Sequence[str] = (),
              thresholds: Thresholds | None = None, *, uncertainty: bool = False) -> Diagnosis:
-    """The same diagnosis with the effects ``exclude`` withheld from the library, or under
-    other ``thresholds``, without refitting what was fitted (the confidence and intervals
-    only with ``uncertainty``, which refits)."""
+    """The same diagnosis with ``exclude`` withheld (a leave-one-effect-out check) or under
+    other ``thresholds``, without refitting (confidence and intervals: only ``uncertainty``)."""
     start = _time.perf_counter()
     excluded = tuple(dict.fromkeys((*diagnosis.excluded, *exclude)))
     selection = diagnosis.problem.select(excluded, thresholds or diagnosis.selection.thresholds)

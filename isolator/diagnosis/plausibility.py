@@ -1,32 +1,24 @@
 """Plausibility of a bearing test's physical levels: catch unit mistakes before any fitting.
 
-A test in the wrong units still reads (every value is a finite number) and a friction model
-can still be fitted to it, so the diagnosis would hand back a verdict on nonsense: a time
-column in milliseconds makes every velocity 1000 times too small (the friction looks
-velocity-independent), a force in kN makes the friction coefficient 1000 times too small,
-and a wrong effective radius or axial load turns the pendulum's restoring force into an
-"unmodelled stiffness" or into a force that seems to push along the motion. So every test
-is checked, after it is read and before the campaign is fitted, for the levels it implies:
+A test in the wrong units still reads and can be fitted, and the verdict would be on
+nonsense: time in ms makes every velocity 1000 times too small, force in kN the friction
+coefficient, and a wrong R_eff or axial load turns the pendulum force into an "unmodelled
+stiffness" or a force that pushes along the motion. So each test's implied levels must pass:
 
-1. the force column must vary (an all-zero or constant column is a dead channel);
-2. the sample interval and the peak velocity |du/dt| must be those of a bearing test
+1. the force varies (a constant column is a dead channel);
+2. the sample interval and the peak |du/dt| are a bearing test's
    (:data:`MAX_SAMPLE_INTERVAL`, :data:`VELOCITY_RANGE`);
-3. in the sliding phase the force must follow the direction of motion (a friction loop
-   standing out of the scatter) and resist it (the sign convention);
-4. the friction coefficient the loop implies, its half-height over the axial load, must lie in
-   :data:`MU_RANGE`;
-5. the slope of force against displacement must be the pendulum's N / R_eff within a factor
-   of :data:`STIFFNESS_FACTOR` (not for R_eff = inf: a friction damper's loops tilt too).
+3. in the sliding phase the force follows the direction of motion (a friction loop standing
+   out of the scatter) and resists it (the sign convention);
+4. the friction coefficient F / N lies in :data:`MU_RANGE`;
+5. the slope of force against displacement is N / R_eff within :data:`STIFFNESS_FACTOR`
+   (not for R_eff = inf: a friction damper's loops tilt too).
 
-The friction level and the slope come from least-squares fits of force = k u + F sign(v) + c:
-F on the sliding-phase samples (|v| above :data:`SLIDING_FRACTION` of its peak), k on the
-middle of the loop, past the pre-sliding transition. F (the loop's half-height) and k are
-independent of the R_eff and the axial load told, so they tell a unit mistake in the force
-(both off by the same factor 1000) from a wrong R_eff (only the slope off).
-:func:`implausibility` returns the first failure as a message naming the file or test, the
-column or value, the implied level, the allowed range and the likely mistake;
-:func:`isolator.diagnosis.data.check_plausible` raises it as a ``DataError``. This module
-works on plain arrays and imports nothing of the project, so the input layer can use it.
+F (the loop's half-height) and the slope k are least-squares fits of
+force = k u + F sign(v) + c, F on the sliding samples and k on the middle of the loop; they
+do not depend on the R_eff and axial load told, so a force in kN (both off by 1000) is told
+apart from a wrong R_eff (only the slope off). Plain arrays only, no project imports, so the
+input layer can use it.
 """
 
 from __future__ import annotations
@@ -39,35 +31,23 @@ import numpy as np
 MU_RANGE = (0.003, 0.8)
 """Allowed friction coefficient implied by the loop, F / N [-].
 
-Sliding bearings span about 0.005 (lubricated PTFE at high pressure) to 0.15 (dry composites
-at high speed, breakaway up to 0.3); friction dampers with metal or brake-lining interfaces
-reach 0.5-0.6. Measured here: the validation panels 0.021-0.080, the real friction-damper
-data over its nominal 100 kN 0.011-0.127 (its backlash loops fit a sign(v) poorly). The
-bounds leave margin on both sides and are only 270 apart, so a factor of 1000 (kN for N, or
-an axial load in kN) takes any coefficient inside them outside.
+Sliding bearings span about 0.005 (lubricated PTFE) to 0.15 (dry composites; breakaway up to
+0.3), friction dampers 0.5-0.6; the validation panels show 0.021-0.080 and the real
+friction-damper data 0.011-0.127. The bounds are only 270 apart, so a factor of 1000 (kN for
+N) takes any coefficient inside them outside.
 """
 VELOCITY_RANGE = (1.0e-3, 5.0)
-"""Allowed peak |du/dt| of a test [m/s].
-
-Below 1 mm/s a test is a creep test, not what the friction models describe, and a time column
-in milliseconds puts a typical 0.05-1 m/s test at 0.05-1 mm/s. The fastest bearing rigs and
-shake tables reach about 2 m/s; a displacement in millimetres makes a 5 mm/s test 5 m/s.
-"""
+"""Allowed peak |du/dt| of a test [m/s]: below is a creep test (time in ms puts a 0.05-1 m/s
+test at 0.05-1 mm/s); the fastest rigs reach about 2 m/s (displacement in mm makes a 5 mm/s
+test 5 m/s)."""
 MAX_SAMPLE_INTERVAL = 0.1
-"""Largest median sample interval [s] (10 Hz).
-
-The diagnosis resolves the force after each reversal (a few mm of travel) and its thresholds
-were chosen on 100-500 Hz records (the real data: 256 Hz); a time column in milliseconds
-makes a record sampled below 10 kHz show an interval of 0.1 s or more.
-"""
+"""Largest median sample interval [s] (10 Hz): the diagnosis resolves the force within a few
+mm of each reversal, its thresholds come from 100-500 Hz records, and time in ms makes any
+record sampled below 10 kHz show 0.1 s or more."""
 STIFFNESS_FACTOR = 3.0
-"""Largest factor between the loops' slope and N / R_eff [-].
-
-An unmodelled stiffness or another radius than the one told (the ``stiffness`` effect, e.g.
-3.6 m told 4.5 m, a factor 1.25) and the flattening of a spherical surface are well inside a
-factor of 3 (the validation panels: 0.81-1.25); a larger factor is a wrong R_eff or axial
-load, which the diagnosis would otherwise blame on an effect or on the sign convention.
-"""
+"""Largest factor between the loops' slope and N / R_eff [-]: another radius than the one
+told (the ``stiffness`` effect; 0.81-1.25 in the validation panels) and a spherical surface
+stay well inside it; beyond it is a wrong R_eff or axial load."""
 VISIBLE_FRACTION = 0.5
 """The slope is judged only where |k - N / R_eff| times the stroke exceeds this fraction of
 the loop's half-height F [-]: a mismatch the loop shows, not one lost in a short stroke."""
@@ -77,11 +57,9 @@ pre-sliding transition after each reversal (u_y up to 2 mm, about twice that to 
 SLIDING_FRACTION = 0.2
 """Samples with |v| above this fraction of the peak velocity are taken as sliding [-]."""
 MIN_LOOP_CONTRAST = 0.15
-"""The loop's half-height must exceed this multiple of the fit's residual RMS [-].
-
-A force channel with noise only gives about scatter / sqrt(samples), under 0.05 for a few
-hundred samples; the project's panels show 2.4-42 and the real friction-damper data, whose
-backlash loops a sign(v) fits poorly, 0.41-2.4."""
+"""The loop's half-height must exceed this multiple of the fit's residual RMS [-]: noise
+alone gives about 1 / sqrt(samples), under 0.05; the validation panels show 2.4-42, the real
+friction-damper data (a play, poorly fitted by sign(v)) 0.41-2.4."""
 _UNIT = 1000.0  # the factor of the unit mistakes named (ms, mm, kN)
 
 
@@ -91,10 +69,8 @@ class Levels:
 
     Parameters
     ----------
-    sample_interval : float
-        Median sample interval [s].
-    peak_velocity : float
-        Peak |du/dt| from the displacement and the time [m/s].
+    sample_interval, peak_velocity : float
+        Median sample interval [s]; peak |du/dt| [m/s].
     friction_force : float
         Half-height of the sliding-phase loop, F [N] (negative: the force aids the motion).
     slope : float
@@ -102,14 +78,10 @@ class Levels:
         stroke or a history too short to tell.
     scatter : float
         RMS of the sliding-phase force about the fit [N].
-    axial_load : float
-        Mean axial load [N].
-    stroke : float
-        99th percentile of |u| [m].
-    force_range : float
-        Peak-to-peak force [N] (zero: a dead channel).
-    first_force : float
-        The first force value [N].
+    axial_load, stroke : float
+        Mean axial load [N]; 99th percentile of |u| [m].
+    force_range, first_force : float
+        Peak-to-peak force [N] (zero: a dead channel) and its first value [N].
     """
 
     sample_interval: float
@@ -130,28 +102,15 @@ class Levels:
 
 def implied_levels(time: np.ndarray, displacement: np.ndarray, force: np.ndarray,
                    axial_force: np.ndarray, velocity: np.ndarray) -> Levels:
-    """The sample interval, peak velocity, loop half-height and slope of one test.
-
-    Nothing is assumed about the units here: the levels are those the numbers imply if they
-    are in s, m and N.
+    """The :class:`Levels` the numbers of one test imply if they are in s, m and N.
 
     Parameters
     ----------
-    time : numpy.ndarray
-        Strictly increasing sample times [s].
-    displacement : numpy.ndarray
-        Relative displacement u [m].
-    force : numpy.ndarray
-        Horizontal force [N].
-    axial_force : numpy.ndarray
-        Axial load [N].
+    time, displacement, force, axial_force : numpy.ndarray
+        Sample times [s], relative displacement u [m], horizontal force [N], axial load [N].
     velocity : numpy.ndarray
         du/dt derived from ``displacement`` and ``time`` [m/s] (not a measured velocity
         column, whose units are not the ones checked).
-
-    Returns
-    -------
-    Levels
     """
     u = np.asarray(displacement, dtype=float)
     force = np.asarray(force, dtype=float)
@@ -181,11 +140,9 @@ def _middle_slope(u: np.ndarray, velocity: np.ndarray, force: np.ndarray,
                   sliding: np.ndarray, stroke: float) -> float:
     """Slope k [N/m] of the loop's middle, where both branches slide; NaN without one.
 
-    Near a reversal the force crosses from one branch to the other over a few u_y (and a
-    play); a fit there takes that crossing for slope, many times N / R_eff on a stroke of a
-    few mm. So only samples in the middle half of the stroke, more than a quarter of the
-    stroke past the last reversal (which leaves out small cycles), are used, and only for a
-    stroke of at least :data:`MIN_SLOPE_STROKE`.
+    The crossing between branches after a reversal would read as slope, so only sliding
+    samples in the middle half of the stroke, more than a quarter stroke past the last reversal,
+    count, for a stroke of at least :data:`MIN_SLOPE_STROKE`.
     """
     if stroke < MIN_SLOPE_STROKE:
         return math.nan
@@ -206,24 +163,11 @@ def _middle_slope(u: np.ndarray, velocity: np.ndarray, force: np.ndarray,
 
 def implausibility(levels: Levels, effective_radius: float, where: str,
                    load_source: str = "the axial load") -> str | None:
-    """The first unit mistake the levels of one test betray, as a message; None if none.
+    """The first unit mistake the ``levels`` of one test betray, or None.
 
-    Parameters
-    ----------
-    levels : Levels
-        From :func:`implied_levels`.
-    effective_radius : float
-        The effective radius R_eff told [m]; ``inf`` for a flat slider or a friction damper.
-    where : str
-        The file (and test of a manifest) to name in the message.
-    load_source : str
-        Where the axial load came from (a column, a flag, a manifest), for the message.
-
-    Returns
-    -------
-    str or None
-        The message: ``where``, the column or value, the implied level, the allowed range
-        and the likely mistake.
+    The message names ``where`` (the file, and test of a manifest), the column or value, the
+    implied level, the allowed range and the likely mistake. ``effective_radius`` is the
+    R_eff told [m] (``inf``: no slope check), ``load_source`` where the axial load came from.
     """
     if levels.force_range == 0.0:
         state = ("all zero" if levels.first_force == 0.0
@@ -299,11 +243,9 @@ def _check_slope(levels: Levels, effective_radius: float, where: str,
     if math.isnan(k):
         return None
     if math.isinf(effective_radius):
-        # no slope bound for a flat slider or a friction damper: the real damper data's loops
-        # tilt as steeply as a pendulum's (backlash, band stiffness: restoring force at the
-        # stroke up to 6 times the friction, "radii" of 0.06-0.7 m at a nominal 100 kN that
-        # grow with the nominal load), so a forgotten R_eff cannot be told from them; the
-        # diagnosis names it ``stiffness`` with the apparent R_eff
+        # no bound for R_eff = inf: a friction damper's loops tilt as steeply as a pendulum's
+        # (the real damper data: apparent radii of 0.06-0.7 m), so a forgotten R_eff cannot
+        # be told; the diagnosis names it ``stiffness`` with the apparent R_eff
         return None
     expected = n / effective_radius
     ratio = k / expected

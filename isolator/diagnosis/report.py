@@ -1,20 +1,10 @@
 """A readable report of a diagnosis: a markdown summary, the JSON summary and plots.
 
-:func:`write_report` writes to a folder:
-
-``summary.md``
-    the data, the calibrated baseline, the gap and where it lies, every candidate with its
-    held-out gap, shrink and role, the verdict, the gap before and after (force NRMSE and
-    per-cycle EDC and Keff errors) with the fitted parameters and their standard errors, and
-    what is left unexplained;
-``diagnosis.json``
-    the summary of :meth:`isolator.diagnosis.Diagnosis.to_json`;
-``loops.png``, ``residual_breakdown.png``, ``candidates.png``, ``cycle_errors.png``,
-``residual_history.png``
-    measured against held-out predicted loops, the residual by band, the candidates' held-out
-    gaps, the per-cycle errors and the residual over time.
-
-matplotlib is imported inside the plotting functions only.
+:func:`write_report` writes ``summary.md`` (the data, the baseline, the gap and where it lies,
+every candidate, the verdict, the shrink with the fitted parameters, what remains
+unexplained), ``diagnosis.json`` (:meth:`isolator.diagnosis.Diagnosis.to_json`) and the plots
+``loops.png``, ``residual_breakdown.png``, ``candidates.png``, ``cycle_errors.png`` and
+``residual_history.png``. matplotlib is imported by the plotting functions only.
 """
 
 from __future__ import annotations
@@ -40,13 +30,8 @@ def _pyplot():
 
 
 def write_report(diagnosis: Diagnosis, folder: str | Path) -> list[Path]:
-    """Write the summary, the JSON and the plots of ``diagnosis`` to ``folder``.
-
-    Returns
-    -------
-    list of Path
-        The files written.
-    """
+    """Write the summary, the JSON and the plots of ``diagnosis`` to ``folder``; return the
+    paths written."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     summary = diagnosis.to_json()

@@ -1,36 +1,20 @@
-"""Which candidate earns its keep: held-out errors, block statistics, two stages, verdict.
+"""Whether a candidate earns its keep: held-out scores, the block statistic, the criteria.
 
-Every candidate is fitted on the training folds and judged on the held-out samples (see
-:mod:`isolator.diagnosis.fitting`). Two mean squares of the held-out residual are used:
+Every candidate is fitted on the training folds and judged on the held-out samples
+(:mod:`isolator.diagnosis.fitting`) by two mean squares of the held-out residual:
 
-- the *score*, the residual standardised by the variance v that measurement noise alone
-  leaves at each sample (:mod:`isolator.diagnosis.noise`): about one for a model that leaves
-  only noise;
-- the *weighted* mean square, with weights 1 / (v + tau^2), tau^2 the excess variance the
-  calibrated baseline leaves (a random-effects weighting). It ranks and judges the
-  candidates, and the fits use the same weights.
+- the *score*, standardised by the variance v measurement noise alone leaves at each sample
+  (:mod:`isolator.diagnosis.noise`): about one for a model that leaves only noise;
+- the *weighted* mean square, weights 1 / (v + tau^2) with tau^2 the excess variance the
+  calibrated baseline leaves (a random-effects weighting, also the fits'); it ranks and
+  judges the candidates.
 
 A model extended by one or more effects earns its keep over the current one when its held-out
 weighted error is lower block by block (a block is a half cycle of one test) by ``z``
-standard errors of the summed block differences, when it closes a share of the weighted excess
-the current model leaves, and when the force it changes is practically significant (an RMS of
-``practical_gain`` of the RMS force). All thresholds are in :mod:`.thresholds`.
-
-The decision has two stages:
-
-1. **Kinematics** (``backlash``, ``lag``), judged on every sample, since they act at the
-   reversals: a play or a channel offset beyond what the baseline's transition and nuisance
-   lag absorb.
-2. **The friction law** (effects on mu and on the force), judged on the *sliding phase* only:
-   the samples outside the transition window after each reversal
-   (:mod:`isolator.diagnosis.transition`), with the kinematics of stage 1 applied. Effects
-   join by forward selection; a second effect must earn its keep (by the stricter
-   ``second_*`` thresholds) over the first one in its flexible monotone form
-   (:mod:`isolator.diagnosis.flexible`), so what a wrong shape leaves cannot name it.
-
-The verdict: ``["none"]`` when nothing is named and the sliding-phase gap is within the noise
-or practically negligible; the named effects, followed by ``"unexplained"`` when a real gap
-remains; ``["unexplained"]`` when a real gap remains that no candidate closes.
+standard errors of the summed block differences, it closes a share of the weighted excess the
+current model leaves, and the force it changes is practically significant (an RMS of
+``practical_gain`` of the RMS force). Thresholds: :mod:`.thresholds`; the stages and the
+verdict: :mod:`.decision`.
 """
 
 from __future__ import annotations
@@ -51,19 +35,9 @@ SCREENED = 3  # extensions judged on held-out data at each step, the best fits i
 
 @dataclass(frozen=True)
 class Workspace:
-    """What every fit of one campaign shares: features, folds and constants.
-
-    Attributes
-    ----------
-    features : Features
-        The calibrated baseline's features (with the noise variance of each sample).
-    holdout : HoldOut
-        The folds.
-    context : Context
-        Campaign constants of the candidates.
-    cache : dict
-        Fits and assessments of effect combinations already made, by their names.
-    """
+    """What every fit of one campaign shares: the calibrated baseline's features (with each
+    sample's noise variance and weight), the folds, the constants, and a ``cache`` of the fits
+    and assessments made, by effect names."""
 
     features: Features
     holdout: HoldOut
@@ -129,20 +103,16 @@ class Assessment:
     ----------
     model : Model
         The baseline with its effects.
-    fit : Fit or None
-        The fit on all data (parameters and standard errors).
-    prediction : ndarray or None
-        Held-out force of every sample [N].
-    score : float
-        Held-out mean square standardised residual [-] (inf when untestable).
-    weighted : float
-        Held-out weighted mean square residual [-] (inf when untestable).
-    z_score : float
-        Improvement over the baseline in standard errors of the block differences.
-    explained : float
-        Share of the baseline's weighted excess above noise that it closes [-].
+    fit, prediction : Fit or None, ndarray or None
+        The fit on all data, and the held-out force of every sample [N].
+    score, weighted : float
+        Held-out standardised and weighted mean squares of the residual [-] (inf when
+        untestable).
+    z_score, explained : float
+        Against the reference: the improvement in standard errors of the summed block
+        differences [-], and the share of its weighted excess above noise closed [-].
     earns_keep : bool
-        Whether it qualifies against the baseline (:func:`qualifies`).
+        Whether it qualifies against the reference (:func:`qualifies`).
     untestable : str or None
         Why the data cannot show it (then nothing else is set).
     """
@@ -212,10 +182,8 @@ class Stage:
 
     Attributes
     ----------
-    work : Workspace
-        The sliding samples, with the kinematics applied.
-    baseline : Assessment
-        The baseline (with the kinematics) on them.
+    work, baseline : Workspace, Assessment
+        The sliding samples with the kinematics applied, and the baseline with them there.
     plain : np.ndarray
         The plain baseline's held-out prediction on the same samples [N].
     singles : dict
@@ -236,25 +204,20 @@ class Selection:
     ----------
     stage : Stage
         The sliding-phase stage the verdict was decided on (its samples define the gap).
-    kinematic : Assessment or None
-        The named effects on the kinematics (judged on every sample).
-    kinematic_candidates : dict
-        Each kinematic effect alone, judged on every sample.
+    kinematic, kinematic_candidates : Assessment or None, dict
+        The named effects on the kinematics, and each alone, judged on every sample.
     chosen : Assessment or None
         The final model on the stage's samples (kinematics and friction-law effects).
     verdict : list of str
-        See :mod:`isolator.diagnosis.selection`.
-    explained : float
-        Share of the sliding-phase excess closed by ``chosen`` [-].
-    real_gap_remains : bool
-        Whether a real gap is left.
+        See :mod:`isolator.diagnosis.decision`.
+    explained, real_gap_remains : float, bool
+        Share of the sliding-phase excess closed by ``chosen`` [-]; whether a real gap is left.
     ranking : list of str
         Effect names, best first: the named ones, then the others by held-out error, then the
         untestable ones.
     form : dict
         ``{effect: "paper" | "flexible"}``: the form of each named effect on mu reported.
     thresholds : Thresholds
-        The thresholds used.
     """
 
     stage: Stage

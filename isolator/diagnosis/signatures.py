@@ -49,11 +49,9 @@ def _reversals(f: Features, prediction: np.ndarray, residual: np.ndarray, energy
                near: float) -> list[tuple[float, str]]:
     """Whether the force swings over to the new sliding level differently after a reversal.
 
-    For every half cycle (from one reversal to the next) of the measured and of the predicted
-    friction force (the force less the pendulum force): the travel over which the force
-    dwells near zero (within 20 % of its new sliding level) and the travel at which it has
-    swung half way. Medians over the half cycles with a clear swing and a stroke of at least
-    half the campaign's typical amplitude are compared.
+    Compares the medians, over half cycles with a clear swing and at least half the typical
+    stroke, of the travel over which the measured and the predicted friction force dwell
+    near zero (within 20 % of the new level) and of the travel to half the swing.
     """
     data = f.force - f.pendulum
     model = prediction - f.pendulum

@@ -1,12 +1,9 @@
 """A small bounded Levenberg-Marquardt solver for long residual vectors and few parameters.
 
-The diagnosis fits 1 to 8 parameters to residual vectors of 10^3 to 10^5 samples, hundreds of
-times. ``scipy.optimize.least_squares`` does this well but leans on BLAS for every product
-with its tall Jacobian, and multithreaded OpenBLAS on a small, busy machine makes those
-products tens of times slower than one thread would (measured: 8 s against 29 s for one
-diagnosis on two cores). Here the normal equations J^T J and J^T r are formed with
-``numpy.einsum`` (plain loops, no BLAS threads) and the p x p system is solved directly; the
-bounds are kept by projection. The Jacobian is a forward difference.
+The diagnosis fits 1 to 8 parameters to 10^3 to 10^5 residuals, hundreds of times. The normal
+equations J^T J and J^T r are formed with ``numpy.einsum`` (no BLAS threads, which slow such
+tall products on a small, busy machine) and the p x p system is solved directly; bounds are
+kept by projection, and the Jacobian is a forward difference.
 
 References
 ----------
@@ -31,14 +28,10 @@ class Solution:
 
     Attributes
     ----------
-    x : ndarray
-        Parameters at the minimum found.
-    cost : float
-        Sum of squared residuals there.
-    residual : ndarray
-        Residual vector there.
-    jacobian : ndarray
-        Forward-difference Jacobian there (n x p).
+    x, cost : ndarray, float
+        Parameters at the minimum found, and the sum of squared residuals there.
+    residual, jacobian : ndarray
+        Residual vector and forward-difference Jacobian (n x p) there.
     evaluations : int
         Residual evaluations used.
     """
@@ -73,16 +66,8 @@ def levenberg_marquardt(
 ) -> Solution:
     """Minimise sum(fun(x)^2) for low <= x <= high.
 
-    Parameters
-    ----------
-    fun : callable
-        Residual vector of the parameters.
-    x0 : ndarray
-        Start (projected onto the bounds).
-    low, high : ndarray
-        Bounds.
-    max_iterations : int
-        Largest number of Jacobian evaluations.
+    ``fun(x)`` is the residual vector, ``x0`` the start (projected onto the bounds), and
+    ``max_iterations`` the largest number of Jacobian evaluations.
     """
     x = np.clip(np.asarray(x0, dtype=float), low, high)
     r = fun(x)

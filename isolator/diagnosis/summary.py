@@ -50,10 +50,8 @@ def _cycles(errors: CycleErrors | None) -> dict | None:
 
 
 def effect_parameters(d: Diagnosis, assessment: Assessment) -> dict[str, dict]:
-    """``{effect: {parameter: (value, stderr, unit)}}`` of a fitted model, the scale first.
-
-    Effects whose parameters were held fixed (a play or a lag named on every sample, carried
-    into the sliding phase) are read from their own fit."""
+    """``{effect: {parameter: (value, stderr, unit)}}`` of a fitted model, the scale first;
+    kinematic effects held fixed in the sliding phase are read from their fit on all samples."""
     fit = assessment.fit
     out: dict[str, dict] = {"baseline_scale": {"scale": (float(fit.theta[0]),
                                                          float(fit.stderr[0]), "-")}}
@@ -201,34 +199,28 @@ class Diagnosis:
 
     Attributes
     ----------
-    campaign : Campaign
-        The data.
-    baseline : BaselineFit
-        The calibrated baseline.
+    campaign, baseline : Campaign, BaselineFit
+        The data and the calibrated baseline.
     problem : Problem
-        Features, folds, constants, noise and the candidates' fits, shared by every decision.
+        What every decision shares (features, folds, the candidates' fits).
     selection : Selection
         Candidates, chosen effects and verdict.
     where : Where
         Where the baseline's held-out residual lies.
     cycles_before, cycles_after : CycleErrors
         Per-cycle characteristic errors of the baseline and of the chosen effects (held out).
-    remaining : Where or None
-        Where the residual left after the chosen effects lies, when a real gap remains.
-    looks_like : list of str
-        What the remaining gap looks like, when a real gap remains.
+    remaining, looks_like : Where or None, list of str
+        When a real gap remains, where the residual left by the chosen effects lies and
+        what it looks like.
     wall_time : float
-        Seconds the diagnosis took.
+        Time the diagnosis took [s].
     excluded : tuple of str
         Effects withheld from the library.
     transition : TransitionFinding or None
         What the baseline leaves inside the transition window after each reversal.
-    confidence : dict
-        ``{effect: share}``: how often a named effect still earns its place over block
-        resamples (:mod:`isolator.diagnosis.uncertainty`).
-    intervals : dict
-        ``{effect: {parameter: [low, high]}}``: 5-95 % bootstrap intervals of the named
-        effects' parameters.
+    confidence, intervals : dict
+        ``{effect: share [-]}`` and ``{effect: {parameter: [low, high]}}`` of the named
+        effects (:mod:`isolator.diagnosis.uncertainty`).
     """
 
     campaign: Campaign
@@ -253,7 +245,7 @@ class Diagnosis:
 
     @property
     def verdict(self) -> list[str]:
-        """The verdict (see :mod:`isolator.diagnosis.selection`)."""
+        """The verdict (see :mod:`isolator.diagnosis.decision`)."""
         return self.selection.verdict
 
     @property

@@ -1,11 +1,8 @@
-"""The thresholds of the diagnosis's decisions, in one place, with where they came from.
+"""Every threshold that decides a verdict, in one place.
 
-Every threshold that decides a verdict lives in :class:`Thresholds`. The values in use are
-read from ``thresholds.json`` beside this module, written by the tuning script
-(``validation/diagnosis/tune.py``), which chooses them on the *tune* half of the tuning panel
-(``validation/diagnosis/tuning/``) only; the scores reported are those on the other half. The
-file records the panel, the half and the tuning score. Without the file, the defaults below
-apply.
+The values in use are read from ``thresholds.json`` beside this module, which
+``validation/diagnosis/tune.py`` writes from the *tune* half of the tuning panel only, with
+the panel, the half and the score; without the file the defaults below apply.
 
 Scales: ``*_z`` are in standard errors of the summed block differences of the held-out
 weighted residual (a block is a half cycle of one test); ``*_explained`` and ``name_min`` are

@@ -1,14 +1,12 @@
 """The pre-sliding transition after each reversal: its window and what is left in it.
 
-Right after a reversal the force swings from one sliding level to the other. How it swings
-depends on details that do not belong to the friction law: the pre-sliding stiffness (an
-elastic-plastic return map with yield displacement u_y, a rigid-plastic switch at the
-displacement peak, a smooth Bouc-Wen curve), a channel lag of a sample or two, the sampling.
-The baseline calibrates u_y (down to the rigid-plastic limit) and the lag; the residual left
-inside the *transition window* (within ``WINDOW_YIELDS`` u_y of travel or
-``WINDOW_SAMPLES`` samples of a reversal) is reported as a finding of its own, and the
-friction-law verdict is decided on the sliding phase outside it, so a transition mismatch can
-neither mask an effect nor turn ``none`` into ``unexplained``.
+After a reversal the force swings from one sliding level to the other in a way that does not
+belong to the friction law: the pre-sliding stiffness (elastic-plastic with u_y,
+rigid-plastic, a smooth Bouc-Wen curve), a channel lag of a sample or two, the sampling. The
+residual inside the *transition window* (within ``WINDOW_YIELDS`` u_y of travel or
+``WINDOW_SAMPLES`` samples of a reversal) is reported on its own, and the friction law is
+judged outside it, so a transition mismatch can neither mask an effect nor turn ``none``
+into ``unexplained``.
 """
 
 from __future__ import annotations
@@ -44,24 +42,16 @@ class TransitionFinding:
 
     Attributes
     ----------
-    yield_displacement : float
-        The calibrated u_y [m]; ``rigid_plastic`` when it is at the grid's lower end.
-    rigid_plastic : bool
-        Whether the calibrated transition is the rigid-plastic limit.
-    window_travel : float
-        Travel after a reversal counted in the window [m].
-    window_samples : int
-        Samples after a reversal counted in the window.
-    sample_share : float
-        Share of the samples in the window [-].
-    energy_share : float
-        Share of the held-out residual energy in the window [-].
-    rms : float
-        RMS residual in the window [N].
+    yield_displacement, rigid_plastic : float, bool
+        The calibrated u_y [m], and whether it is the rigid-plastic limit.
+    window_travel, window_samples : float, int
+        Extent of the window after a reversal [m], [samples].
+    sample_share, energy_share : float
+        Share of the samples and of the held-out residual energy in the window [-].
+    rms, sliding_rms : float
+        RMS residual inside and outside the window [N].
     relative_rms : float
         ``rms`` over the RMS force [-].
-    sliding_rms : float
-        RMS residual outside the window [N].
     """
 
     yield_displacement: float
@@ -119,7 +109,5 @@ TIMING = Effect(
     reading=lambda theta, stderr, c: {
         "lag_correction": (float(theta[0]) * c.sample_interval,
                            float(stderr[0]) * c.sample_interval, "s")})
-"""A nuisance term of every sliding-phase model (never named): the first-order change of the
-pendulum force N u / R_eff with a further channel offset of up to ``NUISANCE_LAG_SAMPLES``
-samples, so the baseline's lag, calibrated where effects near the reversals can bias it, is
-refitted with each candidate."""
+"""A nuisance term of every sliding-phase model, never named: the baseline's lag refitted
+within ``NUISANCE_LAG_SAMPLES`` samples, to first order in the pendulum force."""

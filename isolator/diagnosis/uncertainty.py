@@ -1,14 +1,13 @@
 """How sure the diagnosis is: a confidence for each named effect and parameter intervals.
 
-Both come from a bootstrap over blocks (a block is a half cycle of one test, the unit the
-selection's statistics are paired on, so serial correlation within a half cycle is kept):
+Both come from a bootstrap over blocks (half cycles, so the serial correlation within one is
+kept):
 
 - **confidence** of a named effect: the share of ``RESAMPLES`` block resamples of the held-out
-  errors in which the effect still closes at least ``explained_min`` of the weighted excess its
-  reference leaves (the model without it) [-];
-- **intervals** of the named effects' parameters: the model refitted ``REFITS`` times on block
-  resamples (each block weighted by how often it was drawn); the 5th and 95th percentiles of
-  each engineering parameter.
+  errors in which it still closes ``explained_min`` of the weighted excess its reference (the
+  model without it) leaves [-];
+- **intervals**: the 5th and 95th percentiles of each engineering parameter over ``REFITS``
+  refits on block resamples (each block weighted by how often it was drawn).
 """
 
 from __future__ import annotations

@@ -1,16 +1,11 @@
 """Where the gap lies: the residual broken down by band, and per-cycle characteristic errors.
 
-:func:`locate` splits the squared held-out force residual (its energy) by cycle number, by
-accumulated travel, by velocity band, by displacement band relative to the slider (r is the
-contact radius, half the slider diameter), by axial-load band, by distance from the last
-reversal and by test, and writes one sentence on where most of it sits: the one or two
-contiguous band ranges that hold much more of the residual than of the samples, the second
-found within the first ("71 % of the residual energy is in cycles 4-7, at |u| < r (30 % of
-the samples)").
-
-:func:`cycle_errors` compares the per-cycle characteristics (EDC, Keff, beta_eff, Fmax, Fmin,
-paper Eq. 9-11) of the measured loops with those of the predicted loops on the same
-displacement.
+:func:`locate` splits the held-out residual energy by cycle, accumulated travel, speed,
+displacement relative to the contact radius r, axial load, distance from the last reversal
+and test, and names the one or two contiguous band ranges, the second within the first, that
+hold much more of it than of the samples ("71 % of the residual energy is in cycles 4-7, at
+|u| < r (30 % of the samples)"). :func:`cycle_errors` compares the per-cycle EDC, Keff,
+beta_eff, Fmax and Fmin (paper Eq. 9-11) of the measured and the predicted loops.
 """
 
 from __future__ import annotations
@@ -62,10 +57,9 @@ class Where:
     ----------
     breakdowns : dict
         ``{dimension: [Band, ...]}`` in band order.
-    statement : str
-        Where most of the residual sits.
-    focus : list of (str, str)
-        The (dimension, band range) pairs the statement names.
+    statement, focus : str, list of (str, str)
+        The sentence on where most of the residual sits, and the (dimension, band range)
+        pairs it names.
     energy_share, sample_share : float
         Shares of residual energy and samples where all the focus bands hold [-].
     near_reversal : float
@@ -202,12 +196,9 @@ def locate(features: Features, prediction: np.ndarray, campaign: Campaign,
 
 def _best_range(energy: np.ndarray, masks: dict[str, list[np.ndarray]], within: np.ndarray,
                 exclude: set[str]) -> tuple[str, int, int] | None:
-    """The contiguous band range (one band for tests) holding the most residual energy in
-    excess of its samples, among the samples ``within``; None if no range is worth naming.
-
-    A range may cover at most ``_MAX_SAMPLE_SHARE`` of those samples, so that the statement
-    points somewhere rather than almost everywhere.
-    """
+    """Among the samples ``within``, the contiguous band range (one band for tests) whose
+    share of the residual energy most exceeds its share of the samples, by ``_MIN_LIFT`` at
+    least and covering at most ``_MAX_SAMPLE_SHARE`` of them; else None."""
     total = float(energy[within].sum())
     count = int(within.sum())
     if total <= 0.0 or count == 0:
@@ -237,10 +228,9 @@ class CycleErrors:
     Attributes
     ----------
     rows : list of dict
-        One per cycle: ``test``, ``cycle``, then ``{quantity}_data``, ``{quantity}_model``
-        and ``{quantity}_error`` for EDC, Keff, beta_eff, Fmax, Fmin: relative,
-        (model - data) / |data|, for the first three, and over half the measured force range
-        (Fmax - Fmin) / 2 for the peak forces (a peak force may be near zero).
+        One per cycle: ``test``, ``cycle``, and ``{quantity}_data``, ``_model``, ``_error``
+        for EDC, Keff, beta_eff, Fmax, Fmin; the error is (model - data) / |data|, for the
+        peak forces (which may be near zero) over half the measured range (Fmax - Fmin) / 2.
     """
 
     rows: list[dict]

@@ -1,13 +1,9 @@
 """From a building response to the bearing-level histories the diagnosis reads.
 
-A shake-table test of an isolated building measures the isolation level: the relative
-displacement of the bearings and the force through them. :func:`bearing_records` takes the
-same from a result of :func:`structures.analysis.run` (an ``xarray.Dataset``): the isolator
-displacement and velocity, the force through one bearing (the isolation-level force over the
-number of bearings) and the bearing's axial load, so that
-:func:`isolator.diagnosis.diagnose` can treat a computed response as a measured one.
-:func:`bearing_campaign` wraps them with the bearing's geometry. ``isolator`` never imports
-this module; the arrow points from ``structures`` down.
+A shake-table test of an isolated building measures the isolation level: the bearings'
+relative displacement and the force through them. :func:`bearing_records` takes the same from
+a :func:`structures.analysis.run` result, so that :func:`isolator.diagnosis.diagnose` can
+treat a computed response as a measured one. ``isolator`` never imports this module.
 """
 
 from __future__ import annotations
@@ -26,11 +22,8 @@ if TYPE_CHECKING:
 
 def bearing_records(result: xr.Dataset, *, name: str | None = None, per_bearing: bool = True,
                     velocity: bool = True) -> list[BearingRecord]:
-    """The isolators' histories of a building response in one direction, one record for its
-    bearings.
-
-    All bearings of a building in one direction (:func:`structures.analysis.run`) are
-    identical and share the weight, so one record stands for each of them.
+    """The isolators' histories of a building response in one direction, as a list of one
+    record: the bearings are identical and share the weight, so one stands for each.
 
     Parameters
     ----------
@@ -39,15 +32,11 @@ def bearing_records(result: xr.Dataset, *, name: str | None = None, per_bearing:
     name : str, optional
         Name of the record (default: the record name of the run).
     per_bearing : bool
-        The force through one bearing (default), else the isolation level's total force with
-        the axial load multiplied by the number of bearings.
+        The force [N] and axial load [N] of one bearing (default), else of the isolation
+        level (times the number of bearings).
     velocity : bool
         Pass the computed isolator velocity as the measured one (default); False leaves the
         diagnosis to derive it from the displacement.
-
-    Returns
-    -------
-    list of BearingRecord
     """
     if result.sizes["direction"] != 1:
         raise InputError("bearing_records reads a building in one direction: the diagnosis "
@@ -64,10 +53,8 @@ def bearing_records(result: xr.Dataset, *, name: str | None = None, per_bearing:
 
 
 def bearing_campaign(results: Sequence[xr.Dataset], **kwargs: object) -> Campaign:
-    """A campaign of the bearing histories of one or more building responses (in order).
-
-    The effective radius and slider diameter are read from the results' attributes, which
-    must agree. Keyword arguments go to :func:`bearing_records`.
+    """A campaign of the bearing histories of one or more building responses, in order,
+    with the bearing geometry their attributes agree on (``kwargs``: :func:`bearing_records`).
     """
     results = list(results)
     if not results:

@@ -1,18 +1,16 @@
 """Truth models for the diagnosis's validation panel: richer than the baseline it is told.
 
 A truth drives a bearing through an imposed displacement history and returns what a test
-machine would record, before measurement noise. Truths are of three kinds:
+machine would record, before measurement noise:
 
-- our own element (:func:`isolator.testrig.run_test`) with a friction model that has effects
-  the diagnosed baseline lacks (``PTVFriction`` with some of its dependencies), or with an
-  effective radius other than the one the diagnosis is told;
-- the element's friction force modulated by physics our models do not have, in forms that
-  differ from the candidate library's (so the candidates are tested on shapes they do not
-  share exactly): a breakaway peak that decays to zero quadratically over a length,
-  wear as a power law of the travel accumulated over the campaign;
+- our element (:func:`isolator.testrig.run_test`) with effects the diagnosed baseline lacks
+  (``PTVFriction`` with some of its dependencies) or another effective radius than told;
+- its friction force modulated in shapes other than the candidate library's: a breakaway
+  peak fading quadratically over a length (:class:`Breakaway`), wear as a power law of the
+  campaign's travel (:class:`Wear`);
 - OpenSees elements (:func:`structures.opensees.bearing.run_opensees_test`):
-  ``FPBearingPTV`` with temperature dependence and ``singleFPBearing`` with ``VelDependent``
-  or ``Coulomb`` friction.
+  ``FPBearingPTV`` with temperature dependence, ``singleFPBearing`` with ``VelDependent`` or
+  ``Coulomb`` friction.
 """
 
 from __future__ import annotations
@@ -99,8 +97,8 @@ def element_truth(
     wear: Wear | None = None,
     travel_before: float = 0.0,
 ) -> TruthRecord:
-    """Our element through ``history``, optionally with a varying axial load and the
-    breakaway or wear modulations of its friction force.
+    """Our element through ``history``, optionally with a varying axial load and breakaway
+    or wear on its friction force.
 
     Parameters
     ----------
@@ -154,10 +152,9 @@ def measured(truth: TruthRecord, rng: np.random.Generator, *, force_noise: float
         Noise source.
     force_noise, displacement_noise : float
         Standard deviations [N], [m].
-    velocity_noise : float or None
-        Standard deviation [m/s]; None leaves the velocity column out.
-    axial_noise : float or None
-        Relative standard deviation of the axial force [-]; None leaves the column out.
+    velocity_noise, axial_noise : float or None
+        Standard deviation [m/s] and relative standard deviation of the axial force [-];
+        None leaves that column out.
     """
     n = truth.time.size
     out = {"time": truth.time,

@@ -1,9 +1,7 @@
 """The library of candidate effects, one module per effect.
 
-Every module of this package that defines ``EFFECT`` (an :class:`~.base.Effect`) is part of
-the library; :data:`LIBRARY` lists them by their ``order``. To add an effect, write one module
-here with its parameters and bounds, where it acts (kinematics, mu or force), its physical
-reading and, for an effect on mu, its own variable (see :mod:`.base` and any module here).
+Every module here that defines ``EFFECT`` (an :class:`~.base.Effect`) is part of the library;
+:data:`LIBRARY` lists them by their ``order``. Adding an effect is adding such a module.
 """
 
 from __future__ import annotations

@@ -1,12 +1,10 @@
 """``backlash``: a dead band (play) in the load train between the actuator and the bearing.
 
-The displacement channel measures the actuator. With a play of total width b the bearing
-follows the actuator only once the gap has closed: u_b stays within b / 2 of u, and while the
-gap is open no force is transmitted (the load cell reads zero) and the bearing stands still.
-When contact is made again the bearing's force rebuilds through its pre-sliding transition
-from zero (:func:`isolator.diagnosis.kinematics.play_return_map`), with a pre-sliding yield
-displacement of its own (the baseline's u_y has absorbed part of the play). Acts on the
-kinematics, before the return map.
+The displacement channel measures the actuator. With a play of width b the bearing stays
+within b / 2 of it; while the gap is open the bearing stands still and the load cell reads
+zero, and once it closes the force rebuilds from zero through a pre-sliding transition with
+a yield displacement of its own, since the baseline's u_y has absorbed part of the play
+(:func:`isolator.diagnosis.kinematics.play_return_map`). Acts on the kinematics.
 """
 
 from __future__ import annotations

@@ -1,18 +1,11 @@
 """What an effect of the diagnosis is: its parameters, where it acts, its physical reading.
 
-An :class:`Effect` is one candidate explanation of a gap between a calibrated baseline and
-measured bearing tests. It acts where the physics acts:
-
-- on the **kinematics** before the return map (``kinematic``): the displacement the bearing
-  really undergoes differs from the one measured (a play in the load train, a time offset
-  between the channels); the model's z, pendulum force and load path are recomputed from it;
-- on the **friction coefficient** (``factor``): mu(t) = c mu_base(t) m(t), m a function of the
-  effect's own variable (temperature rise, speed, pressure, travel);
-- on the **force** (``extra`` adds a force, ``transform`` maps the force parts): a restoring
-  stiffness other than N / R_eff, the spherical surface's geometry.
-
-Parameters are fitted on a scale where they are of order one; scale parameters as their
-base-10 logarithm. ``reading`` turns a fit into the values engineers read, with units.
+An :class:`Effect` is one candidate explanation of the gap between a calibrated baseline and
+measured bearing tests. It acts where the physics acts: on the **kinematics** (the
+displacement the bearing really undergoes: a play, a channel offset), on the **friction
+coefficient**, mu(t) = c mu_base(t) m(t) with m a function of the effect's own variable, or
+on the **force** (a restoring stiffness other than N / R_eff, the spherical geometry).
+Parameters are fitted on a scale where they are of order one, scale parameters as log10.
 """
 
 from __future__ import annotations
@@ -34,16 +27,15 @@ class Parameter:
     name : str
         Name on the fitting scale.
     initial, low, high : float
-        Start value and bounds (of log10 of the value when ``log``).
+        Start value and bounds, of log10 of the value when ``log``.
     log : bool
         Whether the parameter is fitted as log10 of its value.
     starts : tuple of float
-        Further start values of a multistart fit (on the fitting scale).
+        Further start values of a multistart fit.
     edge_ok : bool
         Whether a fit at a bound is still a physical reading (a weight at 0 or 1, a
-        transition at its rigid-plastic limit, a drift that is linear). Otherwise an effect
-        fitted at a bound of this parameter is not named: the data ask for more than the
-        physics of that effect gives.
+        rigid-plastic transition, a linear drift); otherwise an effect fitted at a bound is
+        not named, since the data ask for more than its physics gives.
     """
 
     name: str
@@ -66,32 +58,23 @@ class Context:
 
     Attributes
     ----------
-    reference_pressure : float
-        Median contact pressure [Pa].
-    pressure_spread : float
-        Ratio of the 95th to the 5th percentile of the pressure, less one [-].
-    reference_displacement : float
-        99th percentile of |u| [m].
-    campaign_travel : float
-        Total travel of the campaign [m].
+    reference_pressure, pressure_spread : float
+        Median contact pressure [Pa]; ratio of its 95th to its 5th percentile, less one [-].
+    reference_displacement, campaign_travel : float
+        99th percentile of |u| [m]; total travel of the campaign [m].
     effective_radius : float
         R_eff the user gave [m] (inf for a flat slider).
     largest_rise : float
         Largest contact-temperature rise from the measured friction power [degC].
     sample_interval : float
         Median sampling interval [s].
-    yield_displacement : float
-        The baseline's calibrated u_y [m].
-    nominal_mu : float
-        Mean friction coefficient of the calibrated baseline [-].
+    yield_displacement, nominal_mu, channel_lag : float
+        The calibrated baseline's u_y [m], mean mu [-] and lag of the force channel [s].
     tests : int
-        Number of tests of the campaign.
-    channel_lag : float
-        Time offset of the force channel behind the displacement channel that the baseline
-        calibrated [s].
+        Number of tests.
     kinematics : object or None
-        The full, contiguous histories kinematic effects recompute the return map on
-        (:class:`isolator.diagnosis.fitting.Kinematics`).
+        The contiguous histories (:class:`isolator.diagnosis.fitting.Kinematics`) on which
+        kinematic effects recompute the return map.
     """
 
     reference_pressure: float
@@ -109,8 +92,8 @@ class Context:
 
     @classmethod
     def of(cls, features, effective_radius: float, **known) -> Context:
-        """The constants of a whole campaign (``features``: a
-        :class:`~isolator.diagnosis.features.Features`); ``known`` sets the others."""
+        """The constants of a campaign's :class:`~isolator.diagnosis.features.Features`;
+        ``known`` sets the others."""
         p5, p50, p95 = np.percentile(features.pressure, [5, 50, 95])
         return cls(float(p50), float(p95 / p5 - 1.0),
                    float(np.percentile(np.abs(features.displacement), 99)),
@@ -129,32 +112,25 @@ class Effect:
 
     Attributes
     ----------
-    name : str
-        Name used in the verdict.
-    description : str
-        One line for reports.
-    physical_reading : str
-        What the effect is physically, for the documentation and reports.
+    name, description, physical_reading : str
+        Name in the verdict, one line for reports, what the effect is physically.
     parameters : tuple of Parameter
-        Its own parameters (the baseline's scale is added by the fit).
+        Its own parameters (the fit adds the baseline's scale c).
     acts_on : {"kinematics", "mu", "force"}
-        Where it acts.
-    factor : callable or None
-        ``factor(theta, features, context) -> m`` [-], on mu.
-    extra : callable or None
-        ``extra(theta, features, context) -> e`` [N], added to the force.
+        Where it acts; the hooks below that act there must not all be None.
+    factor, extra : callable or None
+        ``factor(theta, features, context) -> m`` [-] multiplying mu, and
+        ``extra(theta, features, context) -> e`` [N] added to the force.
     transform : callable or None
-        ``transform(theta, features, context, pendulum, friction) -> force`` [N]: the force
-        from its parts (pendulum force and friction force mu N z).
+        ``transform(theta, features, context, pendulum, friction) -> force`` [N] from the
+        pendulum force and the friction force mu N z.
     kinematic : callable or None
-        ``kinematic(theta, context) -> {"shift": s, "half_width": h}``: a time offset of the
-        force channel behind the displacement channel [s] and/or the half width of a dead
-        band in the load path [m]; the return map, the pendulum force and the load path are
-        recomputed from the displacement so changed
-        (:class:`isolator.diagnosis.fitting.Kinematics`).
+        ``kinematic(theta, context) -> {"shift": s, "half_width": h, "yield_displacement": y}``
+        (any of them): a further lag of the force channel [s], a play's half width [m], a
+        yield displacement [m]; the return map and the pendulum force are recomputed.
     variable : callable or None
-        ``variable(features, context) -> x``: the effect's own variable, for its flexible
-        monotone form (:mod:`isolator.diagnosis.flexible`).
+        ``variable(features, context) -> x``: the variable of its flexible monotone form
+        (:mod:`isolator.diagnosis.flexible`).
     requires : callable or None
         ``requires(context) -> reason or None``: why the campaign cannot show the effect.
     reading : callable or None

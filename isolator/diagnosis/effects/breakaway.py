@@ -1,12 +1,9 @@
 """``breakaway``: a static friction peak at each reversal (and at the start of motion).
 
-m = 1 + b exp(-s / d), s the travel since the last reversal: a peak b >= 0 that fades over a
-length d (static friction is higher than kinetic friction; a dip after each reversal is some
-other effect, a play or a lag, and a fit that wants b = 0 is not named). The length is
-bounded below by 1 mm so that the peak is not mistaken for the pre-sliding transition, which
-the baseline calibrates, and above by 50 mm: static friction fades over millimetres to
-centimetres of travel, and a "peak" that needs more is some other drift. Flexible form:
-monotone in s.
+m = 1 + b exp(-s / d), s the travel since the last reversal: a peak b >= 0 (static friction
+above kinetic; a dip after each reversal is a play or a lag, and a fit at b = 0 is not named)
+fading over a length d of 1 to 50 mm (shorter is the pre-sliding transition the baseline
+calibrates, longer some other drift). Flexible form: monotone in s.
 """
 
 from __future__ import annotations

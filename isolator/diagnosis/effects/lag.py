@@ -1,11 +1,10 @@
 """``lag``: a time offset between the force and the displacement channels.
 
-The force channel records the force tau seconds after the displacement channel records the
-displacement it belongs to (filters, separate acquisition): the model is driven by u(t - tau).
-The baseline calibrates an offset of up to ``NUISANCE_LAG_SAMPLES`` samples, together with
-the pre-sliding transition that trades off against it; this effect is the offset over a wide
-range, fitted with a yield displacement of its own, and is named only beyond a few samples.
-Acts on the kinematics, before the return map.
+The force channel records the force tau [s] after the displacement it belongs to (a filter,
+a separate acquisition): the model is driven by u(t - tau). The baseline calibrates up to
+``NUISANCE_LAG_SAMPLES`` samples of offset with its pre-sliding transition; this effect is
+the offset over a wide range with a yield displacement of its own, named only beyond
+``Thresholds.lag_min_samples``. Acts on the kinematics.
 """
 
 from __future__ import annotations
