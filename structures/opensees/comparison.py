@@ -156,7 +156,8 @@ def compare(ours, opensees) -> dict[str, Any]:
         (OpenSees's with its ``element``); ``difference`` holds ``peak_<name>``,
         ``nrmse_<history>`` (``_x``/``_y`` per component in plan) and
         ``max_temperature_gap`` [degC]. In plan also ``corner_bearing`` (ours's largest,
-        whose ``peak_corner_displacement`` both sides report) and ours's ``overturning``.
+        whose ``peak_corner_displacement`` both sides report) and each side's
+        ``overturning``.
 
     Raises
     ------
@@ -203,6 +204,7 @@ def compare(ours, opensees) -> dict[str, Any]:
     if plan:
         summary["corner_bearing"] = corner
         summary["ours"]["overturning"] = bool(ours.attrs["overturning"])
+        summary["opensees"]["overturning"] = bool(opensees.attrs["overturning"])
     summary["opensees"]["element"] = opensees.attrs["element"]
     summary["wall_time_ratio"] = ours.attrs["wall_time"] / opensees.attrs["wall_time"]
     return summary
@@ -217,7 +219,7 @@ def run_comparison(
     n_bearings: int | None = None,
     dt: float | None = None,
     pendulum: str = "singlefp",
-    overturning: bool = False,
+    overturning: bool | None = None,
     warm_up: bool = True,
     **run_options: Any,
 ) -> Comparison:
@@ -233,9 +235,10 @@ def run_comparison(
         it is dropped).
     pendulum : {"singlefp", "spring"}
         As :func:`structures.opensees.building.run_opensees`.
-    overturning : bool
-        Run ours with the overturning of the floors' inertia forces (in plan; OpenSees has
-        none, so the comparison then measures it too). Default False.
+    overturning : bool, optional
+        In plan, the overturning of the floors' inertia forces on both sides: ours loads the
+        bearings with it, the OpenSees twin stands the floors at their heights
+        (:mod:`structures.opensees.model`). Default: when the plan has storey heights.
     warm_up : bool
         Run ours first on the record's first 3 samples, so that the timed run does not
         include a one-off compilation.
@@ -243,12 +246,14 @@ def run_comparison(
         Passed to :func:`structures.analysis.run` only (``tolerance``, ``max_steps``, ...).
     """
     bearing = replace(bearing, axial_load=None)
+    if overturning is None:
+        overturning = building.plan is not None and building.plan.storey_heights is not None
     options = {"n_bearings": n_bearings, "overturning": overturning, **run_options}
     if warm_up and motion.npts >= 3:
         run(building, bearing, truncated(motion, 2 * motion.dt), integrator, **options)
     ours = run(building, bearing, motion, integrator, dt=dt, **options)
     opensees = run_opensees(building, bearing, motion, integrator, n_bearings=n_bearings, dt=dt,
-                            pendulum=pendulum)
+                            pendulum=pendulum, overturning=overturning)
     return Comparison(ours, opensees, compare(ours, opensees))
 
 
