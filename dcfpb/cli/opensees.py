@@ -10,9 +10,9 @@ isolator displacement, base shear and roof acceleration, per direction in plan) 
 time of each and their ratio. ``--pendulum spring`` builds flatSliderBearing plus linear springs
 N / R in OpenSees (our law) instead of singleFPBearing. In plan, a building file whose plan has
 ``storey_heights`` is compared with the overturning of the floors' inertia forces on both sides
-(ours loads the bearings with it; the OpenSees twin stands its floors at their heights);
-``--no-overturning`` leaves it out on both sides (``--overturning`` asks for it). ``--plot``
-overlays the histories.
+(ours loads the bearings with it; the OpenSees twin stands its floors at their heights), and
+the axial loads of the corner bearings are compared too; ``--no-overturning`` leaves it out on
+both sides (``--overturning`` asks for it). ``--plot`` overlays the histories.
 
 ``dcfpb compare-opensees-bearing [--model ...]`` is the same for one bearing under an imposed
 sine (:func:`structures.opensees.comparison.run_bearing_comparison`): peak force, force NRMSE,
@@ -205,7 +205,7 @@ def print_differences(summary: dict[str, Any]) -> None:
     suffixes = ("_x", "_y") if plan else ("",)
     rows: dict[str, list[float]] = {}
     for key, value in d.items():
-        if key.startswith("nrmse_"):
+        if key.startswith("nrmse_") and key != "nrmse_axial_load":
             name = key[6:]
             base = name[:-2] if name[-2:] in suffixes else name
             rows.setdefault(base, []).append(value)
@@ -213,6 +213,8 @@ def print_differences(summary: dict[str, Any]) -> None:
                                 for s in suffixes))
     for name, values in rows.items():
         print(f"{name.replace('_', ' '):40s}" + "".join(f" {100 * v:12.3f}" for v in values))
+    if "axial_load" in summary:
+        print_axial_loads(summary)
     if not math.isnan(d["max_temperature_gap"]):
         print(f"largest temperature gap: {d['max_temperature_gap']:.2f} degC")
     ours, opensees = summary["ours"]["wall_time"], summary["opensees"]["wall_time"]
@@ -221,6 +223,23 @@ def print_differences(summary: dict[str, Any]) -> None:
     for side in ("ours", "opensees"):
         if not summary[side]["success"]:
             print(f"warning: the {side} run stopped early: {summary[side]['message']}")
+
+
+def print_axial_loads(summary: dict[str, Any]) -> None:
+    """The axial loads of the corner bearings in plan (``summary["axial_load"]`` of
+    :func:`structures.opensees.comparison.compare`) and their differences."""
+    loads, d = summary["axial_load"], summary["difference"]
+    print("axial loads of the corner bearings [kN] (OpenSees: the elements' normal force)")
+    print(f"{'bearing':>8s} {'gravity':>9s} {'ours max':>9s} {'OS max':>9s} {'ours min':>9s} "
+          f"{'OS min':>9s}")
+    for i, bearing in enumerate(loads["bearings"]):
+        values = (loads["gravity_share"][i], loads["ours"]["max"][i],
+                  loads["opensees"]["max"][i], loads["ours"]["min"][i],
+                  loads["opensees"]["min"][i])
+        print(f"{bearing:8d} " + " ".join(f"{v / 1e3:9.1f}" for v in values))
+    print(f"largest gap over ours's largest change from the gravity share: max "
+          f"{100 * d['max_axial_load']:.3f} %, min {100 * d['min_axial_load']:.3f} %, NRMSE "
+          f"{100 * d['nrmse_axial_load']:.3f} %")
 
 
 def run_bearing(args: argparse.Namespace) -> int:

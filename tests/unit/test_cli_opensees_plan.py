@@ -70,17 +70,26 @@ def _args(folder, *extra: str) -> list[str]:
 
 
 def test_pair_runs_the_building_in_plan_against_opensees_3d(ops, files, capsys):
-    """A plan with storey heights: the overturning on both sides by default."""
+    """A plan with storey heights: the overturning on both sides by default, and the corner
+    bearings' axial loads compared."""
     assert main(_args(files, "--record-z", str(files / "z.txt"), "--json")) == 0
     out = json.loads(capsys.readouterr().out)
-    assert set(out) == {"ours", "opensees", "difference", "corner_bearing", "wall_time_ratio"}
+    assert set(out) == {"ours", "opensees", "difference", "corner_bearing", "axial_load",
+                        "wall_time_ratio"}
     assert out["opensees"]["element"] == "singleFPBearing 3D Coulomb"
     assert out["ours"]["steps"] == out["opensees"]["steps"] == 400
     assert out["ours"]["overturning"] is True and out["opensees"]["overturning"] is True
+    assert sorted(out["axial_load"]["bearings"]) == [0, 2, 3, 5]
+    for side in ("ours", "opensees"):
+        assert all(low < share < high for low, share, high in zip(
+            out["axial_load"][side]["min"], out["axial_load"]["gravity_share"],
+            out["axial_load"][side]["max"], strict=True))
     for key in ("peak_isolator_displacement", "peak_base_shear"):
         assert abs(out["difference"][key]) < 0.01
     for key in ("nrmse_isolator_displacement_x", "nrmse_isolator_displacement_y"):
         assert out["difference"][key] < 0.02
+    for key in ("max_axial_load", "min_axial_load", "nrmse_axial_load"):
+        assert abs(out["difference"][key]) < 0.05, key
     assert out["wall_time_ratio"] > 0.0
 
 
@@ -93,6 +102,7 @@ def test_without_overturning_on_both_sides(ops, files, capsys, building, extra):
     assert main(args) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["ours"]["overturning"] is False and out["opensees"]["overturning"] is False
+    assert out["axial_load"]["ours"]["max"] == out["axial_load"]["gravity_share"]
 
 
 def test_modal_damping_in_plan(ops, files, capsys):
