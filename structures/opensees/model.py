@@ -325,6 +325,7 @@ def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -
         bottom = node()
         ops.node(bottom, float(x), float(y), 0.0)
         ops.fix(bottom, *([_FIXED] * 6))
+        # tall: a node of the rigid slab (shared); flat: a node of its own, free vertically
         tops.append(node_at(0, (float(x), float(y)), vertical=_FIXED if tall else _FREE))
         elements.append(add_bearing(ops, tag, bottom, tops[-1], bearing, float(load),
                                     int(count), kind=kind, pendulum=pendulum, owner=owner,
