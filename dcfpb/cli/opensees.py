@@ -8,9 +8,11 @@ table, in plan) with our engine and with openseespy
 differences (relative peak difference, and NRMSE = RMS difference / peak of ours, of the
 isolator displacement, base shear and roof acceleration, per direction in plan) and the wall
 time of each and their ratio. ``--pendulum spring`` builds flatSliderBearing plus linear springs
-N / R in OpenSees (our law) instead of singleFPBearing; ``--overturning`` runs ours in plan
-with the overturning of the floors' inertia forces (the OpenSees storeys have zero length and
-none: the gap it makes is then measured). ``--plot`` overlays the histories.
+N / R in OpenSees (our law) instead of singleFPBearing. In plan, a building file whose plan has
+``storey_heights`` is compared with the overturning of the floors' inertia forces on both sides
+(ours loads the bearings with it; the OpenSees twin stands its floors at their heights), and
+the axial loads of the corner bearings are compared too; ``--no-overturning`` leaves it out on
+both sides (``--overturning`` asks for it). ``--plot`` overlays the histories.
 
 ``dcfpb compare-opensees-bearing [--model ...]`` is the same for one bearing under an imposed
 sine (:func:`structures.opensees.comparison.run_bearing_comparison`): peak force, force NRMSE,
@@ -63,9 +65,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     add_max_steps(p, "each run")
     add_record_options(p)
     add_pair_options(p)
-    p.add_argument("--overturning", action="store_true",
-                   help="with a pair: run ours with the overturning of the floors' inertia "
-                   "forces (OpenSees has none; the gap it makes is then measured)")
+    p.add_argument("--overturning", action=argparse.BooleanOptionalAction,
+                   help="with a pair: the overturning of the floors' inertia forces on both "
+                   "sides (ours's axial loads; the OpenSees floors at their storey heights) "
+                   "(default: when the file's [plan] has storey_heights)")
     p.add_argument("--json", action="store_true", help="print the comparison as JSON")
     p.add_argument("--plot", metavar="DIR", help="write overlay plots to this folder")
     p.set_defaults(handler=run_building)
@@ -128,6 +131,10 @@ def _inputs(args: argparse.Namespace, command: str):
         check_real(args.duration, "--duration", command, low=0.0, low_open=True)
     check_int(args.max_steps, "--max-steps", command, low=1)
     config = load_config(args.building)
+    if args.overturning and config.plan is not None and config.plan.storey_heights is None:
+        raise InputError("--overturning needs the storey heights of the building file's [plan] "
+                         "table (storey_heights, the lever arms of the floors' inertia forces); "
+                         f"{args.building} has none.")
     integrator = integrator_from_args(config, args.integrator, args.alpha)
     if pair:
         motion = pair_from_args(args, config, command)
@@ -187,7 +194,7 @@ def print_differences(summary: dict[str, Any]) -> None:
     peaks, and the NRMSE of each history per direction."""
     d = summary["difference"]
     plan = "corner_bearing" in summary
-    overturning = " (ours with overturning)" if summary["ours"].get("overturning") else ""
+    overturning = " (both with overturning)" if summary["ours"].get("overturning") else ""
     print(f"\nOpenSees against ours{overturning}: peak = max|OS| / max|ours| - 1"
           f"{' of the resultant' if plan else ''}; NRMSE = RMS difference / peak of ours"
           f"{', per component' if plan else ''}")
@@ -198,7 +205,7 @@ def print_differences(summary: dict[str, Any]) -> None:
     suffixes = ("_x", "_y") if plan else ("",)
     rows: dict[str, list[float]] = {}
     for key, value in d.items():
-        if key.startswith("nrmse_"):
+        if key.startswith("nrmse_") and key != "nrmse_axial_load":
             name = key[6:]
             base = name[:-2] if name[-2:] in suffixes else name
             rows.setdefault(base, []).append(value)
@@ -206,6 +213,8 @@ def print_differences(summary: dict[str, Any]) -> None:
                                 for s in suffixes))
     for name, values in rows.items():
         print(f"{name.replace('_', ' '):40s}" + "".join(f" {100 * v:12.3f}" for v in values))
+    if "axial_load" in summary:
+        print_axial_loads(summary)
     if not math.isnan(d["max_temperature_gap"]):
         print(f"largest temperature gap: {d['max_temperature_gap']:.2f} degC")
     ours, opensees = summary["ours"]["wall_time"], summary["opensees"]["wall_time"]
@@ -214,6 +223,23 @@ def print_differences(summary: dict[str, Any]) -> None:
     for side in ("ours", "opensees"):
         if not summary[side]["success"]:
             print(f"warning: the {side} run stopped early: {summary[side]['message']}")
+
+
+def print_axial_loads(summary: dict[str, Any]) -> None:
+    """The axial loads of the corner bearings in plan (``summary["axial_load"]`` of
+    :func:`structures.opensees.comparison.compare`) and their differences."""
+    loads, d = summary["axial_load"], summary["difference"]
+    print("axial loads of the corner bearings [kN] (OpenSees: the elements' normal force)")
+    print(f"{'bearing':>8s} {'gravity':>9s} {'ours max':>9s} {'OS max':>9s} {'ours min':>9s} "
+          f"{'OS min':>9s}")
+    for i, bearing in enumerate(loads["bearings"]):
+        values = (loads["gravity_share"][i], loads["ours"]["max"][i],
+                  loads["opensees"]["max"][i], loads["ours"]["min"][i],
+                  loads["opensees"]["min"][i])
+        print(f"{bearing:8d} " + " ".join(f"{v / 1e3:9.1f}" for v in values))
+    print(f"largest gap over ours's largest change from the gravity share: max "
+          f"{100 * d['max_axial_load']:.3f} %, min {100 * d['min_axial_load']:.3f} %, NRMSE "
+          f"{100 * d['nrmse_axial_load']:.3f} %")
 
 
 def run_bearing(args: argparse.Namespace) -> int:

@@ -94,6 +94,7 @@ def run_opensees(
     n_bearings: int | None = None,
     dt: float | None = None,
     pendulum: str = "singlefp",
+    overturning: bool = True,
     tolerance: float = 1e-10,
     max_subdivisions: int = 6,
 ):
@@ -101,10 +102,12 @@ def run_opensees(
 
     Parameters
     ----------
-    building, bearing, motion, integrator, n_bearings, dt
+    building, bearing, motion, integrator, n_bearings, dt, overturning
         As :func:`structures.analysis.run`: one record for a building in one direction, a
-        pair (x, y, optionally z) for a building in plan. The bearing's friction model selects
-        the element (:func:`~structures.opensees.elements.element_kind`).
+        pair (x, y, optionally z) for a building in plan, whose floors stand at the plan's
+        storey heights with ``overturning`` (the default; see
+        :mod:`structures.opensees.model`). The bearing's friction model selects the element
+        (:func:`~structures.opensees.elements.element_kind`).
     pendulum : {"singlefp", "spring"}
         singleFPBearing (N = P + F . u / R) or flatSliderBearing plus linear springs (N = P,
         our law); see :mod:`structures.opensees.model`. Not used for FPBearingPTV.
@@ -116,11 +119,11 @@ def run_opensees(
     Returns
     -------
     xarray.Dataset
-        As :func:`structures.analysis.run` without overturning (the model has none), with the
-        attributes ``program``, ``element``, ``pendulum`` (``"spherical"`` for
-        FPBearingPTV), ``newton_iterations``, ``subdivisions``, ``wall_time`` [s] (model
-        building included) and ``engine = "opensees"``; ``heat_flux`` is NaN for elements
-        without heating.
+        As :func:`structures.analysis.run`, with the attributes ``program``, ``element``,
+        ``pendulum`` (``"spherical"`` for FPBearingPTV), ``newton_iterations``,
+        ``subdivisions``, ``wall_time`` [s] (model building included) and
+        ``engine = "opensees"``; ``axial_load`` is the elements' normal force and
+        ``heat_flux`` is NaN for elements without heating.
 
     Raises
     ------
@@ -140,7 +143,7 @@ def run_opensees(
     check_real(tolerance, "tolerance", owner, low=0.0, low_open=True)
     check_int(max_subdivisions, "max_subdivisions", owner, low=0)
     arguments = opensees_integrator(integrator)
-    native = IsolatedShearBuilding(building, bearing, n_bearings, overturning=False,
+    native = IsolatedShearBuilding(building, bearing, n_bearings, overturning=overturning,
                                    vertical=motion.z if pair else None)
     if arguments[0] == "HHT" and element_kind(native.bearing) == "ptv":
         raise ValueError(

@@ -23,6 +23,9 @@ their time grid):
 - **NRMSE** ``sqrt(mean((x_OS - x_ours)^2)) / max|x_ours|`` of each component (:func:`nrmse`):
   the isolator displacement (the largest over the bearings; in plan also the corner bearing's
   and the centre's, and the base slab's rotation), the base shear and the roof acceleration;
+- in plan, the axial loads of the corner bearings (:func:`axial_load_summary`): the gaps of
+  their maxima and minima and their RMS difference, over ours's largest change of the load
+  from the gravity share;
 - the largest gap of the contact temperature [degC].
 
 One bearing under an imposed history (:func:`run_bearing_comparison`: our test rig against
@@ -54,9 +57,9 @@ from structures.opensees.building import run_opensees
 from structures.opensees.elements import ELEMENTS, element_kind, fpbearingptv_equivalent
 from structures.opensees.singlefp import singlefp_normal_force
 
-__all__ = ["MODELS", "Comparison", "bearing_summary", "closed_blocks", "compare",
-           "compare_tests", "comparison_bearing", "nrmse", "run_bearing_comparison",
-           "run_comparison", "shaped_bearing", "truncated"]
+__all__ = ["MODELS", "Comparison", "axial_load_summary", "bearing_summary", "closed_blocks",
+           "compare", "compare_tests", "comparison_bearing", "nrmse", "outline_bearings",
+           "run_bearing_comparison", "run_comparison", "shaped_bearing", "truncated"]
 
 MODELS = ("constant", "velocity", "ptv")
 _ZERO_COMPONENT = 1.0e-9  # a component below this fraction of the peak resultant counts as zero
@@ -144,6 +147,51 @@ def _peaks(ds, corner: int | None) -> dict[str, Any]:
     return out
 
 
+def outline_bearings(ds) -> list[int]:
+    """The corner bearings of a run in plan: the vertices of the convex outline of its
+    bearing positions, in the outline's order (bearings on an edge between two are left
+    out)."""
+    from scipy.spatial import ConvexHull
+
+    xy = np.column_stack([ds["bearing_x"].values, ds["bearing_y"].values])
+    return [int(i) for i in ConvexHull(xy).vertices]
+
+
+def axial_load_summary(ours, opensees) -> tuple[dict[str, Any], dict[str, float]]:
+    """The axial loads of the corner bearings (:func:`outline_bearings`) in two runs in plan
+    on the same samples, and their differences.
+
+    Returns
+    -------
+    summary : dict
+        ``bearings`` (their indices), ``gravity_share`` [N], and for ``ours`` and
+        ``opensees`` the ``max`` and ``min`` of each one's axial load [N] (OpenSees's: the
+        elements' normal force).
+    difference : dict
+        Over the corner bearings, each relative to ours's largest change of that bearing's
+        load from its gravity share (``max|N_ours - N_g|``; to ``N_g`` where the load does
+        not change, without overturning and a vertical) [-]: ``max_axial_load`` and
+        ``min_axial_load`` (the largest gap of the maxima and of the minima, signed
+        OpenSees minus ours) and ``nrmse_axial_load`` (the largest RMS difference).
+    """
+    corners = outline_bearings(ours)
+    gravity = np.asarray(ours.attrs["gravity_shares"], dtype=float)[corners]
+    loads = {side: ds["axial_load"].values[:, corners] for side, ds in (("ours", ours),
+                                                                        ("opensees", opensees))}
+    change = np.max(np.abs(loads["ours"] - gravity), axis=0)
+    change = np.where(change > _ZERO_COMPONENT * gravity, change, gravity)
+    summary: dict[str, Any] = {"bearings": corners, "gravity_share": gravity.tolist()}
+    for side, values in loads.items():
+        summary[side] = {"max": values.max(axis=0).tolist(), "min": values.min(axis=0).tolist()}
+    difference = {}
+    for key, extreme in (("max_axial_load", np.max), ("min_axial_load", np.min)):
+        gaps = (extreme(loads["opensees"], axis=0) - extreme(loads["ours"], axis=0)) / change
+        difference[key] = float(gaps[np.argmax(np.abs(gaps))])
+    rms = np.sqrt(np.mean((loads["opensees"] - loads["ours"]) ** 2, axis=0))
+    difference["nrmse_axial_load"] = float(np.max(rms / change))
+    return summary, difference
+
+
 def compare(ours, opensees) -> dict[str, Any]:
     """Peaks of both building runs, their differences (module docstring) and the wall-time
     ratio.
@@ -156,7 +204,9 @@ def compare(ours, opensees) -> dict[str, Any]:
         (OpenSees's with its ``element``); ``difference`` holds ``peak_<name>``,
         ``nrmse_<history>`` (``_x``/``_y`` per component in plan) and
         ``max_temperature_gap`` [degC]. In plan also ``corner_bearing`` (ours's largest,
-        whose ``peak_corner_displacement`` both sides report) and ours's ``overturning``.
+        whose ``peak_corner_displacement`` both sides report), each side's ``overturning``,
+        ``axial_load`` (the corner bearings' loads) and the differences of
+        :func:`axial_load_summary` in ``difference``.
 
     Raises
     ------
@@ -203,6 +253,9 @@ def compare(ours, opensees) -> dict[str, Any]:
     if plan:
         summary["corner_bearing"] = corner
         summary["ours"]["overturning"] = bool(ours.attrs["overturning"])
+        summary["opensees"]["overturning"] = bool(opensees.attrs["overturning"])
+        summary["axial_load"], gaps = axial_load_summary(a, b)
+        difference.update(gaps)
     summary["opensees"]["element"] = opensees.attrs["element"]
     summary["wall_time_ratio"] = ours.attrs["wall_time"] / opensees.attrs["wall_time"]
     return summary
@@ -217,7 +270,7 @@ def run_comparison(
     n_bearings: int | None = None,
     dt: float | None = None,
     pendulum: str = "singlefp",
-    overturning: bool = False,
+    overturning: bool | None = None,
     warm_up: bool = True,
     **run_options: Any,
 ) -> Comparison:
@@ -233,9 +286,10 @@ def run_comparison(
         it is dropped).
     pendulum : {"singlefp", "spring"}
         As :func:`structures.opensees.building.run_opensees`.
-    overturning : bool
-        Run ours with the overturning of the floors' inertia forces (in plan; OpenSees has
-        none, so the comparison then measures it too). Default False.
+    overturning : bool, optional
+        In plan, the overturning of the floors' inertia forces on both sides: ours loads the
+        bearings with it, the OpenSees twin stands the floors at their heights
+        (:mod:`structures.opensees.model`). Default: when the plan has storey heights.
     warm_up : bool
         Run ours first on the record's first 3 samples, so that the timed run does not
         include a one-off compilation.
@@ -243,12 +297,14 @@ def run_comparison(
         Passed to :func:`structures.analysis.run` only (``tolerance``, ``max_steps``, ...).
     """
     bearing = replace(bearing, axial_load=None)
+    if overturning is None:
+        overturning = building.plan is not None and building.plan.storey_heights is not None
     options = {"n_bearings": n_bearings, "overturning": overturning, **run_options}
     if warm_up and motion.npts >= 3:
         run(building, bearing, truncated(motion, 2 * motion.dt), integrator, **options)
     ours = run(building, bearing, motion, integrator, dt=dt, **options)
     opensees = run_opensees(building, bearing, motion, integrator, n_bearings=n_bearings, dt=dt,
-                            pendulum=pendulum)
+                            pendulum=pendulum, overturning=overturning)
     return Comparison(ours, opensees, compare(ours, opensees))
 
 

@@ -247,15 +247,19 @@ def _mu_at_rest(friction, pressure: float) -> float:
 
 def add_bearing(ops, tag: Callable[[], int], bottom: int, top: int, bearing: DCFPBearing,
                 load: float, count: int = 1, *, kind: str, pendulum: str = "singlefp",
-                kinit: str = "rest", owner: str) -> BearingElements:
+                kinit: str = "rest", axial_stiffness: float | None = None,
+                hinged: bool = False, owner: str) -> BearingElements:
     """Add ``count`` bearings carrying ``load`` [N] together between the nodes ``bottom``
-    (fixed) and ``top`` (free vertically, rotations fixed) of a 3D model.
+    (fixed) and ``top`` (free vertically; its rotations fixed, or turning with a base slab)
+    of a 3D model.
 
     singleFPBearing and flatSliderBearing are linear in their normal force, so one element
     carrying ``load`` stands for the ``count`` bearings; FPBearingPTV (its pressure must be
     one bearing's) is ``count`` parallel elements carrying ``load / count`` each. The torsion
     material has no stiffness (the slab's twist about a bearing's axis is not resisted); the
-    axial and rocking ones shorten 1 um under the load.
+    axial and rocking ones shorten 1 um under the load unless ``axial_stiffness`` and
+    ``hinged`` say otherwise. The elements put their P-Delta moments ``N u`` on ``bottom``
+    (shearDist 0, zero length), so a fixed ``bottom`` takes them.
 
     Parameters
     ----------
@@ -278,6 +282,13 @@ def add_bearing(ops, tag: Callable[[], int], bottom: int, top: int, bearing: DCF
         in X and Y (N = P, our law). Not used for FPBearingPTV.
     kinit : {"rest", "reference"}
         The mu that sets kInit (module docstring).
+    axial_stiffness : float, optional
+        Vertical stiffness of the ``count`` bearings together [N/m]; default ``load`` over
+        :data:`AXIAL_SHORTENING`.
+    hinged : bool
+        The bearings carry no moment about a horizontal axis (their rocking materials have no
+        stiffness): for a ``top`` that turns with a base slab resting on the bearings' axial
+        springs. Default False (rocking as stiff as the axial direction).
     owner : str
         Named in errors.
 
@@ -291,11 +302,13 @@ def add_bearing(ops, tag: Callable[[], int], bottom: int, top: int, bearing: DCF
     friction, radius = bearing.friction, bearing.effective_radius
     group = load / count if kind == "ptv" else load  # what one element carries
     axial, torsion = tag(), tag()
-    ops.uniaxialMaterial("Elastic", axial, group / AXIAL_SHORTENING)
+    ops.uniaxialMaterial("Elastic", axial, group / AXIAL_SHORTENING if axial_stiffness is None
+                         else axial_stiffness * group / load)
     ops.uniaxialMaterial("Elastic", torsion, 0.0)
+    rocking = torsion if hinged else axial
     if kind == "ptv":
         return _fpbearingptv(ops, tag, bottom, top, bearing, group, count, kinit, owner,
-                             (axial, torsion))
+                             (axial, torsion, rocking))
     if bearing.restoring != "linear":
         raise ValueError(f"Element {kind!r} of {owner} has the linear restoring law N u / R. "
                          f"Got a bearing with {bearing.restoring!r} instead.")
@@ -314,7 +327,8 @@ def add_bearing(ops, tag: Callable[[], int], bottom: int, top: int, bearing: DCF
     flat = math.isinf(radius) or pendulum == "spring"
     spring = 0.0 if math.isinf(radius) else group / radius
     k_initial = mu * group / bearing.yield_displacement + (0.0 if flat else spring)
-    options = ("-P", axial, "-T", torsion, "-My", axial, "-Mz", axial, "-orient", *ORIENTATION,
+    options = ("-P", axial, "-T", torsion, "-My", rocking, "-Mz", rocking,
+               "-orient", *ORIENTATION,
                "-iter", ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * group)
     element = tag()
     if flat:
@@ -344,8 +358,9 @@ def add_bearing(ops, tag: Callable[[], int], bottom: int, top: int, bearing: DCF
 
 
 def _fpbearingptv(ops, tag, bottom: int, top: int, bearing: DCFPBearing, load: float,
-                  count: int, kinit: str, owner: str, materials: tuple[int, int]):
-    """``count`` parallel FPBearingPTV elements of load ``load`` each (see add_bearing)."""
+                  count: int, kinit: str, owner: str, materials: tuple[int, int, int]):
+    """``count`` parallel FPBearingPTV elements of load ``load`` each (see add_bearing);
+    ``materials``: the axial, torsion and rocking materials."""
     friction = check_ptv_friction(bearing.friction, owner)
     radius = bearing.effective_radius
     if bearing.restoring != "spherical" or math.isinf(radius):
@@ -355,7 +370,7 @@ def _fpbearingptv(ops, tag, bottom: int, top: int, bearing: DCFPBearing, load: f
     if friction.heating is None and "temperature" in friction.dependencies:
         raise ValueError(f"Element 'ptv' of {owner} always heats its surface; a temperature "
                          "dependent PTVFriction without heating has no OpenSees twin.")
-    axial, torsion = materials
+    axial, torsion, rocking = materials
     mu = (_mu_at_rest(friction, load / bearing.contact_area) if kinit == "rest"
           else friction.mu_t0)
     factors = friction.factors
@@ -369,7 +384,7 @@ def _fpbearingptv(ops, tag, bottom: int, top: int, bearing: DCFPBearing, load: f
             flag["pressure"], factors.reference_pressure,
             flag["temperature"], friction.thermal.diffusivity, friction.thermal.conductivity,
             flag["velocity"], factors.rate_parameter, radius, bearing.contact_radius,
-            k_initial, axial, torsion, axial, axial, *ORIENTATION,
+            k_initial, axial, torsion, rocking, rocking, *ORIENTATION,
             0.0, 0, 0.0,  # shearDist, doRayleigh, mass
             ELEMENT_ITERATIONS, ELEMENT_TOLERANCE * load, 1,  # unit 1: N, m, s, degC
         )

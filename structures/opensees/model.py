@@ -5,15 +5,19 @@
 into an OpenSees model whose every mass, stiffness, damping coefficient and gravity load is read
 from it, and returns what a time-history driver needs (:class:`Twin`).
 
-Layout. Every node lies in the plane Z = 0 (every element has zero length). Each level (0: the
-base slab, 1..n: the floors) is a ``rigidDiaphragm`` (perpendicular Z) whose master node sits
-at the level's centre of mass and carries its mass in X and Y and its mass moment of inertia
-about Z: with the diaphragm this is exactly our eccentric mass matrix at the centre of
+Two layouts: flat (without overturning: in one direction, or in plan without it) and tall (in
+plan with the overturning of the floors' inertia forces, ``model.overturning``).
+
+Flat layout. Every node lies in the plane Z = 0 (every element has zero length). Each level
+(0: the base slab, 1..n: the floors) is a ``rigidDiaphragm`` (perpendicular Z) whose master
+node sits at the level's centre of mass and carries its mass in X and Y and its mass moment of
+inertia about Z: with the diaphragm this is exactly our eccentric mass matrix at the centre of
 stiffness O. The other nodes of a level are constrained to it: one at O, where our degrees of
 freedom are recorded, and those the elements below need. In one direction every level's master
 is at O and moves along X only (its Y and twist fixed), and the other nodes follow its X
 (``equalDOF``: a diaphragm would tie them to the master's fixed DOFs, which the
-``Transformation`` handler does not honour).
+``Transformation`` handler does not honour). The masters' and the other nodes' Z and rotations
+about X and Y are fixed.
 
 Superstructure. Our stiffness and damping on the levels, ``K = T^T K_fb T`` and
 ``C = T^T C_fb T``, act on the drifts only: their level blocks ``A_kl`` sum to zero along a
@@ -34,8 +38,29 @@ and acts on the drifts only).
 Bearings. At each bearing position a fixed node and a node of the base slab free vertically
 (massless, on the stiff axial material of the element under its gravity load): the elements of
 :func:`structures.opensees.elements.add_bearing` for the position's bearings (one group of
-``n_bearings`` at O in one direction). The overturning of the floors' inertia forces is not
-modelled (zero-length storeys have no lever arm).
+``n_bearings`` at O in one direction). Each position carries its own gravity load.
+
+Tall layout. The same masters, masses, network and bearings, with every level at its height
+above the isolation level (:func:`level_heights`, the plan's storey heights) and rigid in and
+out of plane: its other nodes follow its master by ``rigidLink beam``, and no node but the
+bearings' bottoms is fixed. Each link of the network is a vertical ``twoNodeLink`` of real
+length (local x up, y along the link's first axis) with its coefficients in directions 2, 3
+(the shears) and 4 (the twist); TwoNodeLink's basic shears subtract the ends' rotations and
+its end moments balance the couple of its shears (shearDist 0.5), so a storey carries its
+shear to the level below with its moment. A link with a storey stiffness k is also rigid
+axially (``STOREY_RIGIDITY k``) and in bending (``STOREY_RIGIDITY k L^2``, L its height): the
+floors neither rise nor turn about X or Y relative to the base slab, as in our shear building,
+and the overturning moment of the floors' inertia forces (at their masters, ``H_j F_j``)
+reaches the base slab, whatever that rigidity, by the links' equilibrium. The base slab rests
+on the bearings' axial springs alone: equal stiffness at every position (the mean gravity
+load over ``AXIAL_SHORTENING``) and no moment (``hinged``: the top nodes turn with the slab,
+the elements' P-Delta moments go to their fixed bottoms), so the slab shares the vertical
+loads and the moments linearly over the positions, ``G`` of
+:func:`structures.plan.axial_distribution`: the gravity loads on the top nodes give back the
+gravity shares, their vertical scaling ``-P_i a_z / g`` its share, and the overturning the
+axial loads of :meth:`~structures.isolated_building.IsolatedShearBuilding.axial_loads`. The
+slab rocks on those springs by about 1e-8 rad, which moves the floors by ``H_j`` times that
+(rigidly, without a drift).
 
 openseespy keeps one global model: the caller wipes it.
 """
@@ -53,15 +78,24 @@ import numpy as np
 from dcfpb.common.errors import InputWarning
 from dcfpb.common.validation import check_choice
 from structures.isolated_building import IsolatedShearBuilding
-from structures.opensees.elements import add_bearing, element_kind, fpbearingptv_equivalent
+from structures.opensees.elements import (
+    AXIAL_SHORTENING,
+    add_bearing,
+    element_kind,
+    fpbearingptv_equivalent,
+)
 
-__all__ = ["PENDULUMS", "Link", "Twin", "build_model", "pair_network"]
+__all__ = ["PENDULUMS", "STOREY_RIGIDITY", "Link", "Twin", "build_model", "level_heights",
+           "pair_network"]
 
 PENDULUMS = ("singlefp", "spring")
 _PAIR_CUTOFF = 1.0e-12  # coefficients below this share of the largest are round-off
 _ASYMMETRY = 1.0e-9  # an antisymmetric part above this share of the largest is a warning
 _FIXED, _FREE = 1, 0
 _SAME_POINT = 1.0e-9  # [m] a point this close to a master is the master's
+STOREY_RIGIDITY = 1.0e8
+"""With overturning: a storey's axial stiffness over its lateral stiffness [-] (its bending
+stiffness over the lateral stiffness times its height squared)."""
 
 
 class Link(NamedTuple):
@@ -214,10 +248,12 @@ def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -
         ``openseespy.opensees`` from :func:`~structures.opensees.runtime.import_opensees`.
     model : IsolatedShearBuilding
         Our model: masses [kg], inertias [kg m^2], storeys [N/m, N m/rad], superstructure
-        damping, bearing positions [m] with their counts and gravity loads [N], the bearing.
+        damping, bearing positions [m] with their counts and gravity loads [N], the bearing;
+        with ``model.overturning`` the floors stand at the plan's heights [m] (module
+        docstring).
     pendulum : {"singlefp", "spring"}
         singleFPBearing (N = P + F . u / R), or flatSliderBearing plus linear springs N / R
-        (N = P: our law). Not used for FPBearingPTV.
+        (N = P: our law without overturning or a vertical). Not used for FPBearingPTV.
 
     Raises
     ------
@@ -236,6 +272,8 @@ def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -
     links = pair_network(building.isolated_stiffness_matrix, building.isolated_damping_matrix,
                          model.level_dofs)
     plan = model.level_dofs == 3
+    tall = model.overturning
+    heights = level_heights(building) if tall else np.zeros(building.n_storeys + 1)
     in_plane = _FREE if plan else _FIXED  # Y and the twist
     ops.model("basic", "-ndm", 3, "-ndf", 6)
     node, tag = itertools.count(1).__next__, itertools.count(1).__next__
@@ -243,8 +281,10 @@ def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -
     centres = building.level_centres
     for level, mass in enumerate(building.level_masses):
         masters.append(node())
-        ops.node(masters[-1], float(centres[level, 0]), float(centres[level, 1]), 0.0)
-        ops.fix(masters[-1], _FREE, in_plane, _FIXED, _FIXED, _FIXED, in_plane)
+        ops.node(masters[-1], float(centres[level, 0]), float(centres[level, 1]),
+                 float(heights[level]))
+        if not tall:
+            ops.fix(masters[-1], _FREE, in_plane, _FIXED, _FIXED, _FIXED, in_plane)
         inertia = float(building.level_inertias[level]) if plan else 0.0
         ops.mass(masters[-1], float(mass), float(mass), 0.0, 0.0, 0.0, inertia)
         slaves.append([])
@@ -255,8 +295,9 @@ def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -
         if vertical == _FIXED and (level, point) in points:
             return points[level, point]
         slaves[level].append(node())
-        ops.node(slaves[level][-1], *point, 0.0)
-        ops.fix(slaves[level][-1], _FREE, in_plane, vertical, _FIXED, _FIXED, in_plane)
+        ops.node(slaves[level][-1], *point, float(heights[level]))
+        if not tall:
+            ops.fix(slaves[level][-1], _FREE, in_plane, vertical, _FIXED, _FIXED, in_plane)
         if vertical == _FIXED:
             points[level, point] = slaves[level][-1]
         return slaves[level][-1]
@@ -265,6 +306,9 @@ def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -
     directions = (1, 2, 6)[:model.level_dofs]
     for link in links:
         lower, upper = link.levels
+        if tall:
+            _storey_link(ops, tag, link, node_at(lower, link.point), node_at(upper, link.point))
+            continue
         materials = []
         for stiffness, damping in zip(link.stiffness, link.damping, strict=True):
             materials.append(tag())
@@ -274,16 +318,23 @@ def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -
         ops.element("zeroLength", tag(), node_at(lower, link.point), node_at(upper, link.point),
                     "-mat", *materials, "-dir", *directions, *orient)
     loads = np.asarray(building.gravity_shares, dtype=float)
+    slab = {"axial_stiffness": float(np.mean(loads)) / AXIAL_SHORTENING, "hinged": True} \
+        if tall else {}
     tops, elements = [], []
     for (x, y), count, load in zip(model.positions, model.multiplicity, loads, strict=True):
         bottom = node()
         ops.node(bottom, float(x), float(y), 0.0)
         ops.fix(bottom, *([_FIXED] * 6))
-        tops.append(node_at(0, (float(x), float(y)), vertical=_FREE))
+        # tall: a node of the rigid slab (shared); flat: a node of its own, free vertically
+        tops.append(node_at(0, (float(x), float(y)), vertical=_FIXED if tall else _FREE))
         elements.append(add_bearing(ops, tag, bottom, tops[-1], bearing, float(load),
-                                    int(count), kind=kind, pendulum=pendulum, owner=owner))
+                                    int(count), kind=kind, pendulum=pendulum, owner=owner,
+                                    **slab))
     for master, level_slaves in zip(masters, slaves, strict=True):
-        if plan and level_slaves:
+        if tall:  # each level a rigid body
+            for slave in level_slaves:
+                ops.rigidLink("beam", master, slave)
+        elif plan and level_slaves:
             ops.rigidDiaphragm(3, master, *level_slaves)
         elif not plan:  # X only (module docstring)
             for slave in level_slaves:
@@ -304,6 +355,33 @@ def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -
     return Twin(levels, directions, tuple(masters) + tuple(n for s in slaves for n in s),
                 tuple(tops), loads, _label(elements[0], plan, model.n_bearings),
                 read, _at_rest(model, kind))
+
+
+def level_heights(building) -> np.ndarray:
+    """Height of each level above the isolation level, base slab first, shape (n+1,) [m]."""
+    return np.concatenate([[0.0], building.plan.floor_heights(building.n_storeys)])
+
+
+def _storey_link(ops, tag: Callable[[], int], link: Link, lower: int, upper: int) -> None:
+    """``link`` as a vertical ``twoNodeLink`` from node ``lower`` up to node ``upper``: its
+    coefficients in the local directions 2 and 3 (shears along the link's axes) and 4
+    (twist), and, where it has a storey stiffness k (the larger of its two shears), rigid
+    directions 1 (axial, ``STOREY_RIGIDITY k``) and 5, 6 (bending, ``STOREY_RIGIDITY k L^2``,
+    L the link's length)."""
+    pairs = list(zip((2, 3, 4), link.stiffness, link.damping, strict=True))
+    lateral = max(link.stiffness[:2])
+    if lateral > 0.0:
+        lower_z, upper_z = ops.nodeCoord(lower, 3), ops.nodeCoord(upper, 3)
+        rigid = STOREY_RIGIDITY * lateral
+        pairs += [(1, rigid, 0.0), (5, rigid * (upper_z - lower_z) ** 2, 0.0),
+                  (6, rigid * (upper_z - lower_z) ** 2, 0.0)]
+    materials = []
+    for _, stiffness, damping in pairs:
+        materials.append(tag())
+        ops.uniaxialMaterial("Elastic", materials[-1], float(stiffness), float(damping))
+    c, s = math.cos(link.angle), math.sin(link.angle)
+    ops.element("twoNodeLink", tag(), lower, upper, "-mat", *materials,
+                "-dir", *(d for d, _, _ in pairs), "-orient", c, s, 0.0)  # local x up, y (c, s)
 
 
 def _label(first, plan: bool, n_bearings: int) -> str:

@@ -14,8 +14,9 @@ its restoring law and its return map with a fixed k0):
   ``|u| / R (|u| / R + mu)``); :func:`run_singlefp_normal` runs it.
 
 The building is a diagnostic twin, not our model: the tangent leaves out ``dN / du`` (Newton
-still converges, on the exact residual), overturning is not modelled (as in the OpenSees
-twin), and the friction must not depend on the load beyond ``mu N`` (Coulomb).
+still converges, on the exact residual), the overturning of the floors' inertia forces is in
+``P`` only when asked for (as in the OpenSees twin), and the friction must not depend on the
+load beyond ``mu N`` (Coulomb).
 """
 
 from __future__ import annotations
@@ -105,14 +106,13 @@ def singlefp_normal_force(
 
 
 class SingleFPNormalForce(IsolatedShearBuilding):
-    """:class:`IsolatedShearBuilding` (without overturning) whose bearings see singleFPBearing's
-    normal force.
+    """:class:`IsolatedShearBuilding` whose bearings see singleFPBearing's normal force.
 
     Parameters
     ----------
-    building, bearing, n_bearings, vertical
-        As :class:`IsolatedShearBuilding`; the friction must be the constant model and the
-        radius finite.
+    building, bearing, n_bearings, overturning, vertical
+        As :class:`IsolatedShearBuilding` (but ``overturning`` False by default); the friction
+        must be the constant model and the radius finite.
 
     Raises
     ------
@@ -121,11 +121,13 @@ class SingleFPNormalForce(IsolatedShearBuilding):
     """
 
     def __init__(self, building: ShearBuilding, bearing: DCFPBearing,
-                 n_bearings: int | None = None, *, vertical: GroundMotion | None = None) -> None:
+                 n_bearings: int | None = None, *, overturning: bool = False,
+                 vertical: GroundMotion | None = None) -> None:
         if bearing.friction.name != "constant" or not np.isfinite(bearing.effective_radius):
             raise ValueError("The bearing of SingleFPNormalForce must have a ConstantFriction "
                              f"and a finite radius. Got {bearing!r} instead.")
-        super().__init__(building, bearing, n_bearings, overturning=False, vertical=vertical)
+        super().__init__(building, bearing, n_bearings, overturning=overturning,
+                         vertical=vertical)
 
     def restoring_force(self, u: np.ndarray, v: np.ndarray, time: float) -> RestoringForce:
         """Storey forces plus the bearings' forces at singleFPBearing's normal force."""
@@ -158,19 +160,21 @@ def run_singlefp_normal(building: ShearBuilding, bearing: DCFPBearing,
                         motion: GroundMotion | GroundMotionPair,
                         integrator: str | Newmark | HHT = "newmark", *,
                         n_bearings: int | None = None, dt: float | None = None,
-                        tolerance: float = 1e-8, max_subdivisions: int = 6):
-    """:func:`structures.analysis.run` (reference engine, no overturning) on
-    :class:`SingleFPNormalForce`: the Dataset of a run, ``engine`` attribute
-    ``"reference, singleFPBearing N"``.
+                        overturning: bool = False, tolerance: float = 1e-8,
+                        max_subdivisions: int = 6):
+    """:func:`structures.analysis.run` (reference engine) on :class:`SingleFPNormalForce`: the
+    Dataset of a run, ``engine`` attribute ``"reference, singleFPBearing N"``.
 
     Parameters
     ----------
     building, bearing, motion, integrator, n_bearings, dt, tolerance, max_subdivisions
         As :func:`~structures.analysis.run` (each bearing takes its gravity share).
+    overturning : bool
+        In plan, ``P`` with the overturning of the floors' inertia forces. Default False.
     """
     pair = isinstance(motion, GroundMotionPair)
     model = SingleFPNormalForce(building, replace(bearing, axial_load=None), n_bearings,
-                                vertical=motion.z if pair else None)
+                                overturning=overturning, vertical=motion.z if pair else None)
     acceleration, step = ground_record(motion, dt)
     history = reference_history(model, acceleration, step, as_method(integrator),
                                 tolerance=tolerance, max_subdivisions=max_subdivisions)

@@ -7,10 +7,10 @@ on modes 1 and 2; plan 18 m x 12 m on 6 bearings at x = -9, 0, 9 m and y = -6, 6
 centre of stiffness; the centre of mass of every level at (0.9, 0.6) m, 5 % of the plan
 dimensions; inertias and torsional stiffness from the rectangle. Bearings: R_eff = 4.5 m,
 300 mm slider, u_y = 0.5 mm, Coulomb (the building file's constant model, mu = 0.0403),
-each carrying its gravity share. Newmark average acceleration, dt = 5 ms. Ours runs without
-overturning (the OpenSees storeys have zero length). Differences are OpenSees's relative to
-ours (peak: max|x_OS| / max|x_ours| - 1 of a resultant; NRMSE: RMS difference / peak of ours,
-per component).
+each carrying its gravity share. Newmark average acceleration, dt = 5 ms. Both sides run
+without overturning here (with it: tests/regression/test_opensees_overturning.py).
+Differences are OpenSees's relative to ours (peak: max|x_OS| / max|x_ours| - 1 of a
+resultant; NRMSE: RMS difference / peak of ours, per component).
 
 Measured (openseespy 3.7.1.2):
 
@@ -109,7 +109,8 @@ def test_spring_twin_is_our_building_to_round_off(ops, damping):
     storeys, the damping network and the gravity shares."""
     pair = _synthetic() if damping is None else _synthetic(3.0)
     ours = run(_building(damping), _bearing(), pair, overturning=False, dt=DT)
-    twin = run_opensees(_building(damping), _bearing(), pair, dt=DT, pendulum="spring")
+    twin = run_opensees(_building(damping), _bearing(), pair, dt=DT, pendulum="spring",
+                        overturning=False)
     assert ours.attrs["success"] and twin.attrs["success"]
     assert np.abs(ours["rotation"].values).max() > 1e-4  # the eccentricity turns it
     for name in ("displacement", "rotation", "bearing_displacement", "bearing_force",
@@ -125,7 +126,7 @@ def test_vertical_component_loads_the_bearings_alike(ops):
     N_i (1 + a_z / g): singleFPBearing's normal force less its own lift F . u / R is our
     axial load. (The spring twin is not our law under a vertical: its springs keep N_i / R.)"""
     pair = _synthetic(4.0, vertical=True)
-    comparison = run_comparison(_building(), _bearing(), pair, dt=DT)
+    comparison = run_comparison(_building(), _bearing(), pair, dt=DT, overturning=False)
     ours, opensees = comparison.ours, comparison.opensees
     load = ours["axial_load"].values
     assert np.ptp(load[:, 0]) > 0.2 * load[0, 0]  # the vertical moves the loads
@@ -145,7 +146,7 @@ def _check_within_tolerance(summary: dict) -> None:
 
 
 def test_singlefp_under_a_synthetic_pair(ops):
-    comparison = run_comparison(_building(), _bearing(), _synthetic(), dt=DT)
+    comparison = run_comparison(_building(), _bearing(), _synthetic(), dt=DT, overturning=False)
     summary = comparison.summary
     assert summary["ours"]["success"] and summary["opensees"]["success"]
     assert summary["opensees"]["element"] == "singleFPBearing 3D Coulomb"
@@ -161,7 +162,7 @@ def test_singlefp_normal_force_given_to_ours_closes_most_of_the_gap(ops):
     pair = _synthetic(4.0)
     ours = run(_building(), _bearing(), pair, overturning=False, dt=DT)
     matched = run_singlefp_normal(_building(), _bearing(), pair, dt=DT)
-    opensees = run_opensees(_building(), _bearing(), pair, dt=DT)
+    opensees = run_opensees(_building(), _bearing(), pair, dt=DT, overturning=False)
     plain, close = compare(ours, opensees), compare(matched, opensees)
     assert _relative(matched["axial_load"].values, opensees["axial_load"].values) < 1e-4
     for key in ("peak_base_shear", "nrmse_base_shear_x", "nrmse_base_shear_y",
@@ -186,7 +187,8 @@ def _recorded_pair() -> GroundMotionPair:
 def test_singlefp_under_a_scaled_recorded_pair(ops):
     if not SHARED_PAIRS.is_dir():
         pytest.skip(f"the recorded pairs of ../shared are absent ({SHARED_PAIRS})")
-    comparison = run_comparison(_building(), _bearing(), _recorded_pair(), dt=DT)
+    comparison = run_comparison(_building(), _bearing(), _recorded_pair(), dt=DT,
+                                overturning=False)
     summary = comparison.summary
     assert summary["ours"]["success"] and summary["opensees"]["success"]
     assert summary["ours"]["peak_isolator_displacement"] > 0.05

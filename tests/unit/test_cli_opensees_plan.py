@@ -56,6 +56,7 @@ def files(tmp_path_factory):
         "base_mass = 500e3\n", "base_mass = 500e3\n[building.damping]\nkind = \"modal\"\n"
         "ratio = 0.05\n"))
     (folder / "planar.toml").write_text(PLANAR_FILE)
+    (folder / "low.toml").write_text(PLAN_FILE.replace("storey_heights = 3.5\n", ""))
     pair = synthetic_pair("kanai-tajimi", 3, duration=2.0, dt=0.005, target_pga=4.0,
                           ground_frequency=15.0, ground_damping=0.6, vertical_ratio=0.5)
     for role, motion in zip("xyz", pair, strict=True):
@@ -69,23 +70,45 @@ def _args(folder, *extra: str) -> list[str]:
 
 
 def test_pair_runs_the_building_in_plan_against_opensees_3d(ops, files, capsys):
+    """A plan with storey heights: the overturning on both sides by default, and the corner
+    bearings' axial loads compared."""
     assert main(_args(files, "--record-z", str(files / "z.txt"), "--json")) == 0
     out = json.loads(capsys.readouterr().out)
-    assert set(out) == {"ours", "opensees", "difference", "corner_bearing", "wall_time_ratio"}
+    assert set(out) == {"ours", "opensees", "difference", "corner_bearing", "axial_load",
+                        "wall_time_ratio"}
     assert out["opensees"]["element"] == "singleFPBearing 3D Coulomb"
     assert out["ours"]["steps"] == out["opensees"]["steps"] == 400
-    assert out["ours"]["overturning"] is False
+    assert out["ours"]["overturning"] is True and out["opensees"]["overturning"] is True
+    assert sorted(out["axial_load"]["bearings"]) == [0, 2, 3, 5]
+    for side in ("ours", "opensees"):
+        assert all(low < share < high for low, share, high in zip(
+            out["axial_load"][side]["min"], out["axial_load"]["gravity_share"],
+            out["axial_load"][side]["max"], strict=True))
     for key in ("peak_isolator_displacement", "peak_base_shear"):
         assert abs(out["difference"][key]) < 0.01
     for key in ("nrmse_isolator_displacement_x", "nrmse_isolator_displacement_y"):
         assert out["difference"][key] < 0.02
+    for key in ("max_axial_load", "min_axial_load", "nrmse_axial_load"):
+        assert abs(out["difference"][key]) < 0.05, key
     assert out["wall_time_ratio"] > 0.0
+
+
+@pytest.mark.parametrize(("building", "extra"), [("plan.toml", ("--no-overturning",)),
+                                                 ("low.toml", ())])
+def test_without_overturning_on_both_sides(ops, files, capsys, building, extra):
+    """``--no-overturning``, or a plan without storey heights: neither side has it."""
+    args = _args(files, "--duration", "0.5", "--json", *extra)
+    args[1] = str(files / building)
+    assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["ours"]["overturning"] is False and out["opensees"]["overturning"] is False
+    assert out["axial_load"]["ours"]["max"] == out["axial_load"]["gravity_share"]
 
 
 def test_modal_damping_in_plan(ops, files, capsys):
     """Modal damping in plan is a network of dashpots too (every level with the same
     eccentricity): the spring twin is ours to round-off."""
-    args = _args(files, "--pendulum", "spring", "--duration", "1", "--json")
+    args = _args(files, "--pendulum", "spring", "--duration", "1", "--no-overturning", "--json")
     args[1] = str(files / "modal.toml")
     assert main(args) == 0
     out = json.loads(capsys.readouterr().out)
@@ -96,7 +119,7 @@ def test_modal_damping_in_plan(ops, files, capsys):
 
 
 def test_spring_twin_table(ops, files, capsys):
-    assert main(_args(files, "--pendulum", "spring", "--duration", "1")) == 0
+    assert main(_args(files, "--pendulum", "spring", "--duration", "1", "--no-overturning")) == 0
     text = capsys.readouterr().out
     assert "flatSliderBearing 3D Coulomb + linear springs N_i/R" in text
     assert "NRMSE x" in text and "ratio ours/OpenSees" in text
@@ -132,3 +155,7 @@ def test_a_pair_needs_a_plan_and_z_needs_y(files, capsys):
     assert "--record-z needs --record-y" in capsys.readouterr().err
     assert main([*planar, "--overturning"]) == 2
     assert "--overturning" in capsys.readouterr().err
+    low = _args(files, "--overturning")
+    low[1] = str(files / "low.toml")
+    assert main(low) == 2
+    assert "--overturning needs the storey heights" in capsys.readouterr().err

@@ -1,5 +1,6 @@
 """Parts of the OpenSees comparison that need no OpenSees: the superstructure network, the
-integrator mapping, the element choice, the bearing shapes and the NRMSE."""
+integrator mapping, the element choice, the bearing shapes, the NRMSE and the corner
+bearings' axial loads."""
 
 from __future__ import annotations
 
@@ -16,7 +17,12 @@ from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import CentrePoint, MonitorLine
 from structures.integrators import HHT, Newmark
 from structures.opensees.building import opensees_integrator
-from structures.opensees.comparison import nrmse, shaped_bearing
+from structures.opensees.comparison import (
+    axial_load_summary,
+    nrmse,
+    outline_bearings,
+    shaped_bearing,
+)
 from structures.opensees.elements import element_kind
 from structures.opensees.model import pair_network
 from structures.plan import Plan
@@ -168,3 +174,37 @@ def test_fpbearingptv_refuses_hht():
     motion = GroundMotion(np.zeros(5), 0.01, "zeros")
     with pytest.raises(ValueError, match="Newmark for FPBearingPTV"):
         run_opensees(building, bearing, motion, HHT(-0.05))
+
+
+def _axial_run(loads: np.ndarray, gravity: np.ndarray):
+    import xarray as xr
+
+    xy = np.array(BEARINGS)
+    return xr.Dataset({"axial_load": (("time", "bearing"), loads)},
+                      coords={"bearing_x": ("bearing", xy[:, 0]),
+                              "bearing_y": ("bearing", xy[:, 1])},
+                      attrs={"gravity_shares": gravity.tolist()})
+
+
+def test_corner_bearings_and_their_axial_load_gaps():
+    """The corners of a 2 x 3 grid; gaps over ours's largest change of each corner's load,
+    or over the gravity share where it does not change."""
+    gravity = np.array([3.0, 4.0, 5.0, 3.5, 4.5, 5.5]) * 1e6
+    swing = np.array([0.0, 1.0, -1.0, 0.5])[:, None] * np.array([-1, 0, 1, -1, 0, 1]) * 1e6
+    ours = _axial_run(gravity + swing, gravity)
+    assert sorted(outline_bearings(ours)) == [0, 2, 3, 5]
+    other = gravity + 1.02 * swing
+    other[:, 3] += 0.1e6  # the largest gap: bearing 3, max and min alike
+    summary, difference = axial_load_summary(ours, _axial_run(other, gravity))
+    at = summary["bearings"].index(3)
+    assert summary["gravity_share"][at] == gravity[3]
+    assert summary["ours"]["max"][at] == gravity[3] + 1e6
+    assert summary["opensees"]["min"][at] == pytest.approx(gravity[3] - 1.02e6 + 0.1e6)
+    assert difference["max_axial_load"] == pytest.approx(0.12)
+    assert difference["min_axial_load"] == pytest.approx(0.08)
+    rms = np.sqrt(np.mean((0.02 * swing[:, 3] + 0.1e6) ** 2)) / 1e6
+    assert difference["nrmse_axial_load"] == pytest.approx(rms)
+    still = _axial_run(np.tile(gravity, (4, 1)), gravity)
+    _, difference = axial_load_summary(still, _axial_run(np.tile(1.01 * gravity, (4, 1)),
+                                                         gravity))
+    assert difference["max_axial_load"] == pytest.approx(0.01)
