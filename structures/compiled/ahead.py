@@ -31,7 +31,7 @@ WAIT_LIMIT = 600.0
 """Longest wait for the second process [s]; past it, it is stopped and the caller compiles."""
 
 _PACKAGE_ROOT = Path(__file__).resolve().parents[2]
-_ENGINE_INDEX = "integrator.integrate_building-*.nbi"  # numba's index file of the engine
+_ENGINE_INDEX = "integrator.integrate-*.nbi"  # numba's index file of the engine
 
 
 def engine_in_cache() -> bool:

@@ -1,47 +1,41 @@
-"""The compiled engine: a whole time-history run of a shear building on DCFPB isolators.
+"""The compiled engine: a whole time-history run of an isolated building in one numba function.
 
-:func:`integrate_building` is the time loop of :func:`structures.analysis.run` in one numba
-function, with no Python object touched per step: the Newmark / HHT-alpha Newton step of
-:mod:`structures.integrators`, the bearing of :mod:`isolator.bearing` (elastic-plastic return
-map, linear or spherical restoring law) and its friction (constant, or Eq. 7 with or without
-heating), through the kernels the element calls: ``cold_friction``, ``solve_friction``,
-``heated_window`` and ``ptv_friction`` of :mod:`isolator.compiled.kernels` (``ptv_trial`` is
-``heated_window``, ``contact_history`` and ``ptv_friction``) and ``step_factors`` of
-:mod:`isolator.heating`. It mirrors the reference operation for operation, so the two agree
-to round-off:
+:func:`integrate` is the time loop of :func:`structures.integrators.integrate` on an isolated
+building: the Newmark / HHT-alpha Newton step with a ground acceleration of ``c`` horizontal
+components, the building's storey springs and dampers (:mod:`structures.compiled.workspace`'s
+``Model``) and its bearings, the compiled element of :mod:`isolator.compiled.element` at their
+plan positions with their axial loads per trial (the gravity share, times 1 + a_z / g with a
+vertical record, plus the overturning of the storey forces, with its consistent tangent). One
+engine serves both buildings:
 
-- the same predictor, residual, force reference and the two convergence tests (the force
-  residual and the Newton correction, both relative to ``tolerance``);
-- the same depth-first step halving (an explicit stack instead of recursion), with the ground
-  acceleration interpolated linearly and the model committed after each sub-step;
-- the same trial / commit / revert semantics of the bearing and its heat history, with step
-  factors exact for every step size (the few distinct sizes of a run, t_n - t_(n-1) rounded,
-  are kept in a table of ``FACTOR_SLOTS``).
+- the planar building (:class:`~structures.isolated_building.IsolatedShearBuilding`): one DOF
+  per level, one bearing row at (0, 0) standing for the ``n_bearings`` identical bearings
+  (its force and tangent times their number), moving along x, its load constant;
+- the building in plan (:class:`~structures.spatial.isolated.SpatialIsolatedBuilding`): three
+  DOFs per level (x, y, theta), one row per bearing at its position, overturning and the
+  vertical record as the model has them.
 
-Two things are done differently, both exact rearrangements:
+It mirrors the reference operation for operation, so the two agree to round-off: the same
+predictor, residual, force reference and convergence tests (the force residual and the Newton
+correction, both relative to ``tolerance``), the same depth-first step halving (an explicit
+stack instead of recursion) with the ground accelerations interpolated linearly and the
+bearings committed after each sub-step, the same trial / commit / revert semantics of every
+bearing and its heat.
 
-- The superstructure is linear and the isolators act on the base slab (DOF 0) only, so the
-  Newton matrix is ``A + d e0 e0^T`` with ``A = c0 M + (1 + alpha)(c1 C + K)`` constant for a
-  step size and ``d`` the isolators' tangent: ``A^-1`` is computed once per step size (and per
-  halving depth) and each iteration solves with the Sherman-Morrison formula in O(n^2).
-- The monitor points under the slider take the same flux, so their heat history is held as a
-  group (:mod:`isolator.contact_window`): O(K) per step and per trial instead of advancing
-  every point ever heated (``advance_states``, O(points x K)) and re-summing the window for
-  every trial (``contact_history``, O(window x K)).
+One thing is done differently, an exact rearrangement: the Newton matrix is the reference's
+``c0 M + (1 + alpha)(c1 (C + C_t) + K_t)``, and the bearings and the overturning change only
+the base slab's rows of it (1 or 3), so it is ``A + E X`` with
+``A = c0 M + (1 + alpha)(c1 C + K)`` constant for a step size (its inverse formed once per
+step size and halving depth by LAPACK, :mod:`structures.compiled.lapack`) and ``E`` the first
+unit columns: each iteration solves with the Woodbury formula (Sherman-Morrison for one
+column), O(n^2), instead of factorising the matrix.
 
-What it costs to compile on a cold cache (``benchmarks/COLD_START.md``) is kept down by
-writing the loop in plain scalar arithmetic: the work arrays come from Python
-(:func:`structures.compiled.workspace.new_workspace`), the two dense solves are direct LAPACK calls
-(:mod:`structures.compiled.lapack`), and nothing is allocated, broadcast or multiplied as a
-matrix inside, since numba compiles each such numpy construct as a function of its own. The
-helpers are ordinary compiled functions, which LLVM inlines; numba's own IR inlining
-(``inline="always"``) cost more compile time than it saved.
-
-Without numba, or with ``DCFPB_DISABLE_NUMBA=1``, the same source runs as plain Python (slow,
-meant for tests); ``integrate_building.py_func`` is the Python original of the top level.
-The bearing, its friction and heat history in array form are
-:mod:`isolator.compiled.bearing`; the Python side of the engine (packing the model, the
-messages, the result) is :mod:`structures.compiled.engine`.
+The loop allocates nothing (its work arrays come from Python,
+:func:`structures.compiled.workspace.new_workspace`) and reads its groups without numba's
+reference counts (:mod:`structures.compiled.unmanaged`). Without numba, or with
+``DCFPB_DISABLE_NUMBA=1``, the same source runs as plain Python; ``integrate.py_func`` is the
+Python original of the loop. The Python side (the model's view, packing, messages, result) is
+:mod:`structures.compiled.engine`.
 """
 
 from __future__ import annotations
@@ -50,302 +44,290 @@ import math
 
 import numpy as np
 
-from isolator.compiled.bearing import DISPLACEMENT as BEARING_DISPLACEMENT
-from isolator.compiled.bearing import (
-    FORCE,
-    INITIAL_MU,
-    INITIAL_TEMPERATURE,
-    MU,
-    N_BEARINGS,
-    NOT_CONVERGED,
-    PENDING,
-    PENDING_DT,
-    STATE_SIZE,
-    STEP_BELOW_MIN_LAG,
-    SUCCESS,
-    TEMPERATURE,
-    bearing_commit,
-    bearing_trial,
-    record_state,
-)
+from dcfpb.common.units import STANDARD_GRAVITY
+from isolator.compiled import element as E
 from isolator.compiled.kernels import jit
-from structures.compiled.lapack import invert, solve
-from structures.compiled.workspace import (
-    A_C,
-    ALPHA,
-    BETA,
-    COMMITTED,
-    DOFS,
-    DU,
-    FAIL_DEPTH,
-    FAIL_ITERATIONS,
-    FAIL_REFERENCE,
-    FAIL_RESIDUAL,
-    FAIL_SUBSTEP,
-    FAIL_TIME,
-    FAIL_VALUE,
-    GAMMA,
-    INVERSE_STEPS,
-    INVERSES,
-    LAPACK_WORK,
-    LAST_STEP,
-    LOAD,
-    MASS_INFLUENCE,
-    MATRIX,
-    MAX_ITERATIONS,
-    MAX_SUBDIVISIONS,
-    P_C,
-    PIVOTS,
-    Q_C,
-    RESIDUAL,
-    STACK_DEPTH,
-    STACK_END,
-    STACK_START,
-    STATUS,
-    TOLERANCE,
-    TRIAL,
-    U_C,
-    V_C,
-    A,
-    P,
-    Q,
-    U,
-    V,
-)
+from structures.compiled import workspace as W
+from structures.compiled.lapack import solve
+from structures.compiled.linear import add_block, effective_inverse, interpolate, woodbury
+from structures.compiled.unmanaged import unmanaged
 
-__all__ = ["integrate_building"]
-
-@jit
-def _effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse, matrix, work,
-                       pivots):
-    """inverse <- (c0 M + (1 + alpha)(c1 C + K))^-1 for a step ``h`` [s]; ``matrix``,
-    ``work`` and ``pivots`` are work arrays (n, n), (n, n) and int32 (n,)."""
-    c0, c1 = 1.0 / (beta * h * h), gamma / (beta * h)
-    n = mass.shape[0]
-    for i in range(n):  # element by element, as numpy's expression would
-        for j in range(n):
-            matrix[i, j] = c0 * mass[i, j] + (1.0 + alpha) * (c1 * damping[i, j]
-                                                                + stiffness[i, j])
-    invert(matrix, inverse, work, pivots)
+__all__ = ["integrate"]
 
 
 @jit
-def _newton(h, time, ground, mass, damping, stiffness, mass_influence, inverses, depth, method,
-            bearing, ptv, dofs, committed, trial, heating):
-    """NewmarkStepper._solve: one Newton attempt on a (sub-)step of ``h`` [s] to ``time``.
+def _newton(h, time, depth, model, settings, ws, heat, info):
+    """NewmarkStepper._solve on a (sub-)step of ``h`` [s] to ``time``, with the ground
+    acceleration of ``ws``'s ``GROUND_NOW`` row; on success the committed rows move to the new
+    state (the bearings are committed by the caller).
 
-    ``dofs`` rows (U_C ... DU): the committed u, v, a, p, q; the trial u, v, a, p, q; work
-    (load, residual, correction). ``inverses[depth]`` is ``A^-1`` for this step size. On
-    success the committed rows move to the new state (the bearing is committed by the caller).
-
-    Returns
-    -------
-    converged, iterations, residual norm [N], force reference [N], status
+    Returns converged, iterations, residual norm [N], force reference [N], status.
     """
-    gamma, beta, alpha = method[GAMMA], method[BETA], method[ALPHA]
-    tolerance = method[TOLERANCE]
+    method, parameters, ptv, flags = settings.method, settings.parameters, settings.ptv, \
+        settings.flags
+    mass, damping, stiffness = model.mass, model.damping, model.stiffness
+    dofs, inverse = ws[W.DOFS], ws[W.INVERSES][depth]
+    top_k, top_c, mass_influence = ws[W.TOP_STIFFNESS], ws[W.TOP_DAMPING], ws[W.MASS_INFLUENCE]
+    committed, trial, loads, ground = ws[W.COMMITTED], ws[W.TRIAL], ws[W.LOADS], ws[W.GROUND]
+    gamma, beta, alpha = method[W.GAMMA], method[W.BETA], method[W.ALPHA]
+    tolerance = method[W.TOLERANCE]
+    columns = int(flags[W.LEVEL_DOFS])
+    overturning = flags[W.OVERTURNING] != 0.0
     weight = 1.0 + alpha
     c0, c1 = 1.0 / (beta * h * h), gamma / (beta * h)
-    n_bearings = bearing[N_BEARINGS]
-    n = mass.shape[0]
+    n, components, n_bearings = mass.shape[0], ground.shape[1], loads.shape[0]
     half_h2 = 0.5 * h * h
-    p_squared = previous_p = previous_q = u_norm = 0.0
+    p_squared = previous_p = previous_q = u_squared = 0.0
     for i in range(n):
-        dofs[P, i] = -mass_influence[i] * ground
-        dofs[LOAD, i] = weight * dofs[P, i] - alpha * dofs[P_C, i] + alpha * dofs[Q_C, i]
-        dofs[A, i] = dofs[A_C, i]
-        dofs[U, i] = dofs[U_C, i] + h * dofs[V_C, i] + half_h2 * dofs[A, i]
-        dofs[V, i] = dofs[V_C, i] + h * dofs[A, i]
-        p_squared += dofs[P, i] * dofs[P, i]
-        previous_p += dofs[P_C, i] * dofs[P_C, i]
-        previous_q += dofs[Q_C, i] * dofs[Q_C, i]
-        u_norm += dofs[U_C, i] * dofs[U_C, i]
+        total = 0.0
+        for c in range(components):
+            total += mass_influence[i, c] * ground[W.GROUND_NOW, c]
+        dofs[W.P, i] = -total
+        dofs[W.LOAD, i] = weight * dofs[W.P, i] - alpha * dofs[W.P_C, i] + alpha * dofs[W.Q_C, i]
+        dofs[W.A, i] = dofs[W.A_C, i]
+        dofs[W.U, i] = dofs[W.U_C, i] + h * dofs[W.V_C, i] + half_h2 * dofs[W.A, i]
+        dofs[W.V, i] = dofs[W.V_C, i] + h * dofs[W.A, i]
+        p_squared += dofs[W.P, i] * dofs[W.P, i]
+        previous_p += dofs[W.P_C, i] * dofs[W.P_C, i]
+        previous_q += dofs[W.Q_C, i] * dofs[W.Q_C, i]
+        u_squared += dofs[W.U_C, i] * dofs[W.U_C, i]
     previous = max(math.sqrt(previous_p), math.sqrt(previous_q))
-    u_norm = math.sqrt(u_norm)
-    p_norm = math.sqrt(p_squared)
+    u_norm, p_norm = math.sqrt(u_squared), math.sqrt(p_squared)
+    factor = 1.0
+    if flags[W.VERTICAL] != 0.0:
+        factor = 1.0 + interpolate(time, model.vertical_time,
+                                   model.vertical_acceleration) / STANDARD_GRAVITY
     r_norm = reference = np.inf
-    g00 = inverses[depth, 0, 0]
-    max_iterations = int(method[MAX_ITERATIONS])
+    max_iterations = int(method[W.MAX_ITERATIONS])
     for iteration in range(1, max_iterations + 1):
-        force, k_bearing, c_bearing, status = bearing_trial(
-            dofs[U, 0], dofs[V, 0], time, bearing, ptv, committed, trial, heating)
-        if status != SUCCESS:
-            return False, iteration, r_norm, reference, status
-        inertia_squared = q_squared = r_squared = 0.0
-        for i in range(n):  # q = C v + f(u), f = K u + isolators on DOF 0; the residual
+        # the restoring force: storey springs and dampers, then the bearings at their loads
+        for i in range(n):
             spring = 0.0
             viscous = 0.0
+            for j in range(n):
+                spring += stiffness[i, j] * dofs[W.U, j]
+                viscous += damping[i, j] * dofs[W.V, j]
+            dofs[W.FORCE, i] = spring
+            dofs[W.VISCOUS, i] = viscous
+            dofs[W.STOREY, i] = spring + viscous
+        for r in range(columns):
+            for j in range(n):
+                top_k[r, j] = 0.0
+                top_c[r, j] = 0.0
+        for b in range(n_bearings):
+            load = parameters[b, E.GRAVITY] * factor
+            if overturning:
+                extra = 0.0
+                for j in range(n):
+                    extra += model.overturning[b, j] * dofs[W.STOREY, j]
+                load = load + extra
+            loads[b] = load
+        for b in range(n_bearings):
+            x, y, m = parameters[b, E.X], parameters[b, E.Y], parameters[b, E.MULTIPLICITY]
+            if columns == 1:  # the element moves along x
+                status = E.element_trial(b, dofs[W.U, 0], 0.0, dofs[W.V, 0], 0.0, time,
+                                         loads[b], parameters, ptv, committed, trial, heat)
+            else:
+                ux, uy, theta = dofs[W.U, 0], dofs[W.U, 1], dofs[W.U, 2]
+                vx, vy, omega = dofs[W.V, 0], dofs[W.V, 1], dofs[W.V, 2]
+                status = E.element_trial(b, ux - y * theta, uy + x * theta, vx - y * omega,
+                                         vy + x * omega, time, loads[b], parameters, ptv,
+                                         committed, trial, heat)
+            if status != E.SUCCESS:
+                info[W.FAIL_BEARING] = b
+                return False, iteration, r_norm, reference, status
+            t = trial[b]
+            fx, fy = m * t[E.FX], m * t[E.FY]
+            dofs[W.FORCE, 0] += fx
+            if columns == 1:
+                top_k[0, 0] += m * t[E.KXX]
+                top_c[0, 0] += m * t[E.CXX]
+                continue
+            dofs[W.FORCE, 1] += fy
+            dofs[W.FORCE, 2] += -y * fx + x * fy
+            add_block(top_k, m * t[E.KXX], m * t[E.KXY], m * t[E.KYX], m * t[E.KYY], x, y)
+            add_block(top_c, m * t[E.CXX], m * t[E.CXY], m * t[E.CYX], m * t[E.CYY], x, y)
+            if overturning and loads[b] > 0.0:  # d(T^T F) / dN times dN / du, dN / dv
+                px, py = fx / loads[b], fy / loads[b]
+                per_load_2 = -y * px + x * py
+                for j in range(n):
+                    du, dv = model.load_du[b, j], model.load_dv[b, j]
+                    top_k[0, j] += px * du
+                    top_k[1, j] += py * du
+                    top_k[2, j] += per_load_2 * du
+                    top_c[0, j] += px * dv
+                    top_c[1, j] += py * dv
+                    top_c[2, j] += per_load_2 * dv
+        # the residual and its norms, then the correction
+        inertia_squared = q_squared = r_squared = 0.0
+        for i in range(n):
             inertia = 0.0
             for j in range(n):
-                spring += stiffness[i, j] * dofs[U, j]
-                viscous += damping[i, j] * dofs[V, j]
-                inertia += mass[i, j] * dofs[A, j]
-            if i == 0:
-                spring += n_bearings * force
-            q = viscous + spring
-            dofs[Q, i] = q
-            residual = dofs[LOAD, i] - inertia - weight * q
-            dofs[RESIDUAL, i] = residual
+                inertia += mass[i, j] * dofs[W.A, j]
+            q = dofs[W.VISCOUS, i] + dofs[W.FORCE, i]
+            dofs[W.Q, i] = q
+            residual = dofs[W.LOAD, i] - inertia - weight * q
+            dofs[W.RESIDUAL, i] = residual
             inertia_squared += inertia * inertia
             q_squared += q * q
             r_squared += residual * residual
         r_norm = math.sqrt(r_squared)
         reference = max(previous, math.sqrt(inertia_squared), math.sqrt(q_squared), p_norm)
-        # Sherman-Morrison: (A + d e0 e0^T)^-1 r = y - d y0 / (1 + d g00) A^-1 e0, y = A^-1 r
-        d = weight * (c1 * n_bearings * c_bearing + n_bearings * k_bearing)
-        denominator = 1.0 + d * g00
-        if denominator == 0.0 or not math.isfinite(denominator):
-            return False, iteration, r_norm, reference, SUCCESS
-        y0 = 0.0
-        for j in range(n):
-            y0 += inverses[depth, 0, j] * dofs[RESIDUAL, j]
-        factor = d * y0 / denominator
+        if not woodbury(inverse, top_k, top_c, columns, weight, c1, dofs[W.RESIDUAL],
+                        dofs[W.DU], ws[W.UPDATE]):
+            return False, iteration, r_norm, reference, E.SUCCESS
         du_squared = u_squared = 0.0
         finite = True
         for i in range(n):
-            if i == 0:
-                du = y0 / denominator
-            else:
-                total = 0.0
-                for j in range(n):
-                    total += inverses[depth, i, j] * dofs[RESIDUAL, j]
-                du = total - factor * inverses[depth, i, 0]
-            dofs[DU, i] = du
+            du = dofs[W.DU, i]
             finite = finite and math.isfinite(du)
             du_squared += du * du
-            u_squared += dofs[U, i] * dofs[U, i]
+            u_squared += dofs[W.U, i] * dofs[W.U, i]
         if not finite:
-            return False, iteration, r_norm, reference, SUCCESS
+            return False, iteration, r_norm, reference, E.SUCCESS
         if r_norm <= tolerance * reference and math.sqrt(du_squared) <= tolerance * max(
                 math.sqrt(u_squared), u_norm):
             for i in range(n):
-                dofs[U_C, i], dofs[V_C, i], dofs[A_C, i] = dofs[U, i], dofs[V, i], dofs[A, i]
-                dofs[P_C, i], dofs[Q_C, i] = dofs[P, i], dofs[Q, i]
-            return True, iteration, r_norm, reference, SUCCESS
+                dofs[W.U_C, i], dofs[W.V_C, i], dofs[W.A_C, i] = dofs[W.U, i], dofs[W.V, i], \
+                    dofs[W.A, i]
+                dofs[W.P_C, i], dofs[W.Q_C, i] = dofs[W.P, i], dofs[W.Q, i]
+            return True, iteration, r_norm, reference, E.SUCCESS
         for i in range(n):
-            dofs[U, i] += dofs[DU, i]
-            dofs[V, i] += c1 * dofs[DU, i]
-            dofs[A, i] += c0 * dofs[DU, i]
-    return False, max_iterations, r_norm, reference, SUCCESS
+            dofs[W.U, i] += dofs[W.DU, i]
+            dofs[W.V, i] += c1 * dofs[W.DU, i]
+            dofs[W.A, i] += c0 * dofs[W.DU, i]
+    return False, max_iterations, r_norm, reference, E.SUCCESS
 
 
 @jit
-def integrate_building(model, motion, settings, state, outputs, steps):
-    """Integrate the isolated building through a ground motion, from rest; fill the outputs.
-
-    ``steps`` = (first, end) takes the steps ``first .. end - 1``: (1, nt) is the whole run.
-    A call with ``first > 1`` resumes where the call that ended at ``first - 1`` stopped,
-    from the state it left in ``state`` (the same arithmetic as one call: the committed time
-    and ground acceleration are then ``time[first - 1]`` and ``ground[first - 1]``, exactly
-    what the step to ``first - 1`` committed).
-
-    Parameters
-    ----------
-    model : Model
-        mass, damping, stiffness (n, n) and influence (n,).
-    motion : Motion
-        ground acceleration and time (nt,).
-    settings : Settings
-        method, bearing and ptv: the integration method and the bearing's constants.
-    state : State
-        heating and workspace, zero at the start; changed in place.
-    outputs : Outputs
-        displacement, velocity, acceleration, record, restoring, iterations, subdivisions
-        and info: filled for the steps taken.
-    steps : ndarray of int64, shape (2,)
-        The steps to take, ``[first, end)`` (see above).
-
-    The groups are named tuples (:class:`Model` ... :class:`Outputs`, whose fields say the
-    shapes and units), which numba types as tuples; the first lines take their arrays out by
-    name, once, and the helpers take arrays as before. (Compiling this function costs about
-    1 % more than with the 20 arrays as parameters, ~0.03 s; taking them out by attribute was
-    the cheapest of the ways tried: ``benchmarks/COLD_START.md``.)
-    """
-    mass, damping, stiffness = model.mass, model.damping, model.stiffness
-    influence = model.influence
-    ground, time = motion.ground, motion.time
-    method, bearing, ptv = settings.method, settings.bearing, settings.ptv
-    heating, workspace = state.heating, state.workspace
-    displacement, velocity = outputs.displacement, outputs.velocity
-    acceleration, record, restoring = outputs.acceleration, outputs.record, outputs.restoring
-    iterations, subdivisions, info = outputs.iterations, outputs.subdivisions, outputs.info
-    n = mass.shape[0]
-    nt = ground.shape[0]
-    max_subdivisions = int(method[MAX_SUBDIVISIONS])
-    n_bearings = bearing[N_BEARINGS]
-    committed, trial = workspace[COMMITTED], workspace[TRIAL]
-    inverses, inverse_steps = workspace[INVERSES], workspace[INVERSE_STEPS]
-    stack_start, stack_end = workspace[STACK_START], workspace[STACK_END]
-    stack_depth, dofs, matrix = workspace[STACK_DEPTH], workspace[DOFS], workspace[MATRIX]
-    work, pivots = workspace[LAPACK_WORK], workspace[PIVOTS]
-    mass_influence = workspace[MASS_INFLUENCE]
-    for i in range(n):  # M r
+def _record(k, model, settings, ws, outputs):
+    """Step ``k`` of the outputs: the committed rows and every bearing's committed state."""
+    dofs, committed = ws[W.DOFS], ws[W.COMMITTED]
+    stiffness, parameters = model.stiffness, settings.parameters
+    record, restoring = outputs.record, outputs.restoring
+    n = stiffness.shape[0]
+    for i in range(n):
+        outputs.displacement[k, i] = dofs[W.U_C, i]
+        outputs.velocity[k, i] = dofs[W.V_C, i]
+        outputs.acceleration[k, i] = dofs[W.A_C, i]
         total = 0.0
         for j in range(n):
-            total += mass[i, j] * influence[j]
-        mass_influence[i] = total
+            total += stiffness[i, j] * dofs[W.U_C, j]
+        restoring[k, i] = total
+    sx = sy = sz = 0.0
+    for b in range(committed.shape[0]):
+        m = parameters[b, E.MULTIPLICITY]
+        fx, fy = m * committed[b, E.FX], m * committed[b, E.FY]
+        sx += fx
+        sy += fy
+        sz += -parameters[b, E.Y] * fx + parameters[b, E.X] * fy
+        for c in range(E.RECORD_SIZE):
+            record[k, b, c] = committed[b, E.RECORD_COLUMNS[c]]
+    restoring[k, 0] += sx
+    if int(settings.flags[W.LEVEL_DOFS]) == 3:
+        restoring[k, 1] += sy
+        restoring[k, 2] += sz
+
+
+@jit
+def integrate(model, motion, settings, state, outputs, steps):
+    """Integrate the isolated building through the record, from rest; fill the outputs.
+
+    ``steps`` = (first, end) takes the steps ``first .. end - 1``: (1, nt) is the whole run.
+    A call with ``first > 1`` resumes where the call that ended at ``first - 1`` stopped, from
+    the state it left in ``state`` (the same arithmetic as one call: the committed time and
+    ground acceleration are then ``time[first - 1]`` and ``ground[first - 1]``, exactly what
+    the step to ``first - 1`` committed). The groups are the NamedTuples of
+    :mod:`structures.compiled.workspace`; the committed bearing states must hold the elements
+    at rest before the first call.
+    """
+    # the groups without numba's reference counts (half the engine's time otherwise)
+    model, motion, settings = unmanaged(model), unmanaged(motion), unmanaged(settings)
+    heat, ws, outputs = unmanaged(state.heat), unmanaged(state.workspace), unmanaged(outputs)
+    method, info = settings.method, outputs.info
+    ground, time = motion.ground, motion.time
+    dofs, committed, trial = ws[W.DOFS], ws[W.COMMITTED], ws[W.TRIAL]
+    inverses, inverse_steps = ws[W.INVERSES], ws[W.INVERSE_STEPS]
+    stack_start, stack_end, stack_depth = ws[W.STACK_START], ws[W.STACK_END], ws[W.STACK_DEPTH]
+    rows = ws[W.GROUND]
+    mass, influence, mass_influence = model.mass, model.influence, ws[W.MASS_INFLUENCE]
+    n, n_bearings, nt = mass.shape[0], committed.shape[0], ground.shape[0]
+    components = ground.shape[1]
+    max_subdivisions = int(method[W.MAX_SUBDIVISIONS])
+    for i in range(n):  # M r
+        for c in range(components):
+            total = 0.0
+            for j in range(n):
+                total += mass[i, j] * influence[j, c]
+            mass_influence[i, c] = total
     first, end = steps[0], steps[1]
     if first <= 1:
         first = 1
-        committed[TEMPERATURE] = bearing[INITIAL_TEMPERATURE]
-        committed[MU] = bearing[INITIAL_MU]
-        for i in range(STATE_SIZE):
-            trial[i] = committed[i]
-
-        # from rest: u = v = 0, so f = 0 and q = 0; the load row holds p - q for the solve
-        for i in range(n):
-            dofs[P_C, i] = -mass_influence[i] * ground[0]
-            dofs[LOAD, i] = dofs[P_C, i] - dofs[Q_C, i]
-        solve(mass, dofs[LOAD], dofs[A_C], work, pivots)
-        for i in range(n):
-            displacement[0, i], velocity[0, i] = dofs[U_C, i], dofs[V_C, i]
-            acceleration[0, i], restoring[0, i] = dofs[A_C, i], 0.0
-        record_state(record[:, 0], committed)
+        for i in range(n):  # from rest: f = 0, q = 0; the load row holds p - q for the solve
+            total = 0.0
+            for c in range(components):
+                total += mass_influence[i, c] * ground[0, c]
+            dofs[W.P_C, i] = -total
+            dofs[W.LOAD, i] = dofs[W.P_C, i] - dofs[W.Q_C, i]
+        solve(mass, dofs[W.LOAD], dofs[W.A_C], ws[W.LAPACK_WORK], ws[W.PIVOTS])
+        _record(0, model, settings, ws, outputs)
     end = min(end, nt)
-    info[STATUS], info[LAST_STEP] = SUCCESS, end - 1
-
+    info[W.STATUS], info[W.LAST_STEP] = E.SUCCESS, end - 1
     t_committed = time[first - 1]
-    ground_committed = ground[first - 1]
+    for c in range(components):
+        rows[W.GROUND_COMMITTED, c] = ground[first - 1, c]
     for k in range(first, end):
-        start, end = t_committed, time[k]
-        span = end - start
-        ground_start, ground_end = ground_committed, ground[k]
-        step_iterations = 0
-        step_subdivisions = 0
+        start, stop = t_committed, time[k]
+        span = stop - start
+        for c in range(components):
+            rows[W.GROUND_START, c] = rows[W.GROUND_COMMITTED, c]
+            rows[W.GROUND_END, c] = ground[k, c]
+        step_iterations = step_subdivisions = 0
         top = 0
         stack_start[0], stack_end[0], stack_depth[0] = 0.0, 1.0, 0
         while top >= 0:
             s0, s1, depth = stack_start[top], stack_end[top], stack_depth[top]
             top -= 1
             if s1 == 1.0:
-                t_end, ground_now = end, ground_end
+                t_end = stop
+                for c in range(components):
+                    rows[W.GROUND_NOW, c] = rows[W.GROUND_END, c]
             else:
                 t_end = start + s1 * span
-                ground_now = ground_start + s1 * (ground_end - ground_start)
+                for c in range(components):
+                    g0 = rows[W.GROUND_START, c]
+                    rows[W.GROUND_NOW, c] = g0 + s1 * (rows[W.GROUND_END, c] - g0)
             h = (s1 - s0) * span
             if abs(h - inverse_steps[depth]) > 1e-9 * h:
-                _effective_inverse(h, mass, damping, stiffness, method[GAMMA], method[BETA],
-                                   method[ALPHA], inverses[depth], matrix, work, pivots)
+                effective_inverse(h, mass, model.damping, model.stiffness, method[W.GAMMA],
+                                  method[W.BETA], method[W.ALPHA], inverses[depth],
+                                  ws[W.TANGENT], ws[W.LAPACK_WORK], ws[W.PIVOTS])
                 inverse_steps[depth] = h
             converged, spent, r_norm, reference, status = _newton(
-                h, t_end, ground_now, mass, damping, stiffness, mass_influence, inverses, depth,
-                method, bearing, ptv, dofs, committed, trial, heating)
+                h, t_end, depth, model, settings, ws, heat, info)
             step_iterations += spent
             if converged:
-                bearing_commit(bearing, committed, trial, heating)
-                t_committed, ground_committed = t_end, ground_now
+                for b in range(n_bearings):
+                    E.element_commit(b, settings.parameters, committed, trial, heat)
+                t_committed = t_end
+                for c in range(components):
+                    rows[W.GROUND_COMMITTED, c] = rows[W.GROUND_NOW, c]
                 continue
-            trial[PENDING] = 0.0  # revert: drop the trial and its heat
-            if status != SUCCESS or depth >= max_subdivisions:
-                info[STATUS], info[LAST_STEP] = NOT_CONVERGED, k - 1
-                if status != SUCCESS:
-                    info[STATUS] = status
-                    info[FAIL_VALUE] = trial[
-                        PENDING_DT] if status == STEP_BELOW_MIN_LAG else trial[BEARING_DISPLACEMENT]
-                info[FAIL_TIME], info[FAIL_SUBSTEP], info[FAIL_DEPTH] = t_end, h, depth
-                info[FAIL_ITERATIONS], info[FAIL_RESIDUAL] = spent, r_norm
-                info[FAIL_REFERENCE] = reference
-                iterations[k - 1], subdivisions[k - 1] = step_iterations, step_subdivisions
+            for b in range(n_bearings):  # revert: drop the trials and their heat
+                trial[b, E.PENDING] = 0.0
+            if status != E.SUCCESS or depth >= max_subdivisions:
+                info[W.STATUS], info[W.LAST_STEP] = E.NOT_CONVERGED, k - 1
+                if status != E.SUCCESS:
+                    b = int(info[W.FAIL_BEARING])
+                    info[W.STATUS] = status
+                    info[W.FAIL_VALUE] = trial[b, E.PENDING_DT]
+                    info[W.FAIL_UX], info[W.FAIL_UY] = trial[b, E.UX], trial[b, E.UY]
+                    info[W.FAIL_E1X], info[W.FAIL_E1Y] = trial[b, E.AXIS_X], trial[b, E.AXIS_Y]
+                info[W.FAIL_TIME], info[W.FAIL_SUBSTEP], info[W.FAIL_DEPTH] = t_end, h, depth
+                info[W.FAIL_ITERATIONS], info[W.FAIL_RESIDUAL] = spent, r_norm
+                info[W.FAIL_REFERENCE] = reference
+                outputs.iterations[k - 1] = step_iterations
+                outputs.subdivisions[k - 1] = step_subdivisions
                 return
             step_subdivisions += 1
             middle = 0.5 * (s0 + s1)
@@ -353,14 +335,6 @@ def integrate_building(model, motion, settings, state, outputs, steps):
             stack_start[top], stack_end[top], stack_depth[top] = middle, s1, depth + 1
             top += 1
             stack_start[top], stack_end[top], stack_depth[top] = s0, middle, depth + 1
-        iterations[k - 1], subdivisions[k - 1] = step_iterations, step_subdivisions
-        for i in range(n):
-            displacement[k, i] = dofs[U_C, i]
-            velocity[k, i] = dofs[V_C, i]
-            acceleration[k, i] = dofs[A_C, i]
-            total = 0.0
-            for j in range(n):
-                total += stiffness[i, j] * dofs[U_C, j]
-            restoring[k, i] = total
-        restoring[k, 0] += n_bearings * committed[FORCE]
-        record_state(record[:, k], committed)
+        outputs.iterations[k - 1] = step_iterations
+        outputs.subdivisions[k - 1] = step_subdivisions
+        _record(k, model, settings, ws, outputs)

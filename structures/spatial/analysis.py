@@ -6,9 +6,9 @@ a vector (x, y) per step), records every bearing at each committed step and retu
 ``xarray.Dataset`` with a ``direction`` dimension (:mod:`structures.spatial.results`). Its own
 integration is the readable reference (plain numpy, one Python loop over the bearings per
 Newton iteration); by default the same run goes to the compiled engine of
-:mod:`structures.compiled.plan` when numba is there (the same histories to about 1e-13; the
-first run compiles it, about 40 s, once per environment). The planar
-:func:`structures.analysis.run` is untouched.
+:mod:`structures.compiled` when numba is there (the same histories to about 1e-13; the
+first run compiles it, once per environment), the engine of the planar
+:func:`structures.analysis.run` too.
 """
 
 from __future__ import annotations
@@ -137,7 +137,7 @@ def run_spatial(
         The precise model's monitor grid orientation [deg] (None: follows the motion).
     engine : {"reference", "compiled", "auto"}
         ``"reference"``: this module's integration on the model objects; ``"compiled"``: the
-        numba engine of :mod:`structures.compiled.plan`, the same histories to round-off;
+        numba engine of :mod:`structures.compiled`, the same histories to round-off;
         ``"auto"`` (the default): the compiled one when numba is there.
 
     Returns
@@ -161,14 +161,16 @@ def run_spatial(
     y, _ = resampled_record(motion.y, step)
     acceleration = np.column_stack([x, y])
     method = as_method(integrator)
-    from structures.compiled.plan.engine import plan_history, select_plan_engine
+    from structures.compiled.engine import bearing_fields, compiled_run, select_engine
+    from structures.compiled.view import engine_view
 
-    chosen = select_plan_engine(engine, model, method)
+    chosen = select_engine(engine, model, method, "run_spatial")
     plate = None
     if chosen == "compiled":
-        result, record, restoring, wall, plate, _ = plan_history(
-            model, acceleration, step, method, tolerance=tolerance,
-            max_subdivisions=max_subdivisions, time_limit=time_limit)
+        run = compiled_run(engine_view(model), acceleration, step, method, tolerance=tolerance,
+                           max_subdivisions=max_subdivisions, time_limit=time_limit)
+        result, record, restoring = run.result, bearing_fields(run.record), run.restoring
+        wall, plate = run.wall_time, run.plate
     else:
         result, record, restoring, wall = spatial_history(
             model, acceleration, step, method, tolerance=tolerance,

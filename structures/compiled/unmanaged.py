@@ -1,11 +1,11 @@
-"""Groups of arrays the plan engine reads and writes without numba's reference counts.
+"""Groups of arrays the compiled engine reads and writes without numba's reference counts.
 
-numba counts the references of every array it hands on: each inlined call that takes a group
-(the heat history's 17 arrays, the work arrays, the building) takes a reference to each member
-at the call and drops it at the end, an atomic add apiece. Measured on the plan engine (a 30 s
-pair, four bearings) these counts were about half of its compiled time, with the constant
-friction as with the precise one: ``perf`` put two instructions, the ``lock incq`` and
-``lock decq`` of numba's ``NRT_incref`` / ``NRT_decref``, at 19 to 24 % of the whole process.
+numba counts the references of every array it hands on: each call that takes a group (the
+heat history's 17 arrays, the work arrays, the building) or an array of it takes a reference
+to each member at the call and drops it at the end, an atomic add apiece. Measured on the
+engine of a building in plan (a 30 s pair, four bearings) these counts were about half of its
+compiled time: ``perf`` put two instructions, the ``lock incq`` and ``lock decq`` of numba's
+``NRT_incref`` / ``NRT_decref``, at 19 to 24 % of the whole process.
 
 :func:`unmanaged` gives the same group with every member's memory-info pointer set to null,
 which numba's counting functions skip (the arrays, their data, shapes and strides are the same,
