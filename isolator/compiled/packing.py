@@ -47,14 +47,14 @@ class CompiledBearings(NamedTuple):
         The friction constants of each bearing (:func:`isolator.compiled.layout.pack_ptv`).
     committed : ndarray, shape (n_b, STATE_SIZE)
         The elements' committed states at rest.
-    heat : tuple of ndarray
+    heat : PlateHeat
         The plates' heat histories, zero (:func:`isolator.compiled.plate.new_plate_heating`).
     """
 
     parameters: np.ndarray
     ptv: np.ndarray
     committed: np.ndarray
-    heat: tuple
+    heat: P.PlateHeat
 
 
 def unsupported_reason(bearing: DCFPBearing) -> str | None:
@@ -233,7 +233,7 @@ def plate_field(compiled: CompiledBearings) -> tuple[np.ndarray, np.ndarray] | N
     across_first = first if n_across > 1 else 0.0
     coefficient = ptv[0, L.FLUX_COEFFICIENT]
     initial_temperature = float(parameters[0, E.INITIAL_TEMPERATURE])
-    marks = heat[P.MARKS]
+    marks = heat.marks
     n_b = marks.shape[0]
     chosen = [np.flatnonzero(marks[b] >= 0) for b in range(n_b)]
     size = max((c.size for c in chosen), default=0)
@@ -242,10 +242,11 @@ def plate_field(compiled: CompiledBearings) -> tuple[np.ndarray, np.ndarray] | N
         i, k = points // n_across, points % n_across
         order = np.lexsort((k, i, marks[b, points]))
         points, i, k = points[order], i[order], k[order]
-        scalars, held = heat[P.SCALARS][b], heat[P.WINDOWS][b, P.HELD]
+        scalars, held = heat.scalars[b], heat.windows[b, P.HELD]
         inside = (i >= held[0]) & (i < held[1]) & (k >= held[2]) & (k < held[3])
-        P.field_temperatures(b, points, inside, scalars[P.HEAT_TIME], initial_temperature,
-                             coefficient, heat, temperatures[b, :points.size])
+        P.field_temperatures(points, inside, scalars[P.HEAT_TIME], initial_temperature,
+                             coefficient, heat.rates, heat.weights, heat.states[b],
+                             heat.stamps[b], heat.accumulators[b], temperatures[b, :points.size])
         local = np.column_stack([first + spacing * i, across_first + spacing * k])
         e1x, e1y = scalars[P.E1X], scalars[P.E1Y]
         positions[b, :points.size] = local @ np.array([[e1x, e1y], [-e1y, e1x]])

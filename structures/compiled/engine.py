@@ -204,7 +204,7 @@ def _model_group(view: EngineView) -> W.Model:
 def compiled_run(view: EngineView, acceleration: np.ndarray, step: float,
                  method: Newmark | HHT, *, tolerance: float, max_iterations: int = 25,
                  max_subdivisions: int, time_limit: float | None = None,
-                 python: bool = False) -> CompiledRun:
+                 python: bool = False, with_plate: bool = True) -> CompiledRun:
     """Run the compiled engine from rest through ``acceleration`` sampled every ``step``.
 
     Parameters
@@ -224,6 +224,8 @@ def compiled_run(view: EngineView, acceleration: np.ndarray, step: float,
         with ``success=False``, failure ``"timeout"`` and the steps taken so far.
     python : bool
         Run the Python original of the loop (tests; slow).
+    with_plate : bool
+        Read the precise model's plate field at the end (``CompiledRun.plate``; else None).
 
     Raises
     ------
@@ -270,7 +272,7 @@ def compiled_run(view: EngineView, acceleration: np.ndarray, step: float,
     result = IntegrationResult(*arrays[:5], success, message, *arrays[5:], method=method,
                                failure=failure, failed_at=failed_at)
     return CompiledRun(result, record[kept], restoring[kept], wall, compile_time,
-                       plate_field(bearings))
+                       plate_field(bearings) if with_plate else None)
 
 
 def compiled_history(model, acceleration: np.ndarray, dt: float, method: Newmark | HHT, *,
@@ -282,7 +284,7 @@ def compiled_history(model, acceleration: np.ndarray, dt: float, method: Newmark
     run = compiled_run(engine_view(model), np.asarray(acceleration, dtype=float)[:, None], dt,
                        method, tolerance=tolerance, max_iterations=max_iterations,
                        max_subdivisions=max_subdivisions, time_limit=time_limit,
-                       python=python)
+                       python=python, with_plate=False)
     fields = bearing_fields(run.record)
     bearing = {"displacement": fields["displacement"][:, 0, 0],
                "velocity": np.array(run.result.velocity[:, 0]),
@@ -314,24 +316,35 @@ def warm_up_late() -> float:
     argument types the engine calls them with; return the time [s].
 
     :mod:`structures.compiled.ahead` has this process do them while the second one works
-    through the rest, which then finds them in the cache. Every call is made on a resting
-    bearing and changes nothing that matters.
+    through the rest, which then finds them in the cache: the element's commit (with the
+    plate's), the Woodbury solve and the recording of a step (compiled for those types, not
+    run).
     """
     from isolator.compiled import plate
-    from isolator.compiled.kernels import ptv_friction
-    from isolator.compiled.layout import pack_ptv
+    from structures.compiled import linear
 
     start = _time.perf_counter()
     heat = plate.new_plate_heating(1, 1, np.ones(1), np.zeros(1))
-    held = np.zeros(4, dtype=np.int64)
-    plate.move_window(0, 1, held, held, 0.0, heat)
-    plate.window_history(heat[plate.ACCUMULATORS][0], heat[plate.OFFSETS][0],
-                         heat[plate.DECAYS][0], 1)
-    ptv_friction(0.0, True, pack_ptv({"surfaces": 2.0}), 0.0, 6.0e7, 0.1)
-    parameters = np.zeros((1, E.PARAMETERS_SIZE))
-    states = np.zeros((1, E.STATE_SIZE))
-    E.element_commit(0, parameters, states, states.copy(), heat)  # nothing pending: a copy
+    states, rows = np.zeros((1, E.STATE_SIZE)), np.zeros((3, 1))
+    record, square = np.zeros((1, 1, E.RECORD_SIZE)), np.zeros((1, 1))
+    for function, arguments in (
+            (E.commit_trials, (np.zeros((1, E.PARAMETERS_SIZE)), states, states, *heat)),
+            (linear.woodbury, (square, rows, rows, 1, 1.0, 1.0, rows[0], rows[0], rows)),
+            (compiled._record, (0, np.zeros((W.DOF_ROWS, 1)), states, square,
+                                np.zeros((1, E.PARAMETERS_SIZE)), 1, square, square, square,
+                                record, square))):
+        if hasattr(function, "compile"):
+            function.compile(tuple(_typeof(argument) for argument in arguments))
     return _time.perf_counter() - start
+
+
+def _typeof(value):
+    """numba's type of an argument as compiled code passes it (integers as int64)."""
+    from numba import typeof, types
+
+    if isinstance(value, int):
+        return types.int64
+    return typeof(value)
 
 
 def warm_up() -> float:

@@ -31,8 +31,9 @@ unit columns: each iteration solves with the Woodbury formula (Sherman-Morrison 
 column), O(n^2), instead of factorising the matrix.
 
 The loop allocates nothing (its work arrays come from Python,
-:func:`structures.compiled.workspace.new_workspace`) and reads its groups without numba's
-reference counts (:mod:`structures.compiled.unmanaged`). Without numba, or with
+:func:`structures.compiled.workspace.new_workspace`), so it and the element are compiled
+without numba's reference counting (:func:`isolator.compiled.kernels.jit_unmanaged`): no
+count is taken of the arrays handed from call to call. Without numba, or with
 ``DCFPB_DISABLE_NUMBA=1``, the same source runs as plain Python; ``integrate.py_func`` is the
 Python original of the loop. The Python side (the model's view, packing, messages, result) is
 :mod:`structures.compiled.engine`.
@@ -46,170 +47,23 @@ import numpy as np
 
 from dcfpb.common.units import STANDARD_GRAVITY
 from isolator.compiled import element as E
-from isolator.compiled.kernels import jit
+from isolator.compiled.kernels import jit_unmanaged
 from structures.compiled import workspace as W
 from structures.compiled.lapack import solve
 from structures.compiled.linear import add_block, effective_inverse, interpolate, woodbury
-from structures.compiled.unmanaged import unmanaged
 
 __all__ = ["integrate"]
 
 
-@jit
-def _newton(h, time, depth, model, settings, ws, heat, info):
-    """NewmarkStepper._solve on a (sub-)step of ``h`` [s] to ``time``, with the ground
-    acceleration of ``ws``'s ``GROUND_NOW`` row; on success the committed rows move to the new
-    state (the bearings are committed by the caller).
-
-    Returns converged, iterations, residual norm [N], force reference [N], status.
-    """
-    method, parameters, ptv, flags = settings.method, settings.parameters, settings.ptv, \
-        settings.flags
-    mass, damping, stiffness = model.mass, model.damping, model.stiffness
-    dofs, inverse = ws[W.DOFS], ws[W.INVERSES][depth]
-    top_k, top_c, mass_influence = ws[W.TOP_STIFFNESS], ws[W.TOP_DAMPING], ws[W.MASS_INFLUENCE]
-    committed, trial, loads, ground = ws[W.COMMITTED], ws[W.TRIAL], ws[W.LOADS], ws[W.GROUND]
-    gamma, beta, alpha = method[W.GAMMA], method[W.BETA], method[W.ALPHA]
-    tolerance = method[W.TOLERANCE]
-    columns = int(flags[W.LEVEL_DOFS])
-    overturning = flags[W.OVERTURNING] != 0.0
-    weight = 1.0 + alpha
-    c0, c1 = 1.0 / (beta * h * h), gamma / (beta * h)
-    n, components, n_bearings = mass.shape[0], ground.shape[1], loads.shape[0]
-    half_h2 = 0.5 * h * h
-    p_squared = previous_p = previous_q = u_squared = 0.0
-    for i in range(n):
-        total = 0.0
-        for c in range(components):
-            total += mass_influence[i, c] * ground[W.GROUND_NOW, c]
-        dofs[W.P, i] = -total
-        dofs[W.LOAD, i] = weight * dofs[W.P, i] - alpha * dofs[W.P_C, i] + alpha * dofs[W.Q_C, i]
-        dofs[W.A, i] = dofs[W.A_C, i]
-        dofs[W.U, i] = dofs[W.U_C, i] + h * dofs[W.V_C, i] + half_h2 * dofs[W.A, i]
-        dofs[W.V, i] = dofs[W.V_C, i] + h * dofs[W.A, i]
-        p_squared += dofs[W.P, i] * dofs[W.P, i]
-        previous_p += dofs[W.P_C, i] * dofs[W.P_C, i]
-        previous_q += dofs[W.Q_C, i] * dofs[W.Q_C, i]
-        u_squared += dofs[W.U_C, i] * dofs[W.U_C, i]
-    previous = max(math.sqrt(previous_p), math.sqrt(previous_q))
-    u_norm, p_norm = math.sqrt(u_squared), math.sqrt(p_squared)
-    factor = 1.0
-    if flags[W.VERTICAL] != 0.0:
-        factor = 1.0 + interpolate(time, model.vertical_time,
-                                   model.vertical_acceleration) / STANDARD_GRAVITY
-    r_norm = reference = np.inf
-    max_iterations = int(method[W.MAX_ITERATIONS])
-    for iteration in range(1, max_iterations + 1):
-        # the restoring force: storey springs and dampers, then the bearings at their loads
-        for i in range(n):
-            spring = 0.0
-            viscous = 0.0
-            for j in range(n):
-                spring += stiffness[i, j] * dofs[W.U, j]
-                viscous += damping[i, j] * dofs[W.V, j]
-            dofs[W.FORCE, i] = spring
-            dofs[W.VISCOUS, i] = viscous
-            dofs[W.STOREY, i] = spring + viscous
-        for r in range(columns):
-            for j in range(n):
-                top_k[r, j] = 0.0
-                top_c[r, j] = 0.0
-        for b in range(n_bearings):
-            load = parameters[b, E.GRAVITY] * factor
-            if overturning:
-                extra = 0.0
-                for j in range(n):
-                    extra += model.overturning[b, j] * dofs[W.STOREY, j]
-                load = load + extra
-            loads[b] = load
-        for b in range(n_bearings):
-            x, y, m = parameters[b, E.X], parameters[b, E.Y], parameters[b, E.MULTIPLICITY]
-            if columns == 1:  # the element moves along x
-                status = E.element_trial(b, dofs[W.U, 0], 0.0, dofs[W.V, 0], 0.0, time,
-                                         loads[b], parameters, ptv, committed, trial, heat)
-            else:
-                ux, uy, theta = dofs[W.U, 0], dofs[W.U, 1], dofs[W.U, 2]
-                vx, vy, omega = dofs[W.V, 0], dofs[W.V, 1], dofs[W.V, 2]
-                status = E.element_trial(b, ux - y * theta, uy + x * theta, vx - y * omega,
-                                         vy + x * omega, time, loads[b], parameters, ptv,
-                                         committed, trial, heat)
-            if status != E.SUCCESS:
-                info[W.FAIL_BEARING] = b
-                return False, iteration, r_norm, reference, status
-            t = trial[b]
-            fx, fy = m * t[E.FX], m * t[E.FY]
-            dofs[W.FORCE, 0] += fx
-            if columns == 1:
-                top_k[0, 0] += m * t[E.KXX]
-                top_c[0, 0] += m * t[E.CXX]
-                continue
-            dofs[W.FORCE, 1] += fy
-            dofs[W.FORCE, 2] += -y * fx + x * fy
-            add_block(top_k, m * t[E.KXX], m * t[E.KXY], m * t[E.KYX], m * t[E.KYY], x, y)
-            add_block(top_c, m * t[E.CXX], m * t[E.CXY], m * t[E.CYX], m * t[E.CYY], x, y)
-            if overturning and loads[b] > 0.0:  # d(T^T F) / dN times dN / du, dN / dv
-                px, py = fx / loads[b], fy / loads[b]
-                per_load_2 = -y * px + x * py
-                for j in range(n):
-                    du, dv = model.load_du[b, j], model.load_dv[b, j]
-                    top_k[0, j] += px * du
-                    top_k[1, j] += py * du
-                    top_k[2, j] += per_load_2 * du
-                    top_c[0, j] += px * dv
-                    top_c[1, j] += py * dv
-                    top_c[2, j] += per_load_2 * dv
-        # the residual and its norms, then the correction
-        inertia_squared = q_squared = r_squared = 0.0
-        for i in range(n):
-            inertia = 0.0
-            for j in range(n):
-                inertia += mass[i, j] * dofs[W.A, j]
-            q = dofs[W.VISCOUS, i] + dofs[W.FORCE, i]
-            dofs[W.Q, i] = q
-            residual = dofs[W.LOAD, i] - inertia - weight * q
-            dofs[W.RESIDUAL, i] = residual
-            inertia_squared += inertia * inertia
-            q_squared += q * q
-            r_squared += residual * residual
-        r_norm = math.sqrt(r_squared)
-        reference = max(previous, math.sqrt(inertia_squared), math.sqrt(q_squared), p_norm)
-        if not woodbury(inverse, top_k, top_c, columns, weight, c1, dofs[W.RESIDUAL],
-                        dofs[W.DU], ws[W.UPDATE]):
-            return False, iteration, r_norm, reference, E.SUCCESS
-        du_squared = u_squared = 0.0
-        finite = True
-        for i in range(n):
-            du = dofs[W.DU, i]
-            finite = finite and math.isfinite(du)
-            du_squared += du * du
-            u_squared += dofs[W.U, i] * dofs[W.U, i]
-        if not finite:
-            return False, iteration, r_norm, reference, E.SUCCESS
-        if r_norm <= tolerance * reference and math.sqrt(du_squared) <= tolerance * max(
-                math.sqrt(u_squared), u_norm):
-            for i in range(n):
-                dofs[W.U_C, i], dofs[W.V_C, i], dofs[W.A_C, i] = dofs[W.U, i], dofs[W.V, i], \
-                    dofs[W.A, i]
-                dofs[W.P_C, i], dofs[W.Q_C, i] = dofs[W.P, i], dofs[W.Q, i]
-            return True, iteration, r_norm, reference, E.SUCCESS
-        for i in range(n):
-            dofs[W.U, i] += dofs[W.DU, i]
-            dofs[W.V, i] += c1 * dofs[W.DU, i]
-            dofs[W.A, i] += c0 * dofs[W.DU, i]
-    return False, max_iterations, r_norm, reference, E.SUCCESS
-
-
-@jit
-def _record(k, model, settings, ws, outputs):
+@jit_unmanaged
+def _record(k, dofs, committed, stiffness, parameters, columns, displacement, velocity,
+            acceleration, record, restoring):
     """Step ``k`` of the outputs: the committed rows and every bearing's committed state."""
-    dofs, committed = ws[W.DOFS], ws[W.COMMITTED]
-    stiffness, parameters = model.stiffness, settings.parameters
-    record, restoring = outputs.record, outputs.restoring
     n = stiffness.shape[0]
     for i in range(n):
-        outputs.displacement[k, i] = dofs[W.U_C, i]
-        outputs.velocity[k, i] = dofs[W.V_C, i]
-        outputs.acceleration[k, i] = dofs[W.A_C, i]
+        displacement[k, i] = dofs[W.U_C, i]
+        velocity[k, i] = dofs[W.V_C, i]
+        acceleration[k, i] = dofs[W.A_C, i]
         total = 0.0
         for j in range(n):
             total += stiffness[i, j] * dofs[W.U_C, j]
@@ -224,12 +78,12 @@ def _record(k, model, settings, ws, outputs):
         for c in range(E.RECORD_SIZE):
             record[k, b, c] = committed[b, E.RECORD_COLUMNS[c]]
     restoring[k, 0] += sx
-    if int(settings.flags[W.LEVEL_DOFS]) == 3:
+    if columns == 3:
         restoring[k, 1] += sy
         restoring[k, 2] += sz
 
 
-@jit
+@jit_unmanaged
 def integrate(model, motion, settings, state, outputs, steps):
     """Integrate the isolated building through the record, from rest; fill the outputs.
 
@@ -240,20 +94,47 @@ def integrate(model, motion, settings, state, outputs, steps):
     the step to ``first - 1`` committed). The groups are the NamedTuples of
     :mod:`structures.compiled.workspace`; the committed bearing states must hold the elements
     at rest before the first call.
+
+    Each (sub-)step is NewmarkStepper._solve: the predictor, then Newton iterations of the
+    restoring force (storey springs and dampers; the bearings at their trial loads), the
+    residual and the correction, until both tests pass; on success the committed rows move to
+    the new state and the bearings are committed; on failure the step is halved, down to
+    ``max_subdivisions`` halvings.
     """
-    # the groups without numba's reference counts (half the engine's time otherwise)
-    model, motion, settings = unmanaged(model), unmanaged(motion), unmanaged(settings)
-    heat, ws, outputs = unmanaged(state.heat), unmanaged(state.workspace), unmanaged(outputs)
-    method, info = settings.method, outputs.info
+    heat, ws = state.heat, state.workspace  # every array out of its group, once
+    method, parameters, ptv, flags = settings.method, settings.parameters, settings.ptv, \
+        settings.flags
+    info, iterations, subdivisions = outputs.info, outputs.iterations, outputs.subdivisions
+    displacement, velocity, acceleration = outputs.displacement, outputs.velocity, \
+        outputs.acceleration
+    record, restoring = outputs.record, outputs.restoring
     ground, time = motion.ground, motion.time
+    mass, damping, stiffness = model.mass, model.damping, model.stiffness
+    influence, vertical_time, vertical_acceleration = model.influence, model.vertical_time, \
+        model.vertical_acceleration
+    overturning_matrix, load_du, load_dv = model.overturning, model.load_du, model.load_dv
+    rates, weights, states, stamps = heat.rates, heat.weights, heat.states, heat.stamps
+    marks, pending, accumulators, offsets = heat.marks, heat.pending, heat.accumulators, \
+        heat.offsets
+    cache_keys, cache_values, cache_state = heat.cache_keys, heat.cache_values, heat.cache_state
+    scalars, factors, decays, slots = heat.scalars, heat.factors, heat.decays, heat.slots
+    table, windows = heat.table, heat.windows
+    tangent, work, pivots = ws[W.TANGENT], ws[W.LAPACK_WORK], ws[W.PIVOTS]
     dofs, committed, trial = ws[W.DOFS], ws[W.COMMITTED], ws[W.TRIAL]
     inverses, inverse_steps = ws[W.INVERSES], ws[W.INVERSE_STEPS]
     stack_start, stack_end, stack_depth = ws[W.STACK_START], ws[W.STACK_END], ws[W.STACK_DEPTH]
-    rows = ws[W.GROUND]
-    mass, influence, mass_influence = model.mass, model.influence, ws[W.MASS_INFLUENCE]
+    top_k, top_c, mass_influence = ws[W.TOP_STIFFNESS], ws[W.TOP_DAMPING], ws[W.MASS_INFLUENCE]
+    motion_rows, rows, update = ws[W.MOTION], ws[W.GROUND], ws[W.UPDATE]
+    gamma, beta, alpha = method[W.GAMMA], method[W.BETA], method[W.ALPHA]
+    tolerance = method[W.TOLERANCE]
+    max_iterations = int(method[W.MAX_ITERATIONS])
+    max_subdivisions = int(method[W.MAX_SUBDIVISIONS])
+    columns = int(flags[W.LEVEL_DOFS])
+    overturning = flags[W.OVERTURNING] != 0.0
+    vertical = flags[W.VERTICAL] != 0.0
+    weight = 1.0 + alpha
     n, n_bearings, nt = mass.shape[0], committed.shape[0], ground.shape[0]
     components = ground.shape[1]
-    max_subdivisions = int(method[W.MAX_SUBDIVISIONS])
     for i in range(n):  # M r
         for c in range(components):
             total = 0.0
@@ -269,72 +150,211 @@ def integrate(model, motion, settings, state, outputs, steps):
                 total += mass_influence[i, c] * ground[0, c]
             dofs[W.P_C, i] = -total
             dofs[W.LOAD, i] = dofs[W.P_C, i] - dofs[W.Q_C, i]
-        solve(mass, dofs[W.LOAD], dofs[W.A_C], ws[W.LAPACK_WORK], ws[W.PIVOTS])
-        _record(0, model, settings, ws, outputs)
+        solve(mass, dofs[W.LOAD], dofs[W.A_C], work, pivots)
     end = min(end, nt)
     info[W.STATUS], info[W.LAST_STEP] = E.SUCCESS, end - 1
     t_committed = time[first - 1]
     for c in range(components):
         rows[W.GROUND_COMMITTED, c] = ground[first - 1, c]
-    for k in range(first, end):
-        start, stop = t_committed, time[k]
-        span = stop - start
-        for c in range(components):
-            rows[W.GROUND_START, c] = rows[W.GROUND_COMMITTED, c]
-            rows[W.GROUND_END, c] = ground[k, c]
-        step_iterations = step_subdivisions = 0
-        top = 0
-        stack_start[0], stack_end[0], stack_depth[0] = 0.0, 1.0, 0
-        while top >= 0:
-            s0, s1, depth = stack_start[top], stack_end[top], stack_depth[top]
-            top -= 1
-            if s1 == 1.0:
-                t_end = stop
-                for c in range(components):
-                    rows[W.GROUND_NOW, c] = rows[W.GROUND_END, c]
-            else:
-                t_end = start + s1 * span
-                for c in range(components):
-                    g0 = rows[W.GROUND_START, c]
-                    rows[W.GROUND_NOW, c] = g0 + s1 * (rows[W.GROUND_END, c] - g0)
-            h = (s1 - s0) * span
-            if abs(h - inverse_steps[depth]) > 1e-9 * h:
-                effective_inverse(h, mass, model.damping, model.stiffness, method[W.GAMMA],
-                                  method[W.BETA], method[W.ALPHA], inverses[depth],
-                                  ws[W.TANGENT], ws[W.LAPACK_WORK], ws[W.PIVOTS])
-                inverse_steps[depth] = h
-            converged, spent, r_norm, reference, status = _newton(
-                h, t_end, depth, model, settings, ws, heat, info)
-            step_iterations += spent
-            if converged:
-                for b in range(n_bearings):
-                    E.element_commit(b, settings.parameters, committed, trial, heat)
-                t_committed = t_end
-                for c in range(components):
-                    rows[W.GROUND_COMMITTED, c] = rows[W.GROUND_NOW, c]
-                continue
-            for b in range(n_bearings):  # revert: drop the trials and their heat
-                trial[b, E.PENDING] = 0.0
-            if status != E.SUCCESS or depth >= max_subdivisions:
-                info[W.STATUS], info[W.LAST_STEP] = E.NOT_CONVERGED, k - 1
-                if status != E.SUCCESS:
-                    b = int(info[W.FAIL_BEARING])
-                    info[W.STATUS] = status
-                    info[W.FAIL_VALUE] = trial[b, E.PENDING_DT]
-                    info[W.FAIL_UX], info[W.FAIL_UY] = trial[b, E.UX], trial[b, E.UY]
-                    info[W.FAIL_E1X], info[W.FAIL_E1Y] = trial[b, E.AXIS_X], trial[b, E.AXIS_Y]
-                info[W.FAIL_TIME], info[W.FAIL_SUBSTEP], info[W.FAIL_DEPTH] = t_end, h, depth
-                info[W.FAIL_ITERATIONS], info[W.FAIL_RESIDUAL] = spent, r_norm
-                info[W.FAIL_REFERENCE] = reference
-                outputs.iterations[k - 1] = step_iterations
-                outputs.subdivisions[k - 1] = step_subdivisions
-                return
-            step_subdivisions += 1
-            middle = 0.5 * (s0 + s1)
-            top += 1
-            stack_start[top], stack_end[top], stack_depth[top] = middle, s1, depth + 1
-            top += 1
-            stack_start[top], stack_end[top], stack_depth[top] = s0, middle, depth + 1
-        outputs.iterations[k - 1] = step_iterations
-        outputs.subdivisions[k - 1] = step_subdivisions
-        _record(k, model, settings, ws, outputs)
+    for k in range(first - 1, end):
+        if k >= first:  # the step to time[k]; k = first - 1 only records the state at rest
+            start, stop = t_committed, time[k]
+            span = stop - start
+            for c in range(components):
+                rows[W.GROUND_START, c] = rows[W.GROUND_COMMITTED, c]
+                rows[W.GROUND_END, c] = ground[k, c]
+            step_iterations = step_subdivisions = 0
+            top = 0
+            stack_start[0], stack_end[0], stack_depth[0] = 0.0, 1.0, 0
+            while top >= 0:
+                s0, s1, depth = stack_start[top], stack_end[top], stack_depth[top]
+                top -= 1
+                if s1 == 1.0:
+                    t_end = stop
+                    for c in range(components):
+                        rows[W.GROUND_NOW, c] = rows[W.GROUND_END, c]
+                else:
+                    t_end = start + s1 * span
+                    for c in range(components):
+                        g0 = rows[W.GROUND_START, c]
+                        rows[W.GROUND_NOW, c] = g0 + s1 * (rows[W.GROUND_END, c] - g0)
+                h = (s1 - s0) * span
+                inverse = inverses[depth]
+                if abs(h - inverse_steps[depth]) > 1e-9 * h:
+                    effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse,
+                                      tangent, work, pivots)
+                    inverse_steps[depth] = h
+                # the predictor and the norms of the committed state
+                c0, c1 = 1.0 / (beta * h * h), gamma / (beta * h)
+                half_h2 = 0.5 * h * h
+                p_squared = previous_p = previous_q = u_squared = 0.0
+                for i in range(n):
+                    total = 0.0
+                    for c in range(components):
+                        total += mass_influence[i, c] * rows[W.GROUND_NOW, c]
+                    dofs[W.P, i] = -total
+                    dofs[W.LOAD, i] = (weight * dofs[W.P, i] - alpha * dofs[W.P_C, i]
+                                       + alpha * dofs[W.Q_C, i])
+                    dofs[W.A, i] = dofs[W.A_C, i]
+                    dofs[W.U, i] = dofs[W.U_C, i] + h * dofs[W.V_C, i] + half_h2 * dofs[W.A, i]
+                    dofs[W.V, i] = dofs[W.V_C, i] + h * dofs[W.A, i]
+                    p_squared += dofs[W.P, i] * dofs[W.P, i]
+                    previous_p += dofs[W.P_C, i] * dofs[W.P_C, i]
+                    previous_q += dofs[W.Q_C, i] * dofs[W.Q_C, i]
+                    u_squared += dofs[W.U_C, i] * dofs[W.U_C, i]
+                previous = max(math.sqrt(previous_p), math.sqrt(previous_q))
+                u_norm, p_norm = math.sqrt(u_squared), math.sqrt(p_squared)
+                factor = 1.0
+                if vertical:
+                    factor = 1.0 + interpolate(t_end, vertical_time,
+                                               vertical_acceleration) / STANDARD_GRAVITY
+                r_norm = reference = np.inf
+                converged, status, spent = False, E.SUCCESS, max_iterations
+                for iteration in range(1, max_iterations + 1):
+                    # the restoring force: storey springs and dampers, then the bearings
+                    for i in range(n):
+                        spring = 0.0
+                        viscous = 0.0
+                        for j in range(n):
+                            spring += stiffness[i, j] * dofs[W.U, j]
+                            viscous += damping[i, j] * dofs[W.V, j]
+                        dofs[W.FORCE, i] = spring
+                        dofs[W.VISCOUS, i] = viscous
+                        dofs[W.STOREY, i] = spring + viscous
+                    for r in range(columns):
+                        for j in range(n):
+                            top_k[r, j] = 0.0
+                            top_c[r, j] = 0.0
+                    ux, vx = dofs[W.U, 0], dofs[W.V, 0]
+                    uy = vy = theta = omega = 0.0  # one DOF per level: the bearings move on x
+                    if columns == 3:
+                        uy, theta, vy, omega = dofs[W.U, 1], dofs[W.U, 2], dofs[W.V, 1], \
+                            dofs[W.V, 2]
+                    for b in range(n_bearings):  # each row's trial motion and axial load
+                        x, y = parameters[b, E.X], parameters[b, E.Y]
+                        row = motion_rows[b]
+                        # u_i = T_i q_b = (u_x - theta y_i, u_y + theta x_i)
+                        row[E.MOTION_UX], row[E.MOTION_UY] = ux - y * theta, uy + x * theta
+                        row[E.MOTION_VX], row[E.MOTION_VY] = vx - y * omega, vy + x * omega
+                        load = parameters[b, E.GRAVITY] * factor
+                        if overturning:
+                            extra = 0.0
+                            for j in range(n):
+                                extra += overturning_matrix[b, j] * dofs[W.STOREY, j]
+                            load = load + extra
+                        row[E.MOTION_LOAD] = load
+                    status, failed = E.set_trials(
+                        t_end, motion_rows, parameters, ptv, committed, trial, rates, weights,
+                        states, stamps, marks, pending, accumulators, offsets, cache_keys,
+                        cache_values, cache_state, scalars, factors, decays, slots, table,
+                        windows)
+                    if status != E.SUCCESS:
+                        info[W.FAIL_BEARING] = failed
+                        spent = iteration
+                        break
+                    for b in range(n_bearings):
+                        x, y, m = parameters[b, E.X], parameters[b, E.Y], \
+                            parameters[b, E.MULTIPLICITY]
+                        load = motion_rows[b, E.MOTION_LOAD]
+                        t = trial[b]
+                        fx, fy = m * t[E.FX], m * t[E.FY]
+                        dofs[W.FORCE, 0] += fx
+                        if columns == 1:
+                            top_k[0, 0] += m * t[E.KXX]
+                            top_c[0, 0] += m * t[E.CXX]
+                            continue
+                        dofs[W.FORCE, 1] += fy
+                        dofs[W.FORCE, 2] += -y * fx + x * fy
+                        add_block(top_k, m * t[E.KXX], m * t[E.KXY], m * t[E.KYX], m * t[E.KYY],
+                                  x, y)
+                        add_block(top_c, m * t[E.CXX], m * t[E.CXY], m * t[E.CYX], m * t[E.CYY],
+                                  x, y)
+                        if overturning and load > 0.0:  # d(T^T F) / dN times dN / du, dv
+                            px, py = fx / load, fy / load
+                            per_load_2 = -y * px + x * py
+                            for j in range(n):
+                                du, dv = load_du[b, j], load_dv[b, j]
+                                top_k[0, j] += px * du
+                                top_k[1, j] += py * du
+                                top_k[2, j] += per_load_2 * du
+                                top_c[0, j] += px * dv
+                                top_c[1, j] += py * dv
+                                top_c[2, j] += per_load_2 * dv
+                    # the residual and its norms, then the correction
+                    inertia_squared = q_squared = r_squared = 0.0
+                    for i in range(n):
+                        inertia = 0.0
+                        for j in range(n):
+                            inertia += mass[i, j] * dofs[W.A, j]
+                        q = dofs[W.VISCOUS, i] + dofs[W.FORCE, i]
+                        dofs[W.Q, i] = q
+                        residual = dofs[W.LOAD, i] - inertia - weight * q
+                        dofs[W.RESIDUAL, i] = residual
+                        inertia_squared += inertia * inertia
+                        q_squared += q * q
+                        r_squared += residual * residual
+                    r_norm = math.sqrt(r_squared)
+                    reference = max(previous, math.sqrt(inertia_squared),
+                                    math.sqrt(q_squared), p_norm)
+                    spent = iteration
+                    if not woodbury(inverse, top_k, top_c, columns, weight, c1,
+                                    dofs[W.RESIDUAL], dofs[W.DU], update):
+                        break
+                    du_squared = u_squared = 0.0
+                    finite = True
+                    for i in range(n):
+                        du = dofs[W.DU, i]
+                        finite = finite and math.isfinite(du)
+                        du_squared += du * du
+                        u_squared += dofs[W.U, i] * dofs[W.U, i]
+                    if not finite:
+                        break
+                    if r_norm <= tolerance * reference and math.sqrt(du_squared) <= \
+                            tolerance * max(math.sqrt(u_squared), u_norm):
+                        for i in range(n):
+                            dofs[W.U_C, i], dofs[W.V_C, i] = dofs[W.U, i], dofs[W.V, i]
+                            dofs[W.A_C, i] = dofs[W.A, i]
+                            dofs[W.P_C, i], dofs[W.Q_C, i] = dofs[W.P, i], dofs[W.Q, i]
+                        converged = True
+                        break
+                    for i in range(n):
+                        dofs[W.U, i] += dofs[W.DU, i]
+                        dofs[W.V, i] += c1 * dofs[W.DU, i]
+                        dofs[W.A, i] += c0 * dofs[W.DU, i]
+                step_iterations += spent
+                if converged:
+                    E.commit_trials(parameters, committed, trial, rates, weights, states, stamps,
+                                    marks, pending, accumulators, offsets, cache_keys,
+                                    cache_values, cache_state, scalars, factors, decays, slots,
+                                    table, windows)
+                    t_committed = t_end
+                    for c in range(components):
+                        rows[W.GROUND_COMMITTED, c] = rows[W.GROUND_NOW, c]
+                    continue
+                for b in range(n_bearings):  # revert: drop the trials and their heat
+                    trial[b, E.PENDING] = 0.0
+                if status != E.SUCCESS or depth >= max_subdivisions:
+                    info[W.STATUS], info[W.LAST_STEP] = E.NOT_CONVERGED, k - 1
+                    if status != E.SUCCESS:
+                        b = int(info[W.FAIL_BEARING])
+                        info[W.STATUS] = status
+                        info[W.FAIL_VALUE] = trial[b, E.PENDING_DT]
+                        info[W.FAIL_UX], info[W.FAIL_UY] = trial[b, E.UX], trial[b, E.UY]
+                        info[W.FAIL_E1X], info[W.FAIL_E1Y] = trial[b, E.AXIS_X], \
+                            trial[b, E.AXIS_Y]
+                    info[W.FAIL_TIME], info[W.FAIL_SUBSTEP], info[W.FAIL_DEPTH] = t_end, h, depth
+                    info[W.FAIL_ITERATIONS], info[W.FAIL_RESIDUAL] = spent, r_norm
+                    info[W.FAIL_REFERENCE] = reference
+                    iterations[k - 1] = step_iterations
+                    subdivisions[k - 1] = step_subdivisions
+                    return
+                step_subdivisions += 1
+                middle = 0.5 * (s0 + s1)
+                top += 1
+                stack_start[top], stack_end[top], stack_depth[top] = middle, s1, depth + 1
+                top += 1
+                stack_start[top], stack_end[top], stack_depth[top] = s0, middle, depth + 1
+            iterations[k - 1] = step_iterations
+            subdivisions[k - 1] = step_subdivisions
+        _record(k, dofs, committed, stiffness, parameters, columns, displacement, velocity,
+                acceleration, record, restoring)

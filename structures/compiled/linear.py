@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import math
 
-from isolator.compiled.kernels import jit
+from isolator.compiled.kernels import jit_unmanaged
 from structures.compiled.lapack import invert
 
 __all__ = ["add_block", "effective_inverse", "interpolate", "woodbury"]
 
 
-@jit
+@jit_unmanaged
 def interpolate(x, xp, fp):
     """``numpy.interp(x, xp, fp)`` for one ``x`` (held at the ends), as numpy computes it."""
     size = xp.shape[0]
@@ -37,7 +37,7 @@ def interpolate(x, xp, fp):
     return slope * (x - xp[lo]) + fp[lo]
 
 
-@jit
+@jit_unmanaged
 def add_block(top, kxx, kxy, kyx, kyy, x, y):
     """top[:3, :3] += T^T k T with T = [[1, 0, -y], [0, 1, x]]: a bearing at (x, y) [m]
     with the 2x2 tangent k on the base slab's (u_x, u_y, theta)."""
@@ -54,7 +54,7 @@ def add_block(top, kxx, kxy, kyx, kyy, x, y):
     top[2, 2] += rx * -y + ry * x
 
 
-@jit
+@jit_unmanaged
 def effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse, matrix, work,
                       pivots):
     """inverse <- (c0 M + (1 + alpha)(c1 C + K))^-1 for a step ``h`` [s]: the Newton matrix
@@ -69,7 +69,7 @@ def effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse, 
     invert(matrix, inverse, work, pivots)
 
 
-@jit
+@jit_unmanaged
 def woodbury(inverse, top_k, top_c, columns, weight, c1, residual, du, update):
     """du <- (A + E X)^-1 residual, A^-1 = ``inverse``, E the first ``columns`` (1 or 3) unit
     columns and X = (1 + alpha)(c1 top_c + top_k) the base slab's rows the bearings add

@@ -15,7 +15,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from isolator.compiled.element import STATE_SIZE
+from isolator.compiled.element import MOTION_SIZE, STATE_SIZE
+from isolator.compiled.plate import PlateHeat
 
 __all__ = ["Model", "Motion", "Outputs", "Settings", "State", "new_workspace"]
 
@@ -45,7 +46,7 @@ INFO_SIZE = 14
 
 # The work arrays of ``workspace`` (see :func:`new_workspace`), in this order.
 COMMITTED, TRIAL, STACK_START, STACK_END, STACK_DEPTH, DOFS, TANGENT = range(7)
-LAPACK_WORK, PIVOTS, MASS_INFLUENCE, TOP_STIFFNESS, TOP_DAMPING, LOADS = range(7, 13)
+LAPACK_WORK, PIVOTS, MASS_INFLUENCE, TOP_STIFFNESS, TOP_DAMPING, MOTION = range(7, 13)
 INVERSES, INVERSE_STEPS, UPDATE, GROUND = range(13, 17)
 
 
@@ -108,10 +109,10 @@ class Settings(NamedTuple):
 
 class State(NamedTuple):
     """What the engine carries from step to step and from call to call (changed in place):
-    ``heat`` (:func:`isolator.compiled.plate.new_plate_heating`) and ``workspace``
+    ``heat`` (:class:`isolator.compiled.plate.PlateHeat`) and ``workspace``
     (:func:`new_workspace`)."""
 
-    heat: tuple
+    heat: PlateHeat
     workspace: tuple
 
 
@@ -151,14 +152,15 @@ def new_workspace(n: int, components: int, n_bearings: int, max_subdivisions: in
     Allocated here, in Python, so that the compiled loop allocates nothing: the bearings'
     committed and trial states (n_b, STATE_SIZE), the halving stack, the ``dofs`` rows, the
     Newton matrix and LAPACK's work (n, n) and pivots (int32), M r (n, c), the rows of the base
-    slab's DOFs (3, n) the bearings add to the tangent in stiffness and damping, the trial's
-    axial loads, ``A^-1`` per halving depth (depth + 1, n, n) with the step it was formed for
-    (-1: none yet), the Woodbury update's work (3, n) and the ground rows (4, c).
+    slab's DOFs (3, n) the bearings add to the tangent in stiffness and damping, each row's
+    trial motion and axial load (n_b, MOTION_SIZE), ``A^-1`` per halving depth
+    (depth + 1, n, n) with the step it was formed for (-1: none yet), the Woodbury update's
+    work (3, n) and the ground rows (4, c).
     """
     depths = max_subdivisions + 2
     return (np.zeros((n_bearings, STATE_SIZE)), np.zeros((n_bearings, STATE_SIZE)),
             np.zeros(depths), np.zeros(depths), np.zeros(depths, dtype=np.int64),
             np.zeros((DOF_ROWS, n)), np.zeros((n, n)), np.zeros((n, n)),
             np.zeros(n, dtype=np.int32), np.zeros((n, components)), np.zeros((3, n)),
-            np.zeros((3, n)), np.zeros(n_bearings), np.zeros((depths, n, n)),
+            np.zeros((3, n)), np.zeros((n_bearings, MOTION_SIZE)), np.zeros((depths, n, n)),
             np.full(depths, -1.0), np.zeros((3, n)), np.zeros((4, components)))

@@ -18,15 +18,15 @@ from isolator.heating import step_factors, sum_of_exponentials
 
 def _point_state(heat, j, window, n_across, time):
     """G_j at ``time`` from the group form (for the check)."""
-    rates = heat[P.RATES]
-    stamp = heat[P.STAMPS][0, j]
+    rates = heat.rates
+    stamp = heat.stamps[0, j]
     if stamp < 0.0:
         return np.zeros(rates.size)
     decay = np.exp(-rates * (time - stamp))
     i, k = divmod(j, n_across)
     inside = window[0] <= i < window[1] and window[2] <= k < window[3]
-    state = decay * heat[P.STATES][0, j]
-    return heat[P.ACCUMULATORS][0] + state if inside else state
+    state = decay * heat.states[0, j]
+    return heat.accumulators[0] + state if inside else state
 
 
 def _rows(window, n_across):
@@ -60,12 +60,15 @@ def test_group_form_equals_point_by_point(python, n_across):
             across = int(rng.integers(0, 3)) if n_across > 1 else 0
             new = np.array([int(centre) - 20, int(centre) + 21, across,
                             across + (6 if n_across > 1 else 1)], dtype=np.int64)
-            functions["move_window"](0, n_across, held, new, time, heat)
+            functions["move_window"](0, n_across, held, new, time, heat.rates, heat.states[0],
+                                     heat.stamps[0], heat.accumulators[0], heat.offsets[0],
+                                     heat.cache_keys, heat.cache_values, heat.cache_state,
+                                     heat.marks[0], heat.pending[0])
             held[:] = new
             rows = _rows(held, n_across)
             expected = float(np.sum(reference[rows], axis=0) @ weighted) / len(rows)
-            got = functions["window_history"](heat[P.ACCUMULATORS][0], heat[P.OFFSETS][0],
-                                              weighted, len(rows))
+            got = functions["window_history"](heat.accumulators[0], heat.offsets[0], weighted,
+                                              len(rows))
             assert got == pytest.approx(expected, rel=1e-12, abs=1e-300)
         flux = 0.0 if n % 11 == 0 else float(rng.uniform(1e4, 1e6))
         if n_across == 1:  # the planar kernel on the line itself
@@ -78,10 +81,12 @@ def test_group_form_equals_point_by_point(python, n_across):
             inside[_rows(held, n_across)] = True
             reference[inside] = reference[inside] * step[0] + flux * step[1]
             reference[~inside] *= step[0]
-        functions["advance_window"](heat[P.ACCUMULATORS][0], heat[P.OFFSETS][0], step, flux)
+        functions["advance_window"](heat.accumulators[0], heat.offsets[0], step, flux)
         time += dt
         if n % 97 == 0:
-            functions["reanchor_window"](0, n_across, held, time, heat)
+            functions["reanchor_window"](0, n_across, held, time, heat.rates, heat.states[0],
+                                         heat.stamps[0], heat.offsets[0], heat.cache_keys,
+                                         heat.cache_values, heat.cache_state)
     scale = np.abs(reference).max(axis=0)
     for j in range(points):
         state = _point_state(heat, j, held, n_across, time)
