@@ -15,9 +15,9 @@ under a seeded synthetic Kanai-Tajimi pair (about the El Centro 1940 PGA in x, 0
 with the three friction models (:func:`run_plan_demo`): the peaks in plan, the corner bearing
 against the centre, and the figures of :func:`dcfpb.plotting.plan.plot_plan_runs`.
 
-On a cold numba cache the engine compiles in a second process while this one reads the
-record and computes the fixed base (:mod:`structures.compiled.ahead`). :func:`register` adds the
-command, :func:`run` is its handler.
+On a cold numba cache the engine (the one of both buildings) compiles in two processes while
+this one reads the record and computes the fixed base (:mod:`structures.compiled.ahead`).
+:func:`register` adds the command, :func:`run` is its handler.
 """
 
 from __future__ import annotations
@@ -142,17 +142,26 @@ def plan_demo_pair():
 def run_plan_demo(folder: str | Path) -> int:
     """Run the demo in plan, print its table and write its figures to ``folder``; return the
     exit status."""
-    from dcfpb.cli.pairs import print_plan_peaks
-    from dcfpb.cli.run import example_path, print_failure
-    from dcfpb.common.units import STANDARD_GRAVITY
-    from dcfpb.plotting.plan import plot_plan_runs
-    from structures.config import load_config
-    from structures.runner import run
-    from structures.spatial.peaks import plan_peaks
+    from structures.compiled.ahead import compile_ahead
 
-    config = load_config(example_path("five_storey_plan.toml"))
-    pair = plan_demo_pair()
-    results = {model: run(config, pair, model=model, dt=PLAN_STEP) for model in MODELS}
+    with compile_ahead() as ahead:  # on a cold cache the engine compiles in two processes
+        ahead.help()
+        from dcfpb.cli.pairs import print_plan_peaks
+        from dcfpb.cli.run import example_path, print_failure
+        from dcfpb.common.units import STANDARD_GRAVITY
+        from dcfpb.plotting.plan import plot_plan_runs
+        from structures.config import load_config
+        from structures.runner import run
+        from structures.spatial.peaks import plan_peaks
+
+        config = load_config(example_path("five_storey_plan.toml"))
+        pair = plan_demo_pair()
+        if ahead.started:  # idle until the engine is compiled: matplotlib now
+            from dcfpb.plotting.base import pyplot
+
+            pyplot()
+        ahead.wait()
+        results = {model: run(config, pair, model=model, dt=PLAN_STEP) for model in MODELS}
     rows = {model: plan_peaks(result) for model, result in results.items()}
     plan = config.plan
     print_plan_peaks(rows, (

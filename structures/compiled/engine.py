@@ -30,7 +30,8 @@ from structures.integrators import HHT, IntegrationResult, Newmark
 
 __all__ = ["BEARING_FIELDS", "CHUNK_STEPS", "ENGINES", "CompiledRun", "EngineHistory",
            "bearing_fields", "choose_engine", "compile_engine", "compiled_history",
-           "compiled_run", "select_engine", "unsupported", "warm_up", "warm_up_late"]
+           "compiled_run", "select_engine", "unsupported", "warm_up", "warm_up_early",
+           "warm_up_late"]
 
 BEARING_FIELDS = ("displacement", "velocity", "force", "friction_force", "mu", "temperature",
                   "heat_flux")
@@ -311,31 +312,57 @@ def compile_engine() -> float:
     return warm_up()
 
 
-def warm_up_late() -> float:
-    """Compile (or load) the parts of the engine its compilation reaches last, for the very
-    argument types the engine calls them with; return the time [s].
-
-    :mod:`structures.compiled.ahead` has this process do them while the second one works
-    through the rest, which then finds them in the cache: the element's commit (with the
-    plate's), the Woodbury solve and the recording of a step (compiled for those types, not
-    run).
-    """
+def _parts(late: bool) -> list:
+    """The engine's callees as (function, example arguments of the engine's types): the
+    bearings' trials (``late`` False) or everything else it calls (``late`` True)."""
     from isolator.compiled import plate
-    from structures.compiled import linear
+    from structures.compiled import lapack, linear
 
-    start = _time.perf_counter()
     heat = plate.new_plate_heating(1, 1, np.ones(1), np.zeros(1))
-    states, rows = np.zeros((1, E.STATE_SIZE)), np.zeros((3, 1))
-    record, square = np.zeros((1, 1, E.RECORD_SIZE)), np.zeros((1, 1))
-    for function, arguments in (
-            (E.commit_trials, (np.zeros((1, E.PARAMETERS_SIZE)), states, states, *heat)),
-            (linear.woodbury, (square, rows, rows, 1, 1.0, 1.0, rows[0], rows[0], rows)),
-            (compiled._record, (0, np.zeros((W.DOF_ROWS, 1)), states, square,
-                                np.zeros((1, E.PARAMETERS_SIZE)), 1, square, square, square,
-                                record, square))):
+    states, rows, square = np.zeros((1, E.STATE_SIZE)), np.zeros((3, 1)), np.zeros((1, 1))
+    parameters = np.zeros((1, E.PARAMETERS_SIZE))
+    if not late:
+        return [(E.set_trials, (0.0, np.zeros((1, E.MOTION_SIZE)), parameters, parameters,
+                                states, states, *heat))]
+    pivots, vector = np.zeros(1, dtype=np.int32), np.zeros(1)
+    return [
+        (E.commit_trials, (parameters, states, states, *heat)),
+        (linear.woodbury, (square, rows, rows, 1, 1.0, 1.0, vector, vector, rows)),
+        (linear.effective_inverse, (1.0, square, square, square, 1.0, 1.0, 1.0, square,
+                                    square, square, pivots)),
+        (linear.add_block, (rows, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0)),
+        (linear.interpolate, (1.0, vector, vector)),
+        (lapack.solve, (square, vector, vector, square, pivots)),
+        (compiled._record, (0, np.zeros((W.DOF_ROWS, 1)), states, square, parameters, 1,
+                            square, square, square, np.zeros((1, 1, E.RECORD_SIZE)), square))]
+
+
+def _compile_parts(late: bool) -> float:
+    """Compile (or load) :func:`_parts` for the engine's argument types, without running
+    them; the time it took [s]."""
+    start = _time.perf_counter()
+    for function, arguments in _parts(late):
         if hasattr(function, "compile"):
             function.compile(tuple(_typeof(argument) for argument in arguments))
     return _time.perf_counter() - start
+
+
+def warm_up_early() -> float:
+    """Compile (or load) the bearings' trials (:func:`isolator.compiled.element.set_trials`
+    and what it calls) for the engine's argument types; return the time [s].
+
+    The engine's compilation reaches them first; :mod:`structures.compiled.ahead` has this
+    process compile them while the second process compiles the rest of the engine's callees
+    (:func:`warm_up_late`) and then finds them in numba's cache for the engine itself.
+    """
+    return _compile_parts(False)
+
+
+def warm_up_late() -> float:
+    """Compile (or load) the engine's callees other than the bearings' trials (the commit,
+    the Woodbury solve, the inverse and the solve, the record of a step ...) for the engine's
+    argument types; return the time [s]. See :func:`warm_up_early`."""
+    return _compile_parts(True)
 
 
 def _typeof(value):
