@@ -4,7 +4,7 @@ its friction models with the speed of the vector velocity
 (:mod:`~isolator.bidirectional.friction`), the precise model's heating over a 2D monitor grid on
 each plate (:mod:`~isolator.bidirectional.heating`), orbits (:mod:`~isolator.bidirectional.orbits`)
 and the 2D test machine (:mod:`~isolator.bidirectional.testrig`). The compiled form of the
-element is :mod:`isolator.compiled.bidirectional`.
+element is :mod:`isolator.compiled.element`.
 """
 
 from __future__ import annotations
