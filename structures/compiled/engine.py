@@ -332,9 +332,7 @@ def _parts(late: bool) -> list:
                                     square, square, pivots)),
         (linear.add_block, (rows, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0)),
         (linear.interpolate, (1.0, vector, vector)),
-        (lapack.solve, (square, vector, vector, square, pivots)),
-        (compiled._record, (0, np.zeros((W.DOF_ROWS, 1)), states, square, parameters, 1,
-                            square, square, square, np.zeros((1, 1, E.RECORD_SIZE)), square))]
+        (lapack.solve, (square, vector, vector, square, pivots))]
 
 
 def _compile_parts(late: bool) -> float:
@@ -360,7 +358,7 @@ def warm_up_early() -> float:
 
 def warm_up_late() -> float:
     """Compile (or load) the engine's callees other than the bearings' trials (the commit,
-    the Woodbury solve, the inverse and the solve, the record of a step ...) for the engine's
+    the Woodbury solve, the inverse and the solve, the interpolation ...) for the engine's
     argument types; return the time [s]. See :func:`warm_up_early`."""
     return _compile_parts(True)
 

@@ -56,34 +56,6 @@ __all__ = ["integrate"]
 
 
 @jit_unmanaged
-def _record(k, dofs, committed, stiffness, parameters, columns, displacement, velocity,
-            acceleration, record, restoring):
-    """Step ``k`` of the outputs: the committed rows and every bearing's committed state."""
-    n = stiffness.shape[0]
-    for i in range(n):
-        displacement[k, i] = dofs[W.U_C, i]
-        velocity[k, i] = dofs[W.V_C, i]
-        acceleration[k, i] = dofs[W.A_C, i]
-        total = 0.0
-        for j in range(n):
-            total += stiffness[i, j] * dofs[W.U_C, j]
-        restoring[k, i] = total
-    sx = sy = sz = 0.0
-    for b in range(committed.shape[0]):
-        m = parameters[b, E.MULTIPLICITY]
-        fx, fy = m * committed[b, E.FX], m * committed[b, E.FY]
-        sx += fx
-        sy += fy
-        sz += -parameters[b, E.Y] * fx + parameters[b, E.X] * fy
-        for c in range(E.RECORD_SIZE):
-            record[k, b, c] = committed[b, E.RECORD_COLUMNS[c]]
-    restoring[k, 0] += sx
-    if columns == 3:
-        restoring[k, 1] += sy
-        restoring[k, 2] += sz
-
-
-@jit_unmanaged
 def integrate(model, motion, settings, state, outputs, steps):
     """Integrate the isolated building through the record, from rest; fill the outputs.
 
@@ -356,5 +328,25 @@ def integrate(model, motion, settings, state, outputs, steps):
                 stack_start[top], stack_end[top], stack_depth[top] = s0, middle, depth + 1
             iterations[k - 1] = step_iterations
             subdivisions[k - 1] = step_subdivisions
-        _record(k, dofs, committed, stiffness, parameters, columns, displacement, velocity,
-                acceleration, record, restoring)
+        # the step's record: the committed rows and every bearing's committed state
+        for i in range(n):
+            displacement[k, i] = dofs[W.U_C, i]
+            velocity[k, i] = dofs[W.V_C, i]
+            acceleration[k, i] = dofs[W.A_C, i]
+            total = 0.0
+            for j in range(n):
+                total += stiffness[i, j] * dofs[W.U_C, j]
+            restoring[k, i] = total
+        sx = sy = sz = 0.0
+        for b in range(n_bearings):
+            m = parameters[b, E.MULTIPLICITY]
+            fx, fy = m * committed[b, E.FX], m * committed[b, E.FY]
+            sx += fx
+            sy += fy
+            sz += -parameters[b, E.Y] * fx + parameters[b, E.X] * fy
+            for c in range(E.RECORD_SIZE):
+                record[k, b, c] = committed[b, E.RECORD_COLUMNS[c]]
+        restoring[k, 0] += sx
+        if columns == 3:
+            restoring[k, 1] += sy
+            restoring[k, 2] += sz

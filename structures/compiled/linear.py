@@ -78,8 +78,10 @@ def woodbury(inverse, top_k, top_c, columns, weight, c1, residual, du, update):
     singular (the reference's singular Newton matrix)."""
     n = inverse.shape[0]
     for j in range(n):
-        for r in range(columns):
-            update[r, j] = weight * (c1 * top_c[r, j] + top_k[r, j])
+        update[0, j] = weight * (c1 * top_c[0, j] + top_k[0, j])
+        if columns == 3:
+            update[1, j] = weight * (c1 * top_c[1, j] + top_k[1, j])
+            update[2, j] = weight * (c1 * top_c[2, j] + top_k[2, j])
     for i in range(n):
         total = 0.0
         for j in range(n):
