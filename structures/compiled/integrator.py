@@ -92,11 +92,20 @@ def integrate(model, motion, settings, state, outputs, steps):
     scalars, factors, decays, slots = heat.scalars, heat.factors, heat.decays, heat.slots
     table, windows = heat.table, heat.windows
     tangent, work, pivots = ws[W.TANGENT], ws[W.LAPACK_WORK], ws[W.PIVOTS]
-    dofs, committed, trial = ws[W.DOFS], ws[W.COMMITTED], ws[W.TRIAL]
+    dofs = ws[W.DOFS]  # its rows, one by one
+    u_committed, v_committed, a_committed = dofs[W.U_C], dofs[W.V_C], dofs[W.A_C]
+    p_committed, q_committed = dofs[W.P_C], dofs[W.Q_C]
+    u_trial, v_trial, a_trial, p_trial, q_trial = dofs[W.U], dofs[W.V], dofs[W.A], dofs[W.P], \
+        dofs[W.Q]
+    load_row, residual_row, du_row = dofs[W.LOAD], dofs[W.RESIDUAL], dofs[W.DU]
+    force_row, viscous_row, storey_row = dofs[W.FORCE], dofs[W.VISCOUS], dofs[W.STOREY]
+    committed, trial = ws[W.COMMITTED], ws[W.TRIAL]
     inverses, inverse_steps = ws[W.INVERSES], ws[W.INVERSE_STEPS]
     stack_start, stack_end, stack_depth = ws[W.STACK_START], ws[W.STACK_END], ws[W.STACK_DEPTH]
     top_k, top_c, mass_influence = ws[W.TOP_STIFFNESS], ws[W.TOP_DAMPING], ws[W.MASS_INFLUENCE]
     motion_rows, rows, update = ws[W.MOTION], ws[W.GROUND], ws[W.UPDATE]
+    ground_committed, ground_start = rows[W.GROUND_COMMITTED], rows[W.GROUND_START]
+    ground_end, ground_now = rows[W.GROUND_END], rows[W.GROUND_NOW]
     gamma, beta, alpha = method[W.GAMMA], method[W.BETA], method[W.ALPHA]
     tolerance = method[W.TOLERANCE]
     max_iterations = int(method[W.MAX_ITERATIONS])
@@ -120,21 +129,21 @@ def integrate(model, motion, settings, state, outputs, steps):
             total = 0.0
             for c in range(components):
                 total += mass_influence[i, c] * ground[0, c]
-            dofs[W.P_C, i] = -total
-            dofs[W.LOAD, i] = dofs[W.P_C, i] - dofs[W.Q_C, i]
-        solve(mass, dofs[W.LOAD], dofs[W.A_C], work, pivots)
+            p_committed[i] = -total
+            load_row[i] = p_committed[i] - q_committed[i]
+        solve(mass, load_row, a_committed, work, pivots)
     end = min(end, nt)
     info[W.STATUS], info[W.LAST_STEP] = E.SUCCESS, end - 1
     t_committed = time[first - 1]
     for c in range(components):
-        rows[W.GROUND_COMMITTED, c] = ground[first - 1, c]
+        ground_committed[c] = ground[first - 1, c]
     for k in range(first - 1, end):
         if k >= first:  # the step to time[k]; k = first - 1 only records the state at rest
             start, stop = t_committed, time[k]
             span = stop - start
             for c in range(components):
-                rows[W.GROUND_START, c] = rows[W.GROUND_COMMITTED, c]
-                rows[W.GROUND_END, c] = ground[k, c]
+                ground_start[c] = ground_committed[c]
+                ground_end[c] = ground[k, c]
             step_iterations = step_subdivisions = 0
             top = 0
             stack_start[0], stack_end[0], stack_depth[0] = 0.0, 1.0, 0
@@ -144,12 +153,12 @@ def integrate(model, motion, settings, state, outputs, steps):
                 if s1 == 1.0:
                     t_end = stop
                     for c in range(components):
-                        rows[W.GROUND_NOW, c] = rows[W.GROUND_END, c]
+                        ground_now[c] = ground_end[c]
                 else:
                     t_end = start + s1 * span
                     for c in range(components):
-                        g0 = rows[W.GROUND_START, c]
-                        rows[W.GROUND_NOW, c] = g0 + s1 * (rows[W.GROUND_END, c] - g0)
+                        g0 = ground_start[c]
+                        ground_now[c] = g0 + s1 * (ground_end[c] - g0)
                 h = (s1 - s0) * span
                 inverse = inverses[depth]
                 if abs(h - inverse_steps[depth]) > 1e-9 * h:
@@ -163,17 +172,17 @@ def integrate(model, motion, settings, state, outputs, steps):
                 for i in range(n):
                     total = 0.0
                     for c in range(components):
-                        total += mass_influence[i, c] * rows[W.GROUND_NOW, c]
-                    dofs[W.P, i] = -total
-                    dofs[W.LOAD, i] = (weight * dofs[W.P, i] - alpha * dofs[W.P_C, i]
-                                       + alpha * dofs[W.Q_C, i])
-                    dofs[W.A, i] = dofs[W.A_C, i]
-                    dofs[W.U, i] = dofs[W.U_C, i] + h * dofs[W.V_C, i] + half_h2 * dofs[W.A, i]
-                    dofs[W.V, i] = dofs[W.V_C, i] + h * dofs[W.A, i]
-                    p_squared += dofs[W.P, i] * dofs[W.P, i]
-                    previous_p += dofs[W.P_C, i] * dofs[W.P_C, i]
-                    previous_q += dofs[W.Q_C, i] * dofs[W.Q_C, i]
-                    u_squared += dofs[W.U_C, i] * dofs[W.U_C, i]
+                        total += mass_influence[i, c] * ground_now[c]
+                    p_trial[i] = -total
+                    load_row[i] = (weight * p_trial[i] - alpha * p_committed[i]
+                                       + alpha * q_committed[i])
+                    a_trial[i] = a_committed[i]
+                    u_trial[i] = u_committed[i] + h * v_committed[i] + half_h2 * a_trial[i]
+                    v_trial[i] = v_committed[i] + h * a_trial[i]
+                    p_squared += p_trial[i] * p_trial[i]
+                    previous_p += p_committed[i] * p_committed[i]
+                    previous_q += q_committed[i] * q_committed[i]
+                    u_squared += u_committed[i] * u_committed[i]
                 previous = max(math.sqrt(previous_p), math.sqrt(previous_q))
                 u_norm, p_norm = math.sqrt(u_squared), math.sqrt(p_squared)
                 factor = 1.0
@@ -188,20 +197,20 @@ def integrate(model, motion, settings, state, outputs, steps):
                         spring = 0.0
                         viscous = 0.0
                         for j in range(n):
-                            spring += stiffness[i, j] * dofs[W.U, j]
-                            viscous += damping[i, j] * dofs[W.V, j]
-                        dofs[W.FORCE, i] = spring
-                        dofs[W.VISCOUS, i] = viscous
-                        dofs[W.STOREY, i] = spring + viscous
+                            spring += stiffness[i, j] * u_trial[j]
+                            viscous += damping[i, j] * v_trial[j]
+                        force_row[i] = spring
+                        viscous_row[i] = viscous
+                        storey_row[i] = spring + viscous
                     for r in range(columns):
                         for j in range(n):
                             top_k[r, j] = 0.0
                             top_c[r, j] = 0.0
-                    ux, vx = dofs[W.U, 0], dofs[W.V, 0]
+                    ux, vx = u_trial[0], v_trial[0]
                     uy = vy = theta = omega = 0.0  # one DOF per level: the bearings move on x
                     if columns == 3:
-                        uy, theta, vy, omega = dofs[W.U, 1], dofs[W.U, 2], dofs[W.V, 1], \
-                            dofs[W.V, 2]
+                        uy, theta, vy, omega = u_trial[1], u_trial[2], v_trial[1], \
+                            v_trial[2]
                     for b in range(n_bearings):  # each row's trial motion and axial load
                         x, y = parameters[b, E.X], parameters[b, E.Y]
                         row = motion_rows[b]
@@ -212,7 +221,7 @@ def integrate(model, motion, settings, state, outputs, steps):
                         if overturning:
                             extra = 0.0
                             for j in range(n):
-                                extra += overturning_matrix[b, j] * dofs[W.STOREY, j]
+                                extra += overturning_matrix[b, j] * storey_row[j]
                             load = load + extra
                         row[E.MOTION_LOAD] = load
                     status, failed = E.set_trials(
@@ -230,13 +239,13 @@ def integrate(model, motion, settings, state, outputs, steps):
                         load = motion_rows[b, E.MOTION_LOAD]
                         t = trial[b]
                         fx, fy = m * t[E.FX], m * t[E.FY]
-                        dofs[W.FORCE, 0] += fx
+                        force_row[0] += fx
                         if columns == 1:
                             top_k[0, 0] += m * t[E.KXX]
                             top_c[0, 0] += m * t[E.CXX]
                             continue
-                        dofs[W.FORCE, 1] += fy
-                        dofs[W.FORCE, 2] += -y * fx + x * fy
+                        force_row[1] += fy
+                        force_row[2] += -y * fx + x * fy
                         add_block(top_k, m * t[E.KXX], m * t[E.KXY], m * t[E.KYX], m * t[E.KYY],
                                   x, y)
                         add_block(top_c, m * t[E.CXX], m * t[E.CXY], m * t[E.CYX], m * t[E.CYY],
@@ -257,11 +266,11 @@ def integrate(model, motion, settings, state, outputs, steps):
                     for i in range(n):
                         inertia = 0.0
                         for j in range(n):
-                            inertia += mass[i, j] * dofs[W.A, j]
-                        q = dofs[W.VISCOUS, i] + dofs[W.FORCE, i]
-                        dofs[W.Q, i] = q
-                        residual = dofs[W.LOAD, i] - inertia - weight * q
-                        dofs[W.RESIDUAL, i] = residual
+                            inertia += mass[i, j] * a_trial[j]
+                        q = viscous_row[i] + force_row[i]
+                        q_trial[i] = q
+                        residual = load_row[i] - inertia - weight * q
+                        residual_row[i] = residual
                         inertia_squared += inertia * inertia
                         q_squared += q * q
                         r_squared += residual * residual
@@ -270,29 +279,29 @@ def integrate(model, motion, settings, state, outputs, steps):
                                     math.sqrt(q_squared), p_norm)
                     spent = iteration
                     if not woodbury(inverse, top_k, top_c, columns, weight, c1,
-                                    dofs[W.RESIDUAL], dofs[W.DU], update):
+                                    residual_row, du_row, update):
                         break
                     du_squared = u_squared = 0.0
                     finite = True
                     for i in range(n):
-                        du = dofs[W.DU, i]
+                        du = du_row[i]
                         finite = finite and math.isfinite(du)
                         du_squared += du * du
-                        u_squared += dofs[W.U, i] * dofs[W.U, i]
+                        u_squared += u_trial[i] * u_trial[i]
                     if not finite:
                         break
                     if r_norm <= tolerance * reference and math.sqrt(du_squared) <= \
                             tolerance * max(math.sqrt(u_squared), u_norm):
                         for i in range(n):
-                            dofs[W.U_C, i], dofs[W.V_C, i] = dofs[W.U, i], dofs[W.V, i]
-                            dofs[W.A_C, i] = dofs[W.A, i]
-                            dofs[W.P_C, i], dofs[W.Q_C, i] = dofs[W.P, i], dofs[W.Q, i]
+                            u_committed[i], v_committed[i] = u_trial[i], v_trial[i]
+                            a_committed[i] = a_trial[i]
+                            p_committed[i], q_committed[i] = p_trial[i], q_trial[i]
                         converged = True
                         break
                     for i in range(n):
-                        dofs[W.U, i] += dofs[W.DU, i]
-                        dofs[W.V, i] += c1 * dofs[W.DU, i]
-                        dofs[W.A, i] += c0 * dofs[W.DU, i]
+                        u_trial[i] += du_row[i]
+                        v_trial[i] += c1 * du_row[i]
+                        a_trial[i] += c0 * du_row[i]
                 step_iterations += spent
                 if converged:
                     E.commit_trials(parameters, committed, trial, rates, weights, states, stamps,
@@ -301,7 +310,7 @@ def integrate(model, motion, settings, state, outputs, steps):
                                     table, windows)
                     t_committed = t_end
                     for c in range(components):
-                        rows[W.GROUND_COMMITTED, c] = rows[W.GROUND_NOW, c]
+                        ground_committed[c] = ground_now[c]
                     continue
                 for b in range(n_bearings):  # revert: drop the trials and their heat
                     trial[b, E.PENDING] = 0.0
@@ -330,12 +339,12 @@ def integrate(model, motion, settings, state, outputs, steps):
             subdivisions[k - 1] = step_subdivisions
         # the step's record: the committed rows and every bearing's committed state
         for i in range(n):
-            displacement[k, i] = dofs[W.U_C, i]
-            velocity[k, i] = dofs[W.V_C, i]
-            acceleration[k, i] = dofs[W.A_C, i]
+            displacement[k, i] = u_committed[i]
+            velocity[k, i] = v_committed[i]
+            acceleration[k, i] = a_committed[i]
             total = 0.0
             for j in range(n):
-                total += stiffness[i, j] * dofs[W.U_C, j]
+                total += stiffness[i, j] * u_committed[j]
             restoring[k, i] = total
         sx = sy = sz = 0.0
         for b in range(n_bearings):
