@@ -325,14 +325,15 @@ def _parts(late: bool) -> list:
         return [(E.set_trials, (0.0, np.zeros((1, E.MOTION_SIZE)), parameters, parameters,
                                 states, states, *heat))]
     pivots, vector = np.zeros(1, dtype=np.int32), np.zeros(1)
-    return [
-        (E.commit_trials, (parameters, states, states, *heat)),
+    return [  # the commit last: by then the plate's functions it shares with the trials are
+        # in the cache (from the other process)
         (linear.woodbury, (square, rows, rows, 1, 1.0, 1.0, vector, vector, rows)),
         (linear.effective_inverse, (1.0, square, square, square, 1.0, 1.0, 1.0, square,
                                     square, square, pivots)),
         (linear.add_block, (rows, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0)),
         (linear.interpolate, (1.0, vector, vector)),
-        (lapack.solve, (square, vector, vector, square, pivots))]
+        (lapack.solve, (square, vector, vector, square, pivots)),
+        (E.commit_trials, (parameters, states, states, *heat))]
 
 
 def _compile_parts(late: bool) -> float:
