@@ -11,7 +11,10 @@ loads the engine, the workloads below with ``time.perf_counter``:
 * ``building reference``: the same with the reference engine, constant friction (the Python
   element through the integrator);
 * ``bearing precise``: the paper's test (7 cycles of 0.3 m at 4.26 s, dt = 5 ms) on the
-  virtual test machine (``isolator.testrig.run_test``).
+  virtual test machine (``isolator.testrig.run_test``);
+* ``plan precise`` / ``plan constant``: the building in plan of ``bench_plan.py`` (four
+  bearings, overturning, a vertical) under its 30 s pair with the compiled engine
+  (``structures.spatial.analysis.run_spatial``).
 
 The table gives the median over the rounds per tree and the ratio this tree / before; shared
 machines drift by a factor of 1.5 over a day, so only ratios of one run mean anything. Exits 1
@@ -66,12 +69,30 @@ def timed(call, repeats):
     return best
 
 
+import sys
+
+sys.path.insert(0, "benchmarks")
+import bench_plan
+from structures.spatial.analysis import run_spatial
+
+frame, spatial = bench_plan.building()
+pair = bench_plan.pair(30.0)
+
+
+def plan(model):
+    return run_spatial(spatial, bench_plan.bearing(model, frame.weight), pair, dt=bench_plan.DT,
+                       engine="compiled")
+
+
 building("constant"), building("precise"), bearing()  # compile or load every engine
+plan("constant"), plan("precise")
 print(json.dumps({
     "building precise": timed(lambda: building("precise"), 5),
     "building constant": timed(lambda: building("constant"), 5),
     "building reference": timed(lambda: building("constant", "reference"), 2),
     "bearing precise": timed(bearing, 2),
+    "plan precise": timed(lambda: plan("precise"), 5),
+    "plan constant": timed(lambda: plan("constant"), 5),
 }))
 """
 

@@ -1,4 +1,4 @@
-"""Benchmark of the building in plan's compiled engine (issue 13), every case in one run.
+"""Benchmark of the compiled engine on the building in plan (issue 13), every case in one run.
 
 The building: 3 storeys (400 t floors, 500 t base slab, T_fixed = 0.5 s) on four DCFPBs (R_eff
 2.5 m, 300 mm slider) at the corners of a 12 m x 10 m plan with the centre of mass 1.2 m / 0.8 m
@@ -115,11 +115,11 @@ def cases(with_opensees: bool, with_reference: bool) -> dict:
 
 def measure(repeats: int, with_opensees: bool, with_reference: bool) -> dict:
     """Best whole-call and integration times of every case, interleaved."""
-    from structures.compiled.plan.engine import compile_plan_engine
+    from structures.compiled.engine import compile_engine
 
     start = time.perf_counter()
-    compile_plan_engine()
-    print(f"plan engine compiled or loaded in {time.perf_counter() - start:.2f} s")
+    compile_engine()
+    print(f"engine compiled or loaded in {time.perf_counter() - start:.2f} s")
     runs = cases(with_opensees, with_reference)
     best = {name: [np.inf, np.inf, steps] for name, (_, steps) in runs.items()}
     for function, _ in runs.values():  # warm: compile, caches

@@ -6,8 +6,8 @@ models, and its superstructure on a fixed base (:mod:`structures.fixed_base`). T
 prints the peaks table with the fixed base as a fourth row and each isolated peak (storey drift,
 storey shear, roof acceleration, base shear) as a ratio to the fixed base, and writes the plots
 of :func:`dcfpb.plotting.plot_runs` with the fixed base beside the isolated runs, among them the
-5 %-damped floor response spectra and the ratios. On a cold numba cache the engine compiles in a
-second process meanwhile (:mod:`structures.compiled.ahead`).
+5 %-damped floor response spectra and the ratios. On a cold numba cache the engine compiles in
+two processes meanwhile (:mod:`structures.compiled.ahead`).
 
 With ``--plan`` the bundled ``five_storey_plan.toml`` (six bearings at their plan positions, the
 centre of mass 5 % of the plan off the centre of stiffness) runs under a seeded synthetic

@@ -1,7 +1,10 @@
-"""The compiled engine of :func:`structures.analysis.run`: the whole run as one numba function
-(:mod:`~structures.compiled.integrator`), the adapter that packs the model into arrays and the
-result back (:mod:`~structures.compiled.engine`), the two dense LAPACK solves
-(:mod:`~structures.compiled.lapack`) and the compilation in a second process on a cold cache
+"""The compiled engine of :func:`structures.analysis.run` and
+:func:`structures.spatial.analysis.run_spatial`, one for both buildings: the whole run as one
+numba function (:mod:`~structures.compiled.integrator`), what it sees of a model
+(:mod:`~structures.compiled.view`), the adapter that packs the view into arrays and the result
+back (:mod:`~structures.compiled.engine`), its numerical pieces
+(:mod:`~structures.compiled.linear`, the two dense LAPACK solves of
+:mod:`~structures.compiled.lapack`) and the compilation in two processes on a cold cache
 (:mod:`~structures.compiled.ahead`). Without numba the same source runs as Python."""
 
 from __future__ import annotations
@@ -10,15 +13,21 @@ from dcfpb.common.lazy import lazy_exports
 
 _EXPORTS = {
     "compiled_history": "structures.compiled.engine",
+    "compiled_run": "structures.compiled.engine",
+    "engine_view": "structures.compiled.view",
+    "EngineView": "structures.compiled.view",
     "select_engine": "structures.compiled.choice",
     "compile_engine": "structures.compiled.engine",
     "warm_up": "structures.compiled.engine",
     "compile_ahead": "structures.compiled.ahead",
 }
 __all__ = [
+    "EngineView",
     "compile_ahead",
     "compile_engine",
     "compiled_history",
+    "compiled_run",
+    "engine_view",
     "select_engine",
     "warm_up",
 ]

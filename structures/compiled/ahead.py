@@ -5,10 +5,13 @@ first run's time to compile, while the run itself needs a fraction of a second. 
 pure Python work in numba, which a thread cannot overlap with the caller's own Python work
 (imports, reading the record, the fixed-base reference, spectra); a process can, on a second
 core. :func:`compile_ahead` starts ``python -m structures.compiled.ahead``, which compiles the
-engine exactly as the first run would (:func:`structures.compiled.engine.warm_up`) and writes
-numba's disk cache. Meanwhile the caller compiles the parts that process will reach last
-(:meth:`CompileAhead.help`), does its own work, and waits (:meth:`CompileAhead.wait`) before
-its first engine call, which then loads the machine code from the cache. What is computed does
+engine's callees but the bearings' trials (:func:`structures.compiled.engine.warm_up_late`),
+then the engine exactly as the first run would (:func:`structures.compiled.engine.warm_up`),
+and writes numba's disk cache. Meanwhile the caller compiles the bearings' trials
+(:meth:`CompileAhead.help`, :func:`structures.compiled.engine.warm_up_early`), which that
+process then finds in the cache, does its own work, and waits
+(:meth:`CompileAhead.wait`) before its first engine call, which then loads the machine code
+from the cache. What is computed does
 not change: the cached code is the code the caller would have compiled itself.
 
 Nothing is started when the cache already holds the engine, without numba (or with
@@ -31,7 +34,7 @@ WAIT_LIMIT = 600.0
 """Longest wait for the second process [s]; past it, it is stopped and the caller compiles."""
 
 _PACKAGE_ROOT = Path(__file__).resolve().parents[2]
-_ENGINE_INDEX = "integrator.integrate_building-*.nbi"  # numba's index file of the engine
+_ENGINE_INDEX = "integrator.integrate-*.nbi"  # numba's index file of the engine
 
 
 def engine_in_cache() -> bool:
@@ -67,18 +70,19 @@ class CompileAhead:
         return self.process is not None
 
     def help(self) -> float:
-        """Compile here, meanwhile, the parts the second process will reach last
-        (:func:`structures.compiled.engine.warm_up_late`), so that it finds them in the cache;
-        return the time spent [s] (0 when no process was started).
+        """Compile here, meanwhile, the bearings' trials
+        (:func:`structures.compiled.engine.warm_up_early`), which the second process needs
+        only once it has compiled the rest of the engine's callees, so that it finds them in
+        the cache; return the time spent [s] (0 when no process was started).
 
         Call it right after :func:`compile_ahead`, before this process's own work: both then
         compile on their own core, and the second one sooner reaches the end.
         """
         if self.process is None or self.process.poll() is not None:
             return 0.0
-        from structures.compiled.engine import warm_up_late
+        from structures.compiled.engine import warm_up_early
 
-        return warm_up_late()
+        return warm_up_early()
 
     def wait(self) -> bool:
         """Block until the engine is compiled; return whether the process succeeded.
@@ -145,8 +149,9 @@ if __name__ == "__main__":  # the second process
 
     gc.set_threshold(50_000, 20, 20)  # numba's compilation: 1.5 -> 0.4 s of collections
 
-    from structures.compiled.engine import warm_up
+    from structures.compiled.engine import warm_up, warm_up_late
 
+    warm_up_late()  # while the first process compiles the bearings' trials
     warm_up()
     # numba's cache is written and its files closed: leave without the interpreter's teardown
     # (its last collection and module cleanup: 0.1 to 0.5 s the first process would wait for)

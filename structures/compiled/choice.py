@@ -2,20 +2,17 @@
 
 :func:`choose_engine` turns the ``engine`` argument (:data:`ENGINES`) and the reason the
 compiled engine cannot run a model (None when it can) into ``"compiled"`` or
-``"reference"``; :func:`unsupported` gives that reason for the planar building
-(:func:`select_engine`); the building in plan has its own
-(:func:`structures.compiled.plan.engine.plan_unsupported`).
+``"reference"``; :func:`unsupported` gives that reason for either isolated building (whether
+its bearing has a compiled form is :func:`isolator.compiled.packing.unsupported_reason`'s
+answer); :func:`select_engine` puts the two together.
 """
 
 from __future__ import annotations
 
 from dcfpb.common.validation import check_choice
-from isolator.bearing import AxialLoadHistory
 from isolator.compiled import kernels
-from isolator.friction import ConstantFriction, PTVFriction
-from isolator.heating import CentrePoint, MonitorLine
+from isolator.compiled.packing import unsupported_reason
 from structures.integrators import HHT, Newmark
-from structures.isolated_building import IsolatedShearBuilding
 
 __all__ = ["ENGINES", "choose_engine", "select_engine", "unsupported"]
 
@@ -25,23 +22,15 @@ ENGINES = ("auto", "compiled", "reference")
 
 def unsupported(model: object, method: object) -> str | None:
     """Why the compiled engine cannot run ``model`` with ``method``, or None when it can."""
-    if type(model) is not IsolatedShearBuilding:
-        return f"the model is a {type(model).__name__}, not an IsolatedShearBuilding"
+    from structures.isolated_building import IsolatedShearBuilding
+    from structures.spatial.isolated import SpatialIsolatedBuilding
+
+    if type(model) not in (IsolatedShearBuilding, SpatialIsolatedBuilding):
+        return (f"the model is a {type(model).__name__}, not an IsolatedShearBuilding or a "
+                "SpatialIsolatedBuilding")
     if not isinstance(method, Newmark | HHT):
         return f"the method {method!r} is not a Newmark or HHT instance"
-    bearing = model.bearing
-    if isinstance(bearing.axial_load, AxialLoadHistory):
-        return "the axial load varies in time"
-    if bearing.restoring not in ("linear", "spherical"):
-        return f"the restoring law {bearing.restoring!r} is unknown to it"
-    friction = bearing.friction
-    if type(friction) is ConstantFriction:
-        return None
-    if type(friction) is not PTVFriction:
-        return f"the friction model {type(friction).__name__} is unknown to it"
-    if friction.heating is not None and type(friction.heating) not in (MonitorLine, CentrePoint):
-        return f"the heating layout {type(friction.heating).__name__} is unknown to it"
-    return None
+    return unsupported_reason(model.bearing)
 
 
 def choose_engine(engine: str, reason: str | None, owner: str) -> str:
@@ -62,7 +51,8 @@ def choose_engine(engine: str, reason: str | None, owner: str) -> str:
     return engine
 
 
-def select_engine(engine: str, model: object, method: object) -> str:
-    """The engine of :func:`structures.analysis.run`: :func:`choose_engine` on
+def select_engine(engine: str, model: object, method: object, owner: str = "run") -> str:
+    """The engine of :func:`structures.analysis.run` (``owner``; or of
+    :func:`structures.spatial.analysis.run_spatial`): :func:`choose_engine` on
     :func:`unsupported`."""
-    return choose_engine(engine, unsupported(model, method), "run")
+    return choose_engine(engine, unsupported(model, method), owner)

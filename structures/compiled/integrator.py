@@ -1,47 +1,42 @@
-"""The compiled engine: a whole time-history run of a shear building on DCFPB isolators.
+"""The compiled engine: a whole time-history run of an isolated building in one numba function.
 
-:func:`integrate_building` is the time loop of :func:`structures.analysis.run` in one numba
-function, with no Python object touched per step: the Newmark / HHT-alpha Newton step of
-:mod:`structures.integrators`, the bearing of :mod:`isolator.bearing` (elastic-plastic return
-map, linear or spherical restoring law) and its friction (constant, or Eq. 7 with or without
-heating), through the kernels the element calls: ``cold_friction``, ``solve_friction``,
-``heated_window`` and ``ptv_friction`` of :mod:`isolator.compiled.kernels` (``ptv_trial`` is
-``heated_window``, ``contact_history`` and ``ptv_friction``) and ``step_factors`` of
-:mod:`isolator.heating`. It mirrors the reference operation for operation, so the two agree
-to round-off:
+:func:`integrate` is the time loop of :func:`structures.integrators.integrate` on an isolated
+building: the Newmark / HHT-alpha Newton step with a ground acceleration of ``c`` horizontal
+components, the building's storey springs and dampers (:mod:`structures.compiled.workspace`'s
+``Model``) and its bearings, the compiled element of :mod:`isolator.compiled.element` at their
+plan positions with their axial loads per trial (the gravity share, times 1 + a_z / g with a
+vertical record, plus the overturning of the storey forces, with its consistent tangent). One
+engine serves both buildings:
 
-- the same predictor, residual, force reference and the two convergence tests (the force
-  residual and the Newton correction, both relative to ``tolerance``);
-- the same depth-first step halving (an explicit stack instead of recursion), with the ground
-  acceleration interpolated linearly and the model committed after each sub-step;
-- the same trial / commit / revert semantics of the bearing and its heat history, with step
-  factors exact for every step size (the few distinct sizes of a run, t_n - t_(n-1) rounded,
-  are kept in a table of ``FACTOR_SLOTS``).
+- the planar building (:class:`~structures.isolated_building.IsolatedShearBuilding`): one DOF
+  per level, one bearing row at (0, 0) standing for the ``n_bearings`` identical bearings
+  (its force and tangent times their number), moving along x, its load constant;
+- the building in plan (:class:`~structures.spatial.isolated.SpatialIsolatedBuilding`): three
+  DOFs per level (x, y, theta), one row per bearing at its position, overturning and the
+  vertical record as the model has them.
 
-Two things are done differently, both exact rearrangements:
+It mirrors the reference operation for operation, so the two agree to round-off: the same
+predictor, residual, force reference and convergence tests (the force residual and the Newton
+correction, both relative to ``tolerance``), the same depth-first step halving (an explicit
+stack instead of recursion) with the ground accelerations interpolated linearly and the
+bearings committed after each sub-step, the same trial / commit / revert semantics of every
+bearing and its heat.
 
-- The superstructure is linear and the isolators act on the base slab (DOF 0) only, so the
-  Newton matrix is ``A + d e0 e0^T`` with ``A = c0 M + (1 + alpha)(c1 C + K)`` constant for a
-  step size and ``d`` the isolators' tangent: ``A^-1`` is computed once per step size (and per
-  halving depth) and each iteration solves with the Sherman-Morrison formula in O(n^2).
-- The monitor points under the slider take the same flux, so their heat history is held as a
-  group (:mod:`isolator.contact_window`): O(K) per step and per trial instead of advancing
-  every point ever heated (``advance_states``, O(points x K)) and re-summing the window for
-  every trial (``contact_history``, O(window x K)).
+One thing is done differently, an exact rearrangement: the Newton matrix is the reference's
+``c0 M + (1 + alpha)(c1 (C + C_t) + K_t)``, and the bearings and the overturning change only
+the base slab's rows of it (1 or 3), so it is ``A + E X`` with
+``A = c0 M + (1 + alpha)(c1 C + K)`` constant for a step size (its inverse formed once per
+step size and halving depth by LAPACK, :mod:`structures.compiled.lapack`) and ``E`` the first
+unit columns: each iteration solves with the Woodbury formula (Sherman-Morrison for one
+column), O(n^2), instead of factorising the matrix.
 
-What it costs to compile on a cold cache (``benchmarks/COLD_START.md``) is kept down by
-writing the loop in plain scalar arithmetic: the work arrays come from Python
-(:func:`structures.compiled.workspace.new_workspace`), the two dense solves are direct LAPACK calls
-(:mod:`structures.compiled.lapack`), and nothing is allocated, broadcast or multiplied as a
-matrix inside, since numba compiles each such numpy construct as a function of its own. The
-helpers are ordinary compiled functions, which LLVM inlines; numba's own IR inlining
-(``inline="always"``) cost more compile time than it saved.
-
-Without numba, or with ``DCFPB_DISABLE_NUMBA=1``, the same source runs as plain Python (slow,
-meant for tests); ``integrate_building.py_func`` is the Python original of the top level.
-The bearing, its friction and heat history in array form are
-:mod:`isolator.compiled.bearing`; the Python side of the engine (packing the model, the
-messages, the result) is :mod:`structures.compiled.engine`.
+The loop allocates nothing (its work arrays come from Python,
+:func:`structures.compiled.workspace.new_workspace`), so it and the element are compiled
+without numba's reference counting (:func:`isolator.compiled.kernels.jit_unmanaged`): no
+count is taken of the arrays handed from call to call. Without numba, or with
+``DCFPB_DISABLE_NUMBA=1``, the same source runs as plain Python; ``integrate.py_func`` is the
+Python original of the loop. The Python side (the model's view, packing, messages, result) is
+:mod:`structures.compiled.engine`.
 """
 
 from __future__ import annotations
@@ -50,317 +45,317 @@ import math
 
 import numpy as np
 
-from isolator.compiled.bearing import DISPLACEMENT as BEARING_DISPLACEMENT
-from isolator.compiled.bearing import (
-    FORCE,
-    INITIAL_MU,
-    INITIAL_TEMPERATURE,
-    MU,
-    N_BEARINGS,
-    NOT_CONVERGED,
-    PENDING,
-    PENDING_DT,
-    STATE_SIZE,
-    STEP_BELOW_MIN_LAG,
-    SUCCESS,
-    TEMPERATURE,
-    bearing_commit,
-    bearing_trial,
-    record_state,
-)
-from isolator.compiled.kernels import jit
-from structures.compiled.lapack import invert, solve
-from structures.compiled.workspace import (
-    A_C,
-    ALPHA,
-    BETA,
-    COMMITTED,
-    DOFS,
-    DU,
-    FAIL_DEPTH,
-    FAIL_ITERATIONS,
-    FAIL_REFERENCE,
-    FAIL_RESIDUAL,
-    FAIL_SUBSTEP,
-    FAIL_TIME,
-    FAIL_VALUE,
-    GAMMA,
-    INVERSE_STEPS,
-    INVERSES,
-    LAPACK_WORK,
-    LAST_STEP,
-    LOAD,
-    MASS_INFLUENCE,
-    MATRIX,
-    MAX_ITERATIONS,
-    MAX_SUBDIVISIONS,
-    P_C,
-    PIVOTS,
-    Q_C,
-    RESIDUAL,
-    STACK_DEPTH,
-    STACK_END,
-    STACK_START,
-    STATUS,
-    TOLERANCE,
-    TRIAL,
-    U_C,
-    V_C,
-    A,
-    P,
-    Q,
-    U,
-    V,
-)
+from dcfpb.common.units import STANDARD_GRAVITY
+from isolator.compiled import element as E
+from isolator.compiled.kernels import jit_unmanaged
+from structures.compiled import workspace as W
+from structures.compiled.lapack import solve
+from structures.compiled.linear import add_block, effective_inverse, interpolate, woodbury
 
-__all__ = ["integrate_building"]
-
-@jit
-def _effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse, matrix, work,
-                       pivots):
-    """inverse <- (c0 M + (1 + alpha)(c1 C + K))^-1 for a step ``h`` [s]; ``matrix``,
-    ``work`` and ``pivots`` are work arrays (n, n), (n, n) and int32 (n,)."""
-    c0, c1 = 1.0 / (beta * h * h), gamma / (beta * h)
-    n = mass.shape[0]
-    for i in range(n):  # element by element, as numpy's expression would
-        for j in range(n):
-            matrix[i, j] = c0 * mass[i, j] + (1.0 + alpha) * (c1 * damping[i, j]
-                                                                + stiffness[i, j])
-    invert(matrix, inverse, work, pivots)
+__all__ = ["integrate"]
 
 
-@jit
-def _newton(h, time, ground, mass, damping, stiffness, mass_influence, inverses, depth, method,
-            bearing, ptv, dofs, committed, trial, heating):
-    """NewmarkStepper._solve: one Newton attempt on a (sub-)step of ``h`` [s] to ``time``.
-
-    ``dofs`` rows (U_C ... DU): the committed u, v, a, p, q; the trial u, v, a, p, q; work
-    (load, residual, correction). ``inverses[depth]`` is ``A^-1`` for this step size. On
-    success the committed rows move to the new state (the bearing is committed by the caller).
-
-    Returns
-    -------
-    converged, iterations, residual norm [N], force reference [N], status
-    """
-    gamma, beta, alpha = method[GAMMA], method[BETA], method[ALPHA]
-    tolerance = method[TOLERANCE]
-    weight = 1.0 + alpha
-    c0, c1 = 1.0 / (beta * h * h), gamma / (beta * h)
-    n_bearings = bearing[N_BEARINGS]
-    n = mass.shape[0]
-    half_h2 = 0.5 * h * h
-    p_squared = previous_p = previous_q = u_norm = 0.0
-    for i in range(n):
-        dofs[P, i] = -mass_influence[i] * ground
-        dofs[LOAD, i] = weight * dofs[P, i] - alpha * dofs[P_C, i] + alpha * dofs[Q_C, i]
-        dofs[A, i] = dofs[A_C, i]
-        dofs[U, i] = dofs[U_C, i] + h * dofs[V_C, i] + half_h2 * dofs[A, i]
-        dofs[V, i] = dofs[V_C, i] + h * dofs[A, i]
-        p_squared += dofs[P, i] * dofs[P, i]
-        previous_p += dofs[P_C, i] * dofs[P_C, i]
-        previous_q += dofs[Q_C, i] * dofs[Q_C, i]
-        u_norm += dofs[U_C, i] * dofs[U_C, i]
-    previous = max(math.sqrt(previous_p), math.sqrt(previous_q))
-    u_norm = math.sqrt(u_norm)
-    p_norm = math.sqrt(p_squared)
-    r_norm = reference = np.inf
-    g00 = inverses[depth, 0, 0]
-    max_iterations = int(method[MAX_ITERATIONS])
-    for iteration in range(1, max_iterations + 1):
-        force, k_bearing, c_bearing, status = bearing_trial(
-            dofs[U, 0], dofs[V, 0], time, bearing, ptv, committed, trial, heating)
-        if status != SUCCESS:
-            return False, iteration, r_norm, reference, status
-        inertia_squared = q_squared = r_squared = 0.0
-        for i in range(n):  # q = C v + f(u), f = K u + isolators on DOF 0; the residual
-            spring = 0.0
-            viscous = 0.0
-            inertia = 0.0
-            for j in range(n):
-                spring += stiffness[i, j] * dofs[U, j]
-                viscous += damping[i, j] * dofs[V, j]
-                inertia += mass[i, j] * dofs[A, j]
-            if i == 0:
-                spring += n_bearings * force
-            q = viscous + spring
-            dofs[Q, i] = q
-            residual = dofs[LOAD, i] - inertia - weight * q
-            dofs[RESIDUAL, i] = residual
-            inertia_squared += inertia * inertia
-            q_squared += q * q
-            r_squared += residual * residual
-        r_norm = math.sqrt(r_squared)
-        reference = max(previous, math.sqrt(inertia_squared), math.sqrt(q_squared), p_norm)
-        # Sherman-Morrison: (A + d e0 e0^T)^-1 r = y - d y0 / (1 + d g00) A^-1 e0, y = A^-1 r
-        d = weight * (c1 * n_bearings * c_bearing + n_bearings * k_bearing)
-        denominator = 1.0 + d * g00
-        if denominator == 0.0 or not math.isfinite(denominator):
-            return False, iteration, r_norm, reference, SUCCESS
-        y0 = 0.0
-        for j in range(n):
-            y0 += inverses[depth, 0, j] * dofs[RESIDUAL, j]
-        factor = d * y0 / denominator
-        du_squared = u_squared = 0.0
-        finite = True
-        for i in range(n):
-            if i == 0:
-                du = y0 / denominator
-            else:
-                total = 0.0
-                for j in range(n):
-                    total += inverses[depth, i, j] * dofs[RESIDUAL, j]
-                du = total - factor * inverses[depth, i, 0]
-            dofs[DU, i] = du
-            finite = finite and math.isfinite(du)
-            du_squared += du * du
-            u_squared += dofs[U, i] * dofs[U, i]
-        if not finite:
-            return False, iteration, r_norm, reference, SUCCESS
-        if r_norm <= tolerance * reference and math.sqrt(du_squared) <= tolerance * max(
-                math.sqrt(u_squared), u_norm):
-            for i in range(n):
-                dofs[U_C, i], dofs[V_C, i], dofs[A_C, i] = dofs[U, i], dofs[V, i], dofs[A, i]
-                dofs[P_C, i], dofs[Q_C, i] = dofs[P, i], dofs[Q, i]
-            return True, iteration, r_norm, reference, SUCCESS
-        for i in range(n):
-            dofs[U, i] += dofs[DU, i]
-            dofs[V, i] += c1 * dofs[DU, i]
-            dofs[A, i] += c0 * dofs[DU, i]
-    return False, max_iterations, r_norm, reference, SUCCESS
-
-
-@jit
-def integrate_building(model, motion, settings, state, outputs, steps):
-    """Integrate the isolated building through a ground motion, from rest; fill the outputs.
+@jit_unmanaged
+def integrate(model, motion, settings, state, outputs, steps):
+    """Integrate the isolated building through the record, from rest; fill the outputs.
 
     ``steps`` = (first, end) takes the steps ``first .. end - 1``: (1, nt) is the whole run.
-    A call with ``first > 1`` resumes where the call that ended at ``first - 1`` stopped,
-    from the state it left in ``state`` (the same arithmetic as one call: the committed time
-    and ground acceleration are then ``time[first - 1]`` and ``ground[first - 1]``, exactly
-    what the step to ``first - 1`` committed).
+    A call with ``first > 1`` resumes where the call that ended at ``first - 1`` stopped, from
+    the state it left in ``state`` (the same arithmetic as one call: the committed time and
+    ground acceleration are then ``time[first - 1]`` and ``ground[first - 1]``, exactly what
+    the step to ``first - 1`` committed). The groups are the NamedTuples of
+    :mod:`structures.compiled.workspace`; the committed bearing states must hold the elements
+    at rest before the first call.
 
-    Parameters
-    ----------
-    model : Model
-        mass, damping, stiffness (n, n) and influence (n,).
-    motion : Motion
-        ground acceleration and time (nt,).
-    settings : Settings
-        method, bearing and ptv: the integration method and the bearing's constants.
-    state : State
-        heating and workspace, zero at the start; changed in place.
-    outputs : Outputs
-        displacement, velocity, acceleration, record, restoring, iterations, subdivisions
-        and info: filled for the steps taken.
-    steps : ndarray of int64, shape (2,)
-        The steps to take, ``[first, end)`` (see above).
-
-    The groups are named tuples (:class:`Model` ... :class:`Outputs`, whose fields say the
-    shapes and units), which numba types as tuples; the first lines take their arrays out by
-    name, once, and the helpers take arrays as before. (Compiling this function costs about
-    1 % more than with the 20 arrays as parameters, ~0.03 s; taking them out by attribute was
-    the cheapest of the ways tried: ``benchmarks/COLD_START.md``.)
+    Each (sub-)step is NewmarkStepper._solve: the predictor, then Newton iterations of the
+    restoring force (storey springs and dampers; the bearings at their trial loads), the
+    residual and the correction, until both tests pass; on success the committed rows move to
+    the new state and the bearings are committed; on failure the step is halved, down to
+    ``max_subdivisions`` halvings.
     """
-    mass, damping, stiffness = model.mass, model.damping, model.stiffness
-    influence = model.influence
+    heat, ws = state.heat, state.workspace  # every array out of its group, once
+    method, parameters, ptv, flags = settings.method, settings.parameters, settings.ptv, \
+        settings.flags
+    info, iterations, subdivisions = outputs.info, outputs.iterations, outputs.subdivisions
+    displacement, velocity, acceleration = outputs.displacement, outputs.velocity, \
+        outputs.acceleration
+    record, restoring = outputs.record, outputs.restoring
     ground, time = motion.ground, motion.time
-    method, bearing, ptv = settings.method, settings.bearing, settings.ptv
-    heating, workspace = state.heating, state.workspace
-    displacement, velocity = outputs.displacement, outputs.velocity
-    acceleration, record, restoring = outputs.acceleration, outputs.record, outputs.restoring
-    iterations, subdivisions, info = outputs.iterations, outputs.subdivisions, outputs.info
-    n = mass.shape[0]
-    nt = ground.shape[0]
-    max_subdivisions = int(method[MAX_SUBDIVISIONS])
-    n_bearings = bearing[N_BEARINGS]
-    committed, trial = workspace[COMMITTED], workspace[TRIAL]
-    inverses, inverse_steps = workspace[INVERSES], workspace[INVERSE_STEPS]
-    stack_start, stack_end = workspace[STACK_START], workspace[STACK_END]
-    stack_depth, dofs, matrix = workspace[STACK_DEPTH], workspace[DOFS], workspace[MATRIX]
-    work, pivots = workspace[LAPACK_WORK], workspace[PIVOTS]
-    mass_influence = workspace[MASS_INFLUENCE]
+    mass, damping, stiffness = model.mass, model.damping, model.stiffness
+    influence, vertical_time, vertical_acceleration = model.influence, model.vertical_time, \
+        model.vertical_acceleration
+    overturning_matrix, load_du, load_dv = model.overturning, model.load_du, model.load_dv
+    rates, weights, states, stamps = heat.rates, heat.weights, heat.states, heat.stamps
+    marks, pending, accumulators, offsets = heat.marks, heat.pending, heat.accumulators, \
+        heat.offsets
+    cache_keys, cache_values, cache_state = heat.cache_keys, heat.cache_values, heat.cache_state
+    scalars, factors, decays, slots = heat.scalars, heat.factors, heat.decays, heat.slots
+    table, windows = heat.table, heat.windows
+    tangent, work, pivots = ws[W.TANGENT], ws[W.LAPACK_WORK], ws[W.PIVOTS]
+    dofs = ws[W.DOFS]  # its rows, one by one
+    u_committed, v_committed, a_committed = dofs[W.U_C], dofs[W.V_C], dofs[W.A_C]
+    p_committed, q_committed = dofs[W.P_C], dofs[W.Q_C]
+    u_trial, v_trial, a_trial, p_trial, q_trial = dofs[W.U], dofs[W.V], dofs[W.A], dofs[W.P], \
+        dofs[W.Q]
+    load_row, residual_row, du_row = dofs[W.LOAD], dofs[W.RESIDUAL], dofs[W.DU]
+    force_row, viscous_row, storey_row = dofs[W.FORCE], dofs[W.VISCOUS], dofs[W.STOREY]
+    committed, trial = ws[W.COMMITTED], ws[W.TRIAL]
+    inverses, inverse_steps = ws[W.INVERSES], ws[W.INVERSE_STEPS]
+    stack_start, stack_end, stack_depth = ws[W.STACK_START], ws[W.STACK_END], ws[W.STACK_DEPTH]
+    top_k, top_c, mass_influence = ws[W.TOP_STIFFNESS], ws[W.TOP_DAMPING], ws[W.MASS_INFLUENCE]
+    motion_rows, rows, update = ws[W.MOTION], ws[W.GROUND], ws[W.UPDATE]
+    ground_committed, ground_start = rows[W.GROUND_COMMITTED], rows[W.GROUND_START]
+    ground_end, ground_now = rows[W.GROUND_END], rows[W.GROUND_NOW]
+    gamma, beta, alpha = method[W.GAMMA], method[W.BETA], method[W.ALPHA]
+    tolerance = method[W.TOLERANCE]
+    max_iterations = int(method[W.MAX_ITERATIONS])
+    max_subdivisions = int(method[W.MAX_SUBDIVISIONS])
+    columns = int(flags[W.LEVEL_DOFS])
+    overturning = flags[W.OVERTURNING] != 0.0
+    vertical = flags[W.VERTICAL] != 0.0
+    weight = 1.0 + alpha
+    n, n_bearings, nt = mass.shape[0], committed.shape[0], ground.shape[0]
+    components = ground.shape[1]
     for i in range(n):  # M r
-        total = 0.0
-        for j in range(n):
-            total += mass[i, j] * influence[j]
-        mass_influence[i] = total
+        for c in range(components):
+            total = 0.0
+            for j in range(n):
+                total += mass[i, j] * influence[j, c]
+            mass_influence[i, c] = total
     first, end = steps[0], steps[1]
     if first <= 1:
         first = 1
-        committed[TEMPERATURE] = bearing[INITIAL_TEMPERATURE]
-        committed[MU] = bearing[INITIAL_MU]
-        for i in range(STATE_SIZE):
-            trial[i] = committed[i]
-
-        # from rest: u = v = 0, so f = 0 and q = 0; the load row holds p - q for the solve
-        for i in range(n):
-            dofs[P_C, i] = -mass_influence[i] * ground[0]
-            dofs[LOAD, i] = dofs[P_C, i] - dofs[Q_C, i]
-        solve(mass, dofs[LOAD], dofs[A_C], work, pivots)
-        for i in range(n):
-            displacement[0, i], velocity[0, i] = dofs[U_C, i], dofs[V_C, i]
-            acceleration[0, i], restoring[0, i] = dofs[A_C, i], 0.0
-        record_state(record[:, 0], committed)
+        for i in range(n):  # from rest: f = 0, q = 0; the load row holds p - q for the solve
+            total = 0.0
+            for c in range(components):
+                total += mass_influence[i, c] * ground[0, c]
+            p_committed[i] = -total
+            load_row[i] = p_committed[i] - q_committed[i]
+        solve(mass, load_row, a_committed, work, pivots)
     end = min(end, nt)
-    info[STATUS], info[LAST_STEP] = SUCCESS, end - 1
-
+    info[W.STATUS], info[W.LAST_STEP] = E.SUCCESS, end - 1
     t_committed = time[first - 1]
-    ground_committed = ground[first - 1]
-    for k in range(first, end):
-        start, end = t_committed, time[k]
-        span = end - start
-        ground_start, ground_end = ground_committed, ground[k]
-        step_iterations = 0
-        step_subdivisions = 0
-        top = 0
-        stack_start[0], stack_end[0], stack_depth[0] = 0.0, 1.0, 0
-        while top >= 0:
-            s0, s1, depth = stack_start[top], stack_end[top], stack_depth[top]
-            top -= 1
-            if s1 == 1.0:
-                t_end, ground_now = end, ground_end
-            else:
-                t_end = start + s1 * span
-                ground_now = ground_start + s1 * (ground_end - ground_start)
-            h = (s1 - s0) * span
-            if abs(h - inverse_steps[depth]) > 1e-9 * h:
-                _effective_inverse(h, mass, damping, stiffness, method[GAMMA], method[BETA],
-                                   method[ALPHA], inverses[depth], matrix, work, pivots)
-                inverse_steps[depth] = h
-            converged, spent, r_norm, reference, status = _newton(
-                h, t_end, ground_now, mass, damping, stiffness, mass_influence, inverses, depth,
-                method, bearing, ptv, dofs, committed, trial, heating)
-            step_iterations += spent
-            if converged:
-                bearing_commit(bearing, committed, trial, heating)
-                t_committed, ground_committed = t_end, ground_now
-                continue
-            trial[PENDING] = 0.0  # revert: drop the trial and its heat
-            if status != SUCCESS or depth >= max_subdivisions:
-                info[STATUS], info[LAST_STEP] = NOT_CONVERGED, k - 1
-                if status != SUCCESS:
-                    info[STATUS] = status
-                    info[FAIL_VALUE] = trial[
-                        PENDING_DT] if status == STEP_BELOW_MIN_LAG else trial[BEARING_DISPLACEMENT]
-                info[FAIL_TIME], info[FAIL_SUBSTEP], info[FAIL_DEPTH] = t_end, h, depth
-                info[FAIL_ITERATIONS], info[FAIL_RESIDUAL] = spent, r_norm
-                info[FAIL_REFERENCE] = reference
-                iterations[k - 1], subdivisions[k - 1] = step_iterations, step_subdivisions
-                return
-            step_subdivisions += 1
-            middle = 0.5 * (s0 + s1)
-            top += 1
-            stack_start[top], stack_end[top], stack_depth[top] = middle, s1, depth + 1
-            top += 1
-            stack_start[top], stack_end[top], stack_depth[top] = s0, middle, depth + 1
-        iterations[k - 1], subdivisions[k - 1] = step_iterations, step_subdivisions
+    for c in range(components):
+        ground_committed[c] = ground[first - 1, c]
+    for k in range(first - 1, end):
+        if k >= first:  # the step to time[k]; k = first - 1 only records the state at rest
+            start, stop = t_committed, time[k]
+            span = stop - start
+            for c in range(components):
+                ground_start[c] = ground_committed[c]
+                ground_end[c] = ground[k, c]
+            step_iterations = step_subdivisions = 0
+            top = 0
+            stack_start[0], stack_end[0], stack_depth[0] = 0.0, 1.0, 0
+            while top >= 0:
+                s0, s1, depth = stack_start[top], stack_end[top], stack_depth[top]
+                top -= 1
+                if s1 == 1.0:
+                    t_end = stop
+                    for c in range(components):
+                        ground_now[c] = ground_end[c]
+                else:
+                    t_end = start + s1 * span
+                    for c in range(components):
+                        g0 = ground_start[c]
+                        ground_now[c] = g0 + s1 * (ground_end[c] - g0)
+                h = (s1 - s0) * span
+                inverse = inverses[depth]
+                if abs(h - inverse_steps[depth]) > 1e-9 * h:
+                    effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse,
+                                      tangent, work, pivots)
+                    inverse_steps[depth] = h
+                # the predictor and the norms of the committed state
+                c0, c1 = 1.0 / (beta * h * h), gamma / (beta * h)
+                half_h2 = 0.5 * h * h
+                p_squared = previous_p = previous_q = u_squared = 0.0
+                for i in range(n):
+                    total = 0.0
+                    for c in range(components):
+                        total += mass_influence[i, c] * ground_now[c]
+                    p_trial[i] = -total
+                    load_row[i] = (weight * p_trial[i] - alpha * p_committed[i]
+                                       + alpha * q_committed[i])
+                    a_trial[i] = a_committed[i]
+                    u_trial[i] = u_committed[i] + h * v_committed[i] + half_h2 * a_trial[i]
+                    v_trial[i] = v_committed[i] + h * a_trial[i]
+                    p_squared += p_trial[i] * p_trial[i]
+                    previous_p += p_committed[i] * p_committed[i]
+                    previous_q += q_committed[i] * q_committed[i]
+                    u_squared += u_committed[i] * u_committed[i]
+                previous = max(math.sqrt(previous_p), math.sqrt(previous_q))
+                u_norm, p_norm = math.sqrt(u_squared), math.sqrt(p_squared)
+                factor = 1.0
+                if vertical:
+                    factor = 1.0 + interpolate(t_end, vertical_time,
+                                               vertical_acceleration) / STANDARD_GRAVITY
+                r_norm = reference = np.inf
+                converged, status, spent = False, E.SUCCESS, max_iterations
+                for iteration in range(1, max_iterations + 1):
+                    # the restoring force: storey springs and dampers, then the bearings
+                    for i in range(n):
+                        spring = 0.0
+                        viscous = 0.0
+                        for j in range(n):
+                            spring += stiffness[i, j] * u_trial[j]
+                            viscous += damping[i, j] * v_trial[j]
+                        force_row[i] = spring
+                        viscous_row[i] = viscous
+                        storey_row[i] = spring + viscous
+                    for r in range(columns):
+                        for j in range(n):
+                            top_k[r, j] = 0.0
+                            top_c[r, j] = 0.0
+                    ux, vx = u_trial[0], v_trial[0]
+                    uy = vy = theta = omega = 0.0  # one DOF per level: the bearings move on x
+                    if columns == 3:
+                        uy, theta, vy, omega = u_trial[1], u_trial[2], v_trial[1], \
+                            v_trial[2]
+                    for b in range(n_bearings):  # each row's trial motion and axial load
+                        x, y = parameters[b, E.X], parameters[b, E.Y]
+                        row = motion_rows[b]
+                        # u_i = T_i q_b = (u_x - theta y_i, u_y + theta x_i)
+                        row[E.MOTION_UX], row[E.MOTION_UY] = ux - y * theta, uy + x * theta
+                        row[E.MOTION_VX], row[E.MOTION_VY] = vx - y * omega, vy + x * omega
+                        load = parameters[b, E.GRAVITY] * factor
+                        if overturning:
+                            extra = 0.0
+                            for j in range(n):
+                                extra += overturning_matrix[b, j] * storey_row[j]
+                            load = load + extra
+                        row[E.MOTION_LOAD] = load
+                    status, failed = E.set_trials(
+                        t_end, motion_rows, parameters, ptv, committed, trial, rates, weights,
+                        states, stamps, marks, pending, accumulators, offsets, cache_keys,
+                        cache_values, cache_state, scalars, factors, decays, slots, table,
+                        windows)
+                    if status != E.SUCCESS:
+                        info[W.FAIL_BEARING] = failed
+                        spent = iteration
+                        break
+                    for b in range(n_bearings):
+                        x, y, m = parameters[b, E.X], parameters[b, E.Y], \
+                            parameters[b, E.MULTIPLICITY]
+                        load = motion_rows[b, E.MOTION_LOAD]
+                        t = trial[b]
+                        fx, fy = m * t[E.FX], m * t[E.FY]
+                        force_row[0] += fx
+                        if columns == 1:
+                            top_k[0, 0] += m * t[E.KXX]
+                            top_c[0, 0] += m * t[E.CXX]
+                            continue
+                        force_row[1] += fy
+                        force_row[2] += -y * fx + x * fy
+                        add_block(top_k, m * t[E.KXX], m * t[E.KXY], m * t[E.KYX], m * t[E.KYY],
+                                  x, y)
+                        add_block(top_c, m * t[E.CXX], m * t[E.CXY], m * t[E.CYX], m * t[E.CYY],
+                                  x, y)
+                        if overturning and load > 0.0:  # d(T^T F) / dN times dN / du, dv
+                            px, py = fx / load, fy / load
+                            per_load_2 = -y * px + x * py
+                            for j in range(n):
+                                du, dv = load_du[b, j], load_dv[b, j]
+                                top_k[0, j] += px * du
+                                top_k[1, j] += py * du
+                                top_k[2, j] += per_load_2 * du
+                                top_c[0, j] += px * dv
+                                top_c[1, j] += py * dv
+                                top_c[2, j] += per_load_2 * dv
+                    # the residual and its norms, then the correction
+                    inertia_squared = q_squared = r_squared = 0.0
+                    for i in range(n):
+                        inertia = 0.0
+                        for j in range(n):
+                            inertia += mass[i, j] * a_trial[j]
+                        q = viscous_row[i] + force_row[i]
+                        q_trial[i] = q
+                        residual = load_row[i] - inertia - weight * q
+                        residual_row[i] = residual
+                        inertia_squared += inertia * inertia
+                        q_squared += q * q
+                        r_squared += residual * residual
+                    r_norm = math.sqrt(r_squared)
+                    reference = max(previous, math.sqrt(inertia_squared),
+                                    math.sqrt(q_squared), p_norm)
+                    spent = iteration
+                    if not woodbury(inverse, top_k, top_c, columns, weight, c1,
+                                    residual_row, du_row, update):
+                        break
+                    du_squared = u_squared = 0.0
+                    finite = True
+                    for i in range(n):
+                        du = du_row[i]
+                        finite = finite and math.isfinite(du)
+                        du_squared += du * du
+                        u_squared += u_trial[i] * u_trial[i]
+                    if not finite:
+                        break
+                    if r_norm <= tolerance * reference and math.sqrt(du_squared) <= \
+                            tolerance * max(math.sqrt(u_squared), u_norm):
+                        for i in range(n):
+                            u_committed[i], v_committed[i] = u_trial[i], v_trial[i]
+                            a_committed[i] = a_trial[i]
+                            p_committed[i], q_committed[i] = p_trial[i], q_trial[i]
+                        converged = True
+                        break
+                    for i in range(n):
+                        u_trial[i] += du_row[i]
+                        v_trial[i] += c1 * du_row[i]
+                        a_trial[i] += c0 * du_row[i]
+                step_iterations += spent
+                if converged:
+                    E.commit_trials(parameters, committed, trial, rates, weights, states, stamps,
+                                    marks, pending, accumulators, offsets, cache_keys,
+                                    cache_values, cache_state, scalars, factors, decays, slots,
+                                    table, windows)
+                    t_committed = t_end
+                    for c in range(components):
+                        ground_committed[c] = ground_now[c]
+                    continue
+                for b in range(n_bearings):  # revert: drop the trials and their heat
+                    trial[b, E.PENDING] = 0.0
+                if status != E.SUCCESS or depth >= max_subdivisions:
+                    info[W.STATUS], info[W.LAST_STEP] = E.NOT_CONVERGED, k - 1
+                    if status != E.SUCCESS:
+                        b = int(info[W.FAIL_BEARING])
+                        info[W.STATUS] = status
+                        info[W.FAIL_VALUE] = trial[b, E.PENDING_DT]
+                        info[W.FAIL_UX], info[W.FAIL_UY] = trial[b, E.UX], trial[b, E.UY]
+                        info[W.FAIL_E1X], info[W.FAIL_E1Y] = trial[b, E.AXIS_X], \
+                            trial[b, E.AXIS_Y]
+                    info[W.FAIL_TIME], info[W.FAIL_SUBSTEP], info[W.FAIL_DEPTH] = t_end, h, depth
+                    info[W.FAIL_ITERATIONS], info[W.FAIL_RESIDUAL] = spent, r_norm
+                    info[W.FAIL_REFERENCE] = reference
+                    iterations[k - 1] = step_iterations
+                    subdivisions[k - 1] = step_subdivisions
+                    return
+                step_subdivisions += 1
+                middle = 0.5 * (s0 + s1)
+                top += 1
+                stack_start[top], stack_end[top], stack_depth[top] = middle, s1, depth + 1
+                top += 1
+                stack_start[top], stack_end[top], stack_depth[top] = s0, middle, depth + 1
+            iterations[k - 1] = step_iterations
+            subdivisions[k - 1] = step_subdivisions
+        # the step's record: the committed rows and every bearing's committed state
         for i in range(n):
-            displacement[k, i] = dofs[U_C, i]
-            velocity[k, i] = dofs[V_C, i]
-            acceleration[k, i] = dofs[A_C, i]
+            displacement[k, i] = u_committed[i]
+            velocity[k, i] = v_committed[i]
+            acceleration[k, i] = a_committed[i]
             total = 0.0
             for j in range(n):
-                total += stiffness[i, j] * dofs[U_C, j]
+                total += stiffness[i, j] * u_committed[j]
             restoring[k, i] = total
-        restoring[k, 0] += n_bearings * committed[FORCE]
-        record_state(record[:, k], committed)
+        sx = sy = sz = 0.0
+        for b in range(n_bearings):
+            m = parameters[b, E.MULTIPLICITY]
+            fx, fy = m * committed[b, E.FX], m * committed[b, E.FY]
+            sx += fx
+            sy += fy
+            sz += -parameters[b, E.Y] * fx + parameters[b, E.X] * fy
+            for c in range(E.RECORD_SIZE):
+                record[k, b, c] = committed[b, E.RECORD_COLUMNS[c]]
+        restoring[k, 0] += sx
+        if columns == 3:
+            restoring[k, 1] += sy
+            restoring[k, 2] += sz

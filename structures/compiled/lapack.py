@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from isolator.compiled import kernels
-from isolator.compiled.kernels import jit
+from isolator.compiled.kernels import jit_unmanaged
 
 __all__ = ["invert", "solve"]
 
@@ -39,7 +39,7 @@ _DOUBLE = ord("d")  # LAPACK's kind code of float64
 
 if _LAPACK_CALLS:  # pragma: no cover - depends on the environment
 
-    @jit
+    @jit_unmanaged
     def invert(matrix, inverse, work, pivots):
         """``inverse <- matrix^-1`` by LU factorisation (LAPACK ``dgetrf``, ``dgetri``).
 
@@ -71,7 +71,7 @@ if _LAPACK_CALLS:  # pragma: no cover - depends on the environment
                 inverse[i, j] = work[j, i]
         return status
 
-    @jit
+    @jit_unmanaged
     def solve(matrix, rhs, solution, work, pivots):
         """``solution <- matrix^-1 rhs`` by LU factorisation (LAPACK ``dgesv``).
 
@@ -100,13 +100,13 @@ if _LAPACK_CALLS:  # pragma: no cover - depends on the environment
 
 else:
 
-    @jit
+    @jit_unmanaged
     def invert(matrix, inverse, work, pivots):
         """``inverse <- matrix^-1`` (``numpy.linalg.inv``); the work arrays are unused."""
         inverse[:, :] = np.linalg.inv(matrix)
         return 0
 
-    @jit
+    @jit_unmanaged
     def solve(matrix, rhs, solution, work, pivots):
         """``solution <- matrix^-1 rhs`` (``numpy.linalg.solve``); the work arrays are unused."""
         solution[:] = np.linalg.solve(matrix, rhs)

@@ -36,7 +36,8 @@ def test_the_engine_depends_on_its_layouts_and_callees_not_on_the_rest():
     closure = {p.relative_to(REPO).as_posix()
                for p in dependency_closure(str(REPO / "structures/compiled/integrator.py"))}
     assert {"structures/compiled/workspace.py", "structures/compiled/lapack.py",
-            "isolator/compiled/bearing.py", "isolator/compiled/kernels.py",
+            "isolator/compiled/element.py", "isolator/compiled/plate.py",
+            "isolator/compiled/kernels.py",
             "isolator/compiled/layout.py", "isolator/heating.py"} <= closure
     assert not closure & {"structures/analysis.py", "structures/results.py",
                           "structures/__init__.py", "isolator/__init__.py"}
@@ -47,9 +48,9 @@ def test_the_engine_is_stamped_with_its_closure():
     del numba
     from structures.compiled import integrator
 
-    if not hasattr(integrator.integrate_building, "_cache"):
+    if not hasattr(integrator.integrate, "_cache"):
         pytest.skip("numba disabled (DCFPB_DISABLE_NUMBA)")
-    locator = integrator.integrate_building._cache._impl._locator
+    locator = integrator.integrate._cache._impl._locator
     assert type(locator).__name__ == "DependencyStampLocator"
     assert locator.get_source_stamp() == dependency_stamp(integrator.__file__)
 

@@ -63,7 +63,7 @@ def test_the_cache_is_looked_for_under_numba_cache_dir(tmp_path, monkeypatch):
     assert not ahead.engine_in_cache()
     folder = tmp_path / "structures_0123abcd"
     folder.mkdir()
-    (folder / "integrator.integrate_building-230.py311.nbi").write_bytes(b"")
+    (folder / "integrator.integrate-230.py311.nbi").write_bytes(b"")
     assert ahead.engine_in_cache()
     monkeypatch.setenv("DCFPB_COMPILE_AHEAD", "1")
     with ahead.compile_ahead() as handle:

@@ -1,5 +1,5 @@
-"""The compiled engine reproduces the reference run (structures.compiled.integrator vs
-structures.integrators).
+"""The compiled engine reproduces the reference run of the planar building
+(structures.compiled.integrator vs structures.integrators).
 
 The two engines do the same arithmetic in a different order (a Sherman-Morrison solve instead
 of LU, the window's heat history held as a group instead of point by point), so they agree to
@@ -93,7 +93,7 @@ def test_the_dataset_has_the_reference_form(config, motion):
         assert a[name].dtype == b[name].dtype, name
     different = {k for k in a.attrs if k not in ("wall_time", "engine")
                  and a.attrs[k] != b.attrs[k]}
-    assert different == {"energy_balance_error"}  # round-off of an error of round-off
+    assert different <= {"energy_balance_error"}  # round-off of an error of round-off
 
 
 def _variant(bearing, **friction):
@@ -248,7 +248,7 @@ def test_pure_python_fallback_equals_the_compiled_engine(config, motion):
 
 @pytest.mark.skipif(not COMPILED, reason="numba is disabled: there is no compiled original")
 def test_python_original_of_the_loop_equals_the_compiled_one(config, motion):
-    """``integrate_building.py_func`` (the loop in Python, its kernels compiled) agrees."""
+    """``integrate.py_func`` (the loop in Python, its kernels compiled) agrees."""
     building = IsolatedShearBuilding(config.building, config.bearing("precise"), 6)
     acceleration = np.interp(0.005 * np.arange(201), motion.time, motion.acceleration)
     compiled = compiled_history(building, acceleration, 0.005, Newmark(), tolerance=1e-8,

@@ -1,24 +1,22 @@
-"""The plan engine's small numerical pieces: the linear interpolation of a record at one time
-(numpy's ``interp`` for one point), a vector norm, and the Newton matrix: the bearings' 3x3
-blocks on the base slab (:func:`add_block`), the inverse of the matrix without them for a step
-size (:func:`effective_inverse`) and the solve of the whole one by the Woodbury formula on it
-(:func:`woodbury`). Compiled functions of their own that the loop of
-:mod:`structures.compiled.plan.integrator` calls (LLVM inlines them there).
+"""The engine's small numerical pieces: the linear interpolation of a record at one time
+(numpy's ``interp`` for one point) and the Newton matrix: the bearings' blocks on the base
+slab's DOFs (:func:`add_block`), the inverse of the matrix without them for a step size
+(:func:`effective_inverse`) and the solve of the whole one by the Woodbury formula on it
+(:func:`woodbury`; with one DOF on the base slab, the Sherman-Morrison formula). Compiled
+functions of their own that the loop of :mod:`structures.compiled.integrator` calls.
 """
 
 from __future__ import annotations
 
 import math
 
-from isolator.compiled.kernels import jit
+from isolator.compiled.kernels import jit_unmanaged
 from structures.compiled.lapack import invert
-from structures.compiled.plan import workspace as W
-from structures.compiled.workspace import ALPHA, BETA, GAMMA
 
-__all__ = ["add_block", "effective_inverse", "interpolate", "norm", "woodbury"]
+__all__ = ["add_block", "effective_inverse", "interpolate", "woodbury"]
 
 
-@jit
+@jit_unmanaged
 def interpolate(x, xp, fp):
     """``numpy.interp(x, xp, fp)`` for one ``x`` (held at the ends), as numpy computes it."""
     size = xp.shape[0]
@@ -39,17 +37,10 @@ def interpolate(x, xp, fp):
     return slope * (x - xp[lo]) + fp[lo]
 
 
-@jit
-def norm(row):
-    total = 0.0
-    for i in range(row.shape[0]):
-        total += row[i] * row[i]
-    return math.sqrt(total)
-
-
-@jit
+@jit_unmanaged
 def add_block(top, kxx, kxy, kyx, kyy, x, y):
-    """top[:3, :3] += T^T k T with T = [[1, 0, -y], [0, 1, x]]."""
+    """top[:3, :3] += T^T k T with T = [[1, 0, -y], [0, 1, x]]: a bearing at (x, y) [m]
+    with the 2x2 tangent k on the base slab's (u_x, u_y, theta)."""
     rx = -y * kxx + x * kyx  # row 2 of T^T k
     ry = -y * kxy + x * kyy
     top[0, 0] += kxx
@@ -63,36 +54,51 @@ def add_block(top, kxx, kxy, kyx, kyy, x, y):
     top[2, 2] += rx * -y + ry * x
 
 
-@jit
-def effective_inverse(h, model, method, inverse, ws):
+@jit_unmanaged
+def effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse, matrix, work,
+                      pivots):
     """inverse <- (c0 M + (1 + alpha)(c1 C + K))^-1 for a step ``h`` [s]: the Newton matrix
-    without the bearings and the overturning."""
-    c0, c1 = 1.0 / (method[BETA] * h * h), method[GAMMA] / (method[BETA] * h)
-    weight = 1.0 + method[ALPHA]
-    matrix = ws[W.TANGENT]
+    without the bearings and the overturning; ``matrix``, ``work`` (n, n) and ``pivots``
+    (int32, n) are work arrays."""
+    c0, c1 = 1.0 / (beta * h * h), gamma / (beta * h)
+    weight = 1.0 + alpha
     n = matrix.shape[0]
     for i in range(n):
         for j in range(n):
-            matrix[i, j] = c0 * model.mass[i, j] + weight * (c1 * model.damping[i, j]
-                                                             + model.stiffness[i, j])
-    invert(matrix, inverse, ws[W.LAPACK_WORK], ws[W.PIVOTS])
+            matrix[i, j] = c0 * mass[i, j] + weight * (c1 * damping[i, j] + stiffness[i, j])
+    invert(matrix, inverse, work, pivots)
 
 
-@jit
-def woodbury(inverse, top_k, top_c, weight, c1, residual, du, update):
-    """du <- (A + E X)^-1 residual, A^-1 = ``inverse``, E the first three unit columns and
-    X = (1 + alpha)(c1 top_c + top_k) the base slab's rows the bearings add (Woodbury:
-    y - A^-1 E (I + X A^-1 E)^-1 X y, y = A^-1 r). ``update`` is a (3, n) work array. False
-    when I + X A^-1 E is singular (the reference's singular Newton matrix)."""
+@jit_unmanaged
+def woodbury(inverse, top_k, top_c, columns, weight, c1, residual, du, update):
+    """du <- (A + E X)^-1 residual, A^-1 = ``inverse``, E the first ``columns`` (1 or 3) unit
+    columns and X = (1 + alpha)(c1 top_c + top_k) the base slab's rows the bearings add
+    (Woodbury: y - A^-1 E (I + X A^-1 E)^-1 X y, y = A^-1 r; with one column the
+    Sherman-Morrison formula). ``update`` is a (3, n) work array. False when I + X A^-1 E is
+    singular (the reference's singular Newton matrix)."""
     n = inverse.shape[0]
     for j in range(n):
-        for r in range(3):
-            update[r, j] = weight * (c1 * top_c[r, j] + top_k[r, j])
+        update[0, j] = weight * (c1 * top_c[0, j] + top_k[0, j])
+        if columns == 3:
+            update[1, j] = weight * (c1 * top_c[1, j] + top_k[1, j])
+            update[2, j] = weight * (c1 * top_c[2, j] + top_k[2, j])
     for i in range(n):
         total = 0.0
         for j in range(n):
             total += inverse[i, j] * residual[j]
         du[i] = total
+    if columns == 1:
+        s00 = r0 = 0.0
+        for j in range(n):
+            s00 += update[0, j] * inverse[j, 0]
+            r0 += update[0, j] * du[j]
+        s00 += 1.0
+        if s00 == 0.0 or not math.isfinite(s00):
+            return False
+        z0 = r0 / s00
+        for i in range(n):
+            du[i] -= inverse[i, 0] * z0
+        return True
     s00 = s01 = s02 = s10 = s11 = s12 = s20 = s21 = s22 = 0.0
     r0 = r1 = r2 = 0.0
     for j in range(n):
