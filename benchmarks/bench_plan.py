@@ -43,9 +43,10 @@ SQUARE = [[-6.0, -5.0], [6.0, -5.0], [6.0, 5.0], [-6.0, 5.0]]
 
 def building():
     """The 3-storey shear building and the building in plan on it."""
-    from structures.shear_building import ShearBuilding
     from structures.spatial.building import SpatialBuilding
     from structures.spatial.plan import Plan
+
+    from structures.shear_building import ShearBuilding
 
     frame = ShearBuilding.from_period([4e5, 4e5, 4e5], 0.5, base_mass=5e5)
     plan = Plan(SQUARE, eccentricity=(1.2, 0.8), dimensions=(12.0, 10.0), storey_heights=3.5)
@@ -82,8 +83,9 @@ def pair(duration: float):
 
 def cases(with_opensees: bool, with_reference: bool) -> dict:
     """name -> (callable returning the Dataset, steps)."""
-    from structures.analysis import run
     from structures.spatial.analysis import run_spatial
+
+    from structures.analysis import run
 
     frame, spatial = building()
     motions = {d: pair(d) for d in (10.0, 30.0)}

@@ -405,12 +405,14 @@ class SurfaceHeating:
         self.commit(dt, self._staged, flux)
 
     def temperature_field(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """Positions (m, 2) [m] of the monitor line's points on the plate (along x) and their
-        temperatures (m,) [degC] after the last commit; None for the centre point, which is
-        no field."""
+        """Positions (m, 2) [m] of the monitor line's points ever heated, on the plate (along x),
+        and their temperatures (m,) [degC] after the last commit; None for the centre point,
+        which is no field."""
         if not self.average_over_contact:
             return None
-        return np.column_stack([self.points, np.zeros_like(self.points)]), self.profile()
+        lo, hi = self._touched
+        points = self.points[lo:hi]
+        return np.column_stack([points, np.zeros_like(points)]), self.profile()[lo:hi]
 
     def profile(self, dt: float = 0.0) -> np.ndarray:
         """Temperature at every monitor point ``dt`` after the last commit [degC]."""

@@ -235,7 +235,7 @@ def run(
     method = as_method(integrator)
     options = {"tolerance": tolerance, "max_subdivisions": max_subdivisions,
                "time_limit": time_limit}
-    if select_engine(engine, model, method) == "compiled" and False:  # until the one engine
+    if select_engine(engine, model, method) == "compiled":
         history = compiled_history(model, acceleration, step, method, **options)
     else:
         history = reference_history(model, acceleration, step, method, **options)

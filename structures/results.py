@@ -84,6 +84,15 @@ def temperature_fields(model: IsolatedShearBuilding) -> tuple[np.ndarray, np.nda
     return positions, temperatures
 
 
+def _by_position(positions: np.ndarray,
+                 temperatures: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each bearing's monitor points ordered by x, then y (the NaN padding last), so that the
+    field does not depend on the order an engine stored its points in."""
+    order = np.lexsort((positions[..., 1], positions[..., 0]), axis=-1)
+    return (np.take_along_axis(positions, order[..., None], axis=1),
+            np.take_along_axis(temperatures, order, axis=1))
+
+
 def _capacity(reach: np.ndarray, capacity: float, step: float) -> tuple[int, str]:
     """The steps kept and the capacity failure's message ("" if none), from the largest
     resultant displacement of any bearing at each step ``reach`` [m]."""
@@ -273,6 +282,7 @@ def response_dataset(
             "time", model.vertical_accelerations(time), "m/s^2",
             "vertical ground acceleration (positive up)")
     if plate is not None:
+        plate = _by_position(*plate)
         data["plate_temperature"] = var(("bearing", "plate_point"), plate[1], "degC",
                                         "temperature of the plate's monitor points at the end")
     for name in _ENERGIES:

@@ -6,8 +6,7 @@ The engine of a building (:mod:`structures.compiled`) asks this module whether a
 a compiled form (:func:`unsupported_reason`), has it packed (:func:`pack_bearings`), and
 turns a failed trial into the reference element's error (:func:`trial_error`); it never looks
 at the friction or heating classes itself. The reference elements are those of the model
-(:class:`~isolator.bearing.BearingElement` of a planar building, which moves along x,
-:class:`~isolator.bidirectional.element.BidirectionalElement` of a building in plan): their
+(:class:`~isolator.bearing.BearingElement` in one direction, moving along x, or in two): their
 friction states hold the heating objects whose constants are packed, and their committed
 states at rest are the engine's first committed rows.
 """
@@ -22,7 +21,6 @@ import numpy as np
 
 from dcfpb.common.errors import CapacityExceeded
 from isolator.bearing import AxialLoadHistory, DCFPBearing, trial_failure
-from isolator.bidirectional.heating import GridHeating
 from isolator.compiled import element as E
 from isolator.compiled import kernels
 from isolator.compiled import layout as L
@@ -30,6 +28,7 @@ from isolator.compiled import plate as P
 from isolator.compiled.layout import pack_ptv
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import CentrePoint, MonitorLine
+from isolator.monitor_grid import GridHeating
 
 __all__ = ["CompiledBearings", "pack_bearings", "plate_field", "trial_error",
            "unsupported_reason"]
@@ -74,13 +73,14 @@ def unsupported_reason(bearing: DCFPBearing) -> str | None:
 
 
 def _pair(value) -> tuple[float, float]:
-    """(x, y) of a state's vector, or (value, 0) of a planar element's scalar."""
+    """(x, y) of a state's vector, or (value, 0) of the scalar of an element in one
+    direction."""
     array = np.atleast_1d(np.asarray(value, dtype=float))
     return (float(array[0]), float(array[1]) if array.size > 1 else 0.0)
 
 
 def _committed_row(state) -> np.ndarray:
-    """A reference element's committed state (``BearingState`` or ``PlanarState``) as a row."""
+    """A reference element's committed state (``BearingState``) as a row."""
     row = np.zeros(E.STATE_SIZE)
     row[E.TIME] = state.time
     row[[E.UX, E.UY]], row[[E.VX, E.VY]] = _pair(state.displacement), _pair(state.velocity)
@@ -100,7 +100,7 @@ def pack_bearings(bearing: DCFPBearing, elements: Sequence, positions: np.ndarra
     ----------
     bearing : DCFPBearing
         The bearing of every position (its own axial load is not read).
-    elements : sequence of BearingElement or BidirectionalElement
+    elements : sequence of BearingElement
         The model's reference elements at rest, one per row (their friction states give the
         heating's constants, their committed states the first committed rows).
     positions : ndarray, shape (n_b, 2)
@@ -152,7 +152,7 @@ def pack_bearings(bearing: DCFPBearing, elements: Sequence, positions: np.ndarra
                 rows[:, E.N_ACROSS] = heating.n_points
                 if heating.layout.orientation is not None:
                     rows[:, E.ORIENTATION] = math.radians(heating.layout.orientation)
-            elif plate:  # the planar monitor line: one row across, e1 along x
+            elif plate:  # the monitor line in one direction: one row across, e1 along x
                 rows[:, E.ORIENTATION] = 0.0
             values.update(first_point=heating.first_point, spacing=heating.spacing,
                           n_points=heating.n_points, flux_half_width=heating.flux_half_width,
@@ -179,7 +179,7 @@ def trial_error(element, status: int, displacement: tuple[float, float],
 
     Parameters
     ----------
-    element : BearingElement or BidirectionalElement
+    element : BearingElement
         The reference element of the bearing whose trial failed.
     status : int
         The element's code (``LEFT_MONITOR_LINE``, ``STEP_BELOW_MIN_LAG``, ``BEYOND_RADIUS``).

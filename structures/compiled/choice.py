@@ -2,7 +2,7 @@
 
 :func:`choose_engine` turns the ``engine`` argument (:data:`ENGINES`) and the reason the
 compiled engine cannot run a model (None when it can) into ``"compiled"`` or
-``"reference"``; :func:`unsupported` gives that reason for either isolated building (whether
+``"reference"``; :func:`unsupported` gives that reason for an isolated building (whether
 its bearing has a compiled form is :func:`isolator.compiled.packing.unsupported_reason`'s
 answer); :func:`select_engine` puts the two together.
 """
@@ -23,11 +23,9 @@ ENGINES = ("auto", "compiled", "reference")
 def unsupported(model: object, method: object) -> str | None:
     """Why the compiled engine cannot run ``model`` with ``method``, or None when it can."""
     from structures.isolated_building import IsolatedShearBuilding
-    from structures.spatial.isolated import SpatialIsolatedBuilding
 
-    if type(model) not in (IsolatedShearBuilding, SpatialIsolatedBuilding):
-        return (f"the model is a {type(model).__name__}, not an IsolatedShearBuilding or a "
-                "SpatialIsolatedBuilding")
+    if type(model) is not IsolatedShearBuilding:
+        return f"the model is a {type(model).__name__}, not an IsolatedShearBuilding"
     if not isinstance(method, Newmark | HHT):
         return f"the method {method!r} is not a Newmark or HHT instance"
     return unsupported_reason(model.bearing)
@@ -52,7 +50,6 @@ def choose_engine(engine: str, reason: str | None, owner: str) -> str:
 
 
 def select_engine(engine: str, model: object, method: object, owner: str = "run") -> str:
-    """The engine of :func:`structures.analysis.run` (``owner``; or of
-    :func:`structures.spatial.analysis.run_spatial`): :func:`choose_engine` on
+    """The engine of :func:`structures.analysis.run` (``owner``): :func:`choose_engine` on
     :func:`unsupported`."""
     return choose_engine(engine, unsupported(model, method), owner)

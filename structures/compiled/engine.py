@@ -8,8 +8,7 @@ model's plate field. The failure contract is the reference's: a trial the elemen
 evaluate ends the run with its message, a step below the heat kernel's shortest lag raises its
 ``ValueError``, a time limit is looked at every ``CHUNK_STEPS`` steps, a step that does not
 converge ends the run with the integrator's message. :func:`compiled_history` is the same run
-in the form :func:`structures.analysis.run` reads (one bearing's fields, as the reference
-engine records them).
+of an isolated building in the form :func:`structures.analysis.run` reads.
 """
 
 from __future__ import annotations
@@ -27,15 +26,12 @@ from structures.compiled import workspace as W
 from structures.compiled.choice import ENGINES, choose_engine, select_engine, unsupported
 from structures.compiled.view import EngineView, engine_view
 from structures.integrators import HHT, IntegrationResult, Newmark
+from structures.results import EngineHistory
 
-__all__ = ["BEARING_FIELDS", "CHUNK_STEPS", "ENGINES", "CompiledRun", "EngineHistory",
+__all__ = ["CHUNK_STEPS", "ENGINES", "CompiledRun",
            "bearing_fields", "choose_engine", "compile_engine", "compiled_history",
            "compiled_run", "select_engine", "unsupported", "warm_up", "warm_up_early",
            "warm_up_late"]
-
-BEARING_FIELDS = ("displacement", "velocity", "force", "friction_force", "mu", "temperature",
-                  "heat_flux")
-"""The fields of one planar bearing's history (:class:`EngineHistory`), SI units."""
 
 CHUNK_STEPS = 1024
 """Steps the engine takes between two looks at the clock when a run has a time limit."""
@@ -69,34 +65,6 @@ class CompiledRun(NamedTuple):
     wall_time: float
     compile_time: float
     plate: tuple[np.ndarray, np.ndarray] | None
-
-
-class EngineHistory(NamedTuple):
-    """What an engine of the planar building hands to the result builder.
-
-    Attributes
-    ----------
-    result : IntegrationResult
-        Time, relative response, iterations, success and message.
-    bearing : dict of str to ndarray
-        One bearing's committed state at every step, keyed by ``BEARING_FIELDS`` (SI units).
-    restoring : ndarray, shape (nt, n)
-        Total restoring force (storey springs + all isolators) at every step [N].
-    wall_time : float
-        Time spent integrating [s], compilation left out.
-    engine : str
-        ``"reference"`` or ``"compiled"``.
-    compile_time : float
-        Time spent compiling (or loading from numba's disk cache) before the run [s]; 0.0
-        when this process had compiled it already.
-    """
-
-    result: IntegrationResult
-    bearing: dict[str, np.ndarray]
-    restoring: np.ndarray
-    wall_time: float
-    engine: str
-    compile_time: float = 0.0
 
 
 def bearing_fields(record: np.ndarray) -> dict[str, np.ndarray]:
@@ -279,21 +247,16 @@ def compiled_run(view: EngineView, acceleration: np.ndarray, step: float,
 def compiled_history(model, acceleration: np.ndarray, dt: float, method: Newmark | HHT, *,
                      tolerance: float, max_iterations: int = 25, max_subdivisions: int,
                      python: bool = False, time_limit: float | None = None) -> EngineHistory:
-    """:func:`compiled_run` of a planar building (``IsolatedShearBuilding``, fresh) through
-    ``acceleration`` (nt,) [m/s^2] every ``dt`` [s], as the reference engine's
-    :class:`EngineHistory` (the arguments as :func:`compiled_run`)."""
-    run = compiled_run(engine_view(model), np.asarray(acceleration, dtype=float)[:, None], dt,
+    """:func:`compiled_run` of a fresh :class:`~structures.isolated_building.
+    IsolatedShearBuilding` through ``acceleration`` [m/s^2], (nt,) in one direction or (nt, 2)
+    in plan, every ``dt`` [s], as :func:`structures.analysis.run` reads an engine's history
+    (the arguments as :func:`compiled_run`)."""
+    acceleration = np.asarray(acceleration, dtype=float)
+    run = compiled_run(engine_view(model), acceleration.reshape(acceleration.shape[0], -1), dt,
                        method, tolerance=tolerance, max_iterations=max_iterations,
-                       max_subdivisions=max_subdivisions, time_limit=time_limit,
-                       python=python, with_plate=False)
-    fields = bearing_fields(run.record)
-    bearing = {"displacement": fields["displacement"][:, 0, 0],
-               "velocity": np.array(run.result.velocity[:, 0]),
-               "force": fields["force"][:, 0, 0],
-               "friction_force": fields["friction_force"][:, 0, 0],
-               **{name: fields[name][:, 0] for name in ("mu", "temperature", "heat_flux")}}
-    return EngineHistory(run.result, bearing, run.restoring, run.wall_time, "compiled",
-                         run.compile_time)
+                       max_subdivisions=max_subdivisions, time_limit=time_limit, python=python)
+    return EngineHistory(run.result, bearing_fields(run.record), run.restoring, run.wall_time,
+                         "compiled", run.compile_time, run.plate)
 
 
 _WARMING_UP = False  # set while warm_up runs its own small model through the engine

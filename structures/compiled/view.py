@@ -1,19 +1,22 @@
-"""What the compiled engine sees of a model: :class:`EngineView`, and :func:`engine_view` for the
-two isolated buildings.
+"""What the compiled engine sees of a model: :class:`EngineView`, and :func:`engine_view` of an
+isolated building.
 
 The engine (:mod:`structures.compiled.engine`) reads a model through this small record only:
 the building's matrices, how the ground moves it, where its bearings are and how they are
 loaded, and the bearing with its reference elements (whose friction and heating objects
-:mod:`isolator.compiled.packing` packs). The planar building is the special case of one DOF
-per level, one bearing row at (0, 0) standing for its ``n_bearings`` identical bearings, no
-overturning and no vertical record.
+:mod:`isolator.compiled.packing` packs). A building in one direction is the special case of
+one DOF per level, one bearing row at (0, 0) standing for its ``n_bearings`` identical
+bearings, no overturning.
 """
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from structures.isolated_building import IsolatedShearBuilding
 
 __all__ = ["EngineView", "engine_view"]
 
@@ -49,8 +52,8 @@ class EngineView(NamedTuple):
     bearing : DCFPBearing
         The bearing of every row.
     elements : tuple
-        The model's reference elements at rest, one per row (``BearingElement`` moving along x,
-        or ``BidirectionalElement``).
+        The model's reference elements at rest, one per row (``BearingElement`` moving along x
+        or in two directions).
     """
 
     mass: np.ndarray
@@ -70,33 +73,14 @@ class EngineView(NamedTuple):
     elements: tuple
 
 
-def engine_view(model: object) -> EngineView:
-    """The :class:`EngineView` of an ``IsolatedShearBuilding`` or a
-    ``SpatialIsolatedBuilding`` (a fresh model: its bearings at rest).
-
-    Raises
-    ------
-    TypeError
-        For another model.
-    """
-    from structures.isolated_building import IsolatedShearBuilding
-    from structures.spatial.isolated import SpatialIsolatedBuilding
-
-    if type(model) is IsolatedShearBuilding:
-        n = model.mass_matrix.shape[0]
-        zeros = np.zeros((1, n))
-        return EngineView(
-            model.mass_matrix, model.damping_matrix, model.superstructure_stiffness,
-            np.asarray(model.influence, dtype=float).reshape(n, 1), 1, np.zeros((1, 2)),
-            np.array([float(model.n_bearings)]), np.array([model.bearing.axial_load_at(0.0)]),
-            zeros, zeros, zeros, False, None, model.bearing, (model.element,))
-    if type(model) is SpatialIsolatedBuilding:
-        return EngineView(
-            model.mass_matrix, model.damping_matrix, model.superstructure_stiffness,
-            np.asarray(model.influence, dtype=float), 3,
-            np.asarray(model.building.plan.bearing_coordinates, dtype=float),
-            np.ones(model.n_bearings), np.asarray(model.gravity_shares, dtype=float),
-            model.overturning_matrix, model.load_du, model.load_dv, model.overturning,
-            model.vertical, model.bearing, tuple(model.elements))
-    raise TypeError(f"engine_view: a {type(model).__name__} has no view for the compiled "
-                    "engine; give an IsolatedShearBuilding or a SpatialIsolatedBuilding.")
+def engine_view(model: IsolatedShearBuilding) -> EngineView:
+    """The :class:`EngineView` of an :class:`~structures.isolated_building.IsolatedShearBuilding`
+    (a fresh model: its bearings at rest)."""
+    n = model.mass_matrix.shape[0]
+    influence = np.asarray(model.influence, dtype=float).reshape(n, -1)
+    return EngineView(
+        model.mass_matrix, model.damping_matrix, model.superstructure_stiffness, influence,
+        model.level_dofs, np.asarray(model.positions, dtype=float),
+        model.multiplicity.astype(float), np.asarray(model.gravity_loads, dtype=float),
+        model.overturning_matrix, model.load_du, model.load_dv, model.overturning,
+        model.vertical, model.bearing, tuple(model.elements))

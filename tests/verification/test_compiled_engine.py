@@ -54,7 +54,7 @@ def _assert_same_run(reference, compiled, relative=RELATIVE):
     assert compiled.attrs["engine"] == "compiled"
     assert reference.attrs["engine"] == "reference"
     assert compiled.sizes == reference.sizes
-    for name in ("isolator_displacement", "isolator_force"):
+    for name in ("bearing_displacement", "base_shear"):
         assert _relative_difference(reference[name], compiled[name]) <= relative, name
     for name in ("displacement", "absolute_acceleration", "temperature", "mu",
                  "energy_input", "energy_friction"):
@@ -147,7 +147,7 @@ def test_step_halving_matches_the_reference(config, motion, model):
     assert np.array_equal(reference.result.iterations, compiled.result.iterations)
     u_ref, u = reference.result.displacement[:, 0], compiled.result.displacement[:, 0]
     assert _relative_difference(u_ref, u) <= RELATIVE
-    assert _relative_difference(reference.bearing["force"], compiled.bearing["force"]) <= RELATIVE
+    assert _relative_difference(reference.bearings["force"], compiled.bearings["force"]) <= RELATIVE
 
 
 def test_failure_is_reported_like_the_reference(config, motion):
@@ -158,8 +158,8 @@ def test_failure_is_reported_like_the_reference(config, motion):
     assert "did not converge" in compiled.result.message
     assert compiled.result.time.size == reference.result.time.size
     assert compiled.restoring.shape == reference.restoring.shape
-    for name, values in reference.bearing.items():
-        assert values.shape == compiled.bearing[name].shape, name
+    for name, values in reference.bearings.items():
+        assert values.shape == compiled.bearings[name].shape, name
 
 
 def test_leaving_the_monitor_line_ends_the_run_like_the_reference(config, motion):
@@ -218,7 +218,7 @@ for model in ("precise", "constant"):
         result = run(config.building, config.bearing(model), motion, HHT(alpha=-0.05),
                      n_bearings=config.n_bearings, dt=0.005, engine=engine)
         out[model, engine] = {name: result[name].values.tolist() for name in
-                              ("isolator_displacement", "isolator_force", "temperature")}
+                              ("bearing_displacement", "base_shear", "temperature")}
 print(json.dumps({" ".join(key) if isinstance(key, tuple) else key: value
                   for key, value in out.items()}))
 """
@@ -257,4 +257,4 @@ def test_python_original_of_the_loop_equals_the_compiled_one(config, motion):
     python = compiled_history(building, acceleration, 0.005, Newmark(), tolerance=1e-8,
                               max_subdivisions=6, python=True)
     assert np.array_equal(compiled.result.displacement, python.result.displacement)
-    assert np.array_equal(compiled.bearing["temperature"], python.bearing["temperature"])
+    assert np.array_equal(compiled.bearings["temperature"], python.bearings["temperature"])

@@ -1,4 +1,4 @@
-"""The compiled engine on the building in plan against the reference ``run_spatial``.
+"""The compiled engine on the building in plan against the reference engine.
 
 An eccentric 3-storey building on four bearings under a synthetic pair with a vertical and
 overturning: every history the run records (levels, bearings, the energies, the plate
@@ -25,15 +25,13 @@ from groundmotions.synthetic import synthetic_pair
 from isolator.bearing import DCFPBearing
 from isolator.experiments import friction_model
 from isolator.heating import MonitorLine
-from structures.analysis import resampled_record
+from structures.analysis import resampled_record, run
 from structures.compiled.engine import bearing_fields, compiled_run
 from structures.compiled.view import engine_view
 from structures.integrators import as_method
+from structures.isolated_building import IsolatedShearBuilding
+from structures.plan import Plan
 from structures.shear_building import ShearBuilding
-from structures.spatial.analysis import run_spatial
-from structures.spatial.building import SpatialBuilding
-from structures.spatial.isolated import SpatialIsolatedBuilding
-from structures.spatial.plan import Plan
 
 SQUARE = [[-6.0, -5.0], [6.0, -5.0], [6.0, 5.0], [-6.0, 5.0]]
 DT = 0.01
@@ -42,10 +40,9 @@ SKIP = {"time", "floor", "storey", "direction", "bearing"}
 
 
 @functools.cache
-def _building() -> SpatialBuilding:
-    frame = ShearBuilding.from_period([4e5, 4e5, 4e5], 0.5, base_mass=5e5)
+def _building() -> ShearBuilding:
     plan = Plan(SQUARE, eccentricity=(1.2, 0.8), dimensions=(12.0, 10.0), storey_heights=3.5)
-    return SpatialBuilding(frame, plan)
+    return ShearBuilding.from_period([4e5, 4e5, 4e5], 0.5, base_mass=5e5, plan=plan)
 
 
 def _bearing(model: str, capacity: float = 0.3) -> DCFPBearing:
@@ -64,7 +61,7 @@ def _pair(duration: float = 4.0) -> GroundMotionPair:
 
 @functools.cache
 def _runs(model: str, integrator: str):
-    return tuple(run_spatial(_building(), _bearing(model), _pair(), integrator, dt=DT,
+    return tuple(run(_building(), _bearing(model), _pair(), integrator, dt=DT,
                              engine=engine) for engine in ("reference", "compiled"))
 
 
@@ -104,8 +101,8 @@ def test_every_history_agrees_with_the_reference(model, integrator):
                - reference.attrs["energy_balance_error"]) < 1e-9
 
 
-def _model(model: str, pair: GroundMotionPair, **kwargs) -> SpatialIsolatedBuilding:
-    return SpatialIsolatedBuilding(_building(), _bearing(model, **kwargs), vertical=pair.z)
+def _model(model: str, pair: GroundMotionPair, **kwargs) -> IsolatedShearBuilding:
+    return IsolatedShearBuilding(_building(), _bearing(model, **kwargs), vertical=pair.z)
 
 
 def _acceleration(pair: GroundMotionPair) -> np.ndarray:
@@ -139,7 +136,7 @@ def test_slider_off_the_grid_fails_as_the_reference(half_length):
         heating = MonitorLine(0.005, half_length)
         bearing = dataclasses.replace(bearing, friction=dataclasses.replace(bearing.friction,
                                                                           heating=heating))
-    runs = [run_spatial(_building(), bearing, _pair(), dt=DT, engine=engine)
+    runs = [run(_building(), bearing, _pair(), dt=DT, engine=engine)
             for engine in ("reference", "compiled")]
     assert not runs[0].attrs["success"]
     assert ("monitor grid" in runs[0].attrs["message"]) == bool(half_length)
@@ -155,7 +152,7 @@ def test_uplift_under_a_vertical_pulse_as_the_reference():
     time = pair.x.time
     pulse = np.where((time >= 1.0) & (time <= 1.2), -1.5 * STANDARD_GRAVITY, 0.0)
     lifted = GroundMotionPair(pair.x, pair.y, GroundMotion(pulse, DT, "pulse"))
-    runs = [run_spatial(_building(), _bearing("precise"), lifted, dt=DT, overturning=False,
+    runs = [run(_building(), _bearing("precise"), lifted, dt=DT, overturning=False,
                         engine=engine) for engine in ("reference", "compiled")]
     assert runs[0].attrs["success"] and runs[1].attrs["success"]
     assert np.any(runs[0]["axial_load"].values == 0.0)
@@ -166,4 +163,4 @@ def test_uplift_under_a_vertical_pulse_as_the_reference():
 
 def test_engine_choice_is_checked():
     with pytest.raises(ValueError, match="engine"):
-        run_spatial(_building(), _bearing("constant"), _pair(), dt=DT, engine="fast")
+        run(_building(), _bearing("constant"), _pair(), dt=DT, engine="fast")
