@@ -296,6 +296,9 @@ def _parts(late: bool) -> list:
         (linear.add_block, (rows, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0)),
         (linear.interpolate, (1.0, vector, vector)),
         (lapack.solve, (square, vector, vector, square, pivots)),
+        (plate.field_temperatures, (np.zeros(1, dtype=np.int64), np.zeros(1, dtype=np.bool_),
+                                    1.0, 1.0, 1.0, heat.rates, heat.weights, heat.states[0],
+                                    heat.stamps[0], heat.accumulators[0], vector)),
         (E.commit_trials, (parameters, states, states, *heat))]
 
 

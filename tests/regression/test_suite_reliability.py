@@ -199,8 +199,8 @@ def scheduler():
 
 
 def test_run_timeout_and_failures_beside_the_statistics(tmp_path, scheduler, capsys):
-    """A long record (748,000 steps, about two seconds compiled, minutes on the reference
-    engine) under a 0.8 s limit times out; a short one (400 steps: 0.06 s on the reference
+    """A long record (748,000 steps, about a second compiled, minutes on the reference
+    engine) under a 0.3 s limit times out; a short one (400 steps: 0.06 s on the reference
     engine, and never looked at by the compiled engine, which looks at the clock every 1024
     steps) finishes; at 20 times El Centro both pass the bearings' capacity (the long one
     after 606 steps, 0.14 s on the reference engine). The limit leaves room for a machine
@@ -211,7 +211,7 @@ def test_run_timeout_and_failures_beside_the_statistics(tmp_path, scheduler, cap
     _elcentro(records / "long.at2", dt=0.002, repeats=48)
     _elcentro(records / "short.at2", dt=0.02, duration=2.0)
     out = tmp_path / "out"
-    argv = _suite_argv(records, out, "--scales", "1,20", "--run-timeout", "0.8",
+    argv = _suite_argv(records, out, "--scales", "1,20", "--run-timeout", "0.3",
                        "--scheduler", scheduler)
     assert cli.main([*argv, "--json"]) == 1
     report = json.loads(capsys.readouterr().out)
@@ -219,7 +219,7 @@ def test_run_timeout_and_failures_beside_the_statistics(tmp_path, scheduler, cap
     assert report["failures_by_kind"] == {"capacity": 2, "convergence": 0, "timeout": 1,
                                           "error": 0}
     reasons = {f["run"].split("_m1")[0]: f["reason"] for f in report["failed"]}
-    assert reasons["long_x1_precise"].startswith("timeout after 0.8 s: the run was stopped")
+    assert reasons["long_x1_precise"].startswith("timeout after 0.3 s: the run was stopped")
     assert "Capacity exceeded" in reasons["long_x20_precise"]
     assert "Capacity exceeded" in reasons["short_x20_precise"]
     x1, x20 = (report["summary"][f"precise, scale x{s}"]["peak_base_shear"] for s in (1, 20))
