@@ -1,10 +1,9 @@
 """Isolator layer: friction laws, frictional heating, the DCFPB element in one or two
-directions, bearing tests (imposed histories and orbits), the force-deflection characteristics
-and the diagnosis of the sim-to-real gap (:mod:`isolator.diagnosis`); the compiled element and
-its kernels in :mod:`isolator.compiled`.
+directions, bearing tests (imposed histories and orbits) and their force-deflection
+characteristics; the compiled element in :mod:`isolator.compiled`, the diagnosis of the
+sim-to-real gap in :mod:`isolator.diagnosis`.
 
-The names in ``__all__`` are importable from the package (on first use: the element's kernels
-import numba)::
+The names in ``__all__`` are imported on first use (the element's kernels import numba)::
 
     from isolator import DCFPBearing, PTVFriction, MonitorLine, run_test, sine
 """

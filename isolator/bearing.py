@@ -1,25 +1,24 @@
 """The double concave friction pendulum bearing (DCFPB) element, in one or two directions.
 
 Horizontal force for a relative displacement u and velocity v of the two concave plates
-(scalars along x for a bearing in one direction, (x, y) vectors in the plane):
+(floats along x in one direction, (x, y) vectors in two):
 
     F = N u / R_eff + mu(p, |v|, T) N z,
 
 with N the axial load, R_eff the effective radius, p = N / (pi r^2) the contact pressure and z
 the hysteretic variable of an isotropic elastic-plastic return map with a small yield
-displacement u_y (:func:`isotropic_return_map`: |z| <= 1, on the unit circle while sliding,
-so the friction force has the magnitude mu N and the direction of the sliding; in one
-direction it is the clip of z to +-1). The restoring law is ``"linear"`` N u / R_eff (the
-paper's) or ``"spherical"`` N u / sqrt(R_eff^2 - |u|^2) (OpenSees FPBearingPTV's). mu, the
-contact temperature and the heat flux come from the bearing's friction model, a strategy
-(:class:`isolator.friction.FrictionModel`) the element asks at every trial.
+displacement (:func:`isotropic_return_map`), so that the friction force has the magnitude mu N
+and the direction of sliding. The restoring law is ``"linear"``, N u / R_eff (the paper's), or
+``"spherical"``, N u / sqrt(R_eff^2 - |u|^2) (OpenSees FPBearingPTV's). mu, the contact
+temperature and the heat flux come from the bearing's friction model
+(:class:`isolator.friction.FrictionModel`), asked at every trial.
 
-:class:`DCFPBearing` holds the frozen parameters; :meth:`DCFPBearing.element` gives a
-:class:`BearingElement` with the state contract of OpenSees elements: ``set_trial(u, v, time)``
-returns the force and the consistent tangents d F / d u and d F / d v (the latter from
-d mu / d|v|), ``commit()`` accepts the trial (and only then adds its heat), ``revert()`` drops
-it. Along any fixed direction through the centre the element in two directions gives the
-force, mu and temperature of the element in one (``tests/verification/test_bidirectional.py``).
+:class:`DCFPBearing` holds the frozen parameters, :class:`BearingElement` the state, with the
+contract of OpenSees elements: ``set_trial`` returns the force and the consistent tangents
+d F / d u and d F / d v (from d mu / d|v|), ``commit`` accepts the trial (and only then adds
+its heat), ``revert`` drops it. Along any fixed direction through the centre the element in two
+directions gives the force, mu and temperature of the element in one
+(``tests/verification/test_bidirectional.py``).
 """
 
 from __future__ import annotations
@@ -38,15 +37,8 @@ from isolator.friction import FrictionModel, FrictionState
 
 @dataclass(frozen=True)
 class AxialLoadHistory:
-    """An axial load that varies in time, linearly interpolated (held constant outside).
-
-    Parameters
-    ----------
-    time : array_like
-        Increasing times [s].
-    load : array_like
-        Compressive axial load at those times [N]; zero or negative means uplift.
-    """
+    """An axial load varying in time: the compressive ``load`` [N] (zero or negative: uplift) at
+    strictly increasing ``time`` [s], linear in between and held constant outside."""
 
     time: np.ndarray
     load: np.ndarray
@@ -71,18 +63,9 @@ class AxialLoadHistory:
 
 
 class BearingTrial(NamedTuple):
-    """Force and consistent tangents of a trial state: floats for a bearing in one direction,
-    a (2,) vector and (2, 2) matrices for one in two.
-
-    Attributes
-    ----------
-    force : float or ndarray
-        Horizontal force F [N].
-    stiffness : float or ndarray
-        d F / d u [N/m].
-    damping : float or ndarray
-        d F / d v [N s/m], from the velocity dependence of mu.
-    """
+    """Force F [N] and consistent tangents of a trial, ``stiffness`` d F / d u [N/m] and
+    ``damping`` d F / d v [N s/m] (from the velocity dependence of mu): floats in one direction,
+    a (2,) vector and (2, 2) matrices in two."""
 
     force: float | np.ndarray
     stiffness: float | np.ndarray
@@ -90,12 +73,9 @@ class BearingTrial(NamedTuple):
 
 
 class BearingState(NamedTuple):
-    """Everything worth recording about a (trial or committed) state of the element.
-
-    displacement [m], velocity [m/s], force and friction_force [N] and z [-] are floats for a
-    bearing in one direction and (x, y) arrays of shape (2,) for one in two; the rest are
-    floats: time [s], mu [-], temperature [degC], heat_flux [W/m^2], axial_load [N].
-    """
+    """A trial or committed state of the element: displacement [m], velocity [m/s], force and
+    friction_force [N] and z [-], floats in one direction and (x, y) arrays of shape (2,) in two;
+    time [s], mu [-], temperature [degC], heat_flux [W/m^2] and axial_load [N], floats."""
 
     time: float
     displacement: float | np.ndarray
@@ -111,25 +91,13 @@ class BearingState(NamedTuple):
 
 def isotropic_return_map(zx: float, zy: float, dux: float, duy: float,
                          yield_displacement: float) -> tuple[float, ...]:
-    """The hysteretic variable after a displacement increment, and its tangent.
+    """The hysteretic variable after a displacement increment (``dux``, ``duy``) [m] from the
+    committed (``zx``, ``zy``) [-], |z| <= 1, for a yield displacement u_y [m], and its tangent.
 
-    The elastic predictor z* = z_c + du / u_y is returned when |z*| < 1, else its projection
-    on the unit circle z* / |z*| (radial return; along one axis, the clip of z to +-1).
-
-    Parameters
-    ----------
-    zx, zy : float
-        Committed hysteretic variable [-], |z| <= 1.
-    dux, duy : float
-        Displacement increment since the commit [m].
-    yield_displacement : float
-        u_y [m].
-
-    Returns
-    -------
-    tuple of float
-        The trial z (x, y) [-] and the consistent tangent d z / d u row by row (xx, xy, yx,
-        yy) [1/m]: I / u_y when elastic, (I - z z^T) / (u_y |z*|) when sliding.
+    The elastic predictor z* = z_c + du / u_y is kept when |z*| < 1, else projected on the unit
+    circle, z* / |z*| (radial return; along one axis, the clip of z to +-1). Returns the trial z
+    (x, y) [-] and d z / d u row by row (xx, xy, yx, yy) [1/m]: I / u_y when elastic,
+    (I - z z^T) / (u_y |z*|) when sliding.
     """
     px = zx + dux / yield_displacement
     py = zy + duy / yield_displacement
@@ -154,21 +122,19 @@ class DCFPBearing:
     slider_diameter : float
         Slider diameter [m]; the contact radius is half of it.
     axial_load : float or AxialLoadHistory or None
-        Compressive axial load N [N], constant or varying in time. None (the default) for a
-        bearing placed in a building, whose weight shared by its bearings is the load
-        (:class:`structures.isolated_building.IsolatedShearBuilding`); a bearing test needs one.
+        Compressive axial load N [N], constant or in time; a bearing test needs one. None for a
+        bearing in a building, which loads it with its share of the weight
+        (:class:`structures.isolated_building.IsolatedShearBuilding`).
     friction : FrictionModel
-        Friction model of the sliding surfaces (required): :class:`~isolator.friction.
-        ConstantFriction`, :class:`~isolator.friction.PTVFriction` or any object with
-        their ``bind``, ``name`` and ``initial_temperature``.
+        Friction model of the sliding surfaces (required): a ``ConstantFriction``, a
+        ``PTVFriction`` or any object with their ``bind``, ``name`` and ``initial_temperature``.
     yield_displacement : float
-        Yield displacement u_y of the return map [m]; default 0.5 mm.
+        Yield displacement u_y of the return map [m].
     displacement_capacity : float
-        Largest relative displacement of the plates [m] (a radius in the plane); sizes the
-        precise model's monitor points. Default 0.6 m.
-    restoring : str
-        Restoring force law: ``"linear"`` N u / R_eff (the paper's), or ``"spherical"``
-        N u / sqrt(R_eff^2 - u^2) (OpenSees FPBearingPTV's).
+        Largest relative displacement of the plates [m] (a radius in two directions); it sizes
+        the precise model's monitor points.
+    restoring : {"linear", "spherical"}
+        Restoring force law (see the module docstring).
     """
 
     effective_radius: float
@@ -247,25 +213,12 @@ class DCFPBearing:
 
 def beyond_capacity_message(displacement: float, time: float, capacity: float, *,
                             trial: bool = False, detail: str = "") -> str:
-    """The message of a run ended by a bearing beyond its displacement capacity.
-
-    One wording for every friction model and both engines, and for the check of the
-    committed steps (:func:`structures.results.response_dataset`).
-
-    Parameters
-    ----------
-    displacement : float
-        The isolator displacement that exceeded the capacity [m].
-    time : float
-        When [s].
-    capacity : float
-        The bearing's ``displacement_capacity`` [m].
-    trial : bool
-        The displacement is a trial of a step that could not be evaluated (the step was not
-        committed), not a committed one.
-    detail : str
-        What the model said, e.g. the precise model's monitor line.
-    """
+    """The message of a run ended by a bearing beyond its displacement capacity, one wording for
+    every friction model, both engines and the check of the committed steps
+    (:func:`structures.results.response_dataset`): the isolator ``displacement`` [m] at ``time``
+    [s] past the ``capacity`` [m], in a ``trial`` of a step that could not be evaluated (so not
+    committed) or in a committed step, with what the model said (``detail``, e.g. the precise
+    model's monitor line)."""
     where = " in a trial of the step" if trial else ""
     detail = f" ({detail[:1].lower()}{detail[1:].rstrip('.')})" if detail else ""
     return (f"Capacity exceeded: the isolator displacement reached {abs(displacement):.4g} m "
@@ -276,11 +229,11 @@ def beyond_capacity_message(displacement: float, time: float, capacity: float, *
 
 def trial_failure(bearing: DCFPBearing, displacement: float, time: float,
                   detail: str) -> CapacityExceeded:
-    """The error of a trial displacement [m] at ``time`` [s] the bearing's model cannot
-    evaluate (the slider off the monitor line, beyond the spherical law's radius): a
-    capacity failure when it is beyond the displacement capacity, else a ``"model"``
-    failure (the model's range is shorter than the capacity). ``detail`` says what the
-    model refused. Both engines raise or report it in these words."""
+    """The error of a trial displacement [m] at ``time`` [s] that the bearing's model cannot
+    evaluate (the slider off the monitor line, beyond the spherical law's radius; ``detail`` says
+    what the model refused): a capacity failure beyond the displacement capacity, else a
+    ``"model"`` failure (the model's range is shorter than the capacity). Both engines use these
+    words."""
     capacity = bearing.displacement_capacity
     if abs(displacement) > capacity:
         return CapacityExceeded(beyond_capacity_message(displacement, time, capacity,
@@ -300,7 +253,7 @@ def _pair(value: ArrayLike, name: str) -> tuple[float, float]:
 
 
 class BearingElement:
-    """Stateful DCFPB element: set_trial / commit / revert, in one or two directions.
+    """The DCFPB element in one or two directions, with set_trial / commit / revert.
 
     A trial is a pure function of the committed state and the trial arguments, so Newton
     iterations may call :meth:`set_trial` as often as they like.
@@ -308,12 +261,12 @@ class BearingElement:
     Parameters
     ----------
     bearing : DCFPBearing
-        The bearing's parameters (``displacement_capacity`` is a radius in two directions).
-    dimension : int
+        The bearing's parameters.
+    dimension : {1, 2}
         1: displacement, velocity and force are floats along x; 2: (x, y) vectors.
     grid_orientation : float or None
-        Orientation of the precise model's monitor grid in two directions [deg]; None (the
-        default) follows the motion (:class:`~isolator.monitor_grid.MonitorGrid`).
+        Orientation of the precise model's monitor grid in two directions [deg]; None follows the
+        motion (:class:`~isolator.monitor_grid.MonitorGrid`).
     """
 
     def __init__(self, bearing: DCFPBearing, dimension: int = 1,
@@ -389,23 +342,22 @@ class BearingElement:
 
     def set_trial(self, displacement: float | ArrayLike, velocity: float | ArrayLike,
                   time: float, axial_load: float | None = None) -> BearingTrial:
-        """Force and tangents at a trial displacement [m], velocity [m/s] and time [s].
+        """Force and tangents at a trial displacement [m], velocity [m/s] and time [s]: floats in
+        one direction, (x, y) pairs in two.
 
-        Displacement and velocity are floats for a bearing in one direction, (x, y) pairs for
-        one in two. ``axial_load`` [N], when given, is the compressive load of this trial
-        instead of the bearing's own (``DCFPBearing.axial_load_at(time)``): a building computes
-        it per bearing and per trial (gravity share, vertical motion, overturning). Zero or
-        negative is uplift: no contact, no force, no heat, and the plates cool. The tangents
-        are taken at fixed load.
+        ``axial_load`` [N], when given, replaces the bearing's own
+        (:meth:`DCFPBearing.axial_load_at`) for this trial: a building computes it per bearing
+        and per trial (gravity share, vertical motion, overturning). Zero or negative is uplift:
+        no contact, force or heat, and the plates cool. The tangents are taken at fixed load.
 
         Raises
         ------
         ValueError
             If ``time`` is before the last committed time, or a vector is not a finite pair.
         dcfpb.common.errors.CapacityExceeded
-            If the model cannot evaluate the displacement (the slider off the monitor points,
-            at the spherical law's radius); an integration ends there with ``success=False``
-            (:func:`trial_failure`).
+            If the model cannot evaluate the displacement (the slider off the monitor points, at
+            the spherical law's radius; :func:`trial_failure`); an integration ends there with
+            ``success=False``.
         """
         if self.dimension == 1:
             ux, uy, vx, vy = float(displacement), 0.0, float(velocity), 0.0

@@ -1,14 +1,12 @@
 """Per-cycle force-deflection characteristics of a bearing test (paper Section 3.1, Fig. 7).
 
-From a displacement and force history, each complete cycle gets Fmax, Fmin, the post-yield
-stiffnesses Kru and Krl (least squares), Kra (Eq. 9), the energy dissipated per cycle EDC (loop
-integral), Keff (Eq. 10) and beta_eff (Eq. 11), the ASCE 7-16 quantities of the bilinear loop.
-
-Cycles are found from the displacement alone (:func:`find_cycles`), never from an assumed
-period. A cycle runs from one upward crossing of the mid-level to the next. The crossing points
-are interpolated linearly between samples and both ends of a cycle are put exactly on the
-mid-level, so each loop is closed in displacement: EDC does not change when a constant is added
-to the force, and the EDCs of consecutive cycles add up to the integral over all of them.
+Each complete cycle of a displacement and force history gets Fmax, Fmin, the post-yield
+stiffnesses Kru and Krl (least squares) and Kra (Eq. 9), the energy dissipated per cycle EDC
+(loop integral), Keff (Eq. 10) and beta_eff (Eq. 11): the ASCE 7-16 quantities of the bilinear
+loop. Cycles are found from the displacement alone (:func:`find_cycles`), never from an assumed
+period, and each loop is closed in displacement (both ends interpolated onto the mid-level), so
+EDC does not change when a constant is added to the force, and the EDCs of consecutive cycles
+add up to the integral over all of them.
 
 References
 ----------
@@ -36,22 +34,19 @@ class CycleCharacteristics:
     cycle : int
         Number of the complete cycle in the history, from 1.
     start, stop : int
-        Samples ``[start, stop)`` of the cycle (see :func:`find_cycles`).
-    Dmax, Dmin : float
-        Largest and smallest displacement of the cycle [m].
-    Fmax, Fmin : float
-        Largest and smallest force of the cycle [N].
+        Samples ``[start, stop)`` of the cycle (:func:`find_cycles`).
+    Dmax, Dmin, Fmax, Fmin : float
+        Largest and smallest displacement [m] and force [N] of the cycle.
     Kru, Krl : float
-        Upper and lower post-yield stiffness, least-squares slopes of the branches moving in
+        Upper and lower post-yield stiffness, the least-squares slopes of the branches moving in
         +u and -u [N/m].
     Kra : float
         Average post-yield stiffness ``(|Kru| + |Krl|) / 2`` (Eq. 9) [N/m].
     EDC : float
         Energy dissipated per cycle, the loop integral of F du [J].
-    Keff : float
-        Effective stiffness (Eq. 10) [N/m].
-    beta_eff : float
-        Effective damping (Eq. 11) [-]; NaN when the force is constant over the cycle.
+    Keff, beta_eff : float
+        Effective stiffness (Eq. 10) [N/m] and effective damping (Eq. 11) [-], NaN when the force
+        is constant over the cycle.
     start_time, stop_time : float or None
         Times of the two upward crossings that bound the cycle [s], when a time was given.
     """
@@ -133,37 +128,36 @@ def find_cycles(
 ) -> list[tuple[int, int]]:
     """Complete displacement cycles, each from one upward crossing of the mid-level to the next.
 
-    An upward crossing at index i means ``u[i-1] < mid <= u[i]`` (the crossing point lies
-    between the two samples), or i = 0 when the history starts on the mid-level (to 1e-9 of the
-    largest excursion). To ignore noise, a crossing only bounds a cycle when the displacement
-    has left a band ``mid +- crossing_band * max|u - mid|`` downward before it and leaves it
-    upward after it; among several crossings in between, the last one is taken. A history that
-    ends on the mid-level, coming up from below, closes its last cycle there. A cycle counts
-    only if its positive and negative excursions from the mid-level are both at least
-    ``min_excursion`` times the larger of the two. The lead-in before the first crossing and an
-    incomplete last cycle are dropped (not reported). A pause on the mid-level reached from below
-    (a rest between the blocks of a sequence) belongs to the cycle that follows it.
+    An upward crossing at index i means ``u[i-1] < mid <= u[i]``, or i = 0 when the history
+    starts on the mid-level (to 1e-9 of the largest excursion). Against noise, a crossing bounds
+    a cycle only when the displacement has left the band ``mid +- crossing_band * max|u - mid|``
+    downward before it and leaves it upward after it (of several crossings in between, the last
+    one). A history that ends on the mid-level, coming up from below, closes its last cycle
+    there. A cycle counts only if its positive and negative excursions from the mid-level are
+    both at least ``min_excursion`` times the larger. The lead-in before the first crossing and
+    an incomplete last cycle are dropped; a pause on the mid-level reached from below (a rest
+    between the blocks of a sequence) belongs to the cycle that follows it.
 
     Parameters
     ----------
     displacement : array_like
         Displacement history [m].
     mid_level : float or "median"
-        Level whose upward crossings bound the cycles [m]; "median" takes the median of the
-        history (for a history with an offset).
+        Level whose upward crossings bound the cycles [m]; "median" takes the history's median
+        (for a history with an offset).
     crossing_band : float
-        Half-width of the noise band, as a fraction of the largest excursion of the whole
-        history [-], in [0, 1). Cycles smaller than the band are not found: analyse the blocks
-        of a sequence of very different amplitudes one by one.
+        Half-width of the noise band, a fraction in [0, 1) of the largest excursion of the whole
+        history [-]. Cycles smaller than the band are not found: analyse the blocks of a sequence
+        of very different amplitudes one by one.
     min_excursion : float
-        Smallest ratio of the smaller to the larger excursion of a cycle [-], in [0, 1].
+        Smallest ratio of the smaller to the larger excursion of a cycle, in [0, 1] [-].
 
     Returns
     -------
     list of (int, int)
-        ``(start, stop)`` per cycle: the samples ``u[start:stop]`` lie inside the cycle, the
-        cycle's opening crossing lies just before ``start`` (or on it) and its closing crossing
-        between ``stop - 1`` and ``stop``. Consecutive cycles share a bound (stop == next start).
+        ``(start, stop)`` per cycle: the samples ``u[start:stop]`` lie inside the cycle, its
+        opening crossing just before ``start`` (or on it) and its closing crossing between
+        ``stop - 1`` and ``stop``; consecutive cycles share a bound (stop == next start).
     """
     owner = "find_cycles"
     u = check_array(displacement, "displacement", owner, min_length=2)
@@ -220,36 +214,27 @@ def cycle_characteristics(
 
     Parameters
     ----------
-    displacement : array_like
-        Displacement history u [m].
-    force : array_like
-        Horizontal force history F [N], same length.
+    displacement, force : array_like
+        Displacement u [m] and horizontal force F [N] histories of one length.
     time : array_like or None
-        Sample times [s], strictly increasing; only used for the cycles' start and stop times.
+        Strictly increasing sample times [s], for the cycles' start and stop times only.
     mid_level, crossing_band, min_excursion
-        How cycles are found, see :func:`find_cycles`.
+        How cycles are found (:func:`find_cycles`).
     transition_fraction : float
-        Part of the stroke ``s = Dmax - Dmin`` left out of the least-squares fits at each end
-        of a branch [-], in [0, 0.5): the fits use the samples with
-        ``Dmin + f s <= u <= Dmax - f s``. This drops the transition just after each reversal
-        (elastic unloading, friction breakaway) and the samples next to a reversal, which
-        cannot be told apart from the other branch without the velocity.
-
-    Returns
-    -------
-    list of CycleCharacteristics
+        Part f in [0, 0.5) of the stroke ``s = Dmax - Dmin`` left out of the least-squares fits
+        at each end of a branch [-]: the fits use the samples with ``Dmin + f s <= u <= Dmax - f
+        s``. This drops the transition after each reversal (elastic unloading, friction
+        breakaway) and the samples next to a reversal, which cannot be told from the other branch
+        without the velocity.
 
     Notes
     -----
-    Branches: within a cycle (which starts moving up), the samples before the largest
-    displacement and after the smallest form the upper branch (moving in +u), those between form
-    the lower branch (moving in -u). EDC is the trapezoid integral of F du around the loop from
-    the opening to the closing crossing point (both interpolated, at the mid-level); it is
-    positive for a dissipative loop (force higher on the way up than on the way down). Dmax, Dmin,
-    Fmax and Fmin are taken over the samples of the cycle. Eq. (10)-(11) use
-    ``|Dmax| + |Dmin|`` and ``|Fmax| + |Fmin|``, written for loops around the origin; the
-    peak-to-peak values ``Dmax - Dmin`` and ``Fmax - Fmin`` used here equal them there and do
-    not change with an offset of the displacement or the force.
+    Within a cycle (which starts moving up) the samples before the largest displacement and after
+    the smallest form the upper branch (moving in +u), the samples between them the lower one.
+    EDC is positive for a dissipative loop (force higher on the way up than on the way down).
+    Eq. (10)-(11) use ``|Dmax| + |Dmin|`` and ``|Fmax| + |Fmin|``, written for loops around the
+    origin; the peak-to-peak ``Dmax - Dmin`` and ``Fmax - Fmin`` used here equal them there and
+    do not change with an offset of the displacement or the force.
 
     Raises
     ------

@@ -1,6 +1,5 @@
-"""Ready-made bearings for the paper's test set-up: one place that maps the model names
-``precise``, ``simplified`` and ``constant`` onto friction models and a bearing.
-"""
+"""Ready-made bearings for the paper's test set-up: the model names ``precise``, ``simplified``
+and ``constant`` mapped onto friction models and a bearing, in one place."""
 
 from __future__ import annotations
 
@@ -29,18 +28,17 @@ def friction_model(
 
     Parameters
     ----------
-    model : str
-        ``"precise"`` (Eq. 7 with a monitor line), ``"simplified"`` (Eq. 7 with one centre
-        point and refinement lambda) or ``"constant"`` (Eq. 8).
+    model : {"precise", "simplified", "constant"}
+        Eq. 7 with a monitor line, Eq. 7 with one centre point of refinement lambda, or Eq. 8.
     slider_diameter : float
-        Slider diameter [m] (selects the constant model's mu_0: 0.041 for 300 mm, 0.038 for
-        400 mm, unless ``mu0`` is given).
+        Slider diameter [m]; it selects the constant model's mu_0 (0.041 for 300 mm, 0.038 for
+        400 mm) unless ``mu0`` is given.
     design_pressure, design_velocity : float
         sigma_d [Pa] and v_d [m/s] of the constant model (Eq. 8).
     refinement : float
         lambda of the simplified model [-].
     mu0, mu_t0 : float
-        Reference friction coefficients of the constant and of the other models [-].
+        Reference friction coefficients of the constant model and of the others [-].
     initial_temperature : float
         T_0 [degC].
     """

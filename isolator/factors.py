@@ -1,22 +1,12 @@
 """Dependency factors of the friction coefficient on pressure, velocity and temperature.
 
-Two sets are provided, selectable by name with :func:`factor_set`:
-
-``"paper"``
-    The SSB paper's equations (Nishimoto et al. 2016; Nakamura et al. 2015), Eq. 1-3:
-    gamma(sigma) = 2.03 sigma^-0.19 + 0.068 with sigma in N/mm^2,
-    alpha(v) = 1 - 0.55 exp(-0.019 v) with v in mm/s,
-    beta(T) = 1.13 exp(-0.007 T) with T in degC.
-``"kumar"``
-    Kumar, Whittaker & Constantinou (2015), as used by OpenSees ``FPBearingPTV``:
-    kp = 0.7^((p - p_ref) / 50 MPa), kT = 0.789 (0.7^(T / 50 degC) + 0.4),
-    kv = 1 - 0.5 exp(-a v) with a the rate parameter [s/m].
-
-All public arguments are SI (Pa, m/s, degC). The paper's equations are in N/mm^2 and mm/s;
-the conversion happens here, at their own door, and nowhere else. Every factor method returns
-``(value, derivative)`` with the derivative taken with respect to the SI argument, so a friction
-model can build a consistent tangent. Velocity factors depend on the speed ``|v|``; their
-derivative is with respect to the speed.
+Two sets, chosen by name with :func:`factor_set`: ``"paper"``, the SSB paper's Eq. 1-3
+(Nishimoto et al. 2016; Nakamura et al. 2015), and ``"kumar"``, Kumar, Whittaker & Constantinou
+(2015) as in OpenSees ``FPBearingPTV``. Arguments are SI (Pa, m/s, degC); the paper's equations,
+in N/mm^2 and mm/s, are converted here and nowhere else. Every factor returns
+``(value, derivative)``, the derivative with respect to the SI argument (for velocity, the
+speed |v|), so that a friction model can build a consistent tangent. The ``*_raw`` kernels take
+floats or arrays and compile with numba.
 """
 
 from __future__ import annotations
@@ -51,56 +41,45 @@ class FactorSet(Protocol):
 
 
 def paper_pressure_raw(pressure):
-    """Eq. 1 on a float or an array in Pa: (gamma, d gamma / d p [1/Pa]). Compilable."""
+    """Eq. 1 on a pressure [Pa]: (gamma, d gamma / d p [1/Pa])."""
     sigma = pressure / PA_PER_N_PER_MM2
     power = 2.03 * sigma**-0.19
     return power + 0.068, -0.19 * power / sigma / PA_PER_N_PER_MM2  # Eq. 1
 
 
 def paper_velocity_raw(speed):
-    """Eq. 2 on a speed in m/s: (alpha, d alpha / d|v| [s/m]). Compilable."""
+    """Eq. 2 on a speed [m/s]: (alpha, d alpha / d|v| [s/m])."""
     decay = 0.55 * np.exp(-0.019 * MM_PER_M * speed)
     return 1.0 - decay, 0.019 * MM_PER_M * decay  # Eq. 2
 
 
 def paper_temperature_raw(temperature):
-    """Eq. 3 on a temperature in degC: (beta, d beta / d T [1/degC]). Compilable."""
+    """Eq. 3 on a temperature [degC]: (beta, d beta / d T [1/degC])."""
     beta = 1.13 * np.exp(-0.007 * temperature)
     return beta, -0.007 * beta  # Eq. 3
 
 
 def kumar_pressure_raw(pressure, reference_pressure):
-    """kp = 0.7^((p - p_ref) / 50 MPa) and its derivative [1/Pa]. Compilable."""
+    """kp = 0.7^((p - p_ref) / 50 MPa) and its derivative [1/Pa], p and p_ref in [Pa]."""
     kp = np.exp(np.log(0.7) * (pressure - reference_pressure) / 50.0e6)
     return kp, kp * np.log(0.7) / 50.0e6
 
 
 def kumar_velocity_raw(speed, rate_parameter):
-    """kv = 1 - 0.5 exp(-a |v|) and its derivative [s/m]. Compilable."""
+    """kv = 1 - 0.5 exp(-a |v|) and its derivative [s/m], |v| in [m/s] and a in [s/m]."""
     decay = 0.5 * np.exp(-rate_parameter * speed)
     return 1.0 - decay, rate_parameter * decay
 
 
 def kumar_temperature_raw(temperature):
-    """kT = 0.789 (0.7^(T / 50) + 0.4) and its derivative [1/degC]. Compilable."""
+    """kT = 0.789 (0.7^(T / 50) + 0.4) and its derivative [1/degC], T in [degC]."""
     power = np.exp(np.log(0.7) * temperature / 50.0)
     return 0.789 * (power + 0.4), 0.789 * power * np.log(0.7) / 50.0
 
 
 def paper_pressure_factor(pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
-    """Pressure dependency factor gamma of the paper, Eq. 1.
-
-    Parameters
-    ----------
-    pressure : float or ndarray
-        Bearing stress sigma at the contact area [Pa]; must be positive.
-
-    Returns
-    -------
-    gamma : float or ndarray
-        Factor [-], 1.0004 at 60 N/mm^2.
-    dgamma_dp : float or ndarray
-        Derivative with respect to the pressure [1/Pa].
+    """Pressure factor gamma [-] of Eq. 1 and its derivative [1/Pa] at a contact pressure > 0
+    [Pa] (float or array); gamma = 1.0004 at 60 N/mm^2.
 
     References
     ----------
@@ -111,19 +90,8 @@ def paper_pressure_factor(pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
 
 
 def paper_velocity_factor(speed: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
-    """Velocity dependency factor alpha of the paper, Eq. 2.
-
-    Parameters
-    ----------
-    speed : float or ndarray
-        Relative sliding speed of the two concave plates |v| [m/s].
-
-    Returns
-    -------
-    alpha : float or ndarray
-        Factor [-]: 0.45 at rest, 0.9997 at 400 mm/s.
-    dalpha_dv : float or ndarray
-        Derivative with respect to the speed [s/m].
+    """Velocity factor alpha [-] of Eq. 2 and its derivative [s/m] at a sliding speed |v| of the
+    plates [m/s] (float or array); alpha = 0.45 at rest, 0.9997 at 400 mm/s.
 
     References
     ----------
@@ -134,19 +102,8 @@ def paper_velocity_factor(speed: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
 
 
 def paper_temperature_factor(temperature: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
-    """Temperature dependency factor beta of the paper, Eq. 3.
-
-    Parameters
-    ----------
-    temperature : float or ndarray
-        Temperature of the contact area [degC].
-
-    Returns
-    -------
-    beta : float or ndarray
-        Factor [-]. Note that Eq. 3 as published gives 0.982 (not exactly 1) at 20 degC.
-    dbeta_dT : float or ndarray
-        Derivative [1/degC].
+    """Temperature factor beta [-] of Eq. 3 and its derivative [1/degC] at a contact temperature
+    [degC] (float or array); Eq. 3 as published gives 0.982, not 1, at 20 degC.
 
     References
     ----------
@@ -231,19 +188,13 @@ FACTOR_SETS = {"paper": PaperFactors, "kumar": KumarFactors}
 
 
 def factor_set(name: str, **parameters: float) -> PaperFactors | KumarFactors:
-    """Return the factor set called ``name`` (``"paper"`` or ``"kumar"``).
-
-    Parameters
-    ----------
-    name : str
-        ``"paper"`` (Eq. 1-3) or ``"kumar"`` (OpenSees FPBearingPTV).
-    **parameters
-        Passed to the set (e.g. ``reference_pressure``, ``rate_parameter`` for Kumar).
-    """
+    """The factor set called ``name``, ``"paper"`` (Eq. 1-3) or ``"kumar"`` (OpenSees
+    FPBearingPTV), made with ``parameters`` (Kumar's ``reference_pressure`` [Pa] and
+    ``rate_parameter`` [s/m])."""
     check_choice(name, "name", "factor_set", tuple(FACTOR_SETS))
     return FACTOR_SETS[name](**parameters)
 
 
 def _scalar(x: np.ndarray) -> ArrayLike:
-    """Return a Python float for 0-d arrays so scalar callers stay scalar."""
+    """A Python float for a 0-d array, so that scalar callers stay scalar."""
     return float(x) if np.ndim(x) == 0 else x

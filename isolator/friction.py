@@ -1,28 +1,17 @@
-"""Friction models of the sliding surfaces: a strategy the bearing element asks for mu.
+"""Friction models of the sliding surfaces: the strategy a bearing element asks for mu.
 
-``ConstantFriction``
-    The paper's constant model (Eq. 8): mu_c = mu_0 gamma(sigma_d) alpha(v_d) beta(T_0).
-``PTVFriction``
-    The precise and simplified models (Eq. 7): mu_t = mu_t0 gamma(p) alpha(|v|) beta(T), with
-    the contact temperature T from a layout of monitor points (:class:`~isolator.heating.
-    MonitorLine` for the precise model, :class:`~isolator.heating.CentrePoint` for the
-    simplified one) and a factor set (the paper's Eq. 1-3 or Kumar's).
+:class:`ConstantFriction` is the paper's constant model (Eq. 8), :class:`PTVFriction` its
+precise and simplified models (Eq. 7, the contact temperature from monitor points, Eq. 4-6).
+A model is frozen parameters; its ``bind`` gives the evaluator (:class:`FrictionState`) of one
+bearing in one or two directions, as an OpenSees ``FrictionModel`` serves its element. The
+evaluator keeps the element contract: ``trial`` is a pure function of the committed history and
+the trial, ``commit`` accepts the last trial (and only then adds its heat), ``revert`` forgets
+it, and ``lifted`` is the trial of a slider out of contact.
 
-A model is a frozen parameter object with a ``name``, an ``initial_temperature`` [degC] and
-``scaled(factor)`` (the model with its friction coefficient times a factor); :meth:`bind`
-gives the stateful evaluator for one bearing geometry (contact radius, travel)
-in one or two horizontal dimensions, as an OpenSees ``FrictionModel`` serves its bearing. An
-evaluator (:class:`FrictionState`) keeps the element contract: ``trial(position, velocity,
-pressure, dt) -> Friction`` (vectors as (x, y) pairs; a one-dimensional bearing moves along x)
-is a pure function of the committed history and the trial, ``commit()`` accepts the last trial
-(and only then adds its heat), ``revert()`` forgets it, and ``lifted(position, dt)`` is the
-trial of a slider out of contact: no friction and no heat, while the plates cool over the
-step as under a slider at rest. Eq. 7 and 8 take the speed |v|; the element forms the
-gradient d mu / d v = d mu / d|v| v / |v|.
-
-The newest interval's flux enters the current temperature, q_n = mu_n p |v| / surfaces, so
-mu_n solves the scalar equation mu = mu_t0 gamma alpha beta(T_base + b q(mu)) by Newton's
-method, and d mu / d|v| includes that coupling (it is negative on a hot plate at speed).
+Eq. 7 and 8 take the speed |v|; the element forms d mu / d v = d mu / d|v| v / |v|. The newest
+interval's flux q_n = mu_n p |v| / surfaces enters the current temperature, so mu_n solves
+mu = mu_t0 gamma alpha beta(T_base + b q(mu)) by Newton's method, and d mu / d|v| includes that
+coupling (it is negative on a hot plate at speed).
 """
 
 from __future__ import annotations
@@ -57,19 +46,10 @@ REFERENCE_VELOCITY = 0.4  # [m/s] 400 mm/s
 
 
 class Friction(NamedTuple):
-    """Friction coefficient of a trial state and what the element needs besides.
-
-    Attributes
-    ----------
-    mu : float
-        Friction coefficient [-].
-    dmu_dspeed : float
-        Derivative of mu with respect to the sliding speed |v| [s/m].
-    temperature : float
-        Contact temperature [degC] (the initial temperature for models without heating).
-    heat_flux : float
-        Heat flux into each sliding surface over the trial step [W/m^2].
-    """
+    """A trial's friction: the coefficient ``mu`` [-], its derivative ``dmu_dspeed`` with respect
+    to the sliding speed |v| [s/m], the contact ``temperature`` [degC] (the initial one for a
+    model without heating) and the ``heat_flux`` into each sliding surface over the trial step
+    [W/m^2]."""
 
     mu: float
     dmu_dspeed: float
@@ -81,13 +61,14 @@ class FrictionState(Protocol):
     """A bound friction model with trial / commit / revert (see the module docstring)."""
 
     def trial(self, position: Pair, velocity: Pair, pressure: float, dt: float) -> Friction:
-        """Friction at a trial relative displacement [m] and velocity [m/s] of the plates,
-        contact pressure [Pa] and step since the last commit [s]."""
+        """Friction at a trial relative displacement [m] and velocity [m/s] of the plates ((x, y)
+        pairs; along x in one direction), contact pressure [Pa] and step since the last commit
+        [s]."""
         ...
 
     def lifted(self, position: Pair, dt: float) -> Friction:
-        """The trial of a slider out of contact at ``position`` [m] for ``dt`` [s]: mu = 0,
-        no heat flux, the contact temperature after the plates cooled over ``dt``."""
+        """The trial of a slider out of contact at ``position`` [m] for ``dt`` [s]: mu = 0, no
+        heat flux, the contact temperature of the plates cooled over ``dt``."""
         ...
 
     def commit(self) -> None:
@@ -99,8 +80,8 @@ class FrictionState(Protocol):
         ...
 
     def temperature_field(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """Positions (m, 2) [m] on a plate and temperatures (m,) [degC] of the monitor
-        points after the last commit; None for a model without a field of them."""
+        """Positions (m, 2) [m] on a plate and temperatures (m,) [degC] of the monitor points
+        after the last commit; None for a model without a field of them."""
         ...
 
 
@@ -143,16 +124,14 @@ class ConstantFriction:
     Parameters
     ----------
     mu0 : float
-        Reference friction coefficient mu_0 [-] at 60 N/mm^2 and 400 mm/s: 0.041 for a
-        300 mm slider, 0.038 for a 400 mm slider (see :meth:`for_slider`).
-    design_pressure : float
-        Design pressure sigma_d [Pa]; default 60 MPa.
-    design_velocity : float
-        Design maximum velocity v_d [m/s]; default 0.4.
+        Friction coefficient mu_0 at 60 N/mm^2 and 400 mm/s [-]: 0.041 for a 300 mm slider, 0.038
+        for a 400 mm one (:meth:`for_slider`).
+    design_pressure, design_velocity : float
+        Design pressure sigma_d [Pa] and design maximum velocity v_d [m/s].
     initial_temperature : float
-        Initial temperature T_0 [degC]; default 20.
-    factors : str
-        Factor set used for Eq. 8, ``"paper"`` by default.
+        T_0 [degC].
+    factors : {"paper", "kumar"}
+        The factor set of Eq. 8.
     """
 
     mu0: float = 0.041
@@ -172,10 +151,8 @@ class ConstantFriction:
 
     @classmethod
     def for_slider(cls, slider_diameter: float, **kwargs: float) -> ConstantFriction:
-        """The paper's mu_0 for a 300 mm (0.041) or 400 mm (0.038) slider.
-
-        Other diameters take the nearer of the two; pass ``mu0`` to override.
-        """
+        """The paper's mu_0 for a 300 mm (0.041) or 400 mm (0.038) slider, the nearer of the two
+        for another diameter [m]; ``mu0`` in ``kwargs`` overrides it."""
         check_real(slider_diameter, "slider_diameter", cls.__name__, low=0.0, low_open=True)
         mu0 = 0.041 if slider_diameter < 0.35 else 0.038
         return cls(**{"mu0": mu0, **kwargs})
@@ -212,7 +189,7 @@ class ConstantFrictionState:
         self._friction = Friction(mu, 0.0, temperature, 0.0)
 
     def trial(self, position: Pair, velocity: Pair, pressure: float, dt: float) -> Friction:
-        """The constant mu; heat flux is not tracked."""
+        """The constant mu, without heat flux."""
         return self._friction
 
     def lifted(self, position: Pair, dt: float) -> Friction:
@@ -239,31 +216,23 @@ def eq7(
     factors: PaperFactors | KumarFactors,
     dependencies: tuple[str, ...] = DEPENDENCIES,
 ) -> np.ndarray:
-    """Eq. 7 as written in the paper, in plain numpy: mu_t = mu_t0 gamma(p) alpha(v) beta(T).
+    """Eq. 7 in plain numpy: mu_t = mu_t0 gamma(p) alpha(|v|) beta(T) [-], broadcast over the
+    inputs.
 
-    The readable reference of the compiled kernels (:func:`isolator.compiled.kernels.ptv_friction`
-    solves the same law with the contact temperature depending on mu through the newest flux;
-    ``tests/verification/test_friction_reference.py`` holds them to this function).
+    The readable reference of :func:`isolator.compiled.kernels.ptv_friction`, which solves the
+    same law with the contact temperature depending on mu through the newest flux
+    (``tests/verification/test_friction_reference.py``).
 
     Parameters
     ----------
-    pressure : array_like
-        Contact pressure p [Pa].
-    speed : array_like
-        Sliding speed |v| [m/s].
-    temperature : array_like
-        Contact temperature T [degC].
+    pressure, speed, temperature : array_like
+        Contact pressure p [Pa], sliding speed |v| [m/s] and contact temperature T [degC].
     mu_t0 : float
         Friction coefficient at the reference condition [-].
     factors : PaperFactors or KumarFactors
         The dependency factors gamma, alpha and beta (Eq. 1-3).
     dependencies : tuple of str
         The active dependencies; a factor left out is 1.
-
-    Returns
-    -------
-    numpy.ndarray
-        mu_t [-], broadcast over the inputs.
     """
     pressure, speed, temperature = np.broadcast_arrays(
         np.asarray(pressure, dtype=float), np.abs(np.asarray(speed, dtype=float)),
@@ -285,24 +254,22 @@ class PTVFriction:
     Parameters
     ----------
     mu_t0 : float
-        Friction coefficient at 60 N/mm^2, 400 mm/s and 20 degC [-]; default 0.075.
+        Friction coefficient at 60 N/mm^2, 400 mm/s and 20 degC [-].
     heating : MonitorLine, CentrePoint or None
-        Monitor points for the contact temperature: ``MonitorLine()`` is the precise model,
-        ``CentrePoint(refinement=0.5)`` the simplified one. None disables heating.
-    factors : PaperFactors or KumarFactors or str
-        Dependency factor set; ``"paper"`` (Eq. 1-3) by default.
+        Monitor points of the contact temperature: ``MonitorLine()`` for the precise model,
+        ``CentrePoint(refinement=0.5)`` for the simplified one; None for no heating.
+    factors : PaperFactors, KumarFactors or {"paper", "kumar"}
+        Dependency factors; ``"paper"`` is Eq. 1-3.
     dependencies : tuple of str
-        Which of ``"pressure"``, ``"velocity"``, ``"temperature"`` act; all by default.
+        Which of ``"pressure"``, ``"velocity"``, ``"temperature"`` act.
     thermal : ThermalProperties
         Conductivity, diffusivity and initial temperature of the plates.
-    surfaces : int
-        Sliding surfaces sharing the relative displacement: 2 for a DCFPB (the slider travels
-        u/2 over each plate and each takes q = mu p v / 2), 1 for a single concave bearing.
-    kernel_min_lag, kernel_max_lag : float
-        Range of time lags over which the heating kernel holds [s]: steps down to 1e-6 s and
-        histories up to 1e4 s (2.8 h) by default.
-    kernel_tolerance : float
-        Largest relative error of the heating kernel on that range [-]; default 1e-7.
+    surfaces : {1, 2}
+        Sliding surfaces sharing the relative displacement: 2 for a DCFPB (the slider travels u/2
+        over each plate and each takes q = mu p v / 2), 1 for a single concave bearing.
+    kernel_min_lag, kernel_max_lag, kernel_tolerance : float
+        Time lags [s] over which the heating kernel holds (by default steps down to 1e-6 s,
+        histories up to 1e4 s) and its largest relative error there [-].
     """
 
     mu_t0: float = 0.075
@@ -363,23 +330,19 @@ class PTVFriction:
 
     def bind(self, contact_radius: float, travel: float, dimension: int = 1,
              orientation: float | None = None) -> PTVFrictionState:
-        """The stateful evaluator for a slider of ``contact_radius`` [m].
-
-        ``travel`` [m] is the largest relative displacement of the plates the monitor points
-        must cover; ``dimension`` 1 (a bearing moving along x: the precise model's monitor
-        line) or 2 (in the plane: the precise model's monitor grid, its first axis at
-        ``orientation`` [deg] from x, None following the motion).
-        """
+        """The evaluator for a slider of ``contact_radius`` [m] whose plates move up to
+        ``travel`` [m] apart, in ``dimension`` 1 (along x; the precise model's monitor line) or 2
+        (the precise model's monitor grid, its first axis at ``orientation`` [deg] from x, None
+        following the motion)."""
         return PTVFrictionState(self, contact_radius, travel, dimension, orientation)
 
 
 class PTVFrictionState:
     """Evaluator of :class:`PTVFriction` for one bearing (see the module docstring).
 
-    The contact temperature comes from the model's layout of monitor points on each plate:
-    the centre point (simplified model) in any dimension; the precise model's line along x for
-    a bearing in one dimension and its grid over the plate for a bearing in two
-    (:class:`~isolator.monitor_grid.GridHeating`). Both are driven through the same two calls,
+    The contact temperature comes from the monitor points on each plate: the centre point
+    (simplified model), the precise model's line along x in one direction or its grid over the
+    plate in two (:class:`~isolator.monitor_grid.GridHeating`), all driven through
     ``friction_trial`` (Eq. 7 solved with the newest interval's flux) and ``commit_trial``.
     """
 
@@ -415,9 +378,9 @@ class PTVFrictionState:
         self._pending: tuple[float, float] | None = None
 
     def trial(self, position: Pair, velocity: Pair, pressure: float, dt: float) -> Friction:
-        """Friction at a trial relative displacement [m] and velocity [m/s] of the plates
-        ((x, y) pairs), contact pressure p = N / (pi r^2) [Pa] and step since the last
-        commit [s]. The slider sits at ``position`` / surfaces on each plate."""
+        """Friction at a trial relative displacement [m] and velocity [m/s] of the plates ((x, y)
+        pairs), contact pressure p = N / (pi r^2) [Pa] and step since the last commit [s]; the
+        slider sits at ``position`` / surfaces on each plate."""
         speed = speed_of(velocity)
         heating = self.heating
         self._pending = None
@@ -434,12 +397,11 @@ class PTVFrictionState:
         return Friction(mu, dmu_dspeed, temperature, flux)
 
     def lifted(self, position: Pair, dt: float) -> Friction:
-        """Out of contact at ``position`` [m] for ``dt`` [s]: mu = 0 and no heat flux; the
-        step is staged with zero flux, so the commit advances the heat history by ``dt`` and
-        the plates cool as under a slider at rest (the contact temperature returned is theirs
-        under ``position``). Evaluated as the trial at zero speed, where the flux mu p |v| is
-        zero whatever mu and the temperature does not depend on the pressure, which is
-        therefore taken as the reference one."""
+        """Out of contact at ``position`` [m] for ``dt`` [s]: mu = 0 and no heat flux. The step
+        is staged with zero flux, so the commit advances the heat history by ``dt`` and the
+        plates cool as under a slider at rest; the temperature returned is theirs under
+        ``position``, from the trial at zero speed (no flux whatever mu, a temperature
+        independent of the pressure: the reference one serves)."""
         friction = self.trial(position, (0.0, 0.0), REFERENCE_PRESSURE, dt)
         if self._pending is not None:
             self._pending = (self._pending[0], 0.0)
@@ -456,6 +418,6 @@ class PTVFrictionState:
         self._pending = None
 
     def temperature_field(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """The monitor points' positions (m, 2) [m] on a plate and temperatures (m,) [degC]
-        after the last commit: the precise model's line or grid (None for the others)."""
+        """The precise model's monitor points on a plate, positions (m, 2) [m] and temperatures
+        (m,) [degC], after the last commit (None for the other models)."""
         return None if self.heating is None else self.heating.temperature_field()

@@ -5,18 +5,16 @@ The temperature rise at a point of the surface under a heat flux history q(t) is
     dT(t) = c * integral_0^t q(t - tau) / sqrt(tau) dtau,    c = sqrt(D) / (k sqrt(pi)),
 
 with k the thermal conductivity and D the diffusivity. A point takes the flux while the slider
-covers it (Eq. 5: distance from the slider centre at most sqrt(pi) r / 2, the half side of the
-square of equal area; Eq. 6: at most lambda r for the refined centre point).
+covers it: within sqrt(pi) r / 2 of the slider centre, the half side of the square of equal area
+(Eq. 5), or within lambda r for the refined centre point (Eq. 6).
 
-The flux is piecewise constant over the time steps. The newest interval's contribution is
-integrated exactly, 2 c q_n sqrt(dt_n); the older history is carried by a sum of exponentials
+The flux is piecewise constant over the time steps. The newest interval is integrated exactly,
+2 c q_n sqrt(dt_n); the older history is carried by a sum of exponentials
 1/sqrt(tau) ~ sum_k w_k exp(-s_k tau), valid for lags from ``min_lag`` to ``max_lag``, whose
-states obey an exact one-step recursion for any step size. The cost is O(1) per step and per
-monitor point, never a re-summation of the history (Jiang, Zhang, Zhang & Zhang 2017,
-Commun. Comput. Phys. 21; Beylkin & Monzon 2005).
-
-State lives inside trial / commit / revert: :meth:`SurfaceHeating.trial` never changes it,
-:meth:`SurfaceHeating.commit` adds one interval, and an uncommitted trial is simply dropped.
+states obey an exact one-step recursion for any step: O(1) per step and monitor point, never a
+re-summation of the history (Jiang, Zhang, Zhang & Zhang 2017, Commun. Comput. Phys. 21;
+Beylkin & Monzon 2005). A trial never changes the state, a commit adds one interval, and an
+uncommitted trial is simply dropped.
 """
 
 from __future__ import annotations
@@ -70,19 +68,9 @@ class ThermalProperties:
 
 @dataclass(frozen=True)
 class SumOfExponentials:
-    """1/sqrt(tau) ~ sum_k weights_k exp(-rates_k tau) for min_lag <= tau <= max_lag.
-
-    Attributes
-    ----------
-    rates : ndarray
-        Decay rates s_k [1/s].
-    weights : ndarray
-        Non-negative weights w_k [s^-0.5].
-    min_lag, max_lag : float
-        Range of lags over which the relative error is at most ``tolerance`` [s].
-    tolerance : float
-        Maximum relative error of the kernel on that range (checked on a dense grid) [-].
-    """
+    """1/sqrt(tau) ~ sum_k weights_k exp(-rates_k tau) [s^-0.5]: decay rates s_k [1/s] and
+    non-negative weights w_k [s^-0.5], within the relative ``tolerance`` [-] (checked on a dense
+    grid) for lags from ``min_lag`` to ``max_lag`` [s]."""
 
     rates: np.ndarray = field(repr=False)
     weights: np.ndarray = field(repr=False)
@@ -91,7 +79,7 @@ class SumOfExponentials:
     tolerance: float
 
     def __call__(self, lag: np.ndarray) -> np.ndarray:
-        """Evaluate the approximation of 1/sqrt(lag) [s^-0.5]."""
+        """The approximation of 1/sqrt(lag) [s^-0.5] at ``lag`` [s]."""
         lag = np.asarray(lag, dtype=float)
         return np.exp(-np.multiply.outer(lag, self.rates)) @ self.weights
 
@@ -106,28 +94,18 @@ class SumOfExponentials:
 def sum_of_exponentials(
     min_lag: float = 1.0e-6, max_lag: float = 1.0e4, tolerance: float = 1.0e-7
 ) -> SumOfExponentials:
-    """Build a sum-of-exponentials approximation of the kernel 1/sqrt(tau).
+    """The sum of exponentials within the relative ``tolerance`` [-] of 1/sqrt(tau) for lags from
+    ``min_lag`` to ``max_lag`` [s].
 
     The rates are geometric from 0.1 / max_lag to 10 / min_lag and the weights are fitted by
-    non-negative least squares to the relative error on a logarithmic grid; the number of terms
-    grows until the maximum relative error on a grid ten times denser is below ``tolerance``.
-    About 50 terms give 4e-8 over ten decades of lag (the default, 1 us to 1e4 s).
-
-    Parameters
-    ----------
-    min_lag, max_lag : float
-        Range of lags [s] over which the approximation must hold.
-    tolerance : float
-        Maximum relative error [-].
-
-    Returns
-    -------
-    SumOfExponentials
+    non-negative least squares to the relative error on a logarithmic grid; terms are added until
+    the largest relative error on a grid ten times denser is within ``tolerance``. About 50 terms
+    reach 4e-8 over the default ten decades of lag (1 us to 1e4 s).
 
     Raises
     ------
     ValueError
-        For a bad range or tolerance, or when no fit with at most 200 terms reaches it.
+        For a bad range or tolerance, or when 200 terms do not reach it.
     """
     from scipy.optimize import nnls  # here: a process that only compiles never pays for it
 
@@ -159,19 +137,13 @@ def sum_of_exponentials(
 
 @dataclass(frozen=True)
 class MonitorLine:
-    """The precise model's monitor points: a line along the sliding direction (Fig. 3a).
+    """The precise model's monitor points: a line through the plate centre along the sliding
+    direction (Fig. 3a), a point every ``spacing`` [m] (the paper's 5 mm).
 
-    Points every ``spacing`` along the plate through its centre. A point takes the flux while
-    its distance from the slider centre is at most sqrt(pi) r / 2 (Eq. 5) and the contact
+    A point takes the flux while within sqrt(pi) r / 2 of the slider centre (Eq. 5); the contact
     temperature is the mean over the points inside that half side of the equal-area square.
-
-    Parameters
-    ----------
-    spacing : float
-        Distance between monitor points [m]; default 0.005 (5 mm, the paper's).
-    half_length : float or None
-        Half length of the line [m], measured on the plate from its centre. None: the bearing
-        sizes it to cover the slider's whole path at its displacement capacity.
+    ``half_length`` [m] is measured on the plate from its centre; None sizes the line to cover
+    the slider's path at the bearing's displacement capacity.
     """
 
     spacing: float = 0.005
@@ -202,14 +174,9 @@ class MonitorLine:
 class CentrePoint:
     """The simplified model's single monitor point at the plate centre (Fig. 3b, 3c).
 
-    The point takes the flux while the slider centre is within ``refinement`` x r of it
-    (Eq. 6) and its temperature is the contact temperature at all times.
-
-    Parameters
-    ----------
-    refinement : float
-        Refinement factor lambda [-]; default 0.5 (the paper's refined simplified model);
-        sqrt(pi)/2 = 0.886 reproduces Kumar's unrefined centre point (Eq. 5 at one point).
+    It takes the flux while the slider centre is within lambda r of it (Eq. 6), lambda the
+    ``refinement`` [-]: 0.5 is the paper's refined simplified model, sqrt(pi)/2 = 0.886 Kumar's
+    unrefined centre point (Eq. 5 at one point). Its temperature is the contact temperature.
     """
 
     refinement: float = 0.5
@@ -248,21 +215,10 @@ def step_factors(rates, weights, coefficient, dt, step, weighted_decay):
 
 
 class SurfaceHeating:
-    """Temperature of one sliding surface under a moving slider; trial / commit / revert.
-
-    Parameters
-    ----------
-    layout : MonitorLine or CentrePoint
-        Where the monitor points are and how the contact temperature is formed.
-    contact_radius : float
-        Contact radius r of the slider (= slider radius) [m].
-    travel : float
-        Largest distance of the slider centre from the plate centre the line must cover [m].
-    thermal : ThermalProperties
-        Conductivity, diffusivity and initial temperature.
-    kernel : SumOfExponentials
-        Approximation of the history kernel.
-    """
+    """Temperature of one sliding surface under a moving slider, with trial / commit (see the
+    module docstring): the monitor points of ``layout`` for a slider of ``contact_radius`` r [m]
+    whose centre moves up to ``travel`` [m] from the plate centre, the plate's ``thermal``
+    properties and the history ``kernel``."""
 
     def __init__(
         self,
@@ -292,12 +248,10 @@ class SurfaceHeating:
         self._staged = (0, 0)  # the points the last friction trial heats
 
     def prepare(self, dt: float) -> None:
-        """Make the step factors exp(-s_k dt) for the step ``dt`` [s] current, exactly.
-
-        They are computed for each distinct dt (a compiled kernel) and kept for the last
-        few distinct values: a uniform history has only a handful, since t_n - t_(n-1) takes a
-        few rounded values. A trial is thus a pure function of its own dt.
-        """
+        """Make the step factors exp(-s_k dt) of the step ``dt`` [s] current, exactly: computed
+        for each distinct dt (a compiled kernel) and kept for the last few (a uniform history has
+        a handful, t_n - t_(n-1) taking a few rounded values), so a trial is a pure function of
+        its own dt."""
         self.prepared_step = dt
         entry = self._factor_cache.get(dt)
         if entry is None:
@@ -328,22 +282,15 @@ class SurfaceHeating:
         return lo, hi
 
     def trial(self, position: float, dt: float) -> tuple[float, float, tuple[int, int]]:
-        """Contact temperature terms for a trial slider position after a step ``dt``.
-
-        Parameters
-        ----------
-        position : float
-            Slider centre on this plate, measured from the plate centre [m].
-        dt : float
-            Trial step since the last commit [s].
+        """Contact temperature terms for the slider centre at ``position`` [m] on this plate
+        (from its centre) after a trial step ``dt`` [s] since the last commit.
 
         Returns
         -------
         base_temperature : float
-            T0 + history part of the contact temperature (all committed flux) [degC].
+            T0 plus the history part of the contact temperature (all committed flux) [degC].
         newest_coefficient : float
-            d T / d q_n: the contact temperature rises by this times the newest flux
-            [degC m^2 / W] (2 c sqrt(dt) when the averaged points take the flux, else 0).
+            d T / d q_n [degC m^2 / W]: 2 c sqrt(dt) when points take the flux, else 0.
         heated : (int, int)
             Index range of the points that take the newest flux.
         """
@@ -375,12 +322,12 @@ class SurfaceHeating:
     def friction_trial(self, position: tuple[float, float], velocity: tuple[float, float],
                        pressure: float, speed: float, dt: float,
                        parameters: np.ndarray) -> tuple[float, float, float, float]:
-        """Eq. 7 solved with the contact temperature of this surface for the slider centre at
+        """Eq. 7 solved with this surface's contact temperature for the slider centre at
         ``position`` (x, y) [m] on the plate after ``dt`` [s]: ``(mu, d mu / d|v| [s/m],
-        temperature [degC], flux [W/m^2])`` (:func:`~isolator.compiled.kernels.ptv_trial`,
-        ``parameters`` packed by :func:`~isolator.compiled.layout.pack_ptv`). The line lies
-        along x; the centre point sees the distance from the centre. The heated points are
-        kept for :meth:`commit_trial`; ``velocity`` [m/s] is not needed here.
+        temperature [degC], flux [W/m^2])`` (:func:`~isolator.compiled.kernels.ptv_trial` on
+        ``parameters`` packed by :func:`~isolator.compiled.layout.pack_ptv`). The line lies along
+        x; the centre point sees the distance from the centre; ``velocity`` is not used. The
+        heated points are kept for :meth:`commit_trial`.
 
         Raises
         ------
@@ -427,17 +374,9 @@ class SurfaceHeating:
 def exact_rise(
     times: np.ndarray, fluxes: np.ndarray, at: float, thermal: ThermalProperties
 ) -> float:
-    """Exact Eq. 4 for a piecewise-constant flux: the reference for tests [degC].
-
-    Parameters
-    ----------
-    times : ndarray, shape (n + 1,)
-        Interval boundaries t_0 < t_1 < ... < t_n [s].
-    fluxes : ndarray, shape (n,)
-        Flux on each interval [W/m^2].
-    at : float
-        Time of evaluation, at least t_n [s].
-    """
+    """Exact Eq. 4 for a piecewise-constant flux, the tests' reference [degC]: ``fluxes`` (n,)
+    [W/m^2] on the intervals between ``times`` t_0 < ... < t_n (n + 1,) [s], evaluated at
+    ``at`` >= t_n [s]."""
     times = np.asarray(times, dtype=float)
     start = np.sqrt(np.maximum(at - times[:-1], 0.0))
     stop = np.sqrt(np.maximum(at - times[1:], 0.0))

@@ -1,17 +1,14 @@
-"""How long a run may be: a bound on its number of time steps and on the memory its histories
-take, checked before anything is allocated.
+"""A bound on the time steps of a run and on the memory its histories take, checked before
+anything is allocated.
 
-A run's cost grows with its number of steps, duration / dt: a record with a wrong DT of 100 s
-read at an analysis step of 5 ms asks for 31 million steps and some 20 GB. :func:`check_steps`
-refuses such a run up front with the step count, where it comes from and how to raise the
-limit; bearing tests (:mod:`isolator.protocols`) and building runs (:mod:`structures.limits`)
-share it.
-
-Default limit, :data:`DEFAULT_MAX_STEPS` = 2,000,000 steps: the longest recorded ground motions
-(subduction events, 300 to 600 s) at the finest step in use (5 ms, or 1 ms for a convergence
-study) take 60,000 to 600,000 steps, so real runs stay well inside it, while a building run
-of that length still fits in about 1.2 GB (five storeys) and takes seconds with the compiled
-engine. Past it, the user raises the limit on purpose (``--max-steps``, ``max_steps=``).
+A run's cost grows with its steps, duration / dt: a record with a wrong DT of 100 s read at an
+analysis step of 5 ms asks for 31 million steps and some 20 GB. :func:`check_steps` refuses such
+a run up front with its step count, where it comes from and how to raise the limit; the bearing
+tests (:mod:`isolator.protocols`) and the building runs (:mod:`structures.limits`) share it.
+The default, :data:`DEFAULT_MAX_STEPS` = 2,000,000, is well above the longest records (300 to
+600 s of a subduction event, 60,000 to 600,000 steps at 5 or 1 ms) and holds a five-storey
+building run in about 1.2 GB; past it the user raises the limit on purpose (``--max-steps``,
+``max_steps=``).
 """
 
 from __future__ import annotations
@@ -59,32 +56,18 @@ def check_steps(
     hint: str = "Check the duration and the time step",
     meminfo: Path = MEMINFO,
 ) -> None:
-    """Refuse a run of ``steps`` time steps past ``max_steps`` or the memory available.
+    """Refuse a run of ``steps`` time steps past ``max_steps`` (>= 1) or past the memory
+    available (:func:`available_memory` from ``meminfo``) at ``bytes_per_step`` [bytes] (the
+    run's stored fields x 8 bytes).
 
-    Parameters
-    ----------
-    steps : int
-        Time steps the run would take.
-    what : str
-        What is run, for the message (e.g. ``"the building run"``).
-    duration, dt : float
-        The duration [s] and step [s] that give ``steps``, for the message.
-    bytes_per_step : float
-        Memory the run holds per step [bytes] (its stored fields x 8 bytes).
-    max_steps : int
-        The limit, >= 1.
-    raise_with : str
-        How the user raises the limit, e.g. ``"--max-steps"`` or ``"max_steps="``.
-    hint : str
-        What to check first, for the message.
-    meminfo : Path
-        Where the available memory is read (see :func:`available_memory`).
+    The message names ``what`` is run (e.g. ``"the building run"``), the ``duration`` [s] and
+    ``dt`` [s] the steps come from, ``hint``, what to check first, and ``raise_with``, how the
+    user raises the limit (e.g. ``"--max-steps"`` or ``"max_steps="``).
 
     Raises
     ------
     InputError
-        Past the limit, with the steps, the duration and dt they come from and the way to
-        raise it; or when the estimated memory exceeds the memory available.
+        Past the limit (with the steps the run needs) or past the memory available.
     """
     if isinstance(max_steps, bool) or not isinstance(max_steps, int) or max_steps < 1:
         raise InputError(f"{raise_with} must be an integer in [1, inf). Got {max_steps!r} "
@@ -118,15 +101,9 @@ def history_steps(
     raise_with: str = "the max_steps argument of isolator.protocols.sine",
     hint: str = "Check the duration and the time step",
 ) -> int:
-    """Number of equal steps no longer than ``dt`` [s] that fill ``duration`` [s] (at least
-    one), after checking it against ``max_steps`` and the memory available
-    (:func:`check_steps`, :data:`HISTORY_FIELDS` values per sample).
-
-    Raises
-    ------
-    InputError
-        Past the limit or the memory available.
-    """
+    """Number of equal steps no longer than ``dt`` [s] that fill ``duration`` [s] (at least one),
+    checked against ``max_steps`` and the memory available (:func:`check_steps`,
+    :data:`HISTORY_FIELDS` values per sample); an :class:`InputError` past either."""
     ratio = duration / dt - 1e-9  # relative slack: a step that divides the duration fits
     steps = max(1, math.ceil(ratio)) if math.isfinite(ratio) else sys.maxsize
     check_steps(steps, what=what, duration=duration, dt=dt, bytes_per_step=8 * HISTORY_FIELDS,

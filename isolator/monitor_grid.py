@@ -1,37 +1,32 @@
-"""Frictional heating over a whole plate: the precise model's monitor points on a 2D grid.
+"""Frictional heating over a whole plate: the precise model's monitor points on a grid.
 
-For a bearing moving along one axis, the precise model (:class:`~isolator.heating.MonitorLine`,
-paper Fig. 3a) tracks points
-every 5 mm on a line through the plate centre along the sliding direction; the contact is taken
-as the square of equal area (half side a = sqrt(pi) r / 2, Eq. 5) and the contact temperature is
-the mean over the points inside it. The paper notes that for a square contact "one line of
-monitor points in the direction of sliding gives the same result as a grid". This module is that
-grid, for a slider moving anywhere on the plate:
+The precise model (:class:`~isolator.heating.MonitorLine`, paper Fig. 3a) takes the contact as
+the square of equal area (half side a = sqrt(pi) r / 2, Eq. 5) and the contact temperature as
+the mean over the points inside it of a line along the sliding direction; for a square contact
+"one line of monitor points in the direction of sliding gives the same result as a grid". This
+module is that grid, for a slider moving anywhere on the plate:
 
 - points at (m s, n s), m and n integers, in a frame (e1, e2) fixed to the plate;
-- a point is under the slider when it lies in the square of side 2a centred on the slider,
-  with its sides along e1 and e2: |x - p1| <= a and |y - p2| <= a (Eq. 5 on each axis);
-- it takes the flux q of Eq. 5 while under the slider, and holds the same sum-of-exponentials
-  history as a point of the line (:mod:`isolator.heating`, Eq. 4);
+- a point is under the slider when |x - p1| <= a and |y - p2| <= a in that frame (Eq. 5 on
+  each axis); it then takes the flux q of Eq. 5 and holds the same sum-of-exponentials history
+  as a point of the line (:mod:`isolator.heating`, Eq. 4);
 - the contact temperature is the mean over the points under the slider (touched or not).
 
-Why this reduces exactly to the line: along a straight path through the centre in the direction
-e1, the rows under the slider never change and every point of a column has the history of the
-line's point in that column, so the grid's mean equals the line's mean. That needs e1 along the
-path: a grid fixed to x/y cannot reproduce a line at 30 degrees (its columns are not
-perpendicular to the path). The frame is therefore fixed by the motion (``orientation=None``,
-the default): e1 points along the slider's position on the plate at the first commit that puts
-heat on it (along the velocity if the slider is then at the centre, along x if both are zero),
-and stays so. For a unidirectional history this is the line's direction, at any angle; for an
-orbit the orientation of the square is a modelling choice like any other (the paper's square
-has none), and a fixed one can be given. The per-axis window is the line's kernel
-:func:`~isolator.compiled.kernels.heated_window` on axes with the line's geometry, so the
-two models pick the same points to the last rounding.
+Along a straight path through the centre in the direction e1 the rows under the slider never
+change and every point of a column has the history of the line's point in that column, so the
+grid's mean equals the line's; a grid fixed to x/y cannot reproduce a line at 30 degrees (its
+columns are not perpendicular to the path). The frame therefore follows the motion by default
+(``orientation=None``): e1 points along the slider's position on the plate at the first commit
+that heats it (along the velocity if the slider is then at the centre, along x if both are zero)
+and stays there. A history in one direction thus gives the line at any angle; for an orbit the
+orientation is a modelling choice (the paper's square has none), and a fixed one can be given.
+The two models pick their points with the same kernel,
+:func:`~isolator.compiled.kernels.heated_window`, to the last rounding.
 
-Storage: only points ever heated are stored (a growing array of histories, indexed per grid
-column by a small int array), so the cost grows with the area the slider has swept, not with
-the plate. A stored point outside the window is not updated: it keeps its history and the time
-it was last advanced and is decayed exactly, exp(-s_k elapsed), when the slider comes back.
+Only points ever heated are stored (a growing array of histories, indexed per grid column), so
+the cost grows with the area the slider has swept, not with the plate. A stored point outside
+the window keeps its history and the time it was last advanced, and is decayed exactly,
+exp(-s_k elapsed), when the slider comes back.
 """
 
 from __future__ import annotations
@@ -52,20 +47,11 @@ _INITIAL_CAPACITY = 256  # stored points before the first growth of the arrays
 
 @dataclass(frozen=True)
 class MonitorGrid:
-    """The precise model's monitor points over the plate (a square grid) and its frame.
-
-    Parameters
-    ----------
-    spacing : float
-        Distance between neighbouring points along each axis [m]; default 0.005 (the paper's).
-    orientation : float or None
-        Angle of the grid's first axis from x [deg], counter-clockwise. None (the default): the
-        first axis follows the motion (see the module docstring), which makes a unidirectional
-        history reproduce the precise model's line at any angle.
-    half_length : float or None
-        Half side of the square of plate covered by the grid [m]; None sizes it like the
-        line (:meth:`MonitorLine.points`) for the slider's travel.
-    """
+    """The precise model's monitor points over the plate: a square grid of ``spacing`` [m] along
+    each axis (the paper's 5 mm), its first axis at ``orientation`` [deg] counter-clockwise from
+    x (None: following the motion, see the module docstring), over a square of half side
+    ``half_length`` [m] (None: sized like the line, :meth:`MonitorLine.points`, for the slider's
+    travel)."""
 
     spacing: float = 0.005
     orientation: float | None = None
@@ -91,17 +77,9 @@ class MonitorGrid:
 
 def plate_frame(position: np.ndarray, hint: np.ndarray | None = None,
                 orientation: float | None = None) -> np.ndarray:
-    """The grid's axes as the rows of a 2x2 rotation (e1, e2) [-].
-
-    Parameters
-    ----------
-    position : ndarray, shape (2,)
-        Slider centre on the plate [m]; gives e1 when ``orientation`` is None and it is not 0.
-    hint : ndarray, shape (2,) or None
-        Direction to use when the slider is at the centre (its velocity) [any unit].
-    orientation : float or None
-        A fixed angle of e1 from x [deg] (overrides the rest).
-    """
+    """The grid's axes as the rows (e1, e2) of a 2x2 rotation [-]: e1 at ``orientation`` [deg]
+    from x when given, else along the slider centre ``position`` on the plate [m] when it is not
+    0, else along ``hint`` (its velocity), else along x."""
     if orientation is not None:
         angle = math.radians(orientation)
         e1 = np.array([math.cos(angle), math.sin(angle)])
@@ -115,18 +93,11 @@ def plate_frame(position: np.ndarray, hint: np.ndarray | None = None,
 
 
 class GridTrial(NamedTuple):
-    """The contact terms of a trial slider position on the grid.
-
-    Attributes
-    ----------
-    rise : float
-        Mean over the points under the slider of their committed history, decayed to the trial
-        time: sum_k w_k exp(-s_k dt) G_jk [W s^0.5 / m^2] (``contact_history`` of the line).
-    window : (int, int, int, int)
-        Index ranges ``[i_lo, i_hi) x [k_lo, k_hi)`` of the points under the slider.
-    axes : ndarray, shape (2, 2)
-        The frame the window was found in.
-    """
+    """The contact terms of a trial slider position on the grid: ``rise``, the mean over the
+    points under the slider of their committed history decayed to the trial time, sum_k w_k
+    exp(-s_k dt) G_jk [W s^0.5 / m^2] (``contact_history`` of the line); ``window``, the index
+    ranges ``[i_lo, i_hi) x [k_lo, k_hi)`` of those points; ``axes``, the frame (2, 2) the window
+    was found in."""
 
     rise: float
     window: tuple[int, int, int, int]
@@ -140,24 +111,11 @@ class GridTrial(NamedTuple):
 
 
 class GridHeating:
-    """Temperature of one plate under a slider moving in 2D; trial / commit / revert.
-
-    A trial never changes the state; :meth:`commit` adds one interval of constant flux on the
-    trial's window. There is nothing to revert (an uncommitted trial is dropped).
-
-    Parameters
-    ----------
-    layout : MonitorGrid
-        Spacing, frame and extent of the grid.
-    contact_radius : float
-        Contact radius r of the slider [m].
-    travel : float
-        Largest distance of the slider centre from the plate centre [m].
-    thermal : ThermalProperties
-        Conductivity, diffusivity and initial temperature.
-    kernel : SumOfExponentials
-        Approximation of the history kernel 1/sqrt(tau).
-    """
+    """Temperature of one plate under a slider moving in two directions: the grid of ``layout``
+    for a slider of ``contact_radius`` r [m] whose centre moves up to ``travel`` [m] from the
+    plate centre, with the plate's ``thermal`` properties and the history ``kernel``. A trial
+    never changes the state and :meth:`commit` adds one interval of constant flux on the trial's
+    window; an uncommitted trial is dropped, so there is nothing to revert."""
 
     def __init__(self, layout: MonitorGrid, contact_radius: float, travel: float,
                  thermal: ThermalProperties, kernel: SumOfExponentials) -> None:
@@ -201,7 +159,8 @@ class GridHeating:
         return plate_frame(position, hint, self.layout.orientation)
 
     def window(self, position: np.ndarray, axes: np.ndarray) -> tuple[int, int, int, int]:
-        """Index ranges of the points under a slider centred at ``position`` [m] on the plate.
+        """Index ranges of the points under a slider centred at ``position`` [m] on the plate, in
+        the frame ``axes``.
 
         Raises
         ------
@@ -377,12 +336,10 @@ class GridHeating:
         return local @ axes
 
     def point_temperatures(self, dt: float = 0.0) -> np.ndarray:
-        """Temperature of the stored points ``dt`` [s] after the last commit [degC].
-
-        The sum of exponentials holds for lags from the kernel's ``min_lag`` up: a point heated
-        in the last step is read accurately some steps later (at ``dt`` = 0 its newest interval
-        is short by the kernel's error near lag 0, 1e-4 of the rise for 10 ms steps; the trials
-        take that interval exactly)."""
+        """Temperature of the stored points ``dt`` [s] after the last commit [degC]. The sum of
+        exponentials holds from the kernel's ``min_lag`` up: at ``dt`` = 0 a point heated in the
+        last step is short by the kernel's error near lag 0 (1e-4 of the rise for 10 ms steps;
+        the trials take that interval exactly)."""
         rows = np.arange(self._stored)
         weighted = self.kernel.weights * np.exp(-self.kernel.rates * max(dt, 0.0))
         rise = self._histories_now(rows) @ weighted

@@ -1,19 +1,18 @@
-"""Imposed orbits for the virtual test machine in 2D: circle, figure-eight, square, and the sine
+"""Imposed orbits of a bearing test in two directions: circle, figure-eight, square, and the sine
 along a line at an angle.
 
-An :class:`Orbit` holds time [s], displacement (n, 2) [m] and the exact analytic velocity
-(n, 2) [m/s] at every sample, and labelled ``segments`` like
-:class:`~isolator.protocols.ImposedHistory` (``"lead-in"``, then one block per shape).
+An :class:`Orbit` is the 2D imposed path of a test: time [s], displacement (n, 2) [m], the exact
+analytic velocity (n, 2) [m/s] at every sample and labelled ``segments`` like
+:class:`~isolator.protocols.ImposedHistory` (``"lead-in"``, then one block per turn). Every
+orbit starts at rest at the plate centre; ``angle`` [deg] rotates it counter-clockwise about the
+centre (for :func:`line`, the direction of the sine).
 
-Sampling: ``dt`` is the largest time step allowed; a period is cut into equal steps, their
-number rounded up to a multiple of 4 (circle, figure-eight) or 8 (square) so that the lead-in
-and every corner fall on a sample. Where the velocity jumps (the end of a lead-in, a corner of
-the square) the sample takes the velocity of the block that ends there: the test rig moves each
-step with the velocity of its end sample (heat flux over (t_(n-1), t_n] from v_n), so every step
-keeps the velocity it was imposed with.
-
-Every orbit starts at rest at the plate centre. ``angle`` [deg] rotates the whole orbit
-counter-clockwise about the centre; for :func:`line` it is the direction of the sine.
+``dt`` is the largest time step allowed: a period is cut into equal steps, their number rounded
+up to a multiple of 4 (circle, figure-eight) or 8 (square) so that the lead-in and every corner
+fall on a sample. Where the velocity jumps (the end of a lead-in, a corner of the square) the
+sample takes the velocity of the block that ends there: the test rig moves each step with the
+velocity of its end sample (heat flux over (t_(n-1), t_n] from v_n), so every step keeps the
+velocity it was imposed with.
 """
 
 from __future__ import annotations
@@ -35,21 +34,10 @@ _STEPS_PER_PERIOD_MIN = 20  # as for the sine of isolator.protocols: dt <= perio
 
 @dataclass(frozen=True, eq=False)
 class Orbit:
-    """A 2D displacement history imposed on a bearing, with its exact velocity (read-only).
-
-    Parameters
-    ----------
-    time : array_like, shape (n,)
-        Sample times, strictly increasing [s].
-    displacement : array_like, shape (n, 2)
-        Imposed relative displacement (x, y) at each sample [m].
-    velocity : array_like, shape (n, 2)
-        Imposed relative velocity at each sample [m/s] (analytic).
-    name : str
-        What the orbit is, e.g. ``"circle"``.
-    segments : tuple of (str, int, int)
-        Labelled blocks ``(label, start, stop)``, both end samples included.
-    """
+    """A 2D displacement history imposed on a bearing, with its exact velocity (read-only): the
+    strictly increasing sample ``time`` (n,) [s], the relative ``displacement`` (x, y) (n, 2) [m]
+    and the analytic ``velocity`` (n, 2) [m/s] at each, a ``name`` (e.g. ``"circle"``) and the
+    labelled blocks ``segments`` ``(label, start, stop)``, both end samples included."""
 
     time: np.ndarray
     displacement: np.ndarray
@@ -219,13 +207,11 @@ def square(half_side: float, period: float, cycles: int, dt: float, *, angle: fl
 
 def line(amplitude: float, period: float, cycles: int, dt: float, *, angle: float = 0.0,
          max_steps: int = DEFAULT_MAX_STEPS) -> Orbit:
-    """The sine of :func:`isolator.protocols.sine` along the direction ``angle`` [deg].
-
-    The samples are those of the planar sine (same times, u = u_sine (cos, sin)), so a planar
-    test and this one see the same history along the line. Each cycle is a block ``"line"``
-    when the cycles end on samples (the sine's steps a multiple of ``cycles``, as when dt
-    divides the period), else the whole history is one block.
-    """
+    """The sine of :func:`isolator.protocols.sine` along the direction ``angle`` [deg], on the
+    same samples (u = u_sine (cos, sin)), so this test and the test in one direction see the same
+    history along the line. Each cycle is a block ``"line"`` when the cycles end on samples (the
+    sine's steps a multiple of ``cycles``, as when dt divides the period), else the whole history
+    is one block."""
     owner = "line"
     _check(owner, amplitude, "amplitude", period, cycles, dt, angle)
     history = sine(amplitude, period, cycles, dt, max_steps=max_steps)

@@ -1,17 +1,15 @@
 """Imposed displacement histories for a virtual bearing test machine.
 
 An :class:`ImposedHistory` holds time [s], displacement [m] and the exact analytic velocity
-[m/s] at every sample, and labelled ``segments`` (one per loading block) so that one block of a
-long sequence can be picked out.
-
-Sampling: ``dt`` is the largest time step allowed. A block of duration D is cut into
-``ceil(D / dt)`` equal steps so that its last sample falls on its end (the step is ``dt`` when
-``dt`` divides D). Blocks are joined at a shared sample (:func:`concatenate`).
+[m/s] at every sample, with labelled ``segments`` (one per loading block). ``dt`` is the largest
+time step allowed: a block of duration D is cut into ``ceil(D / dt)`` equal steps so that its
+last sample falls on its end (the step is ``dt`` when ``dt`` divides D). Blocks are joined at a
+shared sample (:func:`concatenate`).
 
 References
 ----------
-ASCE/SEI 7-16, Section 17.8.2.2 "Sequence and Cycles", cited as [7] by the paper, whose ASCE
-tests run at a period of 4.26 s and whose wind-load test T02 at a peak velocity of ~15 mm/s.
+ASCE/SEI 7-16, Section 17.8.2.2 "Sequence and Cycles", the paper's [7]; the paper's ASCE tests
+run at a period of 4.26 s, its wind-load test T02 at a peak velocity of about 15 mm/s.
 """
 
 from __future__ import annotations
@@ -37,12 +35,9 @@ class ImposedHistory:
 
     Parameters
     ----------
-    time : array_like
-        Sample times, strictly increasing [s].
-    displacement : array_like
-        Imposed displacement at each sample [m].
-    velocity : array_like
-        Imposed velocity at each sample [m/s] (analytic, not differentiated).
+    time, displacement, velocity : array_like
+        Strictly increasing sample times [s], and the imposed displacement [m] and analytic
+        velocity [m/s] at each.
     name : str
         What the history is, e.g. ``"sine"`` or ``"ASCE 7-16 prototype sequence"``.
     segments : tuple of (str, int, int)
@@ -115,27 +110,13 @@ def sine(
     amplitude: float, period: float, cycles: int, dt: float, *, start_time: float = 0.0,
     max_steps: int = DEFAULT_MAX_STEPS,
 ) -> ImposedHistory:
-    """Fully reversed sine cycles ``u = A sin(2 pi (t - t0) / T)``.
+    """Fully reversed sine cycles ``u = A sin(2 pi (t - t0) / T)``, one segment labelled
+    ``"sine"``.
 
-    Parameters
-    ----------
-    amplitude : float
-        Displacement amplitude A [m], > 0.
-    period : float
-        Period T [s], > 0.
-    cycles : int
-        Number of full cycles, >= 1; the last sample lies at the end of the last cycle.
-    dt : float
-        Largest time step [s], in (0, T/20] (see the module's sampling convention).
-    start_time : float
-        Time t0 of the first sample [s].
-    max_steps : int
-        Most steps allowed, checked before any array is made (:mod:`isolator.limits`).
-
-    Returns
-    -------
-    ImposedHistory
-        Starts and ends at exactly 0 [m]; exact velocity; one segment labelled "sine".
+    ``amplitude`` A > 0 [m], ``period`` T > 0 [s], ``cycles`` >= 1 full cycles, ``dt`` the
+    largest time step in (0, T/20] [s] and ``start_time`` t0 [s]; ``max_steps`` is checked before
+    any array is made (:mod:`isolator.limits`). The history starts and ends at exactly 0 m, its
+    last sample at the end of the last cycle, with the exact velocity.
     """
     owner = "sine"
     amplitude = check_real(amplitude, "amplitude", owner, low=0.0, low_open=True)
@@ -160,21 +141,12 @@ def wind_cycles(
     cycles: int = 20,
     dt: float | None = None,
 ) -> ImposedHistory:
-    """Slow sine cycles standing for a wind load (the paper's test T02), labelled "wind".
+    """Slow sine cycles standing for a wind load (the paper's test T02), labelled ``"wind"``.
 
-    The period ``T = 2 pi A / v_peak`` gives the requested peak velocity.
-
-    Parameters
-    ----------
-    amplitude : float
-        Displacement amplitude A [m], > 0 (see :func:`wind_displacement_from_force`).
-    peak_velocity : float
-        Peak velocity v_peak [m/s], > 0; 0.015 m/s as in the paper's test T02.
-    cycles : int
-        Number of cycles, >= 1; ASCE 7-16 17.8.2.2 item 1 asks for 20.
-    dt : float or None
-        Largest time step [s], in (0, T/20]; None takes T/100.
-
+    ``amplitude`` A > 0 [m] (:func:`wind_displacement_from_force`) and ``peak_velocity``
+    v_peak > 0 [m/s] (the paper's 15 mm/s) give the period T = 2 pi A / v_peak; ``cycles`` >= 1
+    (ASCE 7-16 17.8.2.2 item 1 asks for 20); ``dt`` is the largest time step in (0, T/20] [s]
+    (None: T/100).
     """
     owner = "wind_cycles"
     amplitude = check_real(amplitude, "amplitude", owner, low=0.0, low_open=True)
@@ -189,22 +161,10 @@ def wind_cycles(
 def wind_displacement_from_force(
     wind_force: float, axial_load: float, effective_radius: float, friction_coefficient: float
 ) -> float:
-    """Displacement at which a pendulum bearing resists the wind design force [m].
-
-    Solves ``N u / R + mu N = F_w`` for u (the sliding branch of the bilinear loop, Fig. 7);
-    returns 0 when ``F_w <= mu N`` (the bearing does not slide).
-
-    Parameters
-    ----------
-    wind_force : float
-        Wind design force on the bearing F_w [N], >= 0.
-    axial_load : float
-        Axial load N [N], > 0.
-    effective_radius : float
-        Effective radius of curvature R [m], > 0 and finite.
-    friction_coefficient : float
-        Friction coefficient mu [-], in [0, 1].
-    """
+    """Displacement [m] at which a pendulum bearing resists the wind design force: u solving
+    ``N u / R + mu N = F_w`` (the sliding branch of the bilinear loop, Fig. 7), or 0 when
+    ``F_w <= mu N`` (no sliding), for a ``wind_force`` F_w >= 0 [N], an ``axial_load`` N > 0 [N],
+    a finite ``effective_radius`` R > 0 [m] and a ``friction_coefficient`` mu in [0, 1] [-]."""
     owner = "wind_displacement_from_force"
     wind_force = check_real(wind_force, "wind_force", owner, low=0.0)
     axial_load = check_real(axial_load, "axial_load", owner, low=0.0, low_open=True)
@@ -225,21 +185,14 @@ def hold(duration: float, dt: float) -> ImposedHistory:
 
 
 def concatenate(*histories: ImposedHistory, name: str | None = None) -> ImposedHistory:
-    """Join histories end to start into one.
+    """Join histories end to start into one, named ``name`` (None: their names joined by
+    ``" + "``); segments keep their labels.
 
-    Each history is shifted in time so its first sample coincides with the previous history's
-    last sample, and the two become one joining sample. Displacement must be continuous at every
-    join (to 1e-9 of the largest displacement). Velocity may jump there: the joining sample gets
-    the mean of the two sides (the midpoint of the jump, as a central difference would give),
-    which keeps their sign when they agree, e.g. at the end of a sine block and the start of a
-    rest. Segments keep their labels.
-
-    Parameters
-    ----------
-    *histories : ImposedHistory
-        At least one.
-    name : str or None
-        Name of the result; None joins the names with ``" + "``.
+    Each history is shifted in time so that its first sample is the previous one's last, and the
+    two become one joining sample. Displacement must be continuous at every join (to 1e-9 of the
+    largest displacement). Velocity may jump there: the joining sample takes the mean of the two
+    sides (the midpoint of the jump, as a central difference would give), which keeps their sign
+    when they agree, e.g. at the end of a sine block and the start of a rest.
     """
     owner = "concatenate"
     if not histories or not all(isinstance(h, ImposedHistory) for h in histories):
@@ -275,17 +228,10 @@ def concatenate(*histories: ImposedHistory, name: str | None = None) -> ImposedH
 def long_duration_cycles(
     S_M1: float | None, S_MS: float | None, B_M: float | None, owner: str = "long_duration_cycles"
 ) -> int:
-    """Cycles of ASCE 7-16 17.8.2.2 item 4: ``30 S_M1 / (S_MS B_M)``, but not less than 10.
-
-    The ratio is rounded up (never fewer cycles than asked). All three None gives the minimum, 10.
-
-    Parameters
-    ----------
-    S_M1, S_MS : float or None
-        MCE_R spectral response accelerations at 1 s and short periods [g], > 0.
-    B_M : float or None
-        Damping coefficient at D_M (ASCE 7-16 Table 17.7-1) [-], in [0.8, 2.0].
-    """
+    """Cycles of ASCE 7-16 17.8.2.2 item 4: ``30 S_M1 / (S_MS B_M)`` rounded up, but not less
+    than 10 (10 when all three are None), for the MCE_R spectral response accelerations at 1 s
+    and at short periods ``S_M1``, ``S_MS`` > 0 [g] and the damping coefficient at D_M ``B_M`` in
+    [0.8, 2.0] [-] (Table 17.7-1)."""
     missing = [k for k, v in {"S_M1": S_M1, "S_MS": S_MS, "B_M": B_M}.items() if v is None]
     if len(missing) == 3:
         return 10
@@ -316,54 +262,49 @@ def asce7_prototype_sequence(
 ) -> ImposedHistory:
     """The cyclic prototype-test sequence of ASCE 7-16 Section 17.8.2.2 as one history.
 
-    Clauses implemented (ASCE 7-16 17.8.2.2, quoted from memory, to be checked against the text):
+    The clauses implemented (17.8.2.2, paraphrased; to be checked against the standard's text):
 
-    1. Twenty fully reversed cycles of loading at a lateral force corresponding to the wind
-       design force. The force-controlled test is imposed here as displacement cycles of
-       amplitude ``wind_displacement`` (see :func:`wind_displacement_from_force`) at a slow
-       period giving ``wind_peak_velocity`` (the paper's T02: about 15 mm/s). A wind
-       displacement of 0 (no sliding under wind) omits this block.
-    2. (a) Three fully reversed cycles of loading at each of 0.25, 0.5, 0.67 and 1.0 D_M; or
-       (b) performed dynamically at T_M: continuous loading of one fully reversed cycle at each
-       of 1.0, 0.67, 0.5, 0.25 D_M followed by continuous loading of one cycle at each of 0.25,
-       0.5, 0.67, 1.0 D_M, a rest interval being permitted between the two sequences.
-    3. Three fully reversed cycles of loading at the total maximum displacement D_TM.
-    4. ``30 S_M1 / (S_MS B_M)``, but not less than 10, continuous fully reversed cycles of
-       loading at 0.75 D_TM (see :func:`long_duration_cycles`).
+    1. Twenty fully reversed cycles at a lateral force corresponding to the wind design force,
+       imposed here as displacement cycles of amplitude ``wind_displacement``
+       (:func:`wind_displacement_from_force`) at a slow period giving ``wind_peak_velocity`` (the
+       paper's T02: about 15 mm/s); a wind displacement of 0 (no sliding under wind) omits them.
+    2. (a) Three fully reversed cycles at each of 0.25, 0.5, 0.67 and 1.0 D_M; or (b),
+       dynamically at T_M, one continuous cycle at each of 1.0, 0.67, 0.5, 0.25 D_M followed by
+       one continuous cycle at each of 0.25, 0.5, 0.67, 1.0 D_M, a rest being permitted between
+       the two.
+    3. Three fully reversed cycles at the total maximum displacement D_TM.
+    4. ``30 S_M1 / (S_MS B_M)``, but not less than 10, continuous fully reversed cycles at
+       0.75 D_TM (:func:`long_duration_cycles`).
 
-    Tests are performed dynamically at the effective period T_M (17.8.2.3), as in the paper
-    (T = 4.26 s). Not implemented: the two extra vertical-load cases of item 2 for
-    vertical-load-carrying isolators, and the option of splitting item 4 into segments of no
-    fewer than five cycles.
+    The tests run dynamically at the effective period T_M (17.8.2.3), as in the paper (T =
+    4.26 s). Not implemented: the two extra vertical-load cases of item 2 for
+    vertical-load-carrying isolators, and splitting item 4 into segments of no fewer than five
+    cycles.
 
     Parameters
     ----------
-    maximum_displacement : float
-        D_M [m], > 0.
-    total_maximum_displacement : float
-        D_TM [m], >= D_M.
+    maximum_displacement, total_maximum_displacement : float
+        D_M > 0 and D_TM >= D_M [m].
     period : float
-        Effective period T_M of every block but the wind block [s], > 0.
+        Effective period T_M of every block but the wind block [s].
     dt : float
         Largest time step [s], at most 1/20 of the period and of the wind period.
-    wind_displacement : float
-        Amplitude of the wind cycles [m], >= 0.
-    wind_peak_velocity : float
-        Peak velocity of the wind cycles [m/s], > 0.
+    wind_displacement, wind_peak_velocity : float
+        Amplitude >= 0 [m] and peak velocity > 0 [m/s] of the wind cycles.
     S_M1, S_MS, B_M : float or None
         Set the number of item-4 cycles; all None gives 10.
     rest : float
-        Time held at zero displacement between blocks [s], >= 0 (not inside the continuous
-        sequences of item 2b).
+        Time held at zero displacement between blocks [s] (not inside the continuous sequences of
+        item 2b).
     item2 : {"a", "b"}
         Which option of item 2.
 
     Returns
     -------
     ImposedHistory
-        Blocks labelled ``"wind"``, ``"0.25 D_M"``, ``"0.5 D_M"``, ``"0.67 D_M"``,
-        ``"1.0 D_M"``, ``"D_TM"``, ``"0.75 D_TM"`` and ``"rest"``. Each block starts and ends at
-        zero displacement; velocity jumps where the amplitude changes.
+        Blocks labelled ``"wind"``, ``"0.25 D_M"``, ``"0.5 D_M"``, ``"0.67 D_M"``, ``"1.0 D_M"``,
+        ``"D_TM"``, ``"0.75 D_TM"`` and ``"rest"``, each starting and ending at zero
+        displacement; the velocity jumps where the amplitude changes.
     """
     owner = "asce7_prototype_sequence"
     d_m = check_real(maximum_displacement, "maximum_displacement", owner, low=0.0, low_open=True)

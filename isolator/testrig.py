@@ -1,12 +1,10 @@
 """A virtual bearing test machine: a bearing driven through an imposed displacement history.
 
-Each sample of the history is one trial of the element followed by a commit, exactly as a
-displacement-controlled test rig imposes it, along one axis (a history of shape (n,)) or in
-the plane (an orbit of shape (n, 2), :mod:`isolator.orbits`). The result is a tidy record of
-the histories (time, displacement, velocity, force, friction force, z, mu, temperature, heat
-flux, axial load) with the per-cycle force-deflection characteristics along each axis and the
-energies (the work of the force and of its friction part, the heat put into the plates) one
-call away.
+Each sample of the history is one trial of the element followed by a commit, as a
+displacement-controlled rig imposes it, in one direction (a history of shape (n,)) or in two (an
+orbit of shape (n, 2), :mod:`isolator.orbits`). The result holds the histories, with the
+per-cycle force-deflection characteristics along each axis and the energies (the work of the
+force and of its friction part, the heat put into the plates) one call away.
 """
 
 from __future__ import annotations
@@ -35,13 +33,8 @@ _VECTORS = ("displacement", "velocity", "force", "friction_force", "z")
 
 
 def path_integral(displacement: np.ndarray, force: np.ndarray) -> float:
-    """Integral of F . du along a path by the trapezoid rule [J].
-
-    Parameters
-    ----------
-    displacement, force : ndarray, shape (n,) or (n, 2)
-        Displacement [m] and force [N] at the samples.
-    """
+    """Integral of F . du along a path by the trapezoid rule [J], for a displacement [m] and a
+    force [N] of shape (n,) or (n, 2)."""
     du = np.diff(displacement, axis=0)
     return float(np.sum(0.5 * (force[1:] + force[:-1]) * du))
 
@@ -56,19 +49,17 @@ class BearingTestResult:
         Sample times [s].
     displacement, velocity, force, friction_force, z : ndarray, shape (n,) or (n, 2)
         Imposed relative displacement [m] and velocity [m/s], horizontal force and its friction
-        part mu N z [N], hysteretic variable [-]: along one axis, or (x, y) in the plane.
+        part mu N z [N], hysteretic variable [-]: in one direction, or (x, y) in two.
     mu, temperature, heat_flux, axial_load : ndarray, shape (n,)
         Friction coefficient [-], contact temperature [degC], heat flux into each sliding
         surface over the step ending at the sample [W/m^2], axial load [N].
-    bearing : DCFPBearing
-        The bearing tested.
-    name : str
-        Name of the imposed history.
+    bearing, name : DCFPBearing, str
+        The bearing tested and the name of the imposed history.
     stored_points : int
-        Monitor points holding a history at the end, per plate (the precise model in the
-        plane; 0 otherwise).
+        Monitor points per plate holding a history at the end (the precise model in two
+        directions; 0 otherwise).
     wall_time : float
-        Seconds the run took (for information; benchmarks measure speed properly).
+        Time the run took [s] (for information; the benchmarks measure speed).
     """
 
     time: np.ndarray
@@ -88,7 +79,7 @@ class BearingTestResult:
 
     @property
     def dimension(self) -> int:
-        """1 for a test along one axis, 2 for an orbit in the plane."""
+        """1 for a test in one direction, 2 for an orbit."""
         return 1 if self.displacement.ndim == 1 else 2
 
     def _axis(self, values: np.ndarray, axis: int | str) -> np.ndarray:
@@ -133,7 +124,7 @@ class BearingTestResult:
 
     def columns(self) -> dict[str, np.ndarray]:
         """The histories written by :meth:`to_csv`: time [s], displacement [m], velocity [m/s],
-        force [N] (one column each along one axis; ``_x`` and ``_y`` in the plane), mu [-] and
+        force [N] (one column each in one direction; ``_x`` and ``_y`` in two), mu [-] and
         temperature [degC]."""
         columns = {"time": self.time}
         for name in ("displacement", "velocity", "force"):
@@ -153,8 +144,8 @@ class BearingTestResult:
         return path
 
     def to_dataset(self):
-        """The histories as an ``xarray.Dataset`` indexed by time (and ``direction`` in the
-        plane), with units attributes."""
+        """The histories as an ``xarray.Dataset`` indexed by time (and ``direction`` for an
+        orbit), with units attributes."""
         import xarray as xr
 
         data = {}
@@ -171,9 +162,9 @@ def imposed_history(time: ArrayLike, displacement: ArrayLike, velocity: ArrayLik
                     owner: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Check an imposed history and return it as float arrays ``(t [s], u [m], v [m/s])``.
 
-    ``displacement`` has the shape (n,) (one axis) or (n, 2) (the plane), the velocity the
-    same; times must be strictly increasing. Without a velocity, the central-difference
-    derivative of the displacement (``numpy.gradient``) is used. Errors name ``owner``.
+    Times must be strictly increasing; the displacement has the shape (n,) (one direction) or (n,
+    2) (two), the velocity the same or, when None, is the central-difference derivative of the
+    displacement (``numpy.gradient``). Errors name ``owner``.
     """
     t = check_array(time, "time", owner, min_length=2)
     if np.any(np.diff(t) <= 0.0):
@@ -202,30 +193,27 @@ def run_test(
     name: str = "imposed history",
     grid_orientation: float | None = None,
 ) -> BearingTestResult:
-    """Drive ``bearing`` through an imposed relative displacement history.
+    """Drive a fresh element of ``bearing`` (at rest, unheated) through an imposed relative
+    displacement history.
 
     Parameters
     ----------
     bearing : DCFPBearing
-        The bearing to test; a fresh element (at rest, unheated) is made for the run.
+        The bearing to test.
     time : array_like, shape (n,)
         Strictly increasing sample times [s].
     displacement : array_like, shape (n,) or (n, 2)
-        Imposed relative displacement of the plates [m], along one axis or (x, y) in the
-        plane, within the bearing's displacement capacity (a radius in the plane).
+        Imposed relative displacement of the plates [m], in one direction or (x, y) in two,
+        within the bearing's displacement capacity (a radius in two directions).
     velocity : array_like, optional
         Imposed relative velocity [m/s], the shape of ``displacement``; by default the
-        central-difference derivative of the displacement (``numpy.gradient``). Give the
-        analytic velocity where it is known.
+        central-difference derivative of the displacement. Give the analytic velocity where it is
+        known.
     name : str
         Name of the history, kept in the result.
     grid_orientation : float or None
-        Orientation of the precise model's monitor grid in the plane [deg]; None follows the
+        Orientation of the precise model's monitor grid in two directions [deg]; None follows the
         motion.
-
-    Returns
-    -------
-    BearingTestResult
     """
     owner = "run_test"
     t, u, v = imposed_history(time, displacement, velocity, owner)

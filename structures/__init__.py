@@ -1,10 +1,10 @@
-"""Structures layer: the shear building on its isolators, the integrators, the analysis and its
-results; below it the compiled engine (:mod:`structures.compiled`); above it the workflows in
-rooms of their own: :mod:`structures.opensees` (the OpenSees twin), :mod:`structures.suites`
-(Dask suites) and :mod:`structures.diagnosis` (the building-level diagnosis adapter).
+"""Structures layer: the shear building on its isolators, in one direction or in plan, the
+integrators, the analysis and its results, building files, the fixed base and floor spectra;
+below it the compiled engine (:mod:`structures.compiled`), above it the workflows
+:mod:`structures.opensees` (the OpenSees twin), :mod:`structures.suites` (Dask suites) and
+:mod:`structures.diagnosis` (the building-level diagnosis adapter).
 
-The names in ``__all__`` are importable from the package (on first use: the engine imports
-numba and xarray)::
+The names in ``__all__`` are imported on first use (the engine imports numba and xarray)::
 
     import structures
     result = structures.run("examples/five_storey.toml", "record.at2", model="precise")

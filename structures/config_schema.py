@@ -1,13 +1,13 @@
-"""The building file's schema: every section and key, its TOML type and its allowed range,
-the optional ``[plan]`` table of a building in plan included.
+"""The building file's schema: every section and key, its TOML type and its allowed range, the
+optional ``[plan]`` table of a building in plan included.
 
 :func:`check_tables` checks every value of a building file's table (read by
-:func:`structures.config.read_toml`) before any object is built: numbers are numbers
-(``true`` and ``"6"`` are not), integers are integers (``2.7`` and ``true`` are not), arrays hold
-what they should (no nested arrays or tables where numbers belong), each value lies in its
-range, and every friction parameter is checked whatever model the file chooses, since
-``--model`` and suites run the others. Every error is a :class:`ConfigError` naming the file,
-the section and the key, the allowed type and range and the value given::
+:func:`structures.config.read_toml`) before any object is built: numbers are numbers (``true``
+and ``"6"`` are not), integers are integers (``2.7`` and ``true`` are not), arrays hold what
+they should (no nested arrays or tables where numbers belong), each value lies in its range,
+and every friction parameter is checked whatever model the file chooses, since ``--model`` and
+suites run the others. Every error is a :class:`ConfigError` naming the file, the section and
+the key, the allowed type and range and the value given::
 
     five_storey.toml: [bearing] 'count' must be an integer in [1, 10000]. Got 2.7 (a float)
     instead.
@@ -15,8 +15,8 @@ the section and the key, the allowed type and range and the value given::
 A setting that does not apply to the chosen integrator or damping (``alpha`` under Newmark,
 ``modes`` under modal damping) is accepted with a :class:`ConfigWarning` saying it is ignored.
 
-A building file with a ``[plan]`` table describes a building in plan
-(:class:`structures.plan.Plan`); without one the building moves in one direction::
+A building file with a ``[plan]`` table (:func:`check_plan`, :class:`structures.plan.Plan`)
+describes a building in plan; without one the building moves in one direction::
 
     [plan]
     # Bearing positions (x, y) from the centre of stiffness [m]; at least 3, not on a line.
@@ -29,10 +29,8 @@ A building file with a ``[plan]`` table describes a building in plan
     # Storey heights [m], one for all or one per storey: the overturning's lever arms.
     storey_heights = 3.5
 
-Optional besides: ``base_eccentricity`` [m], ``floor_inertias`` [kg m^2] (one per floor),
-``base_inertia`` [kg m^2], ``storey_stiffnesses_y`` [N/m] and ``torsional_stiffnesses``
-[N m/rad] (one per storey). ``[bearing] count``, if given, must equal the number of bearing
-coordinates.
+The other keys, with their units, are those of :data:`PLAN_SCHEMA`; ``[bearing] count``, if
+given, must equal the number of bearing coordinates.
 """
 
 from __future__ import annotations
@@ -380,14 +378,10 @@ def _building(b: dict[str, Any], path: Path) -> None:
 
 
 def check_tables(raw: dict[str, Any], path: Path) -> dict[str, dict[str, Any]]:
-    """Check a building file's table against :data:`SCHEMA` and the rules between its keys.
-
-    Returns
-    -------
-    dict
-        ``{section: table}`` for ``""``, ``"building"``, ``"building.damping"``,
-        ``"bearing"``, ``"friction"`` and ``"analysis"`` (absent ones empty), the values as
-        the file gives them.
+    """Check a building file's table against :data:`SCHEMA` and the rules between its keys;
+    return ``{section: table}`` for ``""``, ``"building"``, ``"building.damping"``,
+    ``"bearing"``, ``"friction"`` and ``"analysis"`` (absent ones empty), the values as the file
+    gives them.
 
     Raises
     ------
@@ -398,8 +392,8 @@ def check_tables(raw: dict[str, Any], path: Path) -> dict[str, dict[str, Any]]:
     -----
     ConfigWarning
         For a setting that has no effect: ``alpha`` without ``integrator = "hht"``, a stiffness
-        period or profile beside ``storey_stiffnesses``, a damping key the damping kind does
-        not use.
+        period or profile beside ``storey_stiffnesses``, a damping key the damping kind does not
+        use.
     """
     tables = {"": _section({"": raw}, "", path)}
     for section in ("building", "building.damping", "bearing", "friction", "analysis"):
@@ -482,24 +476,17 @@ _PER_STOREY = ("floor_inertias", "storey_stiffnesses_y", "torsional_stiffnesses"
 
 def check_plan(raw: dict[str, Any], n_storeys: int, bearing: dict[str, Any],
                path: Path) -> dict[str, Any] | None:
-    """Check the ``[plan]`` table of a building file's table ``raw`` (None when absent).
-
-    Parameters
-    ----------
-    raw : dict
-        The whole file's table.
-    n_storeys : int
-        Floors of ``[building]`` (per-storey keys must hold one value each).
-    bearing : dict
-        The checked ``[bearing]`` table (its ``count`` must match the coordinates).
-    path : Path
-        The file, for the messages.
+    """Check the ``[plan]`` table of a building file's whole table ``raw`` (None when it has
+    none) against :data:`PLAN_SCHEMA`, for the ``n_storeys`` floors of ``[building]`` (a
+    per-storey key holds one value each) and the checked ``[bearing]`` table (its ``count`` must
+    match the coordinates); ``path`` names the file in the messages.
 
     Raises
     ------
     ConfigError
-        Naming the file, ``[plan]``, the key, what is allowed and the value given; for an
-        unknown or missing key; for a per-storey key of another length.
+        Naming the file, ``[plan]``, the key, what is allowed and the value given: an unknown or
+        missing key, a value of the wrong kind or outside its range, a per-storey key of another
+        length.
     """
     if "plan" not in raw:
         return None

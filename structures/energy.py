@@ -1,11 +1,10 @@
-"""Energy balance of a time-history run, in the relative frame of the ground, for a building in
+"""Energy balance of a time-history run in the relative frame of the ground, for a building in
 one direction or in plan.
 
-Every term is a work integral taken over the displacement increments of each step with the
-trapezoid rule, which is exactly the identity the average-acceleration Newmark method satisfies:
-for gamma = 1/2, beta = 1/4 the balance closes to round-off (for linear, nonlinear and
-hysteretic restoring forces alike). For HHT-alpha the closure error is the method's numerical
-dissipation.
+Every term is a work integral over the displacement increments of each step by the trapezoid
+rule, the identity the average-acceleration Newmark method satisfies: for gamma = 1/2,
+beta = 1/4 the balance closes to round-off, for linear, nonlinear and hysteretic restoring
+forces alike; under HHT-alpha the closure error is the method's numerical dissipation.
 
     input    E_I = sum du . (p_n + p_n+1) / 2,          p = -M R a_g
     kinetic  E_K = v . M v / 2                            (relative velocity)
@@ -14,8 +13,8 @@ dissipation.
     friction E_F = sum over the bearings of sum du_i . (F_f,i,n + F_f,i,n+1) / 2
     error = E_I - (E_K + E_D + E_S + E_F)
 
-``du_i`` is the displacement increment of bearing ``i`` and ``F_f,i`` its friction force, so
-the friction work is counted where it is done, torsion included.
+with ``du_i`` the displacement increment of bearing ``i`` and ``F_f,i`` its friction force, so
+that the friction work is counted where it is done, torsion included.
 """
 
 from __future__ import annotations
@@ -26,7 +25,7 @@ import numpy as np
 
 
 class EnergyBalance(NamedTuple):
-    """Cumulative energies at every step [J] and the closure error."""
+    """Cumulative energies at every step and the closure error, shape (nt,) [J]."""
 
     input: np.ndarray
     kinetic: np.ndarray
@@ -70,17 +69,13 @@ def energy_balance(
         Response relative to the ground [m, rad], [m/s, rad/s].
     ground_acceleration : ndarray, shape (nt, k)
         The k components of the ground acceleration [m/s^2].
-    mass, damping : ndarray, shape (n, n)
-        [kg ...], [N s/m ...].
-    influence : ndarray, shape (n, k)
-        Influence ``R`` of the ground acceleration [-].
+    mass, damping, influence : ndarray
+        Mass [kg, kg m, kg m^2] and damping [N s/m, ...] matrices (n, n), and the influence ``R``
+        (n, k) [-] of the ground acceleration.
     restoring_force : ndarray, shape (nt, n)
-        Total restoring force f(u, v) at each step (storeys and bearings) [N, N m].
-    bearing_displacement : ndarray, shape (nt, n_b, d)
-        Displacement of each bearing position [m].
-    friction_force : ndarray, shape (nt, n_b, d)
-        Friction force of all the bearings at each position [N], so that the friction work is
-        counted where it is done, torsion included.
+        Total restoring force f(u, v) at each step, storeys and bearings [N, N m].
+    bearing_displacement, friction_force : ndarray, shape (nt, n_b, d)
+        Displacement of each bearing position [m] and friction force of all its bearings [N].
     """
     load = -(ground_acceleration @ (mass @ influence).T)
     energy_input = trapezoid_work(load, displacement)

@@ -1,18 +1,14 @@
 """The same superstructure on a fixed base: the reference an isolation system is judged against.
 
 :func:`run_fixed_base` computes the linear response of a :class:`ShearBuilding` standing on the
-ground (no base slab, no isolators) to a ground motion, by modal superposition: the building's
-damping is classical (Rayleigh or modal), so each fixed-base mode is a single-degree-of-freedom
-oscillator, solved with the exact recurrence of :mod:`groundmotions.spectra` (Nigam & Jennings,
-the spectrum code: no integration error for the piecewise-linear record). The result is an
-``xarray.Dataset`` with the variables of :func:`structures.analysis.run` that describe the
-superstructure (``displacement``, ``velocity``, ``absolute_acceleration``, ``storey_drift``,
-``storey_shear``, ``base_shear``, ``ground_acceleration``), so both can be compared and
-reduced alike by :func:`superstructure_peaks` and :func:`ratios_to_fixed_base`.
-
-Floor 0 of the fixed-base Dataset is the ground level: it moves with the ground (relative
-displacement 0, absolute acceleration a_g). Its base shear is the first-storey shear, the sum of
-the inertia forces of the floors above.
+ground (no base slab, no isolators) by modal superposition: its damping is classical (Rayleigh
+or modal), so each fixed-base mode is an oscillator, solved with the exact recurrence of
+:mod:`groundmotions.spectra` (no integration error for the piecewise-linear record). The result
+holds the variables of :func:`structures.analysis.run` that describe the superstructure, so that
+the two compare through :func:`superstructure_peaks` and :func:`ratios_to_fixed_base`. Floor 0
+is the ground level: it moves with the ground (relative displacement 0, absolute acceleration
+a_g); the base shear is the first-storey shear, the sum of the inertia forces of the floors
+above.
 
 References
 ----------
@@ -63,36 +59,33 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion | GroundMotionP
     Parameters
     ----------
     building : ShearBuilding
-        The superstructure (its base slab is not part of the fixed-base building), in one
+        The superstructure (its base slab is no part of the fixed-base building), in one
         direction or in plan.
     motion : GroundMotion or GroundMotionPair
         Ground acceleration [m/s^2] (scale it first with ``motion.scaled``): one record in one
         direction, a pair (x, y; a vertical is left out) in plan.
     dt : float, optional
-        Output step [s], at most the record's; finer steps interpolate the record linearly
-        (exactly as :func:`structures.analysis.run` does, so the two share a time axis).
+        Output step [s], at most the record's; a finer one interpolates the record linearly, as
+        :func:`structures.analysis.run` does, so that the two share a time axis.
     max_steps : int
         Most time steps the run may take, as in :func:`structures.analysis.run`.
 
     Returns
     -------
     xarray.Dataset
-        The layout of :func:`structures.results.response_dataset` for the superstructure:
-        dimensions ``time``, ``floor`` (0 = the ground level, 1..n), ``storey`` (1..n) and
-        ``direction``; variables ``displacement``, ``velocity`` (relative to the ground),
-        ``absolute_acceleration`` (time, floor, direction), ``storey_drift``,
-        ``storey_shear`` (time, storey, direction), ``base_shear`` and
-        ``ground_acceleration`` (time, direction), in plan also ``rotation`` (time, floor)
-        and ``storey_twist`` (time, storey); attributes ``configuration = "fixed base"``, the
+        The layout of :func:`structures.results.response_dataset` for the superstructure (floor 0
+        the ground level): ``displacement``, ``velocity``, ``absolute_acceleration``,
+        ``storey_drift``, ``storey_shear``, ``base_shear``, ``ground_acceleration`` and, in plan,
+        ``rotation`` and ``storey_twist``; attributes ``configuration = "fixed base"``, the
         record, ``dt``, the modal periods and damping ratios, ``success`` and ``wall_time``.
 
     Raises
     ------
     ValueError
-        For a ``dt`` outside (0, record dt], or a damping that is not classical; an
-        :class:`~dcfpb.common.errors.InputError` for a run past ``max_steps`` or the memory
-        available, or a motion that does not fit the building (one record in one direction,
-        a pair in plan).
+        For a ``dt`` outside (0, record dt], or a damping that is not classical.
+    dcfpb.common.errors.InputError
+        For a run past ``max_steps`` or the memory available, or a motion that does not fit the
+        building (one record in one direction, a pair in plan).
     """
     import xarray as xr
 
@@ -191,16 +184,10 @@ def _per_direction(name: str, values: np.ndarray, directions) -> dict[str, float
 
 
 def superstructure_peaks(result) -> dict[str, float]:
-    """Peaks of the superstructure of a run, isolated or on a fixed base (SI units).
-
-    Returns
-    -------
-    dict
-        ``peak_storey_drift`` [m] and ``peak_storey_shear`` [N] (largest over the storeys),
-        ``peak_roof_acceleration`` (absolute) [m/s^2] and ``peak_base_shear`` [N] (through the
-        isolation level of an isolated run; the first-storey shear on a fixed base); each per
-        direction in plan (``_x``, ``_y``).
-    """
+    """Peaks of the superstructure of a run, isolated or on a fixed base: ``peak_storey_drift``
+    [m] and ``peak_storey_shear`` [N] (the largest over the storeys), ``peak_roof_acceleration``
+    (absolute) [m/s^2] and ``peak_base_shear`` [N] (through the isolation level of an isolated
+    run, the first-storey shear on a fixed base); in plan each per direction (``_x``, ``_y``)."""
     directions = list(result["direction"].values)
     roof = result["absolute_acceleration"].isel(floor=-1)
     peaks = {}

@@ -2,19 +2,14 @@
 
 Equipment and non-structural parts are designed from the 5 %-damped pseudo-acceleration
 spectrum of the floor they stand on. :func:`with_floor_spectra` adds to the Dataset of a run
-(:func:`structures.analysis.run`, or :func:`structures.fixed_base.run_fixed_base`), in each
-direction the building moves in,
-
-``floor_spectrum`` (floor, direction, period) [m/s^2]
-    Sa of each floor's absolute acceleration history, on the run's time step;
-``ground_spectrum`` (direction, period) [m/s^2]
-    Sa of the record as read, on its own time step: exactly what ``dcfpb spectrum`` gives.
-
-Both come from the exact recurrence of :mod:`groundmotions.spectra` (the project's spectrum
-code, all floors in one pass). At period 0 the spectrum is the peak absolute acceleration: the
-peak floor acceleration, or the PGA. Peaks are taken at the samples, so for periods below a few
-time steps (the record's step for the ground) a spectrum can miss a peak between them; with the
-bundled record, the ground's step (0.02 s) is coarser than a run's (0.005 s).
+(:func:`structures.analysis.run` or :func:`structures.fixed_base.run_fixed_base`), in each
+direction the building moves in, ``floor_spectrum`` (floor, direction, period) [m/s^2], Sa of
+each floor's absolute acceleration on the run's time step, and ``ground_spectrum`` (direction,
+period) [m/s^2], Sa of the record as read on its own time step (what ``dcfpb spectrum``
+gives). Both come from the exact recurrence of :mod:`groundmotions.spectra`, all floors in one
+pass. At period 0 a spectrum is the peak absolute acceleration: the peak floor acceleration, or
+the PGA. Peaks are taken at the samples, so for periods below a few time steps (the record's
+step for the ground) a spectrum can miss a peak between them.
 """
 
 from __future__ import annotations
@@ -45,23 +40,11 @@ def _histories(result) -> np.ndarray:
 
 def floor_spectra(result, periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
                   damping: float = FLOOR_SPECTRUM_DAMPING) -> np.ndarray:
-    """Pseudo-acceleration spectra of every floor's absolute acceleration in each direction.
-
-    Parameters
-    ----------
-    result : xarray.Dataset
-        A run with ``absolute_acceleration`` (time, floor, direction) and the attribute
-        ``dt`` [s].
-    periods : array_like
-        Oscillator periods, >= 0 [s].
-    damping : float
-        Damping ratio in [0, 1) [-].
-
-    Returns
-    -------
-    numpy.ndarray, shape (floors, directions, len(periods))
-        Sa [m/s^2], floor 0 (the base slab, or the ground level of a fixed base) first.
-    """
+    """Pseudo-acceleration spectra Sa [m/s^2] of every floor's absolute acceleration in each
+    direction, shape (floors, directions, len(periods)), floor 0 (the base slab, or the ground
+    level of a fixed base) first: for a run with ``absolute_acceleration`` (time, floor,
+    direction) and the attribute ``dt`` [s], at ``periods`` >= 0 [s] and the damping ratio
+    ``damping`` in [0, 1) [-]."""
     sa = response_spectra(_histories(result), float(result.attrs["dt"]), periods, damping).sa
     return sa.reshape(result.sizes["floor"], result.sizes["direction"], -1)
 
@@ -76,19 +59,17 @@ def with_floor_spectra(result, motion: GroundMotion | GroundMotionPair | None = 
     result : xarray.Dataset
         A run (``absolute_acceleration``, ``ground_acceleration``, attribute ``dt``).
     motion : GroundMotion or GroundMotionPair, optional
-        The record(s) the run was driven by (scaled as they were). Their spectra, on their own
+        The record(s) the run was driven by, scaled as they were: their spectra, on their own
         step, are ``ground_spectrum``; without them, the run's ``ground_acceleration`` (on the
-        run's step) is used instead.
-    periods : array_like
-        Periods of the spectra, >= 0 [s].
-    damping : float
-        Damping ratio in [0, 1) [-].
+        run's step) serves.
+    periods, damping : array_like, float
+        Periods of the spectra, >= 0 [s], and their damping ratio in [0, 1) [-].
 
     Returns
     -------
     xarray.Dataset
-        A new Dataset with the coordinate ``period`` [s] and the variables ``floor_spectrum``
-        (floor, direction, period) and ``ground_spectrum`` (direction, period) [m/s^2];
+        A new Dataset with the coordinate ``period`` [s], the variables ``floor_spectrum``
+        (floor, direction, period) and ``ground_spectrum`` (direction, period) [m/s^2] and the
         attribute ``spectrum_damping``.
     """
     return with_floor_spectra_all({"run": result}, motion, periods=periods,
@@ -98,11 +79,9 @@ def with_floor_spectra(result, motion: GroundMotion | GroundMotionPair | None = 
 def with_floor_spectra_all(results: dict, motion: GroundMotion | GroundMotionPair | None = None,
                            *, periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
                            damping: float = FLOOR_SPECTRUM_DAMPING) -> dict:
-    """:func:`with_floor_spectra` of several runs of one motion, keyed alike.
-
-    Runs that share a time step and a length go through the spectrum code in one pass (the
-    same numbers as one at a time, in a fraction of the time).
-    """
+    """:func:`with_floor_spectra` of several runs of one motion, keyed alike; the runs that share
+    a time step and a length go through the spectrum code in one pass (the same numbers as one at
+    a time)."""
     periods = np.atleast_1d(np.asarray(periods, dtype=float))
     groups: dict[tuple[float, int], list] = {}
     for key, result in results.items():

@@ -90,13 +90,8 @@ METHODS: dict[str, type[Newmark] | type[HHT]] = {"newmark": Newmark, "hht": HHT}
 
 
 def as_method(method: object) -> Newmark | HHT:
-    """The method instance for a name from :data:`METHODS` (default parameters) or an instance.
-
-    Raises
-    ------
-    TypeError
-        For anything else.
-    """
+    """The method for a name from :data:`METHODS` (with its default parameters) or an instance; a
+    ``TypeError`` for anything else."""
     if isinstance(method, Newmark | HHT):
         return method
     if isinstance(method, str):

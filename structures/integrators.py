@@ -1,18 +1,15 @@
 """Implicit time integration of ``M a + C v + f(u, v) = -M r a_g(t)``: Newmark and HHT-alpha.
 
-The ground acceleration is a scalar per step with an influence vector ``r`` of shape (n,) (the
-planar building), or a vector of ``k`` components per step with an influence matrix of shape
-(n, k) (``p = -M r a_g``, e.g. the x and y components for a building in plan); the scalar case
-takes the same arithmetic as it always has.
-
-As in ``scipy.integrate``, a method is data over one shared algorithm: :class:`Newmark` and
-:class:`HHT` (:mod:`structures.integration_methods`, re-exported here) are small frozen
-parameter sets (``gamma``, ``beta``, ``alpha``) and
-:class:`NewmarkStepper` is the one Newton step that uses them. :func:`integrate` is the entry
-point; ``method`` is a name from :data:`METHODS` or an instance. Misuse raises; a numerical
-failure ends the run with ``success=False`` and a message, keeping the steps already taken,
-and so does a :class:`dcfpb.common.errors.RunFailure` raised by the model (a bearing beyond its
-displacement capacity) or by the ``on_commit`` hook (a time limit).
+The ground acceleration is a scalar per step with an influence vector ``r`` of shape (n,) (a
+building in one direction), or k components per step with an influence matrix of shape (n, k)
+(e.g. x and y for a building in plan). As in ``scipy.integrate``, a method is data over one
+shared algorithm: :class:`Newmark` and :class:`HHT` (:mod:`structures.integration_methods`,
+re-exported here) are frozen parameter sets (``gamma``, ``beta``, ``alpha``) and
+:class:`NewmarkStepper` is the one Newton step that uses them; :func:`integrate` takes a name
+from :data:`METHODS` or an instance. Misuse raises; a numerical failure ends the run with
+``success=False`` and a message, keeping the steps already taken, and so does a
+:class:`dcfpb.common.errors.RunFailure` raised by the model (a bearing beyond its displacement
+capacity) or by the ``on_commit`` hook (a time limit).
 
 The step from ``t_n`` to ``t_{n+1} = t_n + h`` solves for ``u_{n+1}`` (Hilber, Hughes & Taylor
 1977; ``alpha = 0`` is Newmark)::
@@ -24,19 +21,15 @@ The step from ``t_n`` to ``t_{n+1} = t_n + h`` solves for ``u_{n+1}`` (Hilber, H
 
 by Newton's method on the consistent tangent
 ``K_eff = c0 M + (1 + alpha) [c1 (C + df/dv) + df/du]``, ``c0 = 1/(beta h^2)``,
-``c1 = gamma/(beta h)``, from the predictor ``a_{n+1} = a_n``.
-
-Convergence: with ``R`` the residual (right side minus left side) and ``du = K_eff^-1 R`` the next
-Newton correction at the current iterate, the iterate is accepted when both
-
-- ``|R| <= tolerance * F_ref``, ``F_ref`` the largest norm among the terms of the balance:
-  ``M a_{n+1}``, ``C v_{n+1} + f_{n+1}``, ``p_{n+1}``, ``C v_n + f_n``, ``p_n`` [N];
-- ``|du| <= tolerance * max(|u_{n+1}|, |u_n|)`` [m];
-
-(Euclidean norms). One iteration is one restoring-force evaluation, so a linear model converges
-in two: a correction and the check of it. A step that does not converge in ``max_iterations`` is
-reverted and solved as two half steps, with the ground acceleration interpolated linearly,
-recursively down to ``max_subdivisions`` halvings; the model is committed after each sub-step.
+``c1 = gamma/(beta h)``, from the predictor ``a_{n+1} = a_n``. With ``R`` the residual (right
+side minus left side) and ``du = K_eff^-1 R`` the next correction, an iterate is accepted when
+``|R| <= tolerance * F_ref`` [N] and ``|du| <= tolerance * max(|u_{n+1}|, |u_n|)`` [m]
+(Euclidean norms), ``F_ref`` the largest norm among ``M a_{n+1}``, ``C v_{n+1} + f_{n+1}``,
+``p_{n+1}``, ``C v_n + f_n`` and ``p_n``. One iteration is one restoring-force evaluation, so a
+linear model converges in two: a correction and the check of it. A step that does not converge
+in ``max_iterations`` is reverted and solved as two half steps, the ground acceleration
+interpolated linearly, recursively down to ``max_subdivisions`` halvings; the model is
+committed after each sub-step.
 """
 
 from __future__ import annotations
@@ -58,7 +51,7 @@ __all__ = [
 
 @dataclass(frozen=True, eq=False)
 class IntegrationResult:
-    """A time history, relative to the ground, up to the last committed step.
+    """A time history relative to the ground, up to the last committed step.
 
     Attributes
     ----------
@@ -67,22 +60,19 @@ class IntegrationResult:
     displacement, velocity, acceleration : numpy.ndarray
         Response relative to the ground, shape (nt, n) [m], [m/s], [m/s^2].
     absolute_acceleration : numpy.ndarray
-        ``acceleration + r a_g``, shape (nt, n) [m/s^2] (the translational ground
-        acceleration added along each DOF the influence names).
-    success : bool
-        Whether the whole record was integrated.
-    message : str
-        Why the run ended; on failure, the time, iteration count and residual norm.
-    iterations : numpy.ndarray
-        Newton iterations spent on each committed step, failed attempts included, (nt-1,).
-    subdivisions : numpy.ndarray
-        Step halvings needed by each committed step, shape (nt-1,).
+        ``acceleration + r a_g``, shape (nt, n) [m/s^2] (the translational ground acceleration
+        added along each DOF the influence names).
+    success, message : bool, str
+        Whether the whole record was integrated, and why the run ended (on failure: the time,
+        iteration count and residual norm).
+    iterations, subdivisions : numpy.ndarray
+        Newton iterations (failed attempts included) and step halvings of each committed step,
+        shape (nt-1,).
     method : Newmark or HHT
         The method used.
     failure : str
-        Why the run ended early: ``""`` (it did not), ``"convergence"``, or the ``kind`` of
-        the :class:`dcfpb.common.errors.RunFailure` that ended it (``"capacity"``,
-        ``"timeout"``...).
+        Why the run ended early: ``""`` (it did not), ``"convergence"``, or the ``kind`` of the
+        :class:`dcfpb.common.errors.RunFailure` that ended it (``"capacity"``, ``"timeout"``...).
     failed_at : float or None
         Time of the step that failed [s] (None on success).
     """
@@ -114,21 +104,14 @@ def _matrix(value: object, name: str, shape: tuple[int, ...]) -> np.ndarray:
 class NewmarkStepper:
     """The shared Newton step of the Newmark family, with step subdivision.
 
-    Holds the committed state ``(t, u, v, a)``, ground acceleration ``ag`` and the committed
-    internal force ``q = C v + f`` and load ``p`` that the HHT balance needs. :meth:`step` is
-    the bookkeeping (subdivision, commit, messages); :meth:`_solve` is one Newton attempt on one
-    (sub-)step. Arrays handed to the model are never modified afterwards, so a model may keep
-    references to its trial state.
-
-    Parameters
-    ----------
-    model, method
-        As :func:`integrate`; the model's committed state must match the initial state.
-    time, ground_acceleration, displacement, velocity
-        Initial time [s], ground acceleration [m/s^2] (a float, or shape (k,) for a model whose
-        influence has shape (n, k)), state (n,) [m], [m/s].
-    tolerance, max_iterations, max_subdivisions
-        As :func:`integrate`.
+    It holds the committed state ``(t, u, v, a)``, the ground acceleration ``ag`` and the
+    committed internal force ``q = C v + f`` and load ``p`` that the HHT balance needs.
+    :meth:`step` is the bookkeeping (subdivision, commit, messages), :meth:`_solve` one Newton
+    attempt on one (sub-)step. Arrays handed to the model are never modified afterwards, so a
+    model may keep references to its trial state. The initial ``time`` [s],
+    ``ground_acceleration`` [m/s^2] (a float, or shape (k,) for an influence of shape (n, k)),
+    ``displacement`` [m] and ``velocity`` [m/s] (n,) must match the model's committed state; the
+    rest is as :func:`integrate`.
     """
 
     def __init__(
@@ -287,11 +270,10 @@ def integrate(
     Parameters
     ----------
     model : DynamicModel
-        The structure. Its committed state must correspond to the initial conditions.
+        The structure; its committed state must be that of the initial conditions.
     ground_acceleration : array_like
-        Ground acceleration sampled every ``dt`` from ``t = 0``, shape (nt,) [m/s^2]; shape
-        (nt, k) for a model whose influence is a matrix of shape (n, k) (one column per
-        component, e.g. x and y).
+        Ground acceleration sampled every ``dt`` from ``t = 0`` [m/s^2], shape (nt,), or (nt, k)
+        for a model whose influence has shape (n, k) (one column per component, e.g. x and y).
     dt : float
         Time step of the record and of the integration [s].
     method : {"newmark", "hht"} or Newmark or HHT
@@ -300,15 +282,14 @@ def integrate(
         Initial state relative to the ground, shape (n,) [m], [m/s]; zeros by default.
     tolerance : float
         Relative tolerance of the force-residual and displacement-increment tests, in (0, 1).
-    max_iterations : int
-        Newton iterations per attempt, at least 1.
-    max_subdivisions : int
-        Nested halvings of a step that does not converge, at least 0.
+    max_iterations, max_subdivisions : int
+        Newton iterations per attempt (>= 1) and nested halvings of a step that does not converge
+        (>= 0).
     on_commit : callable, optional
         ``on_commit(step_index, time, u, v, a)`` after each committed full step (index >= 1),
-        e.g. to record the bearing state; the arrays are rows of the result and must not be
-        modified. It may end the run by raising :class:`dcfpb.common.errors.RunFailure` (e.g. a
-        time limit): that step is kept.
+        e.g. to record the bearing state; the arrays are rows of the result, not to be modified.
+        It may end the run by raising :class:`dcfpb.common.errors.RunFailure` (e.g. a time
+        limit); that step is kept.
 
     Returns
     -------

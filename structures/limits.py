@@ -2,16 +2,14 @@
 
 :func:`check_run` is called by :func:`structures.analysis.run` and
 :func:`structures.fixed_base.run_fixed_base` before anything is allocated, and by the command
-line (``--max-steps``) before it waits for the engine. The limit and its default are those of
-:mod:`isolator.limits` (:data:`~isolator.limits.DEFAULT_MAX_STEPS` = 2,000,000 steps).
-
-Memory per step is counted from what a run holds at once: the fields the result Dataset stores
-(:func:`structures.results.response_dataset`: the levels' displacement, velocity and absolute
-acceleration per direction and their rotations in plan, the storeys' drift and shear, seven
-histories per bearing position, the base shear and the ground acceleration per direction, six
-energies and the time) and the engine's working histories beside them (displacement, velocity,
-acceleration and restoring force on every degree of freedom, ten fields per bearing position,
-iterations, subdivisions, the record and the time), 8 bytes each.
+line (``--max-steps``) before it waits for the engine; the limit and its default are those of
+:mod:`isolator.limits`. The memory per step counts what a run holds at once, 8 bytes a value:
+the fields the result Dataset stores (:func:`structures.results.response_dataset`: the levels'
+displacement, velocity and absolute acceleration per direction and their rotations in plan, the
+storeys' drift and shear, seven histories per bearing position, the base shear and the ground
+acceleration per direction, six energies and the time) and the engine's working histories
+beside them (displacement, velocity, acceleration and restoring force on every degree of
+freedom, ten fields per bearing position, iterations, subdivisions, the record and the time).
 """
 
 from __future__ import annotations
@@ -30,8 +28,8 @@ _BYTES = 8  # one float64 (or int64) per field and step
 
 
 def building_fields(n_storeys: int, level_dofs: int = 1, positions: int = 1) -> int:
-    """Values a building run holds per step: the Dataset's and the engine's (see above), for
-    ``level_dofs`` degrees of freedom per level (1 in one direction, 3 in plan) and
+    """Values a building run holds per step, the Dataset's and the engine's (module docstring),
+    for ``level_dofs`` degrees of freedom per level (1 in one direction, 3 in plan) and
     ``positions`` bearing positions."""
     components = 1 if level_dofs == 1 else 2
     levels = level_dofs * (n_storeys + 1)
@@ -48,16 +46,10 @@ def fixed_base_fields(n_storeys: int) -> int:
 
 
 def run_steps(motion: GroundMotion, dt: float | None, owner: str = "run") -> tuple[int, float]:
-    """The steps and the step [s] of a run on ``motion`` at the analysis step ``dt``.
-
-    ``dt`` None (or the record's) runs on the record's samples; a finer one interpolates the
-    record (:func:`structures.analysis.resampled_record`): ``floor(duration / dt)`` steps.
-
-    Raises
-    ------
-    ValueError
-        For a ``dt`` outside (0, record dt], naming ``owner``.
-    """
+    """The steps and the step [s] of a run on ``motion`` at the analysis step ``dt`` [s]: the
+    record's samples for ``dt`` None (or the record's), else ``floor(duration / dt)`` steps on
+    the interpolated record (:func:`structures.analysis.resampled_record`); a ``ValueError``
+    naming ``owner`` for a ``dt`` outside (0, record dt]."""
     if dt is None or abs(dt - motion.dt) <= 1e-12 * motion.dt:
         return int(motion.acceleration.size) - 1, float(motion.dt)
     check_real(dt, "dt", owner, low=0.0, high=motion.dt, low_open=True)
@@ -75,25 +67,16 @@ def check_run(
     raise_with: str = "the max_steps argument of structures.analysis.run",
     owner: str = "run",
 ) -> int:
-    """Refuse a run past ``max_steps`` steps or the memory available; return its steps.
-
-    Parameters
-    ----------
-    motion : GroundMotion
-        The record (its duration [s] and step [s]).
-    dt : float or None
-        Analysis step [s]; None for the record's.
-    fields : int
-        Values held per step (:func:`building_fields`, :func:`fixed_base_fields`).
-    max_steps : int
-        The limit (default :data:`DEFAULT_MAX_STEPS`).
-    what, raise_with, owner : str
-        The run, how to raise the limit, and who checks ``dt``, for the messages.
+    """Refuse a run on ``motion`` at the analysis step ``dt`` [s] (None: the record's) past
+    ``max_steps`` steps or the memory available, for ``fields`` values held per step
+    (:func:`building_fields`, :func:`fixed_base_fields`); return its steps. ``what``,
+    ``raise_with`` and ``owner`` name the run, how to raise the limit and who checks ``dt`` in
+    the messages.
 
     Raises
     ------
     InputError
-        Past the limit or the available memory (see :func:`isolator.limits.check_steps`).
+        Past the limit or the memory available (:func:`isolator.limits.check_steps`).
     """
     steps, step = run_steps(motion, dt, owner)
     check_steps(steps, what=what, duration=float(motion.duration), dt=step,

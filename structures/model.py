@@ -1,13 +1,11 @@
-"""The seam between the integrators and whatever they integrate: a dynamic-model protocol.
+"""The seam between the integrators and what they integrate: the dynamic-model protocol.
 
-An integrator solves ``M a + C v + f(u, v) = p(t)`` with ``p = -M r a_g(t)`` and never sees a
-bearing: it only asks a :class:`DynamicModel` for its constant matrices and for the restoring
-force ``f`` with its tangents at a trial state. As in OpenSees materials, a trial is a pure
-function of the committed history and the trial state, so Newton may call
+An integrator solves ``M a + C v + f(u, v) = p(t)``, ``p = -M r a_g(t)``, and never sees a
+bearing: it asks a :class:`DynamicModel` for its constant matrices and for the restoring force
+``f`` with its tangents at a trial state. As in OpenSees materials, a trial is a pure function
+of the committed history and the trial state, so Newton may call
 :meth:`DynamicModel.restoring_force` as often as it likes; the history moves only on
 :meth:`DynamicModel.commit`, and :meth:`DynamicModel.revert` discards every trial since.
-
-:class:`LinearModel` implements the protocol for ``f = K u`` (the fixed-base building, tests).
 """
 
 from __future__ import annotations
@@ -20,19 +18,10 @@ __all__ = ["DynamicModel", "LinearModel", "RestoringForce"]
 
 
 class RestoringForce(NamedTuple):
-    """Restoring force of a model at a trial state, with its consistent tangents.
-
-    Attributes
-    ----------
-    force : numpy.ndarray
-        Restoring force ``f(u, v)``, shape (n,) [N].
-    stiffness : numpy.ndarray
-        Tangent ``d f / d u``, shape (n, n) [N/m].
-    damping : numpy.ndarray
-        Tangent ``d f / d v`` of the velocity-dependent part of ``f`` (e.g. friction through
-        ``d mu / d v``), shape (n, n) [N s/m]; zeros if ``f`` does not depend on ``v``. The
-        linear viscous damping is *not* in here: it is :attr:`DynamicModel.damping_matrix`.
-    """
+    """Restoring force ``f(u, v)`` of a model at a trial state, shape (n,) [N], with its
+    consistent tangents ``stiffness`` d f / d u (n, n) [N/m] and ``damping`` d f / d v (n, n) [N
+    s/m] of the velocity-dependent part of ``f`` (friction through d mu / d v; zeros without
+    one). The linear viscous damping is not in here: it is :attr:`DynamicModel.damping_matrix`."""
 
     force: np.ndarray
     stiffness: np.ndarray
@@ -63,20 +52,9 @@ class DynamicModel(Protocol):
         ...
 
     def restoring_force(self, u: np.ndarray, v: np.ndarray, time: float) -> RestoringForce:
-        """Restoring force and tangents at the trial state.
-
-        Parameters
-        ----------
-        u, v : numpy.ndarray
-            Trial displacement [m] and velocity [m/s], shape (n,).
-        time : float
-            Trial time [s] (the end of the step or sub-step being solved).
-
-        Returns
-        -------
-        RestoringForce
-            A pure function of the committed history and the trial state.
-        """
+        """Restoring force and tangents at the trial displacement ``u`` [m] and velocity ``v``
+        [m/s], shape (n,), at the trial ``time`` [s] (the end of the step or sub-step being
+        solved): a pure function of the committed history and the trial state."""
         ...
 
     def commit(self) -> None:
@@ -105,25 +83,23 @@ def _square(matrix: object, name: str, n: int | None) -> np.ndarray:
 
 
 class LinearModel:
-    """A linear model ``M a + C v + K u = -M r a_g``: the :class:`DynamicModel` with no history.
+    """A linear model ``M a + C v + K u = -M r a_g``: the :class:`DynamicModel` with no history
+    (the fixed-base building, the tests).
 
     Parameters
     ----------
-    mass : array_like
-        Mass matrix, shape (n, n), symmetric positive definite [kg].
-    damping : array_like
-        Viscous damping matrix, shape (n, n) [N s/m].
-    stiffness : array_like
-        Stiffness matrix, shape (n, n) [N/m].
+    mass, damping, stiffness : array_like
+        Mass [kg] (symmetric positive definite), viscous damping [N s/m] and stiffness [N/m]
+        matrices, shape (n, n).
     influence : array_like
-        Ground-motion influence vector ``r``, shape (n,) [-], or matrix, shape (n, k), for a
-        ground acceleration of k components.
+        Ground-motion influence ``r``, shape (n,) [-], or (n, k) for a ground acceleration of k
+        components.
 
     Raises
     ------
     ValueError
-        If a shape disagrees, a value is not finite or the mass matrix is not symmetric
-        positive definite.
+        If a shape disagrees, a value is not finite or the mass matrix is not symmetric positive
+        definite.
     """
 
     def __init__(self, mass: object, damping: object, stiffness: object, influence: object) -> None:

@@ -1,19 +1,18 @@
 """The plan of an isolated building: where its bearings stand and where its masses sit.
 
-Coordinates are in the horizontal plane, x and y [m], from a reference point ``O`` that is the
-centre of stiffness of every storey (the storeys' centres of stiffness are taken on one vertical
-line). The bearings stand at ``(x_i, y_i)``; the centre of mass of each floor is at its
-eccentricity ``(e_x, e_y)`` from ``O`` (that of the base slab at ``base_eccentricity``).
+Coordinates x and y [m] are taken from a reference point ``O``, the centre of stiffness of every
+storey (the storeys' centres of stiffness on one vertical line). The bearings stand at
+``(x_i, y_i)``; each floor's centre of mass lies at its eccentricity ``(e_x, e_y)`` from ``O``
+(the base slab's at ``base_eccentricity``).
 
 Axial loads: the base slab is rigid and the bearings are equally stiff vertically, so a vertical
 resultant ``F_z`` [N] and the moments ``S_x = sum N_i x_i``, ``S_y = sum N_i y_i`` [N m] it must
 balance are shared linearly over the bearings, ``N_i = a + b x_i + c y_i``, the one linear
-distribution that meets the three equilibrium equations (the least-squares, minimum-norm
-solution of ``A N = (F_z, S_x, S_y)``, ``A = [1; x; y]``; :func:`axial_distribution`). For the
-weight, ``F_z = W`` and ``(S_x, S_y) = W (x_G, y_G)`` with ``G`` the centre of mass of the whole
-building (:func:`gravity_shares`). With the centre of mass at the bearings' centroid the shares
-are equal, W / n. Bearings on one line cannot balance a moment about that line, and a plan in
-which a share is not positive cannot carry the weight: both are errors before any work.
+distribution that meets the three equilibrium equations (:func:`axial_distribution`). For the
+weight, ``F_z = W`` and ``(S_x, S_y) = W (x_G, y_G)``, G the centre of mass of the whole building
+(:func:`gravity_shares`); with G at the bearings' centroid the shares are equal, W / n. Bearings
+on one line cannot balance a moment about that line, and a plan in which a share is not
+positive cannot carry the weight: both are errors before any work.
 """
 
 from __future__ import annotations
@@ -56,19 +55,11 @@ def _positive(value: object, name: str, high: float) -> np.ndarray:
 
 
 def axial_distribution(coordinates: np.ndarray) -> np.ndarray:
-    """The linear distribution of a vertical resultant and its moments over the bearings.
-
-    Parameters
-    ----------
-    coordinates : numpy.ndarray
-        Bearing coordinates ``(x_i, y_i)``, shape (n_b, 2) [m], not all on one line.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``G``, shape (n_b, 3) [1, 1/m, 1/m]: the axial loads ``N = G @ (F_z, S_x, S_y)`` [N]
-        are linear in ``(x_i, y_i)`` and satisfy ``sum N = F_z``, ``sum N x = S_x`` and
-        ``sum N y = S_y`` (``G = A^T (A A^T)^-1``, ``A = [1; x; y]``).
+    """The linear distribution of a vertical resultant and its moments over bearings at
+    ``coordinates`` ``(x_i, y_i)``, shape (n_b, 2) [m]: ``G``, shape (n_b, 3) [1, 1/m, 1/m], such
+    that the axial loads ``N = G @ (F_z, S_x, S_y)`` [N] are linear in ``(x_i, y_i)`` and satisfy
+    ``sum N = F_z``, ``sum N x = S_x`` and ``sum N y = S_y`` (``G = A^T (A A^T)^-1``,
+    ``A = [1; x; y]``: the least-squares, minimum-norm solution of ``A N = (F_z, S_x, S_y)``).
 
     Raises
     ------
@@ -91,28 +82,16 @@ def axial_distribution(coordinates: np.ndarray) -> np.ndarray:
 
 def gravity_shares(coordinates: np.ndarray, masses: np.ndarray,
                    centres: np.ndarray) -> np.ndarray:
-    """Each bearing's share of the weight by the statics of the rigid base [N].
-
-    Parameters
-    ----------
-    coordinates : numpy.ndarray
-        Bearing coordinates, shape (n_b, 2) [m].
-    masses : numpy.ndarray
-        The masses the bearings carry (base slab and floors), shape (m,) [kg].
-    centres : numpy.ndarray
-        Their centres of mass, shape (m, 2) [m].
-
-    Returns
-    -------
-    numpy.ndarray
-        ``N_i``, shape (n_b,) [N], summing to ``W = g sum(masses)``.
+    """Each bearing's share of the weight by the statics of the rigid base, ``N_i`` (n_b,) [N]
+    summing to ``W = g sum(masses)``, for bearings at ``coordinates`` (n_b, 2) [m] carrying the
+    ``masses`` (m,) [kg] (base slab and floors) whose centres of mass are ``centres`` (m, 2) [m].
 
     Raises
     ------
     InputError
-        If the bearings lie on one line, or a share is not positive (the centre of mass too
-        far from the bearings' centroid: outside the region where the linear distribution
-        keeps every bearing in compression), naming the bearing and the centre of mass.
+        If the bearings lie on one line, or a share is not positive (the centre of mass too far
+        from the bearings' centroid for the linear distribution to keep every bearing in
+        compression), naming the bearing and the centre of mass.
     """
     weights = STANDARD_GRAVITY * np.asarray(masses, dtype=float)
     total = float(weights.sum())
@@ -133,7 +112,7 @@ def gravity_shares(coordinates: np.ndarray, masses: np.ndarray,
 
 @dataclass(frozen=True, eq=False)
 class Plan:
-    """The plan of a building on isolators (see the module docstring for the frame).
+    """The plan of a building on isolators (the frame of the module docstring).
 
     Parameters
     ----------
@@ -141,29 +120,26 @@ class Plan:
         Bearing positions ``(x_i, y_i)`` from the centre of stiffness, shape (n_b, 2) [m], in
         [-10000, 10000]; at least 3, not on one line.
     eccentricity : array_like
-        Centre of mass of the floors from the centre of stiffness ``(e_x, e_y)`` [m]: one pair
+        Centre of mass of the floors ``(e_x, e_y)`` from the centre of stiffness [m]: one pair
         for every floor, shape (2,), or one per floor from the first up, shape (n, 2).
     dimensions : tuple of float, optional
-        Plan dimensions ``(a, b)`` along x and y of a rectangular plan [m], in (0, 10000]:
-        the default of the inertias (``m (a^2 + b^2) / 12``) and of the torsional stiffness.
-    floor_inertias : array_like, optional
-        Mass moment of inertia of each floor about its own centre of mass, shape (n,)
-        [kg m^2], > 0. Default from ``dimensions``.
-    base_inertia : float, optional
-        The base slab's, about its centre of mass [kg m^2], > 0. Default from ``dimensions``.
+        Dimensions ``(a, b)`` of a rectangular plan along x and y [m], in (0, 10000]: the default
+        of the inertias (``m (a^2 + b^2) / 12``) and of the torsional stiffness.
+    floor_inertias, base_inertia : array_like, float, optional
+        Mass moments of inertia of each floor, shape (n,), and of the base slab about their own
+        centres of mass [kg m^2], > 0; by default from ``dimensions``.
     base_eccentricity : array_like
-        Centre of mass of the base slab ``(e_x, e_y)`` [m]; default the reference point.
+        Centre of mass of the base slab ``(e_x, e_y)`` [m].
     storey_stiffnesses_y : array_like, optional
-        Storey stiffnesses along y, first storey up, shape (n,) [N/m], > 0. Default: those
+        Storey stiffnesses along y, first storey up, shape (n,) [N/m], > 0; by default those
         along x (the building's ``storey_stiffnesses``).
     torsional_stiffnesses : array_like, optional
-        Torsional storey stiffnesses about the centre of stiffness, shape (n,) [N m/rad], > 0.
-        Default: the lateral stiffness spread uniformly over the rectangle ``a x b``, walls
-        along x resisting over the depth b and along y over the width a,
-        ``k_theta = (k_x b^2 + k_y a^2) / 12``.
+        Torsional storey stiffnesses about the centre of stiffness, shape (n,) [N m/rad], > 0; by
+        default the lateral stiffness spread uniformly over the rectangle ``a x b``, walls along
+        x resisting over the depth b and along y over the width a: ``(k_x b^2 + k_y a^2) / 12``.
     storey_heights : float or array_like, optional
         Storey heights, one for all or one per storey [m], in (0, 1000]: the lever arms of the
-        floors' inertia forces, whose overturning moment loads the bearings. Required when the
+        floors' inertia forces, whose overturning moment loads the bearings; required when the
         overturning is modelled (:class:`structures.isolated_building.IsolatedShearBuilding`).
 
     Raises
@@ -275,23 +251,11 @@ class Plan:
 
 
 def level_mass_matrix(mass: float, inertia: float, centre: np.ndarray) -> np.ndarray:
-    """Mass matrix of a rigid level with the degrees of freedom (u_x, u_y, theta) at the
-    reference point, shape (3, 3) [kg, kg m, kg m^2].
-
-    A level of mass ``m`` and inertia ``J_G`` about its centre of mass ``G = O + e`` moves
-    ``G`` at ``(u_x - theta e_y, u_y + theta e_x)``: its kinetic energy is
-    ``m/2 [(u_x' - theta' e_y)^2 + (u_y' + theta' e_x)^2] + J_G/2 theta'^2``, whose Hessian in
-    the velocities this is.
-
-    Parameters
-    ----------
-    mass : float
-        [kg].
-    inertia : float
-        Mass moment of inertia about the level's own centre of mass [kg m^2].
-    centre : numpy.ndarray
-        Centre of mass ``(e_x, e_y)`` from the reference point [m].
-    """
+    """Mass matrix (3, 3) [kg, kg m, kg m^2] of a rigid level with the degrees of freedom (u_x,
+    u_y, theta) at the reference point. A level of ``mass`` m [kg] and ``inertia`` J_G [kg m^2]
+    about its centre of mass G = O + e, ``centre`` e = (e_x, e_y) [m], moves G at ``(u_x - theta
+    e_y, u_y + theta e_x)``: its kinetic energy is ``m/2 [(u_x' - theta' e_y)^2 + (u_y' + theta'
+    e_x)^2] + J_G/2 theta'^2``, whose Hessian in the velocities this is."""
     ex, ey = float(centre[0]), float(centre[1])
     return np.array([[mass, 0.0, -mass * ey],
                      [0.0, mass, mass * ex],

@@ -1,11 +1,8 @@
-"""One path from a building description and a ground motion to a result, for the command line
-and for Python alike.
-
-``structures.run(config, motion)`` takes a building file (or its :class:`BuildingConfig`) and a
+"""One path from a building description and a ground motion to a result, for the command line and
+for Python alike: :func:`run` takes a building file (or its :class:`BuildingConfig`) and a
 record file, a :class:`GroundMotion` or a :class:`GroundMotionPair`, applies what the caller
-overrides (friction model, integrator, step, scale) and runs :func:`structures.analysis.run`,
-which takes the model objects themselves (a :class:`ShearBuilding`, a :class:`DCFPBearing` and
-the number of bearings).
+overrides (friction model, integrator, step, scale) and runs :func:`structures.analysis.run` on
+the model objects (a :class:`ShearBuilding`, a :class:`DCFPBearing` and the number of bearings).
 
 Example
 -------
@@ -46,22 +43,20 @@ def run(
     Parameters
     ----------
     config : BuildingConfig or str or Path
-        The building: a TOML building file (see ``examples/five_storey.toml``) or its loaded
-        form (:func:`structures.config.load_config`).
+        The building: a TOML building file (``examples/five_storey.toml``) or its loaded form
+        (:func:`structures.config.load_config`).
     motion : GroundMotion or GroundMotionPair or str or Path
         The ground acceleration [m/s^2], or a record file (PEER .AT2 or text;
-        :func:`groundmotions.readers.read_record`). A pair (x, y and optionally z) runs the
-        building of a file with a ``[plan]`` table in plan; one record runs a building in one
-        direction, and a file with a ``[plan]`` table along x as a building in one direction,
-        with a warning.
-    model : {"precise", "simplified", "constant"}, optional
-        Friction model (default: the building file's).
-    integrator : Newmark or HHT or {"newmark", "hht"}, optional
-        Time integration (default: the building file's).
+        :func:`groundmotions.readers.read_record`). A pair (x, y and optionally z) runs a
+        building file with a ``[plan]`` table in plan; one record runs the building in one
+        direction (that of a file with a ``[plan]`` table along x, with a warning).
+    model, integrator : str or Newmark or HHT, optional
+        Friction model (``"precise"``, ``"simplified"``, ``"constant"``) and time integration
+        (``"newmark"``, ``"hht"`` or an instance); by default the building file's.
     dt : float, optional
-        Analysis step [s] (default: the building file's, capped by the record's step with a
-        warning, else the record's step divided into parts of at most 5 ms;
-        :func:`structures.analysis.default_step`).
+        Analysis step [s]: by default the building file's, capped by the record's step with a
+        warning, else the record's step cut into parts of at most 5 ms
+        (:func:`structures.analysis.default_step`).
     scale : float
         Amplitude scale factor of the record(s) [-], > 0.
     engine : {"auto", "compiled", "reference"}
@@ -69,13 +64,13 @@ def run(
     floor_spectra : bool
         Add the 5 %-damped floor response spectra (``floor_spectrum``, ``ground_spectrum``).
     **options
-        Further keywords of :func:`structures.analysis.run` (``tolerance``,
-        ``max_subdivisions``, ``overturning``, ...).
+        Further keywords of :func:`structures.analysis.run` (``tolerance``, ``max_subdivisions``,
+        ``overturning``, ...).
 
     Returns
     -------
     xarray.Dataset
-        The result of :func:`structures.analysis.run`; ``attrs["building"]`` names the
+        The result of :func:`structures.analysis.run`, with ``attrs["building"]`` naming the
         building.
     """
     import dataclasses

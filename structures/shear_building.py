@@ -1,15 +1,14 @@
 """A shear building on an isolation level, in one direction or in plan: storey masses and
-stiffnesses, superstructure damping, the matrices on the levels' degrees of freedom.
+stiffnesses, superstructure damping, and its matrices on the levels' degrees of freedom.
 
 The fixed-base building has L degrees of freedom per floor (L = 1: u_x; L = 3 with a
 :class:`~structures.plan.Plan`: u_x, u_y, theta at the centre of stiffness), relative to its
-base. On isolators it gains the base slab, level 0, first. The superstructure matrices act on
-the storey drifts only, through the transformation ``T = [-I | I]`` (each floor's degrees of
-freedom minus the base slab's): ``K = T^T K_fb T`` and ``C = T^T C_fb T``. Hence a rigid-body
-motion of the whole building on its isolators is neither resisted nor damped by the
-superstructure, and the isolation level gets no viscous damping from it: the isolators bring
-their own forces, added by the model that couples the two
-(:class:`~structures.isolated_building.IsolatedShearBuilding`).
+base; on isolators it gains the base slab, level 0, first. The superstructure matrices act on
+the storey drifts only, through ``T = [-I | I]`` (each floor's degrees of freedom minus the base
+slab's): ``K = T^T K_fb T`` and ``C = T^T C_fb T``. A rigid-body motion of the building on its
+isolators is thus neither resisted nor damped by the superstructure, and the isolation level
+gets no viscous damping from it: the isolators bring their own forces, added by the model that
+couples the two (:class:`~structures.isolated_building.IsolatedShearBuilding`).
 """
 
 from __future__ import annotations
@@ -48,16 +47,9 @@ DIRECTIONS = ("x", "y")
 
 
 class ModalProperties(NamedTuple):
-    """Undamped modes, sorted from the longest period.
-
-    Attributes
-    ----------
-    periods : numpy.ndarray
-        Natural periods, shape (m,) [s] (``inf`` for a mode with no stiffness).
-    shapes : numpy.ndarray
-        Mass-normalised mode shapes as columns (``shapes.T @ M @ shapes = I``), shape (m, m)
-        [kg^-1/2]; each signed so that its top-floor component is positive.
-    """
+    """Undamped modes, sorted from the longest period: ``periods`` (m,) [s] (``inf`` for a mode
+    with no stiffness) and mass-normalised ``shapes`` as columns (m, m) [kg^-1/2]
+    (``shapes.T @ M @ shapes = I``), each signed so that its top-floor component is positive."""
 
     periods: np.ndarray
     shapes: np.ndarray
@@ -69,31 +61,17 @@ class ModalProperties(NamedTuple):
 
 
 def shear_stiffness_matrix(storey_stiffnesses: np.ndarray) -> np.ndarray:
-    """Stiffness matrix of a fixed-base shear building (storey ``i`` joins floors ``i-1``, ``i``).
-
-    Parameters
-    ----------
-    storey_stiffnesses : numpy.ndarray
-        Lateral storey stiffnesses from the bottom up, shape (n,) [N/m].
-
-    Returns
-    -------
-    numpy.ndarray
-        Tridiagonal stiffness matrix, shape (n, n) [N/m].
-    """
+    """Tridiagonal stiffness matrix (n, n) [N/m] of a fixed-base shear building with the lateral
+    ``storey_stiffnesses`` (n,) [N/m] from the bottom up (storey ``i`` joins floors ``i-1``,
+    ``i``)."""
     k = np.asarray(storey_stiffnesses, dtype=float)
     above = np.append(k[1:], 0.0)
     return np.diag(k + above) - np.diag(k[1:], 1) - np.diag(k[1:], -1)
 
 
 def modal_analysis(mass: np.ndarray, stiffness: np.ndarray) -> ModalProperties:
-    """Solve ``K phi = omega^2 M phi`` for the periods and mass-normalised shapes.
-
-    Parameters
-    ----------
-    mass, stiffness : numpy.ndarray
-        Symmetric mass [kg] (positive definite) and stiffness [N/m] matrices, shape (m, m).
-    """
+    """Periods and mass-normalised shapes from ``K phi = omega^2 M phi``, for a symmetric
+    positive definite ``mass`` [kg] and a symmetric ``stiffness`` [N/m] matrix of shape (m, m)."""
     omega_squared, shapes = scipy.linalg.eigh(stiffness, mass)
     omega = np.sqrt(np.clip(omega_squared, 0.0, None))
     with np.errstate(divide="ignore"):
@@ -106,15 +84,8 @@ def modal_analysis(mass: np.ndarray, stiffness: np.ndarray) -> ModalProperties:
 
 @dataclass(frozen=True)
 class RayleighDamping:
-    """Rayleigh damping ``C = a0 M + a1 K`` with given ratios at two fixed-base modes.
-
-    Parameters
-    ----------
-    ratios : tuple of float
-        Damping ratios at the two modes, each in [0, 1) [-].
-    modes : tuple of int
-        The two (distinct, 1-based) fixed-base mode numbers where the ratios hold.
-    """
+    """Rayleigh damping ``C = a0 M + a1 K`` with the damping ``ratios`` [-], each in [0, 1), at
+    two distinct fixed-base ``modes`` (1-based)."""
 
     ratios: tuple[float, float] = (0.02, 0.02)
     modes: tuple[int, int] = (1, 2)
@@ -171,15 +142,9 @@ class RayleighDamping:
 
 @dataclass(frozen=True)
 class ModalDamping:
-    """Classical damping with a given ratio in every fixed-base mode.
-
-    ``C = M Phi diag(2 xi_i omega_i) Phi^T M`` with mass-normalised shapes ``Phi``.
-
-    Parameters
-    ----------
-    ratio : float or tuple of float
-        One damping ratio for every mode, or one per mode (first mode first), in [0, 1) [-].
-    """
+    """Classical damping with a ratio in every fixed-base mode,
+    ``C = M Phi diag(2 xi_i omega_i) Phi^T M`` with the mass-normalised shapes ``Phi``: one
+    ``ratio`` for every mode, or one per mode from the first, each in [0, 1) [-]."""
 
     ratio: float | tuple[float, ...] = 0.02
 
@@ -223,39 +188,34 @@ def _frozen(array: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class ShearBuilding:
-    """A shear building that can stand on a fixed base or on an isolation level, in one
-    direction or, with a :class:`~structures.plan.Plan`, in plan.
+    """A shear building on a fixed base or on an isolation level, in one direction or, with a
+    :class:`~structures.plan.Plan`, in plan.
 
     Without a plan each level (the base slab, level 0, and the floors 1..n) has one lateral
-    degree of freedom along x. With a plan each level is a rigid diaphragm with
-    ``(u_x, u_y, theta)`` at the plan's reference point (the centre of stiffness), numbered
-    level by level; its mass matrix follows from its centre of mass and inertia
+    degree of freedom along x. With a plan each level is a rigid diaphragm with ``(u_x, u_y,
+    theta)`` at the plan's reference point (the centre of stiffness), numbered level by level:
+    its mass matrix follows from its centre of mass and inertia
     (:func:`~structures.plan.level_mass_matrix`), storey ``s`` joins levels ``s-1`` and ``s``
-    with ``k_x``, ``k_y`` and ``k_theta`` acting at the centre of stiffness, and the ground
-    translates without turning (influence: ones on the x and on the y degrees of freedom).
-
-    The superstructure matrices act on the storey drifts only, ``K = T^T K_fb T`` and
-    ``C = T^T C_fb T``, so the isolation level gets no viscous damping from them. Rayleigh
-    damping takes its coefficients ``a0, a1`` from the fixed-base modes along x (with a
-    symmetric plan the x response is damped exactly as the building in one direction) and
-    applies them to the matrices in plan; modal damping puts its ratio on every fixed-base
-    mode (one ratio for all in plan: the mode numbers of one direction do not name the modes
-    in plan).
+    with ``k_x``, ``k_y`` and ``k_theta`` at the centre of stiffness, and the ground translates
+    without turning (influence: ones on the x and on the y degrees of freedom). The
+    superstructure matrices act on the drifts only (module docstring). Rayleigh damping takes
+    ``a0, a1`` from the fixed-base modes along x (with a symmetric plan the x response is damped
+    as in one direction) and applies them to the matrices in plan; modal damping in plan takes
+    one ratio for every mode (the mode numbers of one direction do not name the modes in plan).
 
     Parameters
     ----------
     floor_masses : array_like
         Floor masses from the first floor up, shape (n,) [kg].
     storey_stiffnesses : array_like
-        Lateral storey stiffnesses (along x) from the first storey up, shape (n,) [N/m].
+        Lateral storey stiffnesses along x from the first storey up, shape (n,) [N/m].
     base_mass : float
         Mass of the base slab above the isolators [kg].
     damping : RayleighDamping or ModalDamping
-        Damping of the superstructure, defined on the fixed-base building and applied to the
-        storey drifts only, never to the isolation level.
+        Damping of the superstructure, defined on the fixed-base building.
     plan : Plan, optional
         Bearings, eccentricities, inertias, stiffnesses along y and in torsion, storey heights:
-        the building in plan. None (the default): one direction.
+        the building in plan. None: in one direction.
 
     Raises
     ------
@@ -315,25 +275,14 @@ class ShearBuilding:
         damping: RayleighDamping | ModalDamping = _DEFAULT_DAMPING,
         plan: Plan | None = None,
     ) -> ShearBuilding:
-        """Scale a storey-stiffness profile to hit a fixed-base fundamental period along x.
+        """Scale a storey-stiffness ``profile`` to the fixed-base fundamental period along x
+        ``fixed_base_period`` [s] (periods scale as ``1 / sqrt(stiffness)``: one scaling hits
+        it).
 
-        Periods scale as ``1 / sqrt(stiffness)``, so one scaling hits the target exactly.
-
-        Parameters
-        ----------
-        floor_masses : array_like
-            Floor masses from the first floor up, shape (n,) [kg].
-        fixed_base_period : float
-            Target fundamental period of the fixed-base building along x [s].
-        base_mass : float
-            Mass of the base slab above the isolators [kg].
-        profile : {"uniform", "triangular", "storey_shear"} or array_like
-            Relative storey stiffnesses: equal; ``n, n-1, ..., 1`` from the bottom up; or
-            proportional to the mass carried by each storey; or a positive (n,) array.
-        damping : RayleighDamping or ModalDamping
-            Superstructure damping.
-        plan : Plan, optional
-            The building in plan (see the class).
+        ``profile`` gives the relative storey stiffnesses: ``"uniform"`` (equal),
+        ``"triangular"`` (``n, n-1, ..., 1`` from the bottom up), ``"storey_shear"``
+        (proportional to the mass each storey carries) or a positive (n,) array. The other
+        arguments are the class's.
         """
         owner = f"{cls.__name__}.from_period"
         masses = check_array(floor_masses, "floor_masses", owner, low=0.0, low_open=True)
@@ -517,15 +466,10 @@ class ShearBuilding:
         return modal_analysis(self.fixed_base_mass_matrix, self.fixed_base_stiffness_matrix)
 
     def isolated_modes(self, isolator_stiffness: float | np.ndarray) -> ModalProperties:
-        """Periods [s] and mass-normalised shapes on linear isotropic isolators.
-
-        Parameters
-        ----------
-        isolator_stiffness : float or array_like
-            Lateral stiffness of the isolation level [N/m]: the total, shared equally by the
-            bearing positions (e.g. ``W / R_eff`` of a friction pendulum, or an effective
-            stiffness), or one value per bearing position, shape (n_b,) (e.g. ``N_i / R_eff``).
-        """
+        """Periods [s] and mass-normalised shapes on linear isotropic isolators of lateral
+        stiffness ``isolator_stiffness`` [N/m]: the total, shared equally by the bearing
+        positions (e.g. ``W / R_eff`` of a friction pendulum, or an effective stiffness), or one
+        value per bearing position, shape (n_b,) (e.g. ``N_i / R_eff``)."""
         return modal_analysis(self.isolated_mass_matrix, self._with_isolator(isolator_stiffness))
 
     def fixed_base_model(self) -> LinearModel:

@@ -36,9 +36,10 @@ class SuiteResult:
 
     Attributes
     ----------
-    peaks : pandas.DataFrame
-        One row per run, in suite order (columns: :data:`structures.suites.runs.COLUMNS` of
-        the suite's kind; SI units, times [s]).
+    peaks, summary : pandas.DataFrame
+        One row per run in suite order (the :data:`structures.suites.runs.COLUMNS` of the suite's
+        kind; SI units, times [s]), and its statistics
+        (:func:`structures.suites.summary.summarize`).
     failures : list of dict
         ``{"run": run id, "reason": ...}`` of every failed run.
     wall_time : float
@@ -47,8 +48,6 @@ class SuiteResult:
         The result folder.
     computed, skipped : int
         Runs computed now, and runs kept from an earlier invocation.
-    summary : pandas.DataFrame
-        :func:`structures.suites.summary.summarize` of the peaks.
     runs : list of RunSpec
         The runs, in suite order.
     """
@@ -79,29 +78,12 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
                  ship: bool) -> tuple[dict[str, dict[str, Any]], int, int]:
     """Compute the runs that are not complete in the folder and store each as it finishes.
 
-    Parameters
-    ----------
-    specs : sequence of RunSpec
-        The suite's runs, in table order.
-    motions : mapping
-        The ground motions read here, by ``spec.motion`` (sent to the workers when ``ship``).
-    unreadable : mapping
-        Why each motion that could not be read here cannot (its runs fail with it).
-    config : BuildingConfig
-        The building file.
-    store : RunStore
-        The result folder.
-    n_workers, scheduler_address, write, progress, run_timeout, max_steps
-        As :func:`structures.suites.suite.run_suite` (``run_timeout`` [s]).
-    ship : bool
-        Whether the motions read here travel to the workers (else each task reads its own).
-
-    Returns
-    -------
-    rows : dict
-        The row of every run, by run id.
-    computed, skipped : int
-        Runs computed now, runs complete from before.
+    ``specs`` are the suite's runs in table order; ``motions`` the ground motions read here, by
+    ``spec.motion`` (sent to the workers when ``ship``, else each task reads its own);
+    ``unreadable`` why each motion that could not be read here cannot (its runs fail with it);
+    ``config`` the building file and ``store`` the result folder; the other keywords are those of
+    :func:`structures.suites.suite.run_suite` (``run_timeout`` [s]). Returns the row of every run
+    by run id, the number of runs computed now and of those complete from before.
     """
     from distributed import as_completed
     from tqdm import tqdm

@@ -1,25 +1,23 @@
 """One suite at a time per result folder: a lock file made by an atomic exclusive create.
 
-Two suites writing into one folder would compute every run twice and, worse, the second
-would remove the first's temporary files as strays (:meth:`RunStore.clean_temporary`).
+Two suites writing into one folder would compute every run twice and, worse, the second would
+remove the first's temporary files as strays (:meth:`RunStore.clean_temporary`).
 :class:`SuiteLock` guards the folder for the whole of a suite:
 
 - taking it creates ``OUT/.suite.lock`` with ``os.open(..., O_CREAT | O_EXCL)``, which the
   file system grants to one process only, and writes the holder in it (pid, host, start time
   in UTC, the process's own start time, the command);
 - a second suite finds the file and refuses at once (:class:`SuiteLocked`, an
-  :class:`~dcfpb.common.errors.InputError`: exit status 2), naming the folder and the holder; with
-  ``wait`` it polls until the lock is free or the wait is over;
-- a lock whose holder is gone (its pid no longer runs on this host, or runs a process that
-  started after the lock was taken: a pid reused) is stale: it is taken over with a
-  warning. Only one process may take a stale lock over at a time (a second exclusive file,
-  ``.suite.lock.takeover``, held for the few milliseconds it takes); a lock from another
-  host cannot be judged and is respected;
+  :class:`~dcfpb.common.errors.InputError`: exit status 2), naming the folder and the holder;
+  with ``wait`` it polls until the lock is free or the wait is over;
+- a lock whose holder is gone (its pid no longer runs on this host, or runs a process started
+  after the lock was taken: a pid reused) is stale and taken over with a warning, by one process
+  at a time (a second exclusive file, ``.suite.lock.takeover``, held for the few milliseconds
+  it takes); a lock from another host cannot be judged and is respected, and a lock file that
+  cannot be read (its holder killed between creating and writing it) is stale once older than
+  :data:`UNREADABLE_STALE_AFTER`;
 - leaving the ``with`` block releases it, on errors and ``KeyboardInterrupt`` too; a process
   killed outright leaves a stale lock, which the next suite takes over.
-
-A lock file that cannot be read (its holder was killed between creating and writing it) is
-stale once it is older than :data:`UNREADABLE_STALE_AFTER`.
 """
 
 from __future__ import annotations
@@ -83,21 +81,15 @@ def _describe(holder: dict[str, Any]) -> str:
 
 
 class SuiteLock:
-    """The lock of a suite's result folder; a context manager.
-
-    Parameters
-    ----------
-    folder : str or Path
-        The result folder (created if needed).
-    wait : float
-        How long to wait for a held lock [s]: 0 (default) refuses at once, ``math.inf``
-        waits as long as it takes.
+    """The lock of a suite's result ``folder`` (created if needed), as a context manager;
+    ``wait`` [s] is how long to wait for a held lock: 0 refuses at once, ``math.inf`` waits as
+    long as it takes.
 
     Raises
     ------
     SuiteLocked
-        On entering, when another suite holds the folder (after ``wait``): the message
-        names the folder, the holder's pid, host and start time, and the lock file.
+        On entering, when another suite holds the folder (after ``wait``), naming the folder, the
+        holder's pid, host and start time, and the lock file.
     """
 
     def __init__(self, folder: str | Path, *, wait: float = 0.0) -> None:

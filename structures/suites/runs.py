@@ -2,16 +2,12 @@
 
 A run is a ground motion (:class:`~structures.suites.sources.MotionSource`: a record, run on the
 building in one direction, or a pair, run on the building in plan) at a scale factor under one
-friction model with one property modifier:
-
-``RunSpec``
-    the run's definition and its stable id, a readable name plus a hash of everything that
-    changes the answer (the motion's file names and bytes, how a pair is read, scale, model,
-    modifier, truncation, step, building and, in plan, its plan: :func:`fingerprint`);
-``execute_run``
-    the computation of a run, pure: a spec and a motion in, its row (the peaks of
-    :func:`structures.analysis.peaks` and the suite's own columns) and the netCDF bytes out;
-    the files are written by :mod:`structures.suites.store`.
+friction model with one property modifier. :class:`RunSpec` defines it and its stable id, a
+readable name plus a hash of everything that changes the answer (the motion's file names and
+bytes, how a pair is read, scale, model, modifier, truncation, step, building and, in plan, its
+plan: :func:`fingerprint`). :func:`execute_run` computes it, pure: a spec and a motion in, its
+row (the peaks of :func:`structures.analysis.peaks` and the suite's own columns) and the netCDF
+bytes out; the files are written by :mod:`structures.suites.store`.
 """
 
 from __future__ import annotations
@@ -71,8 +67,8 @@ needing only scipy (netCDF4 and h5netcdf are optional and cannot both write to b
 
 
 def failure_kind(row: dict[str, Any]) -> str:
-    """The :data:`FAILURE_KINDS` entry of a failed run's row (``""`` for a finished run);
-    rows written before the ``failure`` column are read from their reason."""
+    """The :data:`FAILURE_KINDS` entry of a failed run's row (``""`` for a finished run); a row
+    without a ``failure`` kind is classified by its reason."""
     if row.get("status") == "done":
         return ""
     kind = row.get("failure")
@@ -94,10 +90,8 @@ def _hash(payload: Any, digits: int) -> str:
 
 def fingerprint(config: BuildingConfig, in_plan: bool = False) -> str:
     """A 12-hex-digit hash of everything in a building file that changes a run's answer: the
-    building, bearings, friction and integration and, for a run in plan, the plan.
-
-    The file's ``name`` is left out: renaming a building does not invalidate its results.
-    """
+    building, bearings, friction and integration and, for a run in plan, the plan; not the file's
+    ``name``, so that renaming a building keeps its results."""
     b = config.building
     digest = _hash({
         "floor_masses": [float(x) for x in b.floor_masses],
@@ -140,17 +134,15 @@ class RunSpec:
         sha256 of each of the motion's files (:meth:`MotionSource.digests`).
     model : str
         Friction model, ``"precise"``, ``"simplified"`` or ``"constant"``.
-    record_factor : float
-        Per-motion scale factor (e.g. to a target spectrum) [-].
-    multiplier : float
-        Suite-wide multiplier of the motion's factor [-]; the run's scale is their product.
+    record_factor, multiplier : float
+        The motion's own scale factor (e.g. to a target spectrum) and the suite-wide multiplier
+        of it [-]; the run's scale is their product.
     modifier : float
         Property modification factor on the friction coefficient [-]
         (``friction.scaled(modifier)``).
-    duration : float or None
-        Keep only the first ``duration`` seconds of the motion [s] (None: all of it).
-    dt : float or None
-        Requested analysis step [s] (None: the building file's, else the motion's).
+    duration, dt : float or None
+        The first ``duration`` seconds of the motion kept [s] (None: all of it), and the
+        requested analysis step [s] (None: the building file's, else the motion's).
     settings : str
         :func:`fingerprint` of the building.
     """
@@ -214,12 +206,10 @@ class RunSpec:
 def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
                 time_limit: float | None = None, max_steps: int = DEFAULT_MAX_STEPS,
                 ) -> tuple[dict[str, Any], bytes | None]:
-    """Compute one run (the work of a Dask task).
-
-    It runs what ``structures.run(config, motion, model=..., dt=..., scale=...)`` runs, with
-    the friction coefficient times the modifier: a record on the building in one direction (a
-    file's ``[plan]`` table left out), a pair on the building in plan, each bearing on its
-    share of the weight.
+    """Compute one run, the work of a Dask task: what ``structures.run(config, motion, model=...,
+    dt=..., scale=...)`` runs, with the friction coefficient times the modifier; a record on the
+    building in one direction (a file's ``[plan]`` table left out), a pair on the building in
+    plan, each bearing on its share of the weight.
 
     Parameters
     ----------
@@ -230,11 +220,11 @@ def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
     config : BuildingConfig
         The building file.
     time_limit : float, optional
-        Wall-clock limit of the run's integration [s] (``run(time_limit=...)``): past it
-        the run fails with the reason ``"timeout after N s: ..."``.
+        Wall-clock limit of the run's integration [s] (``run(time_limit=...)``): past it the run
+        fails with the reason ``"timeout after N s: ..."``.
     max_steps : int
-        Refuse a run of more steps (``run(max_steps=...)``; a record whose DT is wrong): it
-        fails with the reason, before anything is allocated.
+        A run of more steps (a record whose DT is wrong) fails with the reason before anything is
+        allocated (``run(max_steps=...)``).
 
     Returns
     -------
@@ -242,10 +232,10 @@ def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
         The peaks-table row (:data:`COLUMNS`, and every key of
         :func:`structures.analysis.peaks`): status ``"done"``, or ``"failed"`` with the
         ``reason`` (any exception, e.g. a motion that cannot be read, or a run that stopped
-        early, whose peaks up to then are kept), the ``failure`` kind and the time
-        ``failed_at`` [s].
+        early, whose peaks up to then are kept), the ``failure`` kind and the time ``failed_at``
+        [s].
     data : bytes or None
-        The result as netCDF (:data:`NETCDF_ENGINE`), None for a failed run.
+        The result as netCDF (:data:`NETCDF_ENGINE`); None for a failed run.
     """
     from structures.analysis import peaks, run
 

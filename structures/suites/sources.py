@@ -1,13 +1,13 @@
 """Where the ground motions of a suite are: record files, or the component files of pairs.
 
-A :class:`MotionSource` names one ground motion of a suite and the files it is read from: one
-record file (a run of the building in one direction), or the x, y (and z) component files of a
-pair (a run of the building in plan). :func:`motion_sources` lists them, without reading them,
-from the two list formats a suite takes:
+A :class:`MotionSource` names one ground motion of a suite and its files: one record file (a
+run of the building in one direction), or the x, y (and z) component files of a pair (a run of
+the building in plan). :func:`motion_sources` lists them, without reading them, from either list
+a suite takes:
 
 - records: a folder (its ``*.AT2`` files, any case) or a CSV whose first column holds record
-  files relative to it (a first row whose first cell is ``file``, ``filename``,
-  ``file_name``, ``record`` or ``path`` is a header; other columns are ignored);
+  files relative to it (a first row whose first cell is ``file``, ``filename``, ``file_name``,
+  ``record`` or ``path`` is a header; other columns are ignored);
 - pairs: the manifest of :func:`groundmotions.pairs.read_pair_manifest` (a header naming the
   columns ``name``, ``x``, ``y`` and optionally ``z``, ``dt`` [s], ``units``), read by
   :func:`groundmotions.pairs.pair.manifest_rows`.
@@ -45,19 +45,10 @@ def file_digest(path: str | Path) -> str:
 
 @dataclass(frozen=True)
 class MotionSource:
-    """One ground motion of a suite and where it is read from.
-
-    Parameters
-    ----------
-    name : str
-        The motion's name: a record file's stem, a pair's name (from its manifest).
-    files : tuple of str
-        Absolute paths: one record file; or a pair's x and y (and z, vertical) components.
-    dt : float, optional
-        Time step of one-column text records [s].
-    units : str, optional
-        Units of files whose header states none.
-    """
+    """One ground motion of a suite and where it is read from: its ``name`` (a record file's
+    stem, a pair's name from its manifest), its ``files`` (absolute paths: one record file, or a
+    pair's x and y and optionally z, vertical, components), the time step ``dt`` [s] of
+    one-column text records and the ``units`` of files whose header states none."""
 
     name: str
     files: tuple[str, ...]

@@ -8,18 +8,16 @@ Layout of ``OUT/``::
     suite.log                   one line per event: "<UTC time> <event> <run id> <details>"
     peaks.csv, failures.json    the table of the last invocation (``structures.suites.suite``)
 
-Every file is written to a temporary name in the same folder and renamed over its final name
-with ``os.replace`` (atomic on POSIX and Windows), so a file under its final name is always
-whole once its writer has closed it. A run is complete when its row exists, parses, names the
-run as done, and its netCDF file has the size the row records; anything else is computed
-again. Killing a suite (or a worker) therefore loses at most the runs in flight. Files are not
-fsynced: that costs as much as a short run and only guards against a power cut, after which
-a file the disk did not keep whole fails the same completeness test and is recomputed.
-
-The writers are the workers (or the client, see ``run_suite(write=...)``); the log is
-appended with one ``write`` per line, which POSIX keeps whole between processes on a local
-file system. One suite at a time per folder: stray temporary files of a killed suite are
-removed when the next one starts.
+Every file is written under a temporary name in its folder and renamed over its final name with
+``os.replace`` (atomic on POSIX and Windows), so a file under its final name is whole once its
+writer has closed it. A run is complete when its row exists, parses, names the run as done and
+its netCDF file has the size the row records; anything else is computed again, so killing a
+suite (or a worker) loses at most the runs in flight. Files are not fsynced: that would cost as
+much as a short run and guard only against a power cut, after which a file the disk did not
+keep whole fails the same test and is recomputed. The writers are the workers (or the client,
+``run_suite(write=...)``); the log is appended with one ``write`` per line, which POSIX keeps
+whole between processes on a local file system. One suite at a time per folder: stray temporary
+files of a killed suite are removed when the next one starts.
 """
 
 from __future__ import annotations
@@ -64,13 +62,7 @@ def dumps(row: dict[str, Any]) -> bytes:
 
 
 class RunStore:
-    """The result folder of a suite.
-
-    Parameters
-    ----------
-    root : str or Path
-        Output folder (created if needed); the run files go to ``root/runs``.
-    """
+    """The result folder ``root`` of a suite (created if needed), the run files in ``root/runs``."""
 
     def __init__(self, root: str | Path) -> None:
         self.root = Path(root)

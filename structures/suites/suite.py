@@ -1,29 +1,18 @@
 """Ground-motion suites: records or pairs x scale factors x friction models x property modifiers.
 
-A `Suite` is a set of independent runs (:class:`structures.suites.runs.RunSpec`), each with a
-stable id, of one building under the motions of a list (:func:`~structures.suites.sources.
-motion_sources`): records run the building in one direction, pairs of records run a building
-file with a ``[plan]`` table in plan. :func:`run_suite` computes them with
-``dask.distributed``: on a `LocalCluster` of this machine by default (worker processes with one
-thread each, loopback only, no dashboard), or on any running cluster given its scheduler
-address, with no other change.
-
-Each run's files are written atomically (:mod:`structures.suites.store`) by the worker that
-computed it, or, with ``write="client"``, by this process, so that a remote cluster needs no file
-system shared with it. A rerun of the same suite into the same folder skips the runs that are
-complete and computes the rest: killing a suite loses at most the runs in flight. A run that fails
-(a motion that cannot be read, a run stopping early, any exception, a worker that keeps dying) is
-recorded with its reason and the others carry on; failures are retried on the next run. A worker
-lost in the middle of a batch (:mod:`structures.suites.tasks`) has its batch redone elsewhere by
-Dask, keeping the runs of it already stored.
-
-One suite at a time per folder: a second suite into a folder in use refuses at once, or waits
-(:mod:`structures.suites.lock`). ``run_timeout`` bounds each run's wall-clock time, checked
-inside the run on whichever worker it runs (``structures.analysis.run(time_limit=)``).
-
-Scale factors per motion: a mapping, or a hook given the readable motions in order, e.g. the
-factors of the ASCE 7-16 scaling of the suite (:func:`groundmotions.scaling.scale_suite`: each
-record on its spectrum, each pair on its RotD100); ``scales`` multiplies them.
+A :class:`Suite` is a set of independent runs (:class:`structures.suites.runs.RunSpec`), each
+with a stable id, of one building under the motions of a list
+(:func:`~structures.suites.sources.motion_sources`): records run the building in one direction,
+pairs run a building file with a ``[plan]`` table in plan. :func:`run_suite` computes them with
+``dask.distributed``, on a local cluster (:func:`structures.suites.tasks.local_cluster`) or on
+any running cluster given its scheduler address, and each run's files are written atomically
+(:mod:`structures.suites.store`). Rerunning a suite into the same folder skips the runs that are
+complete and computes the rest: killing a suite loses at most the runs in flight, and a worker
+lost in the middle of a batch has its batch redone elsewhere by Dask, keeping the runs of it
+already stored (:mod:`structures.suites.tasks`). A run that fails (a motion that cannot be read,
+a run stopping early, any exception, a worker that keeps dying) is recorded with its reason and
+retried on the next run; the others carry on. One suite at a time per folder
+(:mod:`structures.suites.lock`).
 
 Example::
 
@@ -80,35 +69,33 @@ class Suite:
         The building file (:func:`structures.config.load_config`); for pairs, one with a
         ``[plan]`` table.
     motions : sequence of MotionSource, str or Path
-        The records or the pairs (:func:`~structures.suites.sources.motion_sources`; a path
-        is a record file), all of one kind; pairs of distinct names.
+        The records or the pairs (:func:`~structures.suites.sources.motion_sources`; a path is a
+        record file), all of one kind; pairs of distinct names.
     models : sequence of str
         Friction models among ``"precise"``, ``"simplified"``, ``"constant"``.
     scales : sequence of float
-        Suite-wide multipliers of the per-motion factors [-] (plain scale factors when no
-        ``factors`` are given).
+        Suite-wide multipliers of the per-motion factors [-] (plain scale factors without
+        ``factors``).
     property_modifiers : sequence of float
-        Factors on the reference friction coefficient [-], e.g. ``(lambda_min, 1.0,
-        lambda_max)`` (``friction.scaled(modifier)``: ``mu_t0`` of the precise and
-        simplified models, ``mu0`` of the constant one, ASCE 7-16 Sec. 17.2.8.4).
+        Factors on the reference friction coefficient [-], e.g. ``(lambda_min, 1.0, lambda_max)``
+        (``friction.scaled(modifier)``: ``mu_t0`` of the precise and simplified models, ``mu0``
+        of the constant one; ASCE 7-16 Sec. 17.2.8.4).
     factors : mapping or callable, optional
-        Per-motion scale factors [-] (one for every component of a pair): a mapping keyed by
-        a record's path, file name or stem, or a pair's name; or a hook called with the
-        readable motions (in order) that returns their factors as a sequence or as such a
-        mapping, e.g. ``lambda motions: scale_suite(motions, target,
-        period_range).scale_factors``. Default 1.
-    duration : float, optional
-        Keep only the first ``duration`` seconds of each motion [s].
-    dt : float, optional
-        Analysis step [s]; default the building file's. A motion with a finer step is run at
-        its own step (the ``dt`` column says which).
+        Per-motion scale factors [-] (one for all the components of a pair): a mapping keyed by a
+        record's path, file name or stem, or a pair's name; or a hook given the readable motions
+        in order that returns their factors as a sequence or as such a mapping, e.g. ``lambda
+        motions: scale_suite(motions, target, period_range).scale_factors``. Default 1.
+    duration, dt : float, optional
+        The first ``duration`` seconds of each motion kept [s]; the analysis step [s] (default
+        the building file's; a motion with a finer step runs at its own, as the ``dt`` column
+        says).
 
     Raises
     ------
     InputError
         No motions, records and pairs mixed, two pairs of one name, pairs on a building file
-        without a ``[plan]`` table, a model, scale or modifier out of range (a modified
-        friction coefficient outside (0, 1] among them).
+        without a ``[plan]`` table, a model, scale or modifier out of range (a modified friction
+        coefficient outside (0, 1] among them).
 
     Warns
     -----
@@ -229,46 +216,42 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
               scheduler_address: str | None = None, write: str = "workers",
               progress: bool = True, run_timeout: float | None = None, lock: bool = True,
               wait_lock: float = 0.0, max_steps: int = DEFAULT_MAX_STEPS) -> SuiteResult:
-    """Compute a suite, or finish one that was interrupted.
+    """Compute a suite into ``out_dir``, or finish one that was interrupted.
 
     Parameters
     ----------
     suite : Suite
         The runs.
     out_dir : str or Path
-        Result folder (:mod:`structures.suites.store` for its layout); complete runs already
-        in it are kept, not computed again.
+        Result folder (:mod:`structures.suites.store`); the complete runs already in it are kept.
     n_workers : int, optional
         Worker processes of the local cluster (default: the number of CPUs).
     scheduler_address : str, optional
-        Address of a running scheduler, e.g. ``"tcp://10.0.0.5:8786"``; its workers must be
-        able to import this package. ``n_workers`` is then ignored.
+        Address of a running scheduler, e.g. ``"tcp://10.0.0.5:8786"``, whose workers can import
+        this package; ``n_workers`` is then ignored.
     write : {"workers", "client"}
-        Who writes a run's files: the worker that computed it (default; the folder must be
-        reachable under the same path by the workers, as on this machine or a cluster with a
-        shared file system), or this process, to which every result then travels (any
-        cluster, but the writing is serial).
+        Who writes a run's files: the worker that computed it (the folder must be reachable under
+        the same path by the workers, as on this machine or a cluster with a shared file system),
+        or this process, to which every result then travels (any cluster, with no file system
+        shared with it; the writing is serial).
     progress : bool
         Show a progress bar (runs done, failed, ETA) on stderr.
     run_timeout : float, optional
-        Wall-clock limit of each run's integration [s] (default: none). A run past it is
-        recorded as failed, ``"timeout after N s"``, with its peaks up to then, and the
-        suite goes on. The run looks at the clock itself (see the module docstring).
-    lock : bool
-        Hold the folder's lock (:class:`~structures.suites.lock.SuiteLock`); False when the
-        caller holds it.
-    wait_lock : float
-        How long to wait for a folder locked by another suite [s]; 0 refuses at once.
+        Wall-clock limit of each run's integration [s], checked inside the run on whichever
+        worker it runs (``structures.analysis.run(time_limit=)``): a run past it is recorded as
+        failed, ``"timeout after N s"``, with its peaks up to then, and the suite goes on.
+    lock, wait_lock : bool, float
+        Hold the folder's lock (:class:`~structures.suites.lock.SuiteLock`; False when the caller
+        holds it), and how long to wait for a folder locked by another suite [s] (0: refuse).
     max_steps : int
         A run of more steps fails with its step count, before anything is allocated
-        (default 2,000,000; :mod:`isolator.limits`).
+        (:mod:`isolator.limits`).
 
     Returns
     -------
     SuiteResult
-        ``peaks`` with the columns of the suite's kind
-        (:data:`structures.suites.runs.COLUMNS`). Also written: ``peaks.csv``,
-        ``failures.json``, ``summary.csv``, ``summary.parquet``.
+        ``peaks`` with the columns of the suite's kind (:data:`structures.suites.runs.COLUMNS`);
+        also written: ``peaks.csv``, ``failures.json``, ``summary.csv``, ``summary.parquet``.
 
     Raises
     ------

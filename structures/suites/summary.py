@@ -6,10 +6,9 @@ The groups are the friction model, the property modifier and the suite-wide scal
 failed, by kind (``n_failed``, ``n_capacity``, ``n_convergence``, ``n_timeout``,
 ``n_error``): a failed run is never dropped silently. Failures are not random: the runs past
 the bearings' capacity are the strongest ones, so the statistics of a group with failures
-understate its responses (a median at 20 times the record below the one at 1 time). A group
-whose runs all failed has its counts and no statistics (NaN). The 84th percentile is the
-linear interpolation between order statistics (``numpy.percentile``'s default), the usual
-stand-in for the median plus one logarithmic standard deviation.
+understate its responses. A group whose runs all failed has its counts and no statistics (NaN).
+The 84th percentile interpolates linearly between order statistics (``numpy.percentile``'s
+default), the usual stand-in for the median plus one logarithmic standard deviation.
 """
 
 from __future__ import annotations
@@ -54,23 +53,13 @@ STATISTICS_OVER = "successful runs"
 
 
 def summarize(peaks: pd.DataFrame) -> pd.DataFrame:
-    """Mean, median and 84th percentile of the peak responses, per group of runs.
+    """Mean, median and 84th percentile of the peak responses, per group of runs, of a suite's
+    peaks table (``SuiteResult.peaks``, one row per run; its columns among :data:`QUANTITIES`).
 
-    Parameters
-    ----------
-    peaks : pandas.DataFrame
-        The peaks table of a suite (``SuiteResult.peaks``), one row per run; its columns
-        among :data:`QUANTITIES` are summarised.
-
-    Returns
-    -------
-    pandas.DataFrame
-        Tidy: one row per group and quantity, columns ``model``, ``modifier``,
-        ``multiplier``, ``quantity``, ``units``, ``n`` (finished runs, those the statistics
-        are over) and ``mean``, ``median``, ``p84`` in the quantity's SI units (NaN when no
-        run of the group finished), then :data:`COUNT_COLUMNS`: ``n_runs``, ``n_failed`` and
-        ``n_capacity``, ``n_convergence``, ``n_timeout``, ``n_error``. Empty for an empty
-        table.
+    Returns a tidy table, one row per group and quantity: ``model``, ``modifier``,
+    ``multiplier``, ``quantity``, ``units``, ``n`` (the finished runs the statistics are over),
+    ``mean``, ``median`` and ``p84`` in the quantity's SI units (NaN when no run of the group
+    finished), then :data:`COUNT_COLUMNS`; empty for an empty table.
     """
     import pandas as pd
 
