@@ -14,7 +14,8 @@ loads the engine, the workloads below with ``time.perf_counter``:
   virtual test machine (``isolator.testrig.run_test``);
 * ``plan precise`` / ``plan constant``: the building in plan of ``bench_plan.py`` (four
   bearings, overturning, a vertical) under its 30 s pair with the compiled engine
-  (``structures.spatial.analysis.run_spatial``).
+  (``structures.analysis.run``; ``structures.spatial.analysis.run_spatial`` in trees before
+  the one model).
 
 The table gives the median over the rounds per tree and the ratio this tree / before; shared
 machines drift by a factor of 1.5 over a day, so only ratios of one run mean anything. Exits 1
@@ -72,16 +73,29 @@ def timed(call, repeats):
 import sys
 
 sys.path.insert(0, "benchmarks")
-import bench_plan
-from structures.spatial.analysis import run_spatial
+try:  # the one model
+    from structures.plan import Plan
+    from structures.shear_building import ShearBuilding
 
-frame, spatial = bench_plan.building()
+    import bench_plan
+
+    plan_building = ShearBuilding.from_period(
+        [4e5, 4e5, 4e5], 0.5, base_mass=5e5,
+        plan=Plan(bench_plan.SQUARE, eccentricity=(1.2, 0.8), dimensions=(12.0, 10.0),
+                  storey_heights=3.5))
+    run_plan, weight = run, plan_building.weight
+except ImportError:  # trees before it
+    import bench_plan
+    from structures.spatial.analysis import run_spatial as run_plan
+
+    frame, plan_building = bench_plan.building()
+    weight = frame.weight
 pair = bench_plan.pair(30.0)
 
 
 def plan(model):
-    return run_spatial(spatial, bench_plan.bearing(model, frame.weight), pair, dt=bench_plan.DT,
-                       engine="compiled")
+    return run_plan(plan_building, bench_plan.bearing(model, weight), pair,
+                    dt=bench_plan.DT, engine="compiled")
 
 
 building("constant"), building("precise"), bearing()  # compile or load every engine

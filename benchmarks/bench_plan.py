@@ -3,13 +3,14 @@
 The building: 3 storeys (400 t floors, 500 t base slab, T_fixed = 0.5 s) on four DCFPBs (R_eff
 2.5 m, 300 mm slider) at the corners of a 12 m x 10 m plan with the centre of mass 1.2 m / 0.8 m
 off the centre of stiffness, overturning on, under a synthetic Kanai-Tajimi pair with a
-vertical (PGA 4 m/s^2) at dt = 5 ms. Best of interleaved repeats, each a whole ``run`` /
-``run_spatial`` call (model, integration, energy balance, Dataset) and the integration alone:
+vertical (PGA 4 m/s^2) at dt = 5 ms. Best of interleaved repeats, each a whole
+:func:`structures.analysis.run` call (model, integration, energy balance, Dataset) and the
+integration alone:
 
-(a) the planar building (the same storeys, four bearings) with the precise model under the
-    pair's x component, compiled, 30 s;
-(a0) the same planar building with constant friction, compiled, 30 s: (a) - (a0) is what the
-    precise friction of one planar bearing costs;
+(a) the building in one direction (the same storeys, four bearings) with the precise model
+    under the pair's x component, compiled, 30 s;
+(a0) the same building with constant friction, compiled, 30 s: (a) - (a0) is what the
+    precise friction of one bearing in one direction costs;
 (b) the building in plan with the precise model (the 2D monitor grid), compiled, 30 s;
     target (b) / (a) <= 3;
 (c) the building in plan with constant friction, compiled, 30 s;
@@ -19,13 +20,13 @@ vertical (PGA 4 m/s^2) at dt = 5 ms. Best of interleaved repeats, each a whole `
 (e) the cost per step of (b) and (c) on 10 s against 30 s of the pair; target: flat.
 
 The bound printed with (b) / (a): the building in plan as it costs with constant friction (c),
-plus four bearings whose precise friction each costs what the planar bearing's does with its
+plus four bearings whose precise friction each costs what one in one direction does with its
 line of monitor points, (a) - (a0): (c) + 4 ((a) - (a0)). The plan's bearings evaluate the same
 friction kernels (Eq. 7, the pressure and velocity factors) and a 2D grid instead of the line,
 so (b) cannot be below it unless the grid costs less than the line.
 
 Run: ``python benchmarks/bench_plan.py [--repeats N] [--no-opensees] [--reference]``
-(``--reference`` adds the plain-Python ``run_spatial`` on 10 s, slow); the results as a
+(``--reference`` adds the reference engine in plan on 10 s, slow); the results as a
 Markdown table on stdout: ``benchmarks/PLAN.md`` holds a measured one.
 """
 
@@ -42,15 +43,13 @@ SQUARE = [[-6.0, -5.0], [6.0, -5.0], [6.0, 5.0], [-6.0, 5.0]]
 
 
 def building():
-    """The 3-storey shear building and the building in plan on it."""
-    from structures.spatial.building import SpatialBuilding
-    from structures.spatial.plan import Plan
-
+    """The 3-storey shear building in one direction and the same storeys in plan."""
+    from structures.plan import Plan
     from structures.shear_building import ShearBuilding
 
-    frame = ShearBuilding.from_period([4e5, 4e5, 4e5], 0.5, base_mass=5e5)
     plan = Plan(SQUARE, eccentricity=(1.2, 0.8), dimensions=(12.0, 10.0), storey_heights=3.5)
-    return frame, SpatialBuilding(frame, plan)
+    return tuple(ShearBuilding.from_period([4e5, 4e5, 4e5], 0.5, base_mass=5e5, plan=p)
+                 for p in (None, plan))
 
 
 def bearing(model: str, weight: float):
@@ -83,15 +82,13 @@ def pair(duration: float):
 
 def cases(with_opensees: bool, with_reference: bool) -> dict:
     """name -> (callable returning the Dataset, steps)."""
-    from structures.spatial.analysis import run_spatial
-
     from structures.analysis import run
 
-    frame, spatial = building()
+    frame, in_plan = building()
     motions = {d: pair(d) for d in (10.0, 30.0)}
     out = {}
-    for model, name in (("precise", "a planar precise 30 s"),
-                        ("constant", "a0 planar constant 30 s")):
+    for model, name in (("precise", "a one direction precise 30 s"),
+                        ("constant", "a0 one direction constant 30 s")):
         out[name] = (lambda m=model: run(
             frame, bearing(m, frame.weight), motions[30.0].x, n_bearings=4, dt=DT,
             engine="compiled"), motions[30.0].x.acceleration.size)
@@ -99,18 +96,18 @@ def cases(with_opensees: bool, with_reference: bool) -> dict:
         for d in (30.0, 10.0):
             tag = "b" if model == "precise" else "c"
             out[f"{tag} plan {model} {d:g} s"] = (
-                lambda m=model, d=d: run_spatial(spatial, bearing(m, frame.weight), motions[d],
+                lambda m=model, d=d: run(in_plan, bearing(m, frame.weight), motions[d],
                                                  dt=DT, engine="compiled"),
                 motions[d].x.acceleration.size)
     if with_opensees:
         from structures.opensees.building import run_opensees
 
         out["d OpenSees singleFPBearing 3D 30 s"] = (lambda: run_opensees(
-            spatial, bearing("constant", frame.weight), motions[30.0], dt=DT),
+            in_plan, bearing("constant", frame.weight), motions[30.0], dt=DT),
             motions[30.0].x.acceleration.size)
     if with_reference:
-        out["reference plan constant 10 s"] = (lambda: run_spatial(
-            spatial, bearing("constant", frame.weight), motions[10.0], dt=DT,
+        out["reference plan constant 10 s"] = (lambda: run(
+            in_plan, bearing("constant", frame.weight), motions[10.0], dt=DT,
             engine="reference"), motions[10.0].x.acceleration.size)
     return out
 
@@ -161,16 +158,16 @@ def main() -> int:
     print("| --- | --- | --- | --- |")
     for name, (whole, wall, steps) in best.items():
         print(f"| {name} | {whole * 1e3:.1f} | {wall * 1e3:.2f} | {wall / steps * 1e6:.2f} |")
-    a, b = best["a planar precise 30 s"], best["b plan precise 30 s"]
+    a, b = best["a one direction precise 30 s"], best["b plan precise 30 s"]
     c = best["c plan constant 30 s"]
     missed = []
-    print(f"\n(b)/(a) precise plan over precise planar: run {b[0] / a[0]:.2f}, integration "
+    print(f"\n(b)/(a) precise in plan over precise in one direction: run {b[0] / a[0]:.2f}, integration "
           f"{b[1] / a[1]:.2f} (target <= 3)")
     if b[0] / a[0] > 3.0:
         missed.append("(b)/(a) <= 3")
-    a0 = best["a0 planar constant 30 s"]
+    a0 = best["a0 one direction constant 30 s"]
     bound = [c[k] + 4.0 * (a[k] - a0[k]) for k in (0, 1)]
-    print(f"    bound with the grid as cheap as the planar line, (c) + 4 ((a) - (a0)): run "
+    print(f"    bound with the grid as cheap as the line, (c) + 4 ((a) - (a0)): run "
           f"{bound[0] / a[0]:.2f}, integration {bound[1] / a[1]:.2f} times (a)")
     if "d OpenSees singleFPBearing 3D 30 s" in best:
         d = best["d OpenSees singleFPBearing 3D 30 s"]
