@@ -73,23 +73,22 @@ def timed(call, repeats):
 import sys
 
 sys.path.insert(0, "benchmarks")
-try:  # the one model
+import bench_plan
+
+try:  # trees before the one model
+    from structures.spatial.analysis import run_spatial as run_plan
+
+    frame, plan_building = bench_plan.building()
+    weight = frame.weight
+except ImportError:  # the one model
     from structures.plan import Plan
     from structures.shear_building import ShearBuilding
-
-    import bench_plan
 
     plan_building = ShearBuilding.from_period(
         [4e5, 4e5, 4e5], 0.5, base_mass=5e5,
         plan=Plan(bench_plan.SQUARE, eccentricity=(1.2, 0.8), dimensions=(12.0, 10.0),
                   storey_heights=3.5))
     run_plan, weight = run, plan_building.weight
-except ImportError:  # trees before it
-    import bench_plan
-    from structures.spatial.analysis import run_spatial as run_plan
-
-    frame, plan_building = bench_plan.building()
-    weight = frame.weight
 pair = bench_plan.pair(30.0)
 
 
