@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from dcfpb.common.validation import check_choice, check_int, check_real
-from isolator.compiled.kernels import cold_friction, solve_friction
+from isolator.compiled.kernels import initial_friction
 from isolator.compiled.layout import pack_ptv
 from isolator.factors import KumarFactors, PaperFactors, factor_set
 from isolator.heating import (
@@ -352,9 +352,6 @@ class PTVFrictionState:
         self.model = model
         self._surfaces = float(model.surfaces)
         code, reference_pressure, rate = model.factors.kernel_parameters
-        self._cold = (code, reference_pressure, rate, model.mu_t0,
-                      "pressure" in model.dependencies, "velocity" in model.dependencies)
-        self._use_temperature = "temperature" in model.dependencies
         self.heating: SurfaceHeating | GridHeating | None = None
         constants = {}
         if model.heating is not None:
@@ -369,12 +366,14 @@ class PTVFrictionState:
                 self.heating = SurfaceHeating(model.heating, contact_radius, plate_travel,
                                               model.thermal, kernel)
             constants = self.heating.constants()
-        self._parameters = pack_ptv({
+        self.parameters = pack_ptv({
             **constants, "initial_temperature": model.thermal.initial_temperature,
             "factor_code": code, "reference_pressure": reference_pressure,
-            "rate_parameter": rate, "mu_t0": model.mu_t0, "use_pressure": self._cold[4],
-            "use_velocity": self._cold[5], "use_temperature": self._use_temperature,
-            "surfaces": self._surfaces})
+            "rate_parameter": rate, "mu_t0": model.mu_t0, "surfaces": self._surfaces,
+            **{f"use_{name}": name in model.dependencies
+               for name in ("pressure", "velocity", "temperature")}})
+        """The constants of the compiled kernels (:func:`~isolator.compiled.layout.pack_ptv`):
+        the one place a model's parameters become the kernels' (the engine packs these)."""
         self._pending: tuple[float, float] | None = None
 
     def trial(self, position: Pair, velocity: Pair, pressure: float, dt: float) -> Friction:
@@ -385,14 +384,11 @@ class PTVFrictionState:
         heating = self.heating
         self._pending = None
         if heating is None or dt <= 0.0:  # no heating, or no time: Eq. 7 at T_0
-            mu_cold, dmu_cold = cold_friction(*self._cold, pressure, speed)
-            mu, dmu_dspeed, temperature = solve_friction(
-                self._cold[0], mu_cold, dmu_cold, self._use_temperature,
-                self.model.thermal.initial_temperature, 0.0, 0.0)
+            mu, dmu_dspeed, temperature = initial_friction(self.parameters, pressure, speed)
             return Friction(mu, dmu_dspeed, temperature, mu * pressure * speed / self._surfaces)
         on_plate = (position[0] / self._surfaces, position[1] / self._surfaces)
         mu, dmu_dspeed, temperature, flux = heating.friction_trial(
-            on_plate, velocity, pressure, speed, dt, self._parameters)
+            on_plate, velocity, pressure, speed, dt, self.parameters)
         self._pending = (dt, flux)
         return Friction(mu, dmu_dspeed, temperature, flux)
 

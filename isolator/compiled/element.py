@@ -1,29 +1,27 @@
 """The DCFPB element, its friction and heating as arrays, for the compiled engine.
 
-:func:`set_trials` and :func:`commit_trials` are ``BidirectionalElement.set_trial`` (with
-the trial's axial load) and ``commit`` of :mod:`isolator.bidirectional.element` for every
-bearing row, its state a row of the ``committed`` / ``trial`` arrays (``TIME`` ... ``AXIAL_LOAD``,
-then the trial's tangents, its pending heat and its frame), operation for operation: the
-isotropic return map (on a line, the clip of the planar element's z to +-1, to the bit), the
-linear / spherical / flat restoring law, uplift (no load: no force, no heat, the plates cool),
-and the friction of :mod:`isolator.friction` and :mod:`isolator.bidirectional.friction`
-through the kernels of :mod:`isolator.compiled.kernels` (``cold_friction``,
-``solve_friction``, ``heated_window``, ``ptv_friction``; the step factors of
-:func:`isolator.heating.step_factors`, exact for every step size):
+:func:`set_trials` and :func:`commit_trials` are ``set_trial`` (with the trial's axial load) and
+``commit`` of :class:`isolator.bearing.BearingElement` for every bearing row, its state a row of
+the ``committed`` / ``trial`` arrays (``TIME`` ... ``AXIAL_LOAD``, then the trial's tangents,
+its pending heat and its frame), operation for operation: the isotropic return map (on a line,
+the clip of z to +-1, to the bit), the linear / spherical / flat restoring law, uplift (no load:
+no force, no heat, the plates cool), and the friction of :mod:`isolator.friction` through the
+kernels of :mod:`isolator.compiled.kernels` (``initial_friction``, ``heated_window``,
+``ptv_friction``; the step factors of :func:`isolator.heating.step_factors`, exact for every
+step size):
 
 - constant (Eq. 8): mu_c, no heat;
 - PTV without heating: Eq. 7 at the initial temperature, with the trial's pressure;
 - simplified (Eq. 6): the centre point at the distance |u| / surfaces, its history updated as
   ``advance_states`` does, bit for bit;
 - precise (Eq. 5): the monitor points under the slider held as a group
-  (:mod:`isolator.compiled.plate`): the planar element's monitor line (one row across, e1
-  along x) or the bidirectional element's grid (its frame fixed by the motion at the first
-  heated commit, as the reference's).
+  (:mod:`isolator.compiled.plate`): in one direction the monitor line (one row across, e1
+  along x), in two the grid (its frame fixed by the motion at the first heated commit, as the
+  reference's).
 
-The planar element is this one moving along x with its constant axial load: the building's
-engine gives it ``uy = vy = 0``. A bearing row may stand for several identical bearings
-(``MULTIPLICITY``): the engine multiplies its force and tangent, the element does not.
-Errors the element would raise come back as status codes, with what
+In one direction the element moves along x with ``uy = vy = 0``. A bearing row may stand for
+several identical bearings (``MULTIPLICITY``): the engine multiplies its force and tangent, the
+element does not. Errors the element would raise come back as status codes, with what
 :func:`isolator.compiled.packing.trial_error` needs to word them (``STEP_BELOW_MIN_LAG``,
 ``LEFT_MONITOR_LINE``, ``BEYOND_RADIUS``). The Python side (packing a bearing into these
 arrays, the errors' words, the plate field) is :mod:`isolator.compiled.packing`.
@@ -37,13 +35,7 @@ import numpy as np
 
 from isolator.compiled import layout as L
 from isolator.compiled import plate as P
-from isolator.compiled.kernels import (
-    cold_friction,
-    heated_window,
-    jit_unmanaged,
-    ptv_friction,
-    solve_friction,
-)
+from isolator.compiled.kernels import heated_window, initial_friction, jit_unmanaged, ptv_friction
 from isolator.friction import REFERENCE_PRESSURE
 
 # Layout of a row of the ``parameters`` array (one row per bearing; floats).
@@ -130,14 +122,7 @@ def set_trials(time, motion, parameters, ptv, committed, trial, rates, weights, 
             mu, dmu_dspeed, flux = row[CONSTANT_MU], 0.0, 0.0
             temperature = row[INITIAL_TEMPERATURE]
         elif model == COLD_PTV or dt <= 0.0:
-            code = np.int64(constants[L.FACTOR_CODE])
-            mu_cold, dmu_cold = cold_friction(code, constants[L.REFERENCE_PRESSURE],
-                                              constants[L.RATE_PARAMETER], constants[L.MU_T0],
-                                              constants[L.USE_PRESSURE] != 0.0,
-                                              constants[L.USE_VELOCITY] != 0.0, pressure, speed)
-            mu, dmu_dspeed, temperature = solve_friction(
-                code, mu_cold, dmu_cold, constants[L.USE_TEMPERATURE] != 0.0,
-                constants[L.INITIAL_TEMPERATURE], 0.0, 0.0)
+            mu, dmu_dspeed, temperature = initial_friction(constants, pressure, speed)
             flux = mu * pressure * speed / constants[L.SURFACES]
         else:
             if dt == table[P.PREPARED_STEP]:

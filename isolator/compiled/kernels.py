@@ -77,22 +77,26 @@ def temperature_factor(code, temperature):
 
 
 @jit
-def cold_friction(code, reference_pressure, rate, mu_t0, use_pressure, use_velocity,
-                  pressure, speed):
-    """mu_t0 gamma(p) alpha(|v|) and its derivative with respect to |v| [s/m] (Eq. 7)."""
+def cold_friction(parameters, pressure, speed):
+    """mu_t0 gamma(p) alpha(|v|) and its derivative with respect to |v| [s/m]: Eq. 7 without the
+    temperature, for the friction constants ``parameters``
+    (:func:`~isolator.compiled.layout.pack_ptv`), a contact pressure [Pa] and a speed [m/s]."""
     gamma = 1.0
     alpha = 1.0
     dalpha = 0.0
-    if code == 0:
+    use_pressure = parameters[L.USE_PRESSURE] != 0.0
+    use_velocity = parameters[L.USE_VELOCITY] != 0.0
+    if int(parameters[L.FACTOR_CODE]) == 0:
         if use_pressure:
             gamma = _paper_pressure(pressure)[0]
         if use_velocity:
             alpha, dalpha = _paper_velocity(speed)
     else:
         if use_pressure:
-            gamma = _kumar_pressure(pressure, reference_pressure)[0]
+            gamma = _kumar_pressure(pressure, parameters[L.REFERENCE_PRESSURE])[0]
         if use_velocity:
-            alpha, dalpha = _kumar_velocity(speed, rate)
+            alpha, dalpha = _kumar_velocity(speed, parameters[L.RATE_PARAMETER])
+    mu_t0 = parameters[L.MU_T0]
     return mu_t0 * gamma * alpha, mu_t0 * gamma * dalpha
 
 
@@ -178,6 +182,16 @@ def solve_friction(code, mu_cold, dmu_cold, use_temperature, base, a, newest_per
 
 
 @jit
+def initial_friction(parameters, pressure, speed):
+    """Eq. 7 at the initial temperature T0 (no heating, or no time since the last commit):
+    ``(mu, d mu / d|v| [s/m], T0 [degC])`` for the constants ``parameters``."""
+    mu_cold, dmu_cold = cold_friction(parameters, pressure, speed)
+    return solve_friction(int(parameters[L.FACTOR_CODE]), mu_cold, dmu_cold,
+                          parameters[L.USE_TEMPERATURE] != 0.0,
+                          parameters[L.INITIAL_TEMPERATURE], 0.0, 0.0)
+
+
+@jit
 def heated_window(position, first, spacing, n_points, half_width, average_over_contact):
     """Points ``[lo, hi)`` within ``half_width`` of the slider centre at ``position`` [m].
 
@@ -211,11 +225,7 @@ def ptv_friction(rise, heated, parameters, newest, pressure, speed):
     fraction = 1.0 if heated else 0.0
     base = parameters[L.INITIAL_TEMPERATURE] + parameters[L.FLUX_COEFFICIENT] * rise
     code = int(parameters[L.FACTOR_CODE])
-    mu_cold, dmu_cold = cold_friction(code, parameters[L.REFERENCE_PRESSURE],
-                                      parameters[L.RATE_PARAMETER], parameters[L.MU_T0],
-                                      parameters[L.USE_PRESSURE] != 0.0,
-                                      parameters[L.USE_VELOCITY] != 0.0, pressure,
-                                      speed)
+    mu_cold, dmu_cold = cold_friction(parameters, pressure, speed)
     flux_per_mu_speed = pressure / parameters[L.SURFACES]
     newest_per_mu_speed = newest * fraction * flux_per_mu_speed
     mu, dmu_dspeed, temperature = solve_friction(code, mu_cold, dmu_cold,
@@ -265,7 +275,6 @@ def warm_up() -> None:
     contact_history(states, vec, 0, 2)
     advance_states(states, np.ones((2, 3)), 0, 2, 0, 1, 1.0)
     for code in (0, 1):
-        cold_friction(code, 60e6, 100.0, 0.075, True, True, 60e6, 0.4)
         solve_friction(code, 0.07, 0.0, True, 20.0, 1.0, 1.0)
         for average in (1.0, 0.0):
             parameters = pack_ptv({
@@ -275,3 +284,4 @@ def warm_up() -> None:
                 "rate_parameter": 100.0, "mu_t0": 0.075, "use_pressure": 1.0,
                 "use_velocity": 1.0, "use_temperature": 1.0, "surfaces": 2.0})
             ptv_trial(states, vec, parameters, 0.0, 0.01, 60e6, 0.4)
+            initial_friction(parameters, 60e6, 0.4)

@@ -132,16 +132,10 @@ def pack_bearings(bearing: DCFPBearing, elements: Sequence, positions: np.ndarra
         rows[:, E.FRICTION_MODEL], rows[:, E.CONSTANT_MU] = E.CONSTANT, friction.mu
         rows[:, E.INITIAL_TEMPERATURE] = friction.initial_temperature
     else:
-        code, reference_pressure, rate = friction.factors.kernel_parameters
-        values = {"initial_temperature": friction.thermal.initial_temperature,
-                  "factor_code": code, "reference_pressure": reference_pressure,
-                  "rate_parameter": rate, "mu_t0": friction.mu_t0,
-                  "surfaces": float(friction.surfaces),
-                  **{f"use_{name}": float(name in friction.dependencies)
-                     for name in ("pressure", "velocity", "temperature")}}
         rows[:, E.INITIAL_TEMPERATURE] = friction.thermal.initial_temperature
         rows[:, E.FRICTION_MODEL] = E.COLD_PTV
-        heating = elements[0].friction_state.heating
+        state = elements[0].friction_state
+        heating = state.heating
         if heating is not None:
             grid = isinstance(heating, GridHeating)
             plate = grid or heating.average_over_contact
@@ -154,20 +148,16 @@ def pack_bearings(bearing: DCFPBearing, elements: Sequence, positions: np.ndarra
                     rows[:, E.ORIENTATION] = math.radians(heating.layout.orientation)
             elif plate:  # the monitor line in one direction: one row across, e1 along x
                 rows[:, E.ORIENTATION] = 0.0
-            values.update(first_point=heating.first_point, spacing=heating.spacing,
-                          n_points=heating.n_points, flux_half_width=heating.flux_half_width,
-                          average_over_contact=float(plate),
-                          flux_coefficient=heating.coefficient)
             rates, weights = heating.kernel.rates, heating.kernel.weights
             points = heating.n_points * int(rows[0, E.N_ACROSS]) if plate else 1
-        for b in range(n_b):
-            constants = dict(values)
-            if constant_load and constants["use_pressure"]:  # mu_t0 gamma(p) once, bit for bit
-                constants["mu_t0"] = kernels.cold_friction(
-                    code, reference_pressure, rate, friction.mu_t0, True, False,
-                    float(gravity[b]) / bearing.contact_area, 0.0)[0]
-                constants["use_pressure"] = 0.0
-            ptv[b] = pack_ptv(constants)
+        ptv[:] = state.parameters
+        if constant_load and state.parameters[L.USE_PRESSURE]:  # mu_t0 gamma(p) once
+            cold = state.parameters.copy()
+            cold[L.USE_VELOCITY] = 0.0
+            for b in range(n_b):
+                ptv[b, L.MU_T0] = kernels.cold_friction(
+                    cold, float(gravity[b]) / bearing.contact_area, 0.0)[0]
+            ptv[:, L.USE_PRESSURE] = 0.0
     committed = np.array([_committed_row(element.committed) for element in elements])
     heat = P.new_plate_heating(n_b, points, np.asarray(rates), np.asarray(weights))
     return CompiledBearings(rows, ptv, committed, heat)

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from isolator.compiled import kernels
+from isolator.compiled.layout import pack_ptv
 from isolator.factors import KumarFactors, PaperFactors, factor_set
 
 
@@ -49,11 +50,16 @@ def test_vectorised_api_accepts_arrays():
 def test_compiled_kernels_match_the_factor_sets(code):
     factors = PaperFactors() if code == 0 else KumarFactors()
     _, p_ref, rate = factors.kernel_parameters
+    parameters = pack_ptv({"factor_code": code, "reference_pressure": p_ref,
+                           "rate_parameter": rate, "mu_t0": 0.075, "use_pressure": 1.0,
+                           "use_velocity": 1.0})
     for pressure, speed in [(30e6, 0.05), (60e6, 0.4), (85e6, 0.0)]:
-        mu, dmu = kernels.cold_friction(code, p_ref, rate, 0.075, True, True, pressure, speed)
+        mu, dmu = kernels.cold_friction(parameters, pressure, speed)
         assert mu == pytest.approx(0.075 * factors.pressure(pressure)[0]
                                    * factors.velocity(speed)[0], rel=1e-13)
-        py = kernels.cold_friction.py_func(code, p_ref, rate, 0.075, True, True, pressure, speed)
+        assert dmu == pytest.approx(0.075 * factors.pressure(pressure)[0]
+                                    * factors.velocity(speed)[1], rel=1e-13)
+        py = kernels.cold_friction.py_func(parameters, pressure, speed)
         assert py == pytest.approx((mu, dmu), rel=1e-13)
     for t in (20.0, 150.0):
         assert kernels.temperature_factor(code, t)[0] == pytest.approx(
