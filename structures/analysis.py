@@ -88,20 +88,22 @@ def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, st
               for name, size in BEARING_RECORD.items()}
     restoring = np.zeros((nt, model.mass_matrix.shape[0]))
     dofs = model.level_dofs
-    transposed = np.asarray(model.transformations)[..., :dofs]  # (n_b, 2, dofs)
+    # sum_b T_b^T (m_b F_b) as one product: the (n_b 2) forces times (n_b 2, dofs)
+    transposed = np.asarray(model.transformations)[..., :dofs].reshape(-1, dofs)
+    multiplicity = np.asarray(model.multiplicity, dtype=float)[:, None]
+    columns = [(name, record[name], size) for name, size in BEARING_RECORD.items()]
     deadline = np.inf
 
     def on_commit(k: int, t: float, u: np.ndarray, *_: np.ndarray) -> None:
         for i, state in enumerate(model.committed_states()):
-            for name, size in BEARING_RECORD.items():
+            for name, values, size in columns:
                 value = getattr(state, name)
-                if size and np.ndim(value) == 0:  # one direction: x only
-                    record[name][k, i, 0] = value
+                if size and isinstance(value, float):  # one direction: x only
+                    values[k, i, 0] = value
                 else:
-                    record[name][k, i] = value
+                    values[k, i] = value
         restoring[k] = model.superstructure_stiffness @ u
-        forces = record["force"][k] * model.multiplicity[:, None]
-        restoring[k, :dofs] += np.einsum("bi,bij->j", forces, transposed)
+        restoring[k, :dofs] += (record["force"][k] * multiplicity).ravel() @ transposed
         if _time.perf_counter() > deadline:  # ends the run, this step kept
             raise time_limit_error(time_limit, t)
 

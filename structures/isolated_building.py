@@ -192,6 +192,8 @@ class IsolatedShearBuilding:
     def axial_loads(self, u: np.ndarray, v: np.ndarray, time: float) -> np.ndarray:
         """Axial load of one bearing at each position at a trial state (module docstring),
         shape (n_b,) [N]; zero or negative is uplift."""
+        if self.vertical is None and not self.overturning:
+            return self.gravity_loads
         loads = self.gravity_loads * (1.0 + self.vertical_acceleration(time) / STANDARD_GRAVITY)
         if self.overturning:
             loads = loads + self._overturning @ (self._stiffness @ u + self._damping @ v)
@@ -211,12 +213,13 @@ class IsolatedShearBuilding:
         """Storey forces plus the bearings' forces on the base slab, and the tangents."""
         force = self._stiffness @ u
         stiffness = self._stiffness.copy()
-        damping = np.zeros_like(stiffness)
+        damping = np.zeros(stiffness.shape)
         loads = self.axial_loads(u, v, time)
         if self.level_dofs == 1:  # one group along x on the base slab's one DOF
-            for element, count, load in zip(self.elements, self.multiplicity, loads,
-                                            strict=True):
-                trial = element.set_trial(float(u[0]), float(v[0]), time, axial_load=load)
+            ub, vb = float(u[0]), float(v[0])
+            for element, count, load in zip(self.elements, self.multiplicity.tolist(),
+                                            loads.tolist(), strict=True):
+                trial = element.set_trial(ub, vb, time, axial_load=load)
                 force[0] += count * trial.force
                 stiffness[0, 0] += count * trial.stiffness
                 damping[0, 0] += count * trial.damping
