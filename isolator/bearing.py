@@ -18,7 +18,7 @@ contract of OpenSees elements: ``set_trial`` returns the force and the consisten
 d F / d u and d F / d v (from d mu / d|v|), ``commit`` accepts the trial (and only then adds
 its heat), ``revert`` drops it. Along any fixed direction through the centre the element in two
 directions gives the force, mu and temperature of the element in one
-(``tests/verification/test_bidirectional.py``).
+(``tests/verification/test_two_directions.py``).
 """
 
 from __future__ import annotations

@@ -169,9 +169,9 @@ def imposed_history(time: ArrayLike, displacement: ArrayLike, velocity: ArrayLik
     t = check_array(time, "time", owner, min_length=2)
     if np.any(np.diff(t) <= 0.0):
         raise ValueError(f"The 'time' parameter of {owner} must be strictly increasing.")
-    planar = np.ndim(displacement) == 2
-    u = check_array(displacement, "displacement", owner, ndim=2 if planar else 1, min_length=2)
-    shape = (t.size, 2) if planar else t.shape
+    ndim = 2 if np.ndim(displacement) == 2 else 1  # two directions or one
+    u = check_array(displacement, "displacement", owner, ndim=ndim, min_length=2)
+    shape = (t.size, 2) if ndim == 2 else t.shape
     if u.shape != shape:
         raise ValueError(f"The 'displacement' parameter of {owner} must have the shape "
                          f"{shape} (one row per time). Got {u.shape} instead.")

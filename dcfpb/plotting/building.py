@@ -40,7 +40,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     directory.mkdir(parents=True, exist_ok=True)
     first = next(iter(results.values()))
     directions = [str(d) for d in first["direction"].values]
-    planar = len(directions) == 1
+    one_direction = len(directions) == 1
 
     def save(fig, name):
         if title:
@@ -59,10 +59,10 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
                 ax.plot(1e3 * r["displacement"].values[:, 0, axis],
                         r["base_shear"].values[:, axis] / 1e3, lw=0.7, color=colour(label, i),
                         label=label)
-            where = "" if planar else f", {name}"
+            where = "" if one_direction else f", {name}"
             ax.set_xlabel(f"isolator displacement{where} [mm]")
             ax.set_ylabel(f"isolator force, all bearings{where} [kN]")
-            ax.set_title("isolator hysteresis" + ("" if planar else " (base slab at the "
+            ax.set_title("isolator hysteresis" + ("" if one_direction else " (base slab at the "
                                                                      "centre of stiffness)"))
             ax.grid(alpha=0.3)
         axes[0, 0].legend(loc="upper left")  # a fixed place: "best" searches every point
@@ -77,7 +77,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
         ax.set_xlabel("time [s]")
         ax.set_ylabel("contact temperature [degC]")
         ax.set_title("temperature of the sliding surface (contact area)"
-                     + ("" if planar else ", corner bearing"))
+                     + ("" if one_direction else ", corner bearing"))
         ax.grid(alpha=0.3)
         ax.legend(loc="upper right")
         return save(fig, "temperature.png")
@@ -98,7 +98,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
                 ax.legend(loc="upper right", ncol=2, fontsize=8)
         for axis, name in enumerate(directions):
             axes[0, axis].set_title("roof absolute acceleration against the ground acceleration"
-                                    + ("" if planar else f", {name}"))
+                                    + ("" if one_direction else f", {name}"))
             axes[-1, axis].set_xlabel("time [s]")
         return save(fig, "roof_acceleration.png")
 
@@ -109,35 +109,36 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
             drift = 1e3 * np.abs(r["storey_drift"].values).max(axis=0)  # (storey, direction)
             for axis, name in enumerate(directions):
                 ax.plot(drift[:, axis], r["storey"], marker="o", color=colour(label, i),
-                        ls=DIRECTION_STYLES[name], label=label if planar else f"{label}, {name}")
+                        ls=DIRECTION_STYLES[name],
+                        label=label if one_direction else f"{label}, {name}")
         ax.set_xlabel("peak storey drift [mm]")
         ax.set_ylabel("storey")
         ax.set_yticks(first["storey"].values)
         ax.set_xlim(left=0.0)
         ax.set_title("storey drift profile")
         ax.grid(alpha=0.3)
-        ax.legend(loc="upper right", fontsize=8 if planar else 7)
+        ax.legend(loc="upper right", fontsize=8 if one_direction else 7)
         return save(fig, "storey_drift.png")
 
     def response_histories():
-        rows = 3 if planar else 4
+        rows = 3 if one_direction else 4
         fig, axes = plt.subplots(rows, 1, figsize=(9, 2.3 * rows), sharex=True)
         margins(fig, left=0.9, top=0.6, hspace=0.1)
         for i, (label, r) in enumerate(results.items()):
             c = colour(label, i)
             for axis, name in enumerate(directions):
                 style = {"lw": 0.7, "color": c, "ls": DIRECTION_STYLES[name]}
-                named = label if planar else f"{label}, {name}"
+                named = label if one_direction else f"{label}, {name}"
                 axes[0].plot(r["time"], 1e3 * r["displacement"].values[:, 0, axis],
                              label=named, **style)
                 axes[1].plot(r["time"], r["base_shear"].values[:, axis] / 1e3, **style)
             axes[2].plot(r["time"], r["mu"].values[:, corner_bearing(r)], lw=0.5, color=c)
-            if not planar:
+            if not one_direction:
                 axes[3].plot(r["time"], 1e3 * r["rotation"].values[:, 0], lw=0.6, color=c)
         axes[0].set_ylabel("isolator disp. [mm]")
         axes[1].set_ylabel("base shear [kN]")
         axes[2].set_ylabel("friction coeff. [-]")
-        if not planar:
+        if not one_direction:
             axes[3].set_ylabel("base rotation [mrad]")
         axes[-1].set_xlabel("time [s]")
         axes[0].legend(ncol=3, fontsize=8, loc="upper right")
@@ -163,7 +164,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
         figures.append((floor_spectra, "floor_spectra.png", 3))
     if fixed_base is not None:
         figures.append((isolation_effect, "isolation_effect.png", 6))
-    if not planar:
+    if not one_direction:
         figures += [(lambda: plot_bearing_orbits(results, directory, title),
                      "bearing_orbits.png", 1.0),
                     (lambda: plot_force_orbits(results, directory, title),

@@ -48,8 +48,8 @@ PARAMETERS_SIZE = 15
 LINEAR, SPHERICAL, FLAT = 0, 1, 2
 CONSTANT, COLD_PTV, CENTRE_PTV, PLATE_PTV = 0, 1, 2, 3
 
-# A bearing state (committed or trial) as PlanarState; then the trial's tangents, its pending
-# heat and its frame (the e1 of the plate a trial would fix).
+# A bearing state (committed or trial) as BearingState in two directions; then the trial's
+# tangents, its pending heat and its frame (the e1 of the plate a trial would fix).
 TIME, UX, UY, VX, VY, FX, FY, FFX, FFY, ZX, ZY, MU, TEMPERATURE, HEAT_FLUX, AXIAL_LOAD = range(15)
 KXX, KXY, KYX, KYY, CXX, CXY, CYX, CYY = range(15, 23)
 PENDING_DT, PENDING, AXIS_X, AXIS_Y = range(23, 27)
@@ -76,7 +76,7 @@ SUCCESS, NOT_CONVERGED, LEFT_MONITOR_LINE, STEP_BELOW_MIN_LAG, BEYOND_RADIUS = r
 def set_trials(time, motion, parameters, ptv, committed, trial, rates, weights, states, stamps,
                marks, pending, accumulators, offsets, cache_keys, cache_values, cache_state,
                scalars, factors, decays, slots, table, windows):
-    """BidirectionalElement.set_trial of every bearing row at ``time`` [s]: fills the rows of
+    """BearingElement.set_trial of every bearing row at ``time`` [s]: fills the rows of
     ``trial`` (state, tangents ``KXX`` ... ``CYY`` of one bearing of the row).
 
     ``motion`` (n_b, MOTION_SIZE) holds each row's trial displacement and velocity (x, y)
@@ -239,7 +239,7 @@ def set_trials(time, motion, parameters, ptv, committed, trial, rates, weights, 
 def commit_trials(parameters, committed, trial, rates, weights, states, stamps, marks, pending,
                   accumulators, offsets, cache_keys, cache_values, cache_state, scalars,
                   factors, decays, slots, table, windows):
-    """BidirectionalElement.commit of every bearing row: the trial becomes the committed state
+    """BearingElement.commit of every bearing row: the trial becomes the committed state
     and its heat enters the plate's history (the arrays as for :func:`set_trials`)."""
     for b in range(trial.shape[0]):
         t = trial[b]

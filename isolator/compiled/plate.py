@@ -2,7 +2,7 @@
 
 The points form a rectangle of ``n_along`` x ``n_across`` points, point ``(i, k)`` at flat
 index ``j = i n_across + k`` (``i`` along the frame's first axis e1, ``k`` along e2): the
-monitor grid of :class:`~isolator.bidirectional.heating.GridHeating` is a square of n x n, the
+monitor grid of :class:`~isolator.monitor_grid.GridHeating` is a square of n x n, the
 monitor line of :class:`~isolator.heating.SurfaceHeating` is the same code with one row
 across (``n_across = 1``, e1 along x). The reference stores a history G_j (K exponential
 terms) for every point heated and, per trial, decays and sums the points under the slider

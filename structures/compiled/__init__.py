@@ -1,5 +1,5 @@
-"""The compiled engine of :func:`structures.analysis.run` and
-:func:`structures.spatial.analysis.run_spatial`, one for both buildings: the whole run as one
+"""The compiled engine of :func:`structures.analysis.run`, in one direction and in plan: the
+whole run as one
 numba function (:mod:`~structures.compiled.integrator`), what it sees of a model
 (:mod:`~structures.compiled.view`), the adapter that packs the view into arrays and the result
 back (:mod:`~structures.compiled.engine`), its numerical pieces

@@ -1,7 +1,7 @@
 """The Python side of the compiled engine: pack a model's view, run it, unpack its histories.
 
 :func:`compiled_run` runs :func:`structures.compiled.integrator.integrate` on an
-:class:`~structures.compiled.view.EngineView` (the planar building or the building in plan)
+:class:`~structures.compiled.view.EngineView` (a building in one direction or in plan)
 and returns the reference integrator's result, every bearing's record (``RECORD_FIELDS`` of
 :mod:`isolator.compiled.element`), the total restoring force, the times and the precise
 model's plate field. The failure contract is the reference's: a trial the element cannot

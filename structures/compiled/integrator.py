@@ -5,15 +5,11 @@ building: the Newmark / HHT-alpha Newton step with a ground acceleration of ``c`
 components, the building's storey springs and dampers (:mod:`structures.compiled.workspace`'s
 ``Model``) and its bearings, the compiled element of :mod:`isolator.compiled.element` at their
 plan positions with their axial loads per trial (the gravity share, times 1 + a_z / g with a
-vertical record, plus the overturning of the storey forces, with its consistent tangent). One
-engine serves both buildings:
-
-- the planar building (:class:`~structures.isolated_building.IsolatedShearBuilding`): one DOF
-  per level, one bearing row at (0, 0) standing for the ``n_bearings`` identical bearings
-  (its force and tangent times their number), moving along x, its load constant;
-- the building in plan (:class:`~structures.spatial.isolated.SpatialIsolatedBuilding`): three
-  DOFs per level (x, y, theta), one row per bearing at its position, overturning and the
-  vertical record as the model has them.
+vertical record, plus the overturning of the storey forces, with its consistent tangent), for
+the one model (:class:`~structures.isolated_building.IsolatedShearBuilding`): in one direction
+one DOF per level and one bearing row at (0, 0) standing for the ``n_bearings`` identical
+bearings (force and tangent times their number), moving along x under a constant load; in
+plan three DOFs per level (x, y, theta) and one row per bearing at its position.
 
 It mirrors the reference operation for operation, so the two agree to round-off: the same
 predictor, residual, force reference and convergence tests (the force residual and the Newton

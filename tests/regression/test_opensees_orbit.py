@@ -1,4 +1,4 @@
-"""Our bidirectional element against OpenSees 3D, one bearing under imposed orbits.
+"""Our element in two directions against OpenSees 3D, one bearing under imposed orbits.
 
 Script: this file runs both live (no stored fixture), with openseespy 3.7.1.2 (OpenSees 3.7.1)
 through :mod:`structures.opensees.bearing` and :mod:`structures.opensees.comparison`.
