@@ -371,7 +371,7 @@ class PTVFrictionState:
             "factor_code": code, "reference_pressure": reference_pressure,
             "rate_parameter": rate, "mu_t0": model.mu_t0, "surfaces": self._surfaces,
             **{f"use_{name}": name in model.dependencies
-               for name in ("pressure", "velocity", "temperature")}})
+               for name in DEPENDENCIES}})
         """The constants of the compiled kernels (:func:`~isolator.compiled.layout.pack_ptv`):
         the one place a model's parameters become the kernels' (the engine packs these)."""
         self._pending: tuple[float, float] | None = None
