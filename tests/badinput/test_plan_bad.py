@@ -46,7 +46,7 @@ def _file(tmp_path: Path, **changes: str | None) -> Path:
     return path
 
 
-def test_the_good_plan_loads_and_the_planar_file_has_none(tmp_path):
+def test_the_good_plan_loads_and_the_file_in_one_direction_has_none(tmp_path):
     config = load_config(_file(tmp_path))
     assert config.plan is not None and config.n_bearings == 6
     assert config.building.gravity_shares.min() > 0.0

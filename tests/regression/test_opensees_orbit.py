@@ -213,44 +213,45 @@ def test_a_square_agrees_within_the_stated_tolerances(ops):
     assert abs(difference["energy"]) <= 1e-5  # 8e-8
 
 
-def test_a_line_at_30_degrees_is_the_planar_comparison(ops):
-    """Along 30 degrees singleFPBearing 3D gives the planar element's force to 2e-4 of the
-    peak (its restoring law sees the other axis) and ours against it shows the planar
-    comparison's differences."""
+def test_a_line_at_30_degrees_is_the_comparison_in_one_direction(ops):
+    """Along 30 degrees singleFPBearing 3D gives the force of the element in one direction to
+    2e-4 of the peak (its restoring law sees the other axis) and ours against it shows the
+    differences of the comparison in one direction."""
     bearing, angle = _coulomb(), 30.0
     history = sine(AMPLITUDE, PERIOD, 3, DT)
-    planar = run_opensees_test(bearing, history.time, history.displacement, history.velocity)
+    one_direction = run_opensees_test(bearing, history.time, history.displacement, history.velocity)
     orbit = line(AMPLITUDE, PERIOD, 3, DT, angle=angle)
     comparison = run_bearing_comparison(bearing, orbit)
-    spatial = comparison.opensees
+    orbit_run = comparison.opensees
     along = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
     across = np.array([-along[1], along[0]])
-    peak = float(np.max(np.abs(planar.force)))
-    assert np.max(np.abs(spatial.force @ along - planar.force)) / peak <= 5e-4  # 2.0e-4
-    assert np.max(np.abs(spatial.force @ across)) / peak <= 5e-4  # 1.1e-4
+    peak = float(np.max(np.abs(one_direction.force)))
+    assert np.max(np.abs(orbit_run.force @ along - one_direction.force)) / peak <= 5e-4  # 2.0e-4
+    assert np.max(np.abs(orbit_run.force @ across)) / peak <= 5e-4  # 1.1e-4
     # the friction parts (force less each element's own restoring law) agree closer still
-    assert np.max(np.abs(spatial.friction_force @ along - planar.friction_force)[1:]) / peak \
-        <= 2e-5  # 1.9e-6: N differs by 2e-6 of W
+    friction_x = one_direction.friction_force
+    # 1.9e-6: N differs by 2e-6 of W
+    assert np.max(np.abs(orbit_run.friction_force @ along - friction_x)[1:]) / peak <= 2e-5
     # ours against OpenSees 3D along the line = ours against OpenSees 2D
     ours = comparison.ours.force @ along
-    planar_peak = float(np.max(np.abs(planar.force))) / float(np.max(np.abs(ours))) - 1.0
+    peak_x = float(np.max(np.abs(one_direction.force))) / float(np.max(np.abs(ours))) - 1.0
     difference = comparison.summary["difference"]
-    # 3D 0.398 % against planar 0.378 %, 0.180 % and 0.191 % against 0.174 %: the 3D
+    # 3D 0.398 % against 0.378 % in one direction, 0.180 % and 0.191 % against 0.174 %: the 3D
     # restoring law adds its 2e-4
-    assert difference["peak_resultant_force"] == pytest.approx(planar_peak, abs=5e-4)
-    planar_nrmse = float(np.sqrt(np.mean((planar.force - ours) ** 2))) / np.max(np.abs(ours))
-    assert difference["nrmse_force_x"] == pytest.approx(planar_nrmse, abs=5e-4)
-    assert difference["nrmse_force_y"] == pytest.approx(planar_nrmse, abs=5e-4)
+    assert difference["peak_resultant_force"] == pytest.approx(peak_x, abs=5e-4)
+    nrmse_x = float(np.sqrt(np.mean((one_direction.force - ours) ** 2))) / np.max(np.abs(ours))
+    assert difference["nrmse_force_x"] == pytest.approx(nrmse_x, abs=5e-4)
+    assert difference["nrmse_force_y"] == pytest.approx(nrmse_x, abs=5e-4)
     assert abs(difference["energy"]) <= 0.01  # 0.13 %
 
 
-def test_along_the_axes_singlefp3d_is_the_planar_element_exactly(ops):
+def test_along_the_axes_singlefp3d_is_the_element_in_one_direction_exactly(ops):
     bearing, history = _coulomb(), sine(AMPLITUDE, PERIOD, 1, DT)
-    planar = run_opensees_test(bearing, history.time, history.displacement, history.velocity)
+    one_direction = run_opensees_test(bearing, history.time, history.displacement, history.velocity)
     for angle, axis in ((0.0, 0), (90.0, 1)):
-        spatial = opensees_orbit(bearing, line(AMPLITUDE, PERIOD, 1, DT, angle=angle))
-        assert np.max(np.abs(spatial.force[:, axis] - planar.force)) <= 1e-9 * AXIAL_LOAD
-        assert np.max(np.abs(spatial.force[:, 1 - axis])) <= 1e-9 * AXIAL_LOAD
+        orbit_run = opensees_orbit(bearing, line(AMPLITUDE, PERIOD, 1, DT, angle=angle))
+        assert np.max(np.abs(orbit_run.force[:, axis] - one_direction.force)) <= 1e-9 * AXIAL_LOAD
+        assert np.max(np.abs(orbit_run.force[:, 1 - axis])) <= 1e-9 * AXIAL_LOAD
 
 
 # --- FPBearingPTV under a circle --------------------------------------------------------------

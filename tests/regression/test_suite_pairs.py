@@ -10,8 +10,8 @@ suite of :mod:`structures.suites` as records are.
 - factors to a target on RotD100 (the hook of ``dcfpb suite --target``) are those of
   ``scale_suite``; ``run_timeout`` and
   ``max_steps`` reach each run;
-- ``dcfpb suite --pairs``: the resumed suite, its JSON, tables and plots; a planar building
-  file refused before any work, naming the flag and the file.
+- ``dcfpb suite --pairs``: the resumed suite, its JSON, tables and plots; a building file in one
+  direction refused before any work, naming the flag and the file.
 
 The building is small (two storeys on four bearings) and the pairs 1.5 s at 10 ms: the
 reference engine of the building in plan runs about 150 steps a second here.
@@ -228,9 +228,9 @@ def test_run_timeout_and_max_steps_reach_a_run(files, config, tmp_path):
 
 
 def test_errors_before_any_work(files, config, tmp_path):
-    planar = load_config(REPO / "examples" / "five_storey.toml")
+    one_direction = load_config(REPO / "examples" / "five_storey.toml")
     with pytest.raises(InputError, match=r"no \[plan\] table"):
-        Suite(planar, pair_sources(files / "good.csv"))
+        Suite(one_direction, pair_sources(files / "good.csv"))
     with pytest.raises(InputError, match="all records or all pairs"):
         Suite(config, [*pair_sources(files / "good.csv"), REPO / "examples" / "x.AT2"])
     bad = tmp_path / "bad.csv"
@@ -289,20 +289,20 @@ def test_cli_pairs_scaled_to_a_target_on_rotd100(files, scheduler, capsys, tmp_p
     assert (out / "plots" / "scaled_spectra.png").stat().st_size > 0
 
 
-def test_cli_refuses_pairs_on_a_planar_building_file(files, capsys, tmp_path):
-    planar = REPO / "examples" / "five_storey.toml"
-    code = cli.main(["suite", str(planar), "--pairs", str(files / "good.csv"),
+def test_cli_refuses_pairs_on_a_building_file_in_one_direction(files, capsys, tmp_path):
+    one_direction = REPO / "examples" / "five_storey.toml"
+    code = cli.main(["suite", str(one_direction), "--pairs", str(files / "good.csv"),
                      "--out", str(tmp_path / "out"), "--no-progress"])
     error = capsys.readouterr().err
-    assert code == 2 and "--pairs" in error and str(planar) in error
+    assert code == 2 and "--pairs" in error and str(one_direction) in error
     assert "no [plan] table" in error
     assert not (tmp_path / "out").exists()
     with pytest.raises(SystemExit) as both:
-        cli.main(["suite", str(planar), "--pairs", "a.csv", "--records", "b"])
+        cli.main(["suite", str(one_direction), "--pairs", "a.csv", "--records", "b"])
     assert both.value.code == 2 and "not allowed with" in capsys.readouterr().err
 
 
-def test_cli_records_on_a_plan_file_warn_that_they_run_planar(files, scheduler, capsys,
+def test_cli_records_on_a_plan_file_warn_that_they_run_in_one_direction(files, scheduler, capsys,
                                                               tmp_path):
     records = tmp_path / "records"
     records.mkdir()

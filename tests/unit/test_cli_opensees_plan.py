@@ -32,7 +32,7 @@ eccentricity = [0.9, 0.6]
 dimensions = [18.0, 12.0]
 storey_heights = 3.5
 """
-PLANAR_FILE = PLAN_FILE.split("[plan]")[0].replace("[bearing]\n", "[bearing]\ncount = 6\n")
+ONE_DIRECTION_FILE = PLAN_FILE.split("[plan]")[0].replace("[bearing]\n", "[bearing]\ncount = 6\n")
 
 
 @pytest.fixture(scope="module")
@@ -55,7 +55,7 @@ def files(tmp_path_factory):
     (folder / "modal.toml").write_text(PLAN_FILE.replace(
         "base_mass = 500e3\n", "base_mass = 500e3\n[building.damping]\nkind = \"modal\"\n"
         "ratio = 0.05\n"))
-    (folder / "planar.toml").write_text(PLANAR_FILE)
+    (folder / "one_direction.toml").write_text(ONE_DIRECTION_FILE)
     (folder / "low.toml").write_text(PLAN_FILE.replace("storey_heights = 3.5\n", ""))
     pair = synthetic_pair("kanai-tajimi", 3, duration=2.0, dt=0.005, target_pga=4.0,
                           ground_frequency=15.0, ground_damping=0.6, vertical_ratio=0.5)
@@ -147,13 +147,13 @@ def test_bad_flags_with_a_pair_name_the_flag(files, capsys, extra, flag):
 
 
 def test_a_pair_needs_a_plan_and_z_needs_y(files, capsys):
-    planar = ["compare-opensees", str(files / "planar.toml"), "--record", str(files / "x.txt"),
-              "--units", "m/s^2"]
-    assert main([*planar, "--record-y", str(files / "y.txt")]) == 2
+    one_direction = ["compare-opensees", str(files / "one_direction.toml"), "--record",
+                     str(files / "x.txt"), "--units", "m/s^2"]
+    assert main([*one_direction, "--record-y", str(files / "y.txt")]) == 2
     assert "--record-y" in capsys.readouterr().err
-    assert main([*planar, "--record-z", str(files / "z.txt")]) == 2
+    assert main([*one_direction, "--record-z", str(files / "z.txt")]) == 2
     assert "--record-z needs --record-y" in capsys.readouterr().err
-    assert main([*planar, "--overturning"]) == 2
+    assert main([*one_direction, "--overturning"]) == 2
     assert "--overturning" in capsys.readouterr().err
     low = _args(files, "--overturning")
     low[1] = str(files / "low.toml")

@@ -35,11 +35,11 @@ def test_each_orbit_reports_both_axes_and_its_energy(capsys, kind):
     assert all(len(rows) >= 1 for rows in out["cycles"].values())
 
 
-def test_a_line_along_x_reports_the_planar_loops(capsys):
-    planar = _json(capsys)
+def test_a_line_along_x_reports_the_loops_in_one_direction(capsys):
+    one_direction = _json(capsys)
     line = _json(capsys, "--orbit", "line")
     assert line["cycles"]["y"] == []
-    for got, expected in zip(line["cycles"]["x"], planar["cycles"], strict=True):
+    for got, expected in zip(line["cycles"]["x"], one_direction["cycles"], strict=True):
         for key in ("Fmax", "Fmin", "EDC", "Keff"):
             assert got[key] == pytest.approx(expected[key], rel=1e-9)
 

@@ -112,7 +112,7 @@ def test_the_peaks_in_plan_hold_to_the_histories(files):
     assert p["max_temperature"] > 25.0  # the simplified model heats the plates
 
 
-def test_a_plan_file_under_one_record_warns_that_it_runs_planar(files, capsys):
+def test_a_plan_file_under_one_record_warns_that_it_runs_in_one_direction(files, capsys):
     with pytest.warns(InputWarning, match="runs under one record.*give a pair of records"):
         assert main(["run", str(files["plan"]), "--record", str(files["x"]), "--units",
                      "m/s^2", "--model", "constant"]) == 0

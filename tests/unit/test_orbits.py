@@ -71,7 +71,7 @@ def test_square_runs_through_its_corners_at_constant_speed():
     assert np.max(np.abs(o.displacement)) == pytest.approx(0.1, rel=1e-15)
 
 
-def test_line_is_the_planar_sine_along_its_direction():
+def test_line_is_the_sine_in_one_direction_along_its_direction():
     o, s = line(0.2, 2.0, 2, 0.02, angle=45.0), sine(0.2, 2.0, 2, 0.02)
     direction = np.array([math.cos(math.pi / 4), math.sin(math.pi / 4)])
     assert np.array_equal(o.time, s.time)

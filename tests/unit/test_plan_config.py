@@ -1,6 +1,6 @@
 """A building file with a [plan] table runs in plan under a pair (with its floor spectra per
-direction), and in one direction under one record, with a warning; the planar example file runs
-as before (no plan)."""
+direction), and in one direction under one record, with a warning; the example file in one
+direction runs as before (no plan)."""
 
 from __future__ import annotations
 
@@ -57,7 +57,7 @@ def test_a_plan_file_runs_in_plan_under_a_pair(plan_file):
                        structures.load_config(plan_file).building.weight, rtol=1e-12)
 
 
-def test_a_plan_file_runs_planar_under_one_record(plan_file):
+def test_a_plan_file_runs_in_one_direction_under_one_record(plan_file):
     with pytest.warns(InputWarning, match="runs under one record"):
         result = structures.run(plan_file, _pair().x, engine="reference")
     assert result.attrs["success"] and result.attrs["n_bearings"] == 4

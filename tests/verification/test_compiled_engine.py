@@ -1,4 +1,4 @@
-"""The compiled engine reproduces the reference run of the planar building
+"""The compiled engine reproduces the reference run of the building in one direction
 (structures.compiled.integrator vs structures.integrators).
 
 The two engines do the same arithmetic in a different order (a Sherman-Morrison solve instead

@@ -1,7 +1,7 @@
-"""The building in plan against the planar building, closed forms and its energy balance.
+"""The building in plan against the building in one direction, closed forms and its energy balance.
 
 - A symmetric plan with equal gravity shares under one horizontal component (along x, along y,
-  or one record at an angle phi) is the planar isolated building with the same number of
+  or one record at an angle phi) is the isolated building in one direction with the same number of
   bearings, rotated: floor displacements to 1e-9 and no rotation (constant and precise PTV
   friction).
 - An eccentric centre of mass turns the building; the corner bearings on the far side move
@@ -71,7 +71,7 @@ def _pair_along(angle_deg: float) -> GroundMotionPair:
 
 
 @functools.cache
-def _planar(model: str):
+def _one_direction(model: str):
     return run(_building(), _bearing(model), _record(), n_bearings=4, dt=DT,
                engine="reference")
 
@@ -79,14 +79,14 @@ def _planar(model: str):
 @pytest.mark.parametrize(("model", "angle"), [("constant", 0.0), ("constant", 90.0),
                                               ("constant", 30.0), ("precise", 90.0),
                                               ("precise", 30.0)])
-def test_symmetric_plan_is_the_planar_building_rotated(model, angle):
-    spatial = dataclasses.replace(_building(), plan=Plan(SQUARE, dimensions=(12.0, 10.0)))
-    result = run(spatial, _bearing(model), _pair_along(angle), dt=DT,
+def test_symmetric_plan_is_the_building_in_one_direction_rotated(model, angle):
+    in_plan = dataclasses.replace(_building(), plan=Plan(SQUARE, dimensions=(12.0, 10.0)))
+    result = run(in_plan, _bearing(model), _pair_along(angle), dt=DT,
                          overturning=False)
-    planar = _planar(model)
-    assert result.attrs["success"] and planar.attrs["success"]
+    one_direction = _one_direction(model)
+    assert result.attrs["success"] and one_direction.attrs["success"]
     direction = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
-    expected = planar["displacement"].values * direction
+    expected = one_direction["displacement"].values * direction
     assert _relative(result["displacement"].values, expected) < 1e-9
     rotation = result["rotation"].values
     if angle in (0.0, 90.0):  # one component: the other and the rotation stay exactly zero
@@ -94,9 +94,9 @@ def test_symmetric_plan_is_the_planar_building_rotated(model, angle):
     else:  # rounding only: below 1e-12 of the displacement at the farthest bearing
         assert np.abs(rotation).max() * 8.0 < 1e-12 * np.abs(expected).max()
     bearing = result["bearing_displacement"].values
-    assert _relative(bearing, planar["bearing_displacement"].values * direction) < 1e-9
-    if model == "precise":  # the plates heat alike: every bearing is the planar one
-        rise = planar["temperature"].values - planar["temperature"].values[0]
+    assert _relative(bearing, one_direction["bearing_displacement"].values * direction) < 1e-9
+    if model == "precise":  # the plates heat alike: every bearing is the one in one direction
+        rise = one_direction["temperature"].values - one_direction["temperature"].values[0]
         got = result["temperature"].values - result["temperature"].values[0]
         assert _relative(got, rise) < 1e-9
         assert rise.max() > 1.0
@@ -110,7 +110,7 @@ def test_overturning_with_constant_friction_leaves_the_symmetric_response():
                          _pair_along(0.0), dt=DT)
     load = result["axial_load"].values
     assert np.ptp(load[:, 1] - load[:, 0]) > 0.05 * load.mean()  # the loads do move
-    expected = _planar("constant")["displacement"].values * [1.0, 0.0]
+    expected = _one_direction("constant")["displacement"].values * [1.0, 0.0]
     assert _relative(result["displacement"].values, expected) < 1e-9
 
 
@@ -169,14 +169,14 @@ def test_axial_loads_balance_gravity_vertical_motion_and_overturning():
     """sum N = W (1 + a_z/g), sum N x = W x_G (1 + a_z/g) + sum_j H_j F_x,j with the floors'
     inertia forces F_j = -(M a_abs)_j from the accelerations (while no bearing uplifts)."""
     result = _eccentric()
-    spatial = dataclasses.replace(_building(), plan=Plan(SQUARE, eccentricity=(1.2, 0.8),
+    in_plan = dataclasses.replace(_building(), plan=Plan(SQUARE, eccentricity=(1.2, 0.8),
                                                 dimensions=(12.0, 10.0), storey_heights=3.5))
     load = result["axial_load"].values
     assert load.min() > 0.0
     scale = 1.0 + result["vertical_ground_acceleration"].values / STANDARD_GRAVITY
-    weight = spatial.weight
+    weight = in_plan.weight
     assert np.allclose(load.sum(axis=1), weight * scale, rtol=1e-12)
-    masses, centres = spatial.level_masses, spatial.level_centres
+    masses, centres = in_plan.level_masses, in_plan.level_centres
     accel = result["absolute_acceleration"].values  # at the centre of stiffness
     alpha = result["angular_acceleration"].values
     # acceleration of each floor's centre of mass: a_O + alpha x e (small rotations)
@@ -199,8 +199,8 @@ def test_fixed_base_one_storey_eccentric_periods_closed_form():
     e, j = 1.5, 4e5 * (12.0**2 + 10.0**2) / 12.0
     plan = Plan(SQUARE, eccentricity=(e, 0.0), floor_inertias=[j], base_inertia=1e6,
                 storey_stiffnesses_y=[k_y], torsional_stiffnesses=[k_t])
-    spatial = ShearBuilding([m], [k_x], 5e5, ModalDamping(0.02), plan)
-    periods = np.sort(spatial.fixed_base_modes().periods)
+    in_plan = ShearBuilding([m], [k_x], 5e5, ModalDamping(0.02), plan)
+    periods = np.sort(in_plan.fixed_base_modes().periods)
     # x uncoupled; y and theta: m J lam^2 - (k_y (J + m e^2) + k_t m) lam + k_y k_t = 0
     b = k_y * (j + m * e * e) + k_t * m
     root = math.sqrt(b * b - 4 * m * j * k_y * k_t)
@@ -216,18 +216,18 @@ def test_pendulums_centre_the_stiffness_on_the_mass_closed_form():
     plan = Plan([[-6.0, -5.0], [6.0, -5.0], [6.0, 5.0], [-6.0, 5.0], [0.0, 0.0]],
                 eccentricity=(1.0, -0.7), dimensions=(12.0, 10.0))
     rigid = ShearBuilding([4e5], [1e14], 5e5, ModalDamping(0.02))
-    spatial = dataclasses.replace(rigid, plan=plan)
-    shares = spatial.gravity_shares
-    periods = np.sort(spatial.isolated_modes(shares / radius).periods)[::-1][:3]
-    masses, centres = spatial.level_masses, spatial.level_centres
+    in_plan = dataclasses.replace(rigid, plan=plan)
+    shares = in_plan.gravity_shares
+    periods = np.sort(in_plan.isolated_modes(shares / radius).periods)[::-1][:3]
+    masses, centres = in_plan.level_masses, in_plan.level_centres
     total = masses.sum()
     centre = masses @ centres / total
-    inertia = spatial.level_inertias.sum() + masses @ ((centres - centre) ** 2).sum(axis=1)
+    inertia = in_plan.level_inertias.sum() + masses @ ((centres - centre) ** 2).sum(axis=1)
     arms = ((plan.bearing_coordinates - centre) ** 2).sum(axis=1)
     torsion = 2 * np.pi / math.sqrt((shares / radius) @ arms / inertia)
     pendulum = 2 * np.pi * math.sqrt(radius / STANDARD_GRAVITY)
     assert np.allclose(np.sort(periods), np.sort([pendulum, pendulum, torsion]), rtol=1e-6)
-    assert np.isclose(shares.sum(), spatial.weight, rtol=1e-13)
+    assert np.isclose(shares.sum(), in_plan.weight, rtol=1e-13)
 
 
 def test_hht_runs_the_coupled_system():

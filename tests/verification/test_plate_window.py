@@ -71,7 +71,7 @@ def test_group_form_equals_point_by_point(python, n_across):
                                               len(rows))
             assert got == pytest.approx(expected, rel=1e-12, abs=1e-300)
         flux = 0.0 if n % 11 == 0 else float(rng.uniform(1e4, 1e6))
-        if n_across == 1:  # the planar kernel on the line itself
+        if n_across == 1:  # the kernel in one direction on the line itself
             lo, hi = int(held[0]), int(held[1])
             advance_states(reference, step, 0, points, lo, hi, flux)
             assert contact_history(reference, weighted, lo, hi) == pytest.approx(

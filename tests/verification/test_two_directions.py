@@ -1,7 +1,8 @@
 """The DCFPB element in two directions against the element in one and closed forms.
 
-- A sine along any direction gives the planar element's force (along the line, zero across),
-  mu, temperature and heat flux, for the constant, simplified and precise models (1e-9).
+- A sine along any direction gives the force of the element in one direction (along the line,
+  zero across), mu, temperature and heat flux, for the constant, simplified and precise models
+  (1e-9).
 - A rigid-plastic circular orbit at constant speed: |F_friction| = mu N, tangential to the
   path, energy per cycle mu N times the path, the restoring force conservative.
 - The 2x2 tangents d F / d u and d F / d v against central differences.
@@ -34,39 +35,39 @@ def _relative(got, expected, scale=None):
 
 @pytest.mark.parametrize("model", MODELS)
 @pytest.mark.parametrize("angle", [0.0, 30.0, 45.0, 90.0])
-def test_a_line_at_any_angle_is_the_planar_element(model, angle):
+def test_a_line_at_any_angle_is_the_element_in_one_direction(model, angle):
     """Two cycles of the paper's 300 mm slider at 60 N/mm^2, 0.2 m, 2 s (0.63 m/s)."""
     bearing = protocol_bearing(model, slider_diameter=0.3, design_velocity=0.63)
-    planar_history = sine(0.2, 2.0, 2, 0.02)
-    planar = run_test(bearing, planar_history.time, planar_history.displacement,
-                      planar_history.velocity)
+    history_x = sine(0.2, 2.0, 2, 0.02)
+    one_direction = run_test(bearing, history_x.time, history_x.displacement,
+                      history_x.velocity)
     result = run_orbit(bearing, line(0.2, 2.0, 2, 0.02, angle=angle))
     direction = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
     t0 = 20.0
-    assert _relative(result.force, np.outer(planar.force, direction)) < 1e-9
-    assert _relative(result.mu, planar.mu, np.max(planar.mu)) < 1e-9
-    heated = max(float(np.max(planar.temperature - t0)), 1e-300)
-    assert _relative(result.temperature, planar.temperature, heated) < 1e-9
-    assert _relative(result.heat_flux, planar.heat_flux, max(np.max(planar.heat_flux), 1e-300)
-                     ) < 1e-9
+    assert _relative(result.force, np.outer(one_direction.force, direction)) < 1e-9
+    assert _relative(result.mu, one_direction.mu, np.max(one_direction.mu)) < 1e-9
+    heated = max(float(np.max(one_direction.temperature - t0)), 1e-300)
+    assert _relative(result.temperature, one_direction.temperature, heated) < 1e-9
+    flux = one_direction.heat_flux
+    assert _relative(result.heat_flux, flux, max(np.max(flux), 1e-300)) < 1e-9
     if model != "constant":
-        assert np.max(planar.temperature) > t0 + 30.0  # the history did heat the plates
-    # the per-axis characteristics along the line are the planar ones
+        assert np.max(one_direction.temperature) > t0 + 30.0  # the history did heat the plates
+    # the per-axis characteristics along the line are the ones in one direction
     if angle == 0.0:
-        for got, expected in zip(result.characteristics("x"), planar.characteristics(),
+        for got, expected in zip(result.characteristics("x"), one_direction.characteristics(),
                                  strict=True):
             assert abs(got.EDC / expected.EDC - 1.0) < 1e-9
             assert abs(got.Keff / expected.Keff - 1.0) < 1e-9
 
 
-def test_spherical_law_along_a_line_is_the_planar_one():
+def test_spherical_law_along_a_line_is_the_one_in_one_direction():
     bearing = DCFPBearing(2.0, 0.3, N, ConstantFriction(mu0=0.04), restoring="spherical",
                           displacement_capacity=0.5)
     history = sine(0.4, 2.0, 1, 0.02)
-    planar = run_test(bearing, history.time, history.displacement, history.velocity)
+    one_direction = run_test(bearing, history.time, history.displacement, history.velocity)
     result = run_orbit(bearing, line(0.4, 2.0, 1, 0.02, angle=30.0))
     direction = np.array([math.cos(math.radians(30.0)), math.sin(math.radians(30.0))])
-    assert _relative(result.force, np.outer(planar.force, direction)) < 1e-9
+    assert _relative(result.force, np.outer(one_direction.force, direction)) < 1e-9
 
 
 @functools.cache
