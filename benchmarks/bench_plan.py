@@ -161,8 +161,8 @@ def main() -> int:
     a, b = best["a one direction precise 30 s"], best["b plan precise 30 s"]
     c = best["c plan constant 30 s"]
     missed = []
-    print(f"\n(b)/(a) precise in plan over precise in one direction: run {b[0] / a[0]:.2f}, integration "
-          f"{b[1] / a[1]:.2f} (target <= 3)")
+    print(f"\n(b)/(a) precise in plan over precise in one direction: run {b[0] / a[0]:.2f}, "
+          f"integration {b[1] / a[1]:.2f} (target <= 3)")
     if b[0] / a[0] > 3.0:
         missed.append("(b)/(a) <= 3")
     a0 = best["a0 one direction constant 30 s"]
