@@ -1,24 +1,8 @@
 """``dcfpb compare-opensees`` and ``dcfpb compare-opensees-bearing``: our runs against OpenSees.
 
-``dcfpb compare-opensees BUILDING.toml --record FILE [--record-y Y [--record-z Z]]
-[--model constant|velocity|ptv] [--scale S] [--json] [--plot DIR]`` runs the building file
-under the record (a building in one direction) or the pair (a building file with a ``[plan]``
-table, in plan) with our engine and with openseespy
-(:func:`structures.opensees.comparison.run_comparison`), and prints the peaks of each, their
-differences (relative peak difference, and NRMSE = RMS difference / peak of ours, of the
-isolator displacement, base shear and roof acceleration, per direction in plan) and the wall
-time of each and their ratio. ``--pendulum spring`` builds flatSliderBearing plus linear springs
-N / R in OpenSees (our law) instead of singleFPBearing. In plan, a building file whose plan has
-``storey_heights`` is compared with the overturning of the floors' inertia forces on both sides
-(ours loads the bearings with it; the OpenSees twin stands its floors at their heights), and
-the axial loads of the corner bearings are compared too; ``--no-overturning`` leaves it out on
-both sides (``--overturning`` asks for it). ``--plot`` overlays the histories.
-
-``dcfpb compare-opensees-bearing [--model ...]`` is the same for one bearing under an imposed
-sine (:func:`structures.opensees.comparison.run_bearing_comparison`): peak force, force NRMSE,
-energy dissipated per cycle and temperature of each.
-
-Registered by adding ``"dcfpb.cli.opensees"`` to ``dcfpb.cli.COMMAND_MODULES``.
+A building file (:func:`~structures.opensees.comparison.run_comparison`) or one bearing under a
+sine (:func:`~structures.opensees.comparison.run_bearing_comparison`); peaks, differences and
+wall times printed. Registered in ``dcfpb.cli.COMMAND_MODULES``.
 """
 
 from __future__ import annotations

@@ -1,10 +1,7 @@
-"""The OpenSees twin: the same building, in one direction or in plan
-(:mod:`~structures.opensees.model`, run by :mod:`~structures.opensees.building`), and the same
-bearing under an imposed history or orbit (:mod:`~structures.opensees.bearing`) built in
-openseespy; what our bearing becomes there (:mod:`~structures.opensees.elements`);
-singleFPBearing's normal force given to ours (:mod:`~structures.opensees.singlefp`); the
-side-by-side comparisons (:mod:`~structures.opensees.comparison`). openseespy is imported when
-a model is built (:mod:`~structures.opensees.runtime`)."""
+"""The OpenSees twins of our building (:mod:`~structures.opensees.model`,
+:mod:`~structures.opensees.building`) and bearing test (:mod:`~structures.opensees.bearing`,
+:mod:`~structures.opensees.elements`, :mod:`~structures.opensees.singlefp`), and the
+comparisons (:mod:`~structures.opensees.comparison`). openseespy is imported when needed."""
 
 from __future__ import annotations
 

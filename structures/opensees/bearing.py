@@ -1,24 +1,8 @@
-"""One bearing in OpenSees under an imposed history, along one axis or in the plane.
-
-:func:`run_opensees_test` is the OpenSees twin of :func:`isolator.testrig.run_test`: it
-builds one element (:func:`structures.opensees.elements.add_bearing`) from a
-:class:`~isolator.bearing.DCFPBearing` between two coincident nodes of a 3D model, loads it
-with the bearing's constant axial load, drives the top node through the history (X; or X and
-Y for an orbit, :mod:`isolator.orbits`) and returns a
-:class:`~isolator.testrig.BearingTestResult` of the same shape as ours.
-
-Driving. A static analysis gives the element zero velocity (VelDependent would sit at mu_slow,
-FPBearingPTV falls back to displacement differences), so the analysis is transient (Newmark
-1/2, 1/4). Each driven DOF of the top node follows ``imposedMotion`` in one
-``MultipleSupport`` pattern whose ground motions hold displacement, velocity and acceleration
-as ``Path`` series: ``ImposedMotionSP::applyConstraint`` writes the velocity into the node and
-the ``Transformation`` handler the displacement, so the element sees the imposed velocity
-exactly, not a Newmark difference of displacements (the trapezoidal rule would oscillate about
-it for ever after a wrong start). The vertical DOF is free and massless on the stiff axial
-material under the load; the rotations (and Y along one axis) are fixed. kInit takes the
-element's reference mu (VelDependent's mu_fast, FPBearingPTV's MuRef).
-
-openseespy keeps one global model: every call wipes it before and after.
+"""One bearing in OpenSees under an imposed history, along one axis or in the plane: the twin
+of :func:`isolator.testrig.run_test`. Transient (Newmark 1/2, 1/4), each driven DOF following
+``imposedMotion`` with displacement, velocity and acceleration ``Path`` series, so the element
+sees the imposed velocity exactly; kInit from the reference mu (mu_fast, MuRef). openseespy
+keeps one global model: every call wipes it before and after.
 """
 
 from __future__ import annotations
@@ -58,50 +42,28 @@ def run_opensees_test(
     element: str | None = None,
     name: str = "imposed history",
 ) -> BearingTestResult:
-    """Drive ``bearing`` built as an OpenSees element through an imposed history.
+    """Drive ``bearing`` built as an OpenSees element through an imposed history ``name``.
 
     Parameters
     ----------
     bearing : DCFPBearing
-        The bearing, with a constant axial load; its friction model must be one the element
-        represents (:mod:`structures.opensees.elements`).
+        With a constant axial load [N] and a friction model the element represents.
     time : array_like, shape (n,)
-        Strictly increasing sample times [s]; OpenSees runs from 0 (the times are shifted).
-    displacement : array_like, shape (n,) or (n, 2)
-        Imposed displacement [m] along x, or (x, y), starting at 0 (the element starts at rest).
-    velocity : array_like, optional
-        Imposed velocity [m/s], the shape of ``displacement``; by default ``numpy.gradient`` of
-        the displacement (as :func:`~isolator.testrig.run_test`). Give the analytic velocity
-        where it is known.
+        Strictly increasing sample times [s] (shifted to start at 0).
+    displacement, velocity : array_like, shape (n,) or (n, 2)
+        Imposed displacement [m] along x, or (x, y), starting at 0, and velocity [m/s] (by
+        default ``numpy.gradient`` of the displacement).
     element : {"coulomb", "velocity", "ptv"}, optional
-        The element; by default the one for the bearing's friction model
-        (:func:`~structures.opensees.elements.element_kind`).
-    name : str
-        Name of the history, kept in the result (prefixed with the element).
+        By default the bearing's (:func:`~structures.opensees.elements.element_kind`).
 
-    Returns
-    -------
-    BearingTestResult
-        One value (or (x, y) row) per sample. Sample 0 is the initial state (zero force, the
-        axial load, mu NaN). ``mu`` is the friction model's COF (``MuAdjusted`` for
-        FPBearingPTV), ``axial_load`` the normal force the element uses (N = W + F . u / R for
-        singleFPBearing), ``friction_force`` the force less the element's own restoring force,
-        ``z`` that over mu N, ``temperature`` and ``heat_flux`` FPBearingPTV's (NaN for the
-        other elements).
-
-    Raises
-    ------
-    ImportError
-        Without openseespy.
-    ValueError, TypeError
-        For a bearing or history the element cannot represent.
-    RuntimeError
-        If an OpenSees step fails.
-
-    Warns
-    -----
-    UserWarning
-        For ``"ptv"`` with a non-uniform time step (its heat history assumes a uniform one).
+    Returns a :class:`~isolator.testrig.BearingTestResult` named after the element and ``name``:
+    one value (or (x, y) row) per sample, sample 0 the initial state (zero force, the axial load,
+    mu NaN); ``mu`` the friction model's COF (``MuAdjusted`` for FPBearingPTV), ``axial_load`` the
+    element's normal force [N], ``friction_force`` the force less the element's restoring force
+    [N], ``z`` that over mu N, ``temperature`` [degC] and ``heat_flux`` FPBearingPTV's (else NaN).
+    Raises ImportError without openseespy, ValueError or TypeError for a bearing or history the
+    element cannot represent, RuntimeError if an OpenSees step fails; warns (UserWarning) for
+    ``"ptv"`` with a non-uniform time step.
     """
     owner = "run_opensees_test"
     element = element_kind(bearing) if element is None else check_choice(

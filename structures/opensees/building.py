@@ -1,35 +1,8 @@
 """The analysis of :func:`structures.analysis.run` repeated in OpenSees, returned in the same
-form.
-
-:func:`run_opensees` builds the building on its bearings in openseespy
-(:mod:`structures.opensees.model`) from the very objects :func:`structures.analysis.run`
-takes, drives it with the same ground-acceleration samples and the same integrator, and returns
-the Dataset of :func:`structures.results.response_dataset`, whose energy balance is computed
-from the recorded histories with our matrices (a check of both the model and the recording).
-
-Conventions (read in ``SRC/analysis/integrator`` and ``SRC/domain/pattern`` of OpenSees):
-
-- Ground motion: the x (and y) samples on the analysis step (resampled as ours) as ``timeSeries
-  Path -dt dt -values ...`` in m/s^2 and ``pattern UniformExcitation`` in directions 1 (and
-  2); only the masters carry mass, so the load is ``-m a_g`` at each centre of mass, ours
-  ``-M R a_g``, and absolute accelerations are the relative ones plus the ground's. A vertical
-  component is a quasi-static load ``-P_i a_z / g`` on each bearing position (our building is
-  rigid vertically: ``P_i (1 + a_z / g)``), its samples at the record's own times, linear
-  between them and held after the end, as ours.
-- Initial state: our integrator starts from the acceleration in equilibrium with the first
-  sample, ``a_0 = -R a_g(0)``; OpenSees's Newmark and HHT start from the nodes' committed
-  accelerations, so they are set to that (``setNodeAccel ... -commit``).
-- ``Newmark(gamma, beta)`` is ``integrator Newmark gamma beta``. ``HHT(alpha)`` with our alpha
-  in [-1/3, 0] is ``integrator HHT (1 + alpha)``: OpenSees's alpha in [2/3, 1] weights the new
-  step (``gamma = 3/2 - alpha_OS``, ``beta = (2 - alpha_OS)^2 / 4`` give ours). For a linear
-  model both are the same method; for the isolator OpenSees evaluates the element at the
-  weighted state ``u_(n + alpha_OS)``, ours weights the forces,
-  ``(1 + alpha) f(u_(n+1)) - alpha f(u_n)``.
-- Solution: the ``Transformation`` constraint handler (the rigid diaphragms), Newton with
-  ``NormDispIncr`` (``tolerance`` in m); a step that fails is retried as two halves,
-  recursively up to ``max_subdivisions`` times, as our integrator does.
-
-The run is recorded after each full step: the levels at O and one bearing of each position.
+form: the same ground-acceleration samples [m/s^2] (``UniformExcitation``; a vertical as loads
+``-P_i a_z / g`` on the bearings), initial accelerations ``-R a_g(0)``, the same integrator
+(:func:`opensees_integrator`), Newton with halving on failure (:func:`halving_step`). Recorded
+after each full step: the levels at O and one bearing per position.
 """
 
 from __future__ import annotations
@@ -103,35 +76,21 @@ def run_opensees(
     Parameters
     ----------
     building, bearing, motion, integrator, n_bearings, dt, overturning
-        As :func:`structures.analysis.run`: one record for a building in one direction, a
-        pair (x, y, optionally z) for a building in plan, whose floors stand at the plan's
-        storey heights with ``overturning`` (the default; see
-        :mod:`structures.opensees.model`). The bearing's friction model selects the element
-        (:func:`~structures.opensees.elements.element_kind`).
+        As :func:`structures.analysis.run`: a record for a building in one direction, a pair
+        (x, y, optionally z) for a building in plan. The bearing's friction model selects the
+        element (:func:`~structures.opensees.elements.element_kind`).
     pendulum : {"singlefp", "spring"}
-        singleFPBearing (N = P + F . u / R) or flatSliderBearing plus linear springs (N = P,
-        our law); see :mod:`structures.opensees.model`. Not used for FPBearingPTV.
-    tolerance : float
-        Displacement-increment tolerance of Newton's method [m].
-    max_subdivisions : int
-        Nested halvings of a step that does not converge.
+        As :func:`~structures.opensees.elements.add_bearing`; not used for FPBearingPTV.
+    tolerance, max_subdivisions
+        Displacement-increment tolerance of Newton's method [m]; nested halvings of a step that
+        does not converge.
 
-    Returns
-    -------
-    xarray.Dataset
-        As :func:`structures.analysis.run`, with the attributes ``program``, ``element``,
-        ``pendulum`` (``"spherical"`` for FPBearingPTV), ``newton_iterations``,
-        ``subdivisions``, ``wall_time`` [s] (model building included) and
-        ``engine = "opensees"``; ``axial_load`` is the elements' normal force and
-        ``heat_flux`` is NaN for elements without heating.
-
-    Raises
-    ------
-    ImportError
-        Without openseespy.
-    ValueError, TypeError
-        For a model OpenSees cannot represent here (HHT with FPBearingPTV among them: on the
-        five-storey example its temperature peak falls from 119 to 111 degC).
+    Returns the Dataset of :func:`structures.analysis.run` with the attributes ``program``,
+    ``element``, ``pendulum`` (``"spherical"`` for FPBearingPTV), ``newton_iterations``,
+    ``subdivisions``, ``wall_time`` [s] (model building included) and ``engine = "opensees"``;
+    ``axial_load`` is the elements' normal force [N], ``heat_flux`` NaN without heating. Raises
+    ImportError without openseespy; ValueError or TypeError for a model OpenSees cannot represent
+    here (HHT with FPBearingPTV among them).
     """
     owner = "run_opensees"
     pair = isinstance(motion, GroundMotionPair)

@@ -1,40 +1,10 @@
 """Ours side by side with OpenSees: which bearing, both runs, the differences.
 
-The friction models compared (``model``), each as the OpenSees element that represents it
-(:mod:`structures.opensees.elements`):
-
-``"constant"``
-    The building file's constant model (Eq. 8) as ``frictionModel Coulomb``.
-``"velocity"``
-    The building file's Eq. 7 without heating: mu_t0 gamma(p) alpha(v) beta(T_0) with the
-    paper's factors, velocity dependent only (constant pressure), as ``VelDependent``.
-``"ptv"``
-    Eq. 7 with Kumar's factors (``KumarFactors()``) shaped as FPBearingPTV models it
-    (:func:`~structures.opensees.elements.fpbearingptv_equivalent`: one surface heated at its
-    centre while |u| < sqrt(pi)/2 r, spherical restoring law), as ``FPBearingPTV``.
-
-Differences are OpenSees's relative to ours, over the common time samples (both runs share
-their time grid):
-
-- **peak** ``max|x_OS| / max|x_ours| - 1`` of the peaks of :func:`structures.analysis.peaks`
-  (resultants in plan: the isolator displacement of the largest bearing, of the base slab at
-  the centre of stiffness and of the corner bearing, ours's largest; the base shear; per
-  direction the roof's absolute acceleration and the storey drift; the base slab's rotation);
-- **NRMSE** ``sqrt(mean((x_OS - x_ours)^2)) / max|x_ours|`` of each component (:func:`nrmse`):
-  the isolator displacement (the largest over the bearings; in plan also the corner bearing's
-  and the centre's, and the base slab's rotation), the base shear and the roof acceleration;
-- in plan, the axial loads of the corner bearings (:func:`axial_load_summary`): the gaps of
-  their maxima and minima and their RMS difference, over ours's largest change of the load
-  from the gravity share;
-- the largest gap of the contact temperature [degC].
-
-One bearing under an imposed history (:func:`run_bearing_comparison`: our test rig against
-:func:`~structures.opensees.bearing.run_opensees_test` on the same samples) is measured by
-:func:`compare_tests` (resultant force peak, NRMSE per component, largest force gap, the
-energy over the history's closed blocks, temperature gap) and, for a sine, by
-:func:`bearing_summary` (peak force, energy dissipated per cycle, temperature).
-
-``wall_time_ratio`` is our wall time over OpenSees's (model building included for OpenSees).
+:data:`MODELS`, each as the OpenSees element that represents it: ``"constant"`` (Eq. 8) as
+``Coulomb``; ``"velocity"`` (Eq. 7 without heating, the paper's factors) as ``VelDependent``;
+``"ptv"`` (Eq. 7, Kumar's factors) as ``FPBearingPTV``. Differences are OpenSees's relative to
+ours over the common time samples; ``wall_time_ratio`` is our wall time over OpenSees's (model
+building included). Measured: docs/opensees_comparison.md.
 """
 
 from __future__ import annotations
@@ -76,16 +46,10 @@ class Comparison(NamedTuple):
 
 
 def shaped_bearing(bearing: DCFPBearing, model: str) -> DCFPBearing:
-    """``bearing`` with the friction model ``model`` (module docstring) that an OpenSees
-    element represents: the constant model as it is, Eq. 7 without heating, or Eq. 7 with
-    Kumar's factors shaped as FPBearingPTV (mu_t0, dependencies, thermal properties kept).
-
-    Raises
-    ------
-    ValueError
-        If the bearing's friction is of the other family (the constant model for
-        ``"velocity"`` and ``"ptv"``, Eq. 7 for ``"constant"``).
-    """
+    """``bearing`` with the friction model ``model`` (:data:`MODELS`): the constant model as it
+    is, Eq. 7 without heating, or Eq. 7 with Kumar's factors shaped as FPBearingPTV (mu_t0,
+    dependencies, thermal properties kept). Raises ValueError if the bearing's friction is of the
+    other family (Eq. 7 for ``"constant"``, the constant model otherwise)."""
     owner = "shaped_bearing"
     model = check_choice(model, "model", owner, MODELS)
     friction = bearing.friction
@@ -111,13 +75,8 @@ def comparison_bearing(config, model: str) -> DCFPBearing:
 
 
 def nrmse(reference: np.ndarray, other: np.ndarray) -> float:
-    """``sqrt(mean((other - reference)^2)) / max|reference|`` over common samples [-].
-
-    Raises
-    ------
-    ValueError
-        If the histories differ in length.
-    """
+    """``sqrt(mean((other - reference)^2)) / max|reference|`` over common samples [-] (the RMS
+    if the reference is zero). Raises ValueError if the histories differ in length."""
     reference, other = np.asarray(reference, dtype=float), np.asarray(other, dtype=float)
     if reference.shape != other.shape:
         raise ValueError(f"The histories compared by nrmse must have one length. Got "
@@ -149,8 +108,7 @@ def _peaks(ds, corner: int | None) -> dict[str, Any]:
 
 def outline_bearings(ds) -> list[int]:
     """The corner bearings of a run in plan: the vertices of the convex outline of its
-    bearing positions, in the outline's order (bearings on an edge between two are left
-    out)."""
+    bearing positions, in the outline's order (bearings on an edge left out)."""
     from scipy.spatial import ConvexHull
 
     xy = np.column_stack([ds["bearing_x"].values, ds["bearing_y"].values])
@@ -158,21 +116,14 @@ def outline_bearings(ds) -> list[int]:
 
 
 def axial_load_summary(ours, opensees) -> tuple[dict[str, Any], dict[str, float]]:
-    """The axial loads of the corner bearings (:func:`outline_bearings`) in two runs in plan
-    on the same samples, and their differences.
+    """The axial loads of the corner bearings (:func:`outline_bearings`) in two runs in plan on
+    the same samples, and their differences: ``(summary, difference)``.
 
-    Returns
-    -------
-    summary : dict
-        ``bearings`` (their indices), ``gravity_share`` [N], and for ``ours`` and
-        ``opensees`` the ``max`` and ``min`` of each one's axial load [N] (OpenSees's: the
-        elements' normal force).
-    difference : dict
-        Over the corner bearings, each relative to ours's largest change of that bearing's
-        load from its gravity share (``max|N_ours - N_g|``; to ``N_g`` where the load does
-        not change, without overturning and a vertical) [-]: ``max_axial_load`` and
-        ``min_axial_load`` (the largest gap of the maxima and of the minima, signed
-        OpenSees minus ours) and ``nrmse_axial_load`` (the largest RMS difference).
+    ``summary``: ``bearings`` (indices), ``gravity_share`` [N], and for ``ours`` and ``opensees``
+    the ``max`` and ``min`` of each one's axial load [N] (OpenSees's: the normal force).
+    ``difference``: ``max_axial_load``, ``min_axial_load`` (largest gap of the maxima, of the
+    minima, signed OpenSees minus ours) and ``nrmse_axial_load`` (largest RMS difference), each
+    over ours's largest change of that load from its gravity share (over the share if none) [-].
     """
     corners = outline_bearings(ours)
     gravity = np.asarray(ours.attrs["gravity_shares"], dtype=float)[corners]
@@ -193,25 +144,17 @@ def axial_load_summary(ours, opensees) -> tuple[dict[str, Any], dict[str, float]
 
 
 def compare(ours, opensees) -> dict[str, Any]:
-    """Peaks of both building runs, their differences (module docstring) and the wall-time
-    ratio.
+    """Peaks of both building runs, their differences and the wall-time ratio (JSON-ready):
+    ``{"ours": peaks, "opensees": peaks, "difference": {...}, "wall_time_ratio": r}``.
 
-    Returns
-    -------
-    dict
-        ``{"ours": peaks, "opensees": peaks, "difference": {...}, "wall_time_ratio": r}``:
-        each side's :func:`~structures.analysis.peaks` with ``success`` and ``message``
-        (OpenSees's with its ``element``); ``difference`` holds ``peak_<name>``,
-        ``nrmse_<history>`` (``_x``/``_y`` per component in plan) and
-        ``max_temperature_gap`` [degC]. In plan also ``corner_bearing`` (ours's largest,
-        whose ``peak_corner_displacement`` both sides report), each side's ``overturning``,
-        ``axial_load`` (the corner bearings' loads) and the differences of
-        :func:`axial_load_summary` in ``difference``.
-
-    Raises
-    ------
-    ValueError
-        If the runs do not share their time step or their bearings.
+    Each side holds its :func:`~structures.analysis.peaks` with ``success`` and ``message``
+    (OpenSees's with its ``element``). ``difference``: ``peak_<name>``
+    (``max|x_OS| / max|x_ours| - 1``, resultants in plan), ``nrmse_<history>`` (:func:`nrmse`,
+    ``_x``/``_y`` per component in plan; the isolator displacement's the largest over the
+    bearings) and ``max_temperature_gap`` [degC]. In plan also ``corner_bearing`` (ours's largest;
+    both sides report its ``peak_corner_displacement`` [m]), each side's ``overturning``,
+    ``axial_load`` and the differences of :func:`axial_load_summary`. Raises ValueError if the runs
+    do not share their time step or their bearings.
     """
     if not np.allclose(ours["time"].values[:2], opensees["time"].values[:2]):
         raise ValueError("The runs compared must share their time step. Got "
@@ -274,28 +217,14 @@ def run_comparison(
     warm_up: bool = True,
     **run_options: Any,
 ) -> Comparison:
-    """Run ``bearing`` (already shaped, see :func:`shaped_bearing`) under the building both
-    ways and compare (:func:`compare`).
-
-    Parameters
-    ----------
-    building, motion, integrator, n_bearings, dt
-        As :func:`structures.analysis.run`: one record, or a pair for a building in plan.
-    bearing : DCFPBearing
-        The bearing of every position; each takes its share of the weight (a load given on
-        it is dropped).
-    pendulum : {"singlefp", "spring"}
-        As :func:`structures.opensees.building.run_opensees`.
-    overturning : bool, optional
-        In plan, the overturning of the floors' inertia forces on both sides: ours loads the
-        bearings with it, the OpenSees twin stands the floors at their heights
-        (:mod:`structures.opensees.model`). Default: when the plan has storey heights.
-    warm_up : bool
-        Run ours first on the record's first 3 samples, so that the timed run does not
-        include a one-off compilation.
-    **run_options
-        Passed to :func:`structures.analysis.run` only (``tolerance``, ``max_steps``, ...).
-    """
+    """Run ``bearing`` (shaped, :func:`shaped_bearing`) under the building both ways and
+    compare (:func:`compare`). Every position takes its share of the weight (the bearing's own
+    load is dropped). ``building``, ``motion``, ``integrator``, ``n_bearings``, ``dt`` as
+    :func:`structures.analysis.run`, ``**run_options`` passed to it only (``tolerance``,
+    ``max_steps``, ...); ``pendulum`` as :func:`~structures.opensees.building.run_opensees`;
+    ``overturning``: in plan, the overturning of the floors' inertia forces on both sides (default:
+    when the plan has storey heights); ``warm_up``: run ours first on the record's first 3 samples
+    (compilation out of the timing)."""
     bearing = replace(bearing, axial_load=None)
     if overturning is None:
         overturning = building.plan is not None and building.plan.storey_heights is not None
@@ -333,8 +262,7 @@ def bearing_summary(ours: BearingTestResult, opensees: BearingTestResult) -> dic
 
 
 def closed_blocks(history) -> list[slice]:
-    """The closed blocks of an imposed history or orbit: every segment but the ``lead-in``
-    (the whole history if it has no segments)."""
+    """Every segment of an imposed history or orbit but the ``lead-in`` (all of it if none)."""
     blocks = [slice(start, stop) for label, start, stop in history.segments
               if label != "lead-in"]
     return blocks or [slice(None)]
@@ -347,28 +275,16 @@ def _resultant(values: np.ndarray) -> np.ndarray:
 
 def compare_tests(ours: BearingTestResult, opensees: BearingTestResult,
                   cycles: list[slice] | None = None) -> dict[str, Any]:
-    """Peaks, energies and differences of two bearing tests on the same samples (JSON-ready).
+    """Peaks, energies and differences of two bearing tests on the same samples (JSON-ready):
+    ``{"ours": {...}, "opensees": {...}, "difference": {...}, "wall_time_ratio": r}``.
 
-    Differences are OpenSees's relative to ours: ``peak_resultant_force``
-    (``max|F_OS| / max|F_ours| - 1``), ``nrmse_force_x`` (and ``_y`` in the plane: relative
-    to our peak resultant where our component is zero, as across a line along an axis),
-    ``largest_force_gap`` (``max|F_OS - F_ours|`` over our peak resultant), ``energy`` (the
-    work of the force over the ``cycles``, the energy they dissipate) and
-    ``max_temperature_gap`` [degC] where both sides have a temperature (FPBearingPTV), else
-    None, left out the samples where FPBearingPTV computes none (its first two steps and u
-    exactly at the centre).
-
-    Returns
-    -------
-    dict
-        ``{"ours": {...}, "opensees": {...}, "difference": {...}, "wall_time_ratio": r}``;
-        each side holds its ``name``, ``peak_resultant_force`` [N], ``energy`` [J] and
-        ``peak_temperature`` [degC] (None without one).
-
-    Raises
-    ------
-    ValueError
-        If the two tests do not share their samples.
+    Each side holds its ``name``, ``peak_resultant_force`` [N], ``energy`` [J] (the force's work
+    over the ``cycles``) and ``peak_temperature`` [degC] (None without one). ``difference``,
+    OpenSees's relative to ours: ``peak_resultant_force``, ``nrmse_force_x`` (and ``_y``; over our
+    peak resultant where our component is zero), ``largest_force_gap`` (``max|F_OS - F_ours|``
+    over our peak resultant), ``energy`` and ``max_temperature_gap`` [degC] (None unless both have
+    a temperature; FPBearingPTV's samples without one left out). Raises ValueError if the tests do
+    not share their samples.
     """
     if ours.time.shape != opensees.time.shape or not np.allclose(ours.time, opensees.time,
                                                                  rtol=0.0, atol=1e-12):
@@ -417,34 +333,24 @@ def run_bearing_comparison(
     match_normal_force: bool = False,
     grid_orientation: float | None = None,
 ) -> Comparison:
-    """Run an imposed history on our test rig and on the OpenSees element; compare
-    (:func:`compare_tests` over the history's closed blocks, :func:`closed_blocks`).
+    """Run an imposed ``history`` (ImposedHistory or Orbit: times [s], displacement (n,) or
+    (n, 2) [m], exact velocity [m/s]) on our test rig and on the OpenSees element; compare
+    (:func:`compare_tests` over :func:`closed_blocks`).
 
     Parameters
     ----------
     bearing : DCFPBearing
-        The bearing OpenSees builds, with a constant axial load
-        (:func:`~structures.opensees.bearing.run_opensees_test`).
-    history : ImposedHistory or Orbit
-        Times [s], displacement (n,) or (n, 2) [m] from the centre and its exact velocity
-        [m/s] (:mod:`isolator.protocols`, :mod:`isolator.orbits`).
-    element : {"coulomb", "velocity", "ptv"}, optional
-        The OpenSees element; by default the bearing's.
-    ours_bearing : DCFPBearing, optional
-        The bearing our element runs; by default ``bearing`` (e.g. the precise model here
-        against FPBearingPTV's centre point).
+        The bearing OpenSees builds, with a constant axial load [N].
+    element, ours_bearing : optional
+        The OpenSees element (``"coulomb"``, ``"velocity"`` or ``"ptv"``) and the bearing our rig
+        runs; by default the bearing's element and ``bearing``.
     match_normal_force : bool
-        Give our bearing singleFPBearing's normal force ``W + F . u / R``
-        (:func:`~structures.opensees.singlefp.singlefp_normal_force`) instead of W; not with
-        ``"ptv"``.
+        Give ours singleFPBearing's normal force ``W + F . u / R``
+        (:func:`~structures.opensees.singlefp.singlefp_normal_force`); not with ``"ptv"``.
     grid_orientation : float or None
-        Orientation of our precise model's monitor grid in the plane [deg]; None follows the
-        motion.
+        Orientation of our precise model's monitor grid [deg]; None follows the motion.
 
-    Raises
-    ------
-    ValueError
-        For ``match_normal_force`` with ``"ptv"`` (FPBearingPTV keeps N = W), and as the runs.
+    Raises ValueError for ``match_normal_force`` with ``"ptv"``, and as the runs.
     """
     owner = "run_bearing_comparison"
     element = element_kind(bearing) if element is None else check_choice(

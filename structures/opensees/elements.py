@@ -1,47 +1,15 @@
-"""What our bearing becomes in OpenSees: the element for its friction model, that element's
-parameters, its restoring law, and the element itself between two nodes of a 3D model.
+"""What our bearing becomes in OpenSees: the element for its friction model, its parameters and
+restoring law, and the element itself between two nodes of a 3D model.
 
-``"coulomb"`` (:class:`~isolator.friction.ConstantFriction`)
-    ``singleFPBearing`` (3D, ``SingleFPSimple3d``) with ``frictionModel Coulomb mu``;
-    ``flatSliderBearing`` for a flat slider.
-``"velocity"`` (Eq. 7 without heating, velocity dependent only)
-    the same with ``frictionModel VelDependent muSlow muFast transRate``
-    (:func:`velocity_dependent_parameters`).
-``"ptv"`` (Eq. 7 with Kumar's factors, shaped as :func:`fpbearingptv_equivalent`)
-    ``FPBearingPTV``.
-
-Conventions read in ``SRC/element/frictionBearing/`` of OpenSees:
-
-- ``SingleFPSimple3d.cpp``: kInit is the *total* initial stiffness, the friction spring has
-  ``k0_i = kInit - N / R_i``, so ``kInit = mu N / u_y + N / R`` gives it our yield displacement
-  u_y. Its normal force is ``N = P + q_X u_X / R_x + q_Y u_Y / R_y`` (P the axial load,
-  iterated inside the element; :mod:`structures.opensees.singlefp`), its restoring force
-  ``N (u_X / R_x, u_Y / R_y)`` with the radii crossed, ``R_x = sqrt(R^2 - u_Y^2)``,
-  ``R_y = sqrt(R^2 - u_X^2)`` (:func:`singlefp_restoring`; along an axis our ``N u / R``), and
-  its speed ``sqrt((v_X u_X / R_x + v_Y u_Y / R_y)^2 + |v|^2)``. One coupled return map on the
-  two shears: a trial ``q* = k0 (u - u_p)`` projected on the circle of radius mu N.
-- ``VelDependent.cpp``: ``mu = muFast - (muFast - muSlow) exp(-transRate |v|)``, transRate in
-  s/m.
-- ``FPBearingPTV.cpp``: ``MuRef IsPDependent pRef IsTDependent Diffusivity Conductivity
-  IsVDependent rateParameter Reff rContact kInitial matP matT matMy matMz x1 x2 x3 y1 y2 y3
-  shearDist doRayleigh mass iter tol unit``; with unit 1 (N, m, s, degC) pRef in Pa, the
-  diffusivity in m^2/s, the conductivity in W/(m degC), the rate in s/m. ``mu = MuRef kp kT
-  kv`` with p = N / (22/7 r^2) and the speed ``|v| R / sqrt(R^2 - u^2)``; N = P; restoring
-  force ``N u_i / sqrt(R^2 - u_i^2)`` on each axis (:func:`fpbearingptv_restoring`: its radii
-  are not crossed). The factors of a step are frozen at its first update with an axial force
-  (the predictor); the flux ``q = mu p v`` uses the previous step's mu and heats one surface
-  while ``|u| < r sqrt(22/28)``; the temperature ``20 + sqrt(7 D/22)/k sum_j q_(n-j) dt /
-  sqrt(t_j)`` is a rectangle rule re-summed over the whole history every step, with the times
-  ``t_j = (j+1) dt`` as lags (the time must start at 0) and the current dt for every interval.
-  It stays 20 degC on the first two steps and whenever u is exactly 0. Responses
-  ``temperature``, ``MuFactors`` (kp, kT, kv), ``MuAdjusted``, ``HeatFlux``.
-
-The pre-sliding branch differs by formulation: ours is ``mu(v, T) N z`` with z moving by
-``du / u_y``, so its stiffness follows mu; OpenSees's is a spring of fixed stiffness capped at
-mu N. The mu that sets kInit is ``"rest"``, mu at zero speed, the initial temperature and the
-bearing's pressure (mu_slow for VelDependent), which a sticking bearing has (the building
-twin), or ``"reference"``, VelDependent's mu_fast and FPBearingPTV's MuRef (the bearing
-test).
+``"coulomb"`` (:class:`~isolator.friction.ConstantFriction`) is ``singleFPBearing``
+(``SingleFPSimple3d.cpp``; ``flatSliderBearing`` if flat) with ``frictionModel Coulomb``,
+``"velocity"`` (Eq. 7 without heating) the same with ``VelDependent``, ``"ptv"`` (Eq. 7,
+Kumar's factors, :func:`fpbearingptv_equivalent`) ``FPBearingPTV``. kInit is the element's
+total initial stiffness, ``mu N / u_y`` (u_y our yield displacement [m]) plus ``N / R`` for a
+pendulum, with the mu at ``"rest"`` (zero speed, initial temperature, the bearing's pressure;
+mu_slow for VelDependent) or the ``"reference"`` mu (mu_fast, MuRef). singleFPBearing iterates
+its normal force ``N = P + F . u / R``; FPBearingPTV keeps N = P and takes the pressure
+``N / (22/7 r^2)`` and the speed ``|v| R / sqrt(R^2 - u^2)``.
 """
 
 from __future__ import annotations
@@ -94,22 +62,12 @@ class VelDependentParameters(NamedTuple):
 
 
 class BearingElements(NamedTuple):
-    """The OpenSees elements of one bearing position.
-
-    Attributes
-    ----------
-    name : str
-        ``"singleFPBearing"``, ``"flatSliderBearing"`` or ``"FPBearingPTV"``.
-    friction : str
-        ``"Coulomb"`` or ``"VelDependent"`` ("" for FPBearingPTV).
-    spring : bool
-        A linear spring N / R in parallel with a flat slider (our restoring law).
-    read : callable
-        ``read(ops) -> (force (2,) [N], friction_force (2,) [N], normal [N], mu [-],
-        temperature [degC], heat_flux [W/m^2])`` of one bearing at the committed state
-        (temperature and heat flux: FPBearingPTV's; otherwise the initial temperature and
-        NaN).
-    """
+    """The OpenSees elements of one bearing position: ``name`` (``"singleFPBearing"``,
+    ``"flatSliderBearing"`` or ``"FPBearingPTV"``), ``friction`` (``"Coulomb"``,
+    ``"VelDependent"``, "" for FPBearingPTV), ``spring`` (a linear spring N / R beside a flat
+    slider) and ``read(ops) -> (force (2,) [N], friction_force (2,) [N], normal [N], mu [-],
+    temperature [degC], heat_flux [W/m^2])`` of one bearing at the committed state (without
+    FPBearingPTV: the initial temperature and NaN)."""
 
     name: str
     friction: str
@@ -125,22 +83,11 @@ def element_kind(bearing: DCFPBearing) -> str:
 
 
 def velocity_dependent_parameters(friction, pressure: float) -> VelDependentParameters:
-    """VelDependent parameters reproducing ``friction`` (Eq. 7) at a constant pressure [Pa].
-
-    The velocity factors of both factor sets are exponential, ``k(v) = 1 - c exp(-a |v|)``
-    (Kumar: c = 0.5, a = rate_parameter; the paper's Eq. 2: c = 0.55, a = 19 s/m), so
-    ``mu = C k(v)`` maps to ``mu_fast = C``, ``mu_slow = C (1 - c)``, ``transRate = a``, with
-    C = mu_t0 times the pressure factor at ``pressure`` and the temperature factor at the
-    initial temperature (where those act). c and a are read off the factor set (k(0) and
-    k'(0) / (1 - k(0))).
-
-    Raises
-    ------
-    TypeError
-        For the constant model (not Eq. 7).
-    ValueError
-        If mu would vary with a heated temperature, or the velocity factor is not exponential.
-    """
+    """VelDependent parameters reproducing ``friction`` (Eq. 7) at a constant pressure [Pa]:
+    ``k(v) = 1 - c exp(-a |v|)`` (c, a read off the factor set) maps ``mu = C k(v)`` to
+    ``mu_fast = C``, ``mu_slow = C (1 - c)``, ``transRate = a`` [s/m], C being mu_t0 times the
+    factors at ``pressure`` and the initial temperature. Raises TypeError for the constant model,
+    ValueError if mu varies with a heated temperature or the velocity factor is not exponential."""
     owner = "velocity_dependent_parameters"
     if friction.name == "constant":
         raise TypeError(f"The 'friction' parameter of {owner} must be a PTVFriction (Eq. 7). "
@@ -171,8 +118,7 @@ def velocity_dependent_parameters(friction, pressure: float) -> VelDependentPara
 
 
 def check_ptv_friction(friction, owner: str):
-    """``friction`` if it is Eq. 7 with Kumar's factors at 20 degC (FPBearingPTV's), else an
-    error."""
+    """``friction`` if Eq. 7 with Kumar's factors at 20 degC (FPBearingPTV's), else ValueError."""
     if friction.name == "constant" or friction.factors.name != "kumar":
         raise ValueError(f"The bearing of {owner} must have a PTVFriction with KumarFactors "
                          f"(the factors FPBearingPTV implements). Got {friction!r} instead.")
@@ -184,15 +130,10 @@ def check_ptv_friction(friction, owner: str):
 
 
 def fpbearingptv_equivalent(bearing: DCFPBearing) -> DCFPBearing:
-    """``bearing`` shaped as FPBearingPTV models it, for a like-for-like comparison: one
-    sliding surface heated at its centre while |u| < sqrt(pi)/2 r, the spherical restoring law;
-    friction parameters, factors, dependencies and thermal properties kept.
-
-    Raises
-    ------
-    ValueError
-        If the friction is not Eq. 7 with Kumar's factors at 20 degC.
-    """
+    """``bearing`` shaped as FPBearingPTV models it: one sliding surface heated at its centre
+    while |u| < sqrt(pi)/2 r, the spherical restoring law; friction parameters, factors,
+    dependencies and thermal properties kept. Raises ValueError unless the friction is Eq. 7 with
+    Kumar's factors at 20 degC."""
     check_ptv_friction(bearing.friction, "fpbearingptv_equivalent")
     friction = replace(bearing.friction, heating=CentrePoint(FPBEARINGPTV_REFINEMENT),
                        surfaces=1)
@@ -200,9 +141,9 @@ def fpbearingptv_equivalent(bearing: DCFPBearing) -> DCFPBearing:
 
 
 def singlefp_restoring(normal, displacement, radius: float) -> np.ndarray:
-    """singleFPBearing's restoring force ``N (u_X / R_x, u_Y / R_y)`` with the crossed radii
-    (module docstring) [N], the shape of ``displacement`` (..., 2) [m]; ``normal`` [N] of
-    shape (...); zero for an infinite radius."""
+    """singleFPBearing's restoring force ``N (u_X / R_x, u_Y / R_y)`` [N], radii crossed
+    (``R_x = sqrt(R^2 - u_Y^2)``), for ``displacement`` (..., 2) [m] and ``normal`` (...) [N];
+    zero for an infinite ``radius`` [m]."""
     n, u = np.asarray(normal, dtype=float), np.asarray(displacement, dtype=float)
     if math.isinf(radius):
         return np.zeros_like(u)
@@ -226,8 +167,7 @@ def constant_axial_load(bearing: DCFPBearing, owner: str) -> float:
 
 def warn_if_steps_vary(element: str, time: np.ndarray, owner: str) -> None:
     """Warn (``UserWarning``) when ``element`` is ``"ptv"`` and the steps of ``time`` [s]
-    are not uniform: FPBearingPTV takes the times as heating lags and applies the current step
-    to its whole flux history."""
+    vary: FPBearingPTV applies the current step to its whole heat history."""
     steps = np.diff(time)
     if element == "ptv" and np.ptp(steps) > _UNIFORM_STEP * np.max(steps):
         warnings.warn(f"FPBearingPTV in {owner} takes the times as heating lags and applies the "
@@ -249,53 +189,29 @@ def add_bearing(ops, tag: Callable[[], int], bottom: int, top: int, bearing: DCF
                 load: float, count: int = 1, *, kind: str, pendulum: str = "singlefp",
                 kinit: str = "rest", axial_stiffness: float | None = None,
                 hinged: bool = False, owner: str) -> BearingElements:
-    """Add ``count`` bearings carrying ``load`` [N] together between the nodes ``bottom``
-    (fixed) and ``top`` (free vertically; its rotations fixed, or turning with a base slab)
-    of a 3D model.
-
-    singleFPBearing and flatSliderBearing are linear in their normal force, so one element
-    carrying ``load`` stands for the ``count`` bearings; FPBearingPTV (its pressure must be
-    one bearing's) is ``count`` parallel elements carrying ``load / count`` each. The torsion
-    material has no stiffness (the slab's twist about a bearing's axis is not resisted); the
-    axial and rocking ones shorten 1 um under the load unless ``axial_stiffness`` and
-    ``hinged`` say otherwise. The elements put their P-Delta moments ``N u`` on ``bottom``
-    (shearDist 0, zero length), so a fixed ``bottom`` takes them.
+    """Add ``count`` bearings of ``bearing`` (its own axial load unused) carrying ``load``
+    [N] together between the nodes ``bottom`` (fixed) and ``top`` (free vertically; rotations
+    fixed, or turning with a base slab) of the 3D model in ``ops``; return their
+    :class:`BearingElements`. ``tag()`` gives a new tag at each call; ``owner`` is named in errors.
+    One singleFPBearing or flatSliderBearing stands for the ``count`` bearings (linear in N);
+    FPBearingPTV is ``count`` parallel elements of ``load / count``. Torsion has no stiffness; the
+    P-Delta moments ``N u`` go to ``bottom``.
 
     Parameters
     ----------
-    ops : module
-        ``openseespy.opensees``.
-    tag : callable
-        Gives a new tag at each call (materials, friction models and elements).
-    bottom, top : int
-        Node tags.
-    bearing : DCFPBearing
-        Friction, geometry and restoring law (its own axial load is not used).
-    load : float
-        Axial load of the ``count`` bearings together [N].
-    count : int
-        Bearings standing there.
     kind : {"coulomb", "velocity", "ptv"}
         The element (module docstring).
     pendulum : {"singlefp", "spring"}
-        singleFPBearing (N = P + F . u / R), or flatSliderBearing plus a linear spring N / R
-        in X and Y (N = P, our law). Not used for FPBearingPTV.
+        singleFPBearing (N = P + F . u / R), or flatSliderBearing plus a linear spring N / R in X
+        and Y (N = P, our law). Not used for FPBearingPTV.
     kinit : {"rest", "reference"}
         The mu that sets kInit (module docstring).
     axial_stiffness : float, optional
-        Vertical stiffness of the ``count`` bearings together [N/m]; default ``load`` over
-        :data:`AXIAL_SHORTENING`.
+        Vertical stiffness of the bearings together [N/m]; default ``load / AXIAL_SHORTENING``.
     hinged : bool
-        The bearings carry no moment about a horizontal axis (their rocking materials have no
-        stiffness): for a ``top`` that turns with a base slab resting on the bearings' axial
-        springs. Default False (rocking as stiff as the axial direction).
-    owner : str
-        Named in errors.
+        No rocking stiffness (a ``top`` turning with a base slab); default False (as axial).
 
-    Raises
-    ------
-    ValueError
-        For a bearing the element cannot represent.
+    Raises ValueError for a bearing the element cannot represent.
     """
     kind = check_choice(kind, "element", owner, ELEMENTS)
     check_choice(kinit, "kinit", owner, KINIT)
@@ -359,8 +275,7 @@ def add_bearing(ops, tag: Callable[[], int], bottom: int, top: int, bearing: DCF
 
 def _fpbearingptv(ops, tag, bottom: int, top: int, bearing: DCFPBearing, load: float,
                   count: int, kinit: str, owner: str, materials: tuple[int, int, int]):
-    """``count`` parallel FPBearingPTV elements of load ``load`` each (see add_bearing);
-    ``materials``: the axial, torsion and rocking materials."""
+    """``count`` FPBearingPTV elements of ``load`` [N] each (materials: axial, torsion, rocking)."""
     friction = check_ptv_friction(bearing.friction, owner)
     radius = bearing.effective_radius
     if bearing.restoring != "spherical" or math.isinf(radius):

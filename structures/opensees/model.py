@@ -1,68 +1,14 @@
 """The isolated shear building, in one direction or in plan, built in openseespy
-(``-ndm 3 -ndf 6``) from our dynamic model.
+(``-ndm 3 -ndf 6``) from our :class:`~structures.isolated_building.IsolatedShearBuilding`.
 
-:func:`build_model` turns an :class:`~structures.isolated_building.IsolatedShearBuilding`
-into an OpenSees model whose every mass, stiffness, damping coefficient and gravity load is read
-from it, and returns what a time-history driver needs (:class:`Twin`).
-
-Two layouts: flat (without overturning: in one direction, or in plan without it) and tall (in
-plan with the overturning of the floors' inertia forces, ``model.overturning``).
-
-Flat layout. Every node lies in the plane Z = 0 (every element has zero length). Each level
-(0: the base slab, 1..n: the floors) is a ``rigidDiaphragm`` (perpendicular Z) whose master
-node sits at the level's centre of mass and carries its mass in X and Y and its mass moment of
-inertia about Z: with the diaphragm this is exactly our eccentric mass matrix at the centre of
-stiffness O. The other nodes of a level are constrained to it: one at O, where our degrees of
-freedom are recorded, and those the elements below need. In one direction every level's master
-is at O and moves along X only (its Y and twist fixed), and the other nodes follow its X
-(``equalDOF``: a diaphragm would tie them to the master's fixed DOFs, which the
-``Transformation`` handler does not honour). The masters' and the other nodes' Z and rotations
-about X and Y are fixed.
-
-Superstructure. Our stiffness and damping on the levels, ``K = T^T K_fb T`` and
-``C = T^T C_fb T``, act on the drifts only: their level blocks ``A_kl`` sum to zero along a
-block row, so ``A = sum over level pairs k < l of (e_k - e_l)(e_k - e_l)^T (x) B_kl`` with
-``B_kl = -A_kl``, as long as each ``A_kl`` is symmetric (:func:`pair_network`). Each
-``B_kl`` is one ``zeroLength`` element between levels k and l at the point where its
-translation and twist decouple, turned to its principal axes, with ``Elastic`` materials of
-stiffness ``E`` and damping ``eta`` in local directions 1, 2 and 6 (ZeroLength puts
-``eta * strain rate`` into its force and eta into its damping matrix). For Rayleigh damping
-these are our storeys at O (``k``, ``a1 k``) and ``a0 M_j`` at floor j's centre of mass, the
-mass-proportional part included and the isolation modes undamped (OpenSees's own ``rayleigh``
-would damp them). Modal damping is a full matrix on the drifts: still exact in one direction
-(coefficients of either sign) and in plan whenever its level blocks are symmetric, as for
-every level with the same eccentricity and stiffness proportions; otherwise the network takes
-their symmetric part, with a warning saying how much is left out (the whole stays symmetric
-and acts on the drifts only).
-
-Bearings. At each bearing position a fixed node and a node of the base slab free vertically
-(massless, on the stiff axial material of the element under its gravity load): the elements of
-:func:`structures.opensees.elements.add_bearing` for the position's bearings (one group of
-``n_bearings`` at O in one direction). Each position carries its own gravity load.
-
-Tall layout. The same masters, masses, network and bearings, with every level at its height
-above the isolation level (:func:`level_heights`, the plan's storey heights) and rigid in and
-out of plane: its other nodes follow its master by ``rigidLink beam``, and no node but the
-bearings' bottoms is fixed. Each link of the network is a vertical ``twoNodeLink`` of real
-length (local x up, y along the link's first axis) with its coefficients in directions 2, 3
-(the shears) and 4 (the twist); TwoNodeLink's basic shears subtract the ends' rotations and
-its end moments balance the couple of its shears (shearDist 0.5), so a storey carries its
-shear to the level below with its moment. A link with a storey stiffness k is also rigid
-axially (``STOREY_RIGIDITY k``) and in bending (``STOREY_RIGIDITY k L^2``, L its height): the
-floors neither rise nor turn about X or Y relative to the base slab, as in our shear building,
-and the overturning moment of the floors' inertia forces (at their masters, ``H_j F_j``)
-reaches the base slab, whatever that rigidity, by the links' equilibrium. The base slab rests
-on the bearings' axial springs alone: equal stiffness at every position (the mean gravity
-load over ``AXIAL_SHORTENING``) and no moment (``hinged``: the top nodes turn with the slab,
-the elements' P-Delta moments go to their fixed bottoms), so the slab shares the vertical
-loads and the moments linearly over the positions, ``G`` of
-:func:`structures.plan.axial_distribution`: the gravity loads on the top nodes give back the
-gravity shares, their vertical scaling ``-P_i a_z / g`` its share, and the overturning the
-axial loads of :meth:`~structures.isolated_building.IsolatedShearBuilding.axial_loads`. The
-slab rocks on those springs by about 1e-8 rad, which moves the floors by ``H_j`` times that
-(rigidly, without a drift).
-
-openseespy keeps one global model: the caller wipes it.
+Every mass [kg], inertia [kg m^2], stiffness, damping and gravity load [N] is read from our
+model: a master node per level at its centre of mass, a network of two-node elements on the
+drifts (:func:`pair_network`), and at each bearing position a fixed node under the elements of
+:func:`~structures.opensees.elements.add_bearing`. Flat layout (without overturning): every node
+at Z = 0, levels as ``rigidDiaphragm`` (``equalDOF`` in one direction), ``zeroLength`` links.
+Tall layout (``model.overturning``): levels at their heights (:func:`level_heights`) as rigid
+bodies, vertical ``twoNodeLink`` storeys, the base slab on the bearings' axial springs. Details:
+docs/opensees_comparison.md. openseespy keeps one global model: the caller wipes it.
 """
 
 from __future__ import annotations
@@ -99,19 +45,10 @@ stiffness over the lateral stiffness times its height squared)."""
 
 
 class Link(NamedTuple):
-    """One two-node element of the superstructure network.
-
-    Attributes
-    ----------
-    levels : tuple of int
-        The two levels (k < l) it joins.
-    point : tuple of float
-        Where it stands in the plan (x, y) [m].
-    angle : float
-        Its local x from the global X [rad].
-    stiffness, damping : tuple of float
-        Its coefficients in the local directions (1,) or (1, 2, 6) [N/m, N m/rad; N s/m, ...].
-    """
+    """One two-node element of the superstructure network: the ``levels`` (k < l) it joins,
+    its ``point`` (x, y) in the plan [m], its local x at ``angle`` from global X [rad], and its
+    ``stiffness`` and ``damping`` in the local directions (1,) or (1, 2, 6) [N/m, N m/rad; N s/m,
+    N m s/rad]."""
 
     levels: tuple[int, int]
     point: tuple[float, float]
@@ -121,28 +58,13 @@ class Link(NamedTuple):
 
 
 class Twin(NamedTuple):
-    """What the driver needs of a built model.
-
-    Attributes
-    ----------
-    levels : tuple of int
-        The node at O of each level, base slab first (our degrees of freedom).
-    dofs : tuple of int
-        The recorded degrees of freedom of a level: ``(1,)`` or ``(1, 2, 6)``.
-    nodes : tuple of int
-        Every node that moves with a level (masters and constrained nodes).
-    tops : tuple of int
-        Each bearing position's top node (its vertical DOF carries the gravity load).
-    loads : numpy.ndarray
-        The gravity load of each position, all its bearings [N].
-    element : str
-        What the bearings are in OpenSees.
-    read : callable
-        ``read(ops) -> dict`` of one bearing at each position (the fields of
-        :data:`structures.results.BEARING_RECORD`, arrays (n_b, 2) and (n_b,)).
-    initial : dict
-        The same at rest before the first step.
-    """
+    """What the driver needs of a built model: ``levels``, the node at O of each level, base slab
+    first (our degrees of freedom), and ``dofs``, their recorded DOFs, ``(1,)`` or ``(1, 2, 6)``;
+    ``nodes``, every node that moves with a level; ``tops``, each bearing position's top node, and
+    ``loads``, its gravity load, all its bearings [N]; ``element``, what the bearings are in
+    OpenSees; ``read(ops) -> dict``, one bearing at each position (the fields of
+    :data:`structures.results.BEARING_RECORD`, arrays (n_b, 2) and (n_b,)); ``initial``, the same
+    at rest."""
 
     levels: tuple[int, ...]
     dofs: tuple[int, ...]
@@ -175,32 +97,14 @@ def _frame(block: np.ndarray, scale: float) -> tuple[tuple[float, float], float,
 
 
 def pair_network(stiffness: np.ndarray, damping: np.ndarray, level_dofs: int) -> list[Link]:
-    """The two-node elements whose stiffness and damping sum to the given level matrices.
+    """The two-node elements whose stiffness and damping sum to the given level matrices: one
+    :class:`Link` per level pair with non-zero blocks (two where stiffness and damping do not share
+    a point and axes). ``stiffness`` and ``damping`` [N/m, N s/m, ...] are symmetric, on the drifts
+    only, shape ((n+1) L, (n+1) L), L = ``level_dofs``: 1 (x) or 3 (x, y, theta at O).
 
-    Parameters
-    ----------
-    stiffness, damping : numpy.ndarray
-        Symmetric matrices on the levels' degrees of freedom acting on the drifts only, shape
-        ((n+1) L, (n+1) L), L = ``level_dofs`` (1: x; 3: x, y, theta at O).
-    level_dofs : int
-        1 or 3.
-
-    Returns
-    -------
-    list of Link
-        One link per level pair whose blocks are not zero, or two where the stiffness and the
-        damping do not share a point and axes.
-
-    Raises
-    ------
-    ValueError
-        If a matrix is not symmetric or acts on a rigid motion.
-
-    Warns
-    -----
-    InputWarning
-        If a matrix couples two levels unsymmetrically (no network of two-node elements
-        reproduces that part: the network takes the symmetric part of each level block).
+    Raises ValueError if a matrix is not symmetric or acts on a rigid motion. Warns
+    (``InputWarning``) if it couples two levels unsymmetrically, which no two-node network
+    reproduces: the network takes the symmetric part of each level block.
     """
     size = stiffness.shape[0] // level_dofs
     frames = []
@@ -240,26 +144,10 @@ def pair_network(stiffness: np.ndarray, damping: np.ndarray, level_dofs: int) ->
 
 
 def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -> Twin:
-    """Build the building on its bearings in the (wiped) openseespy domain.
-
-    Parameters
-    ----------
-    ops : module
-        ``openseespy.opensees`` from :func:`~structures.opensees.runtime.import_opensees`.
-    model : IsolatedShearBuilding
-        Our model: masses [kg], inertias [kg m^2], storeys [N/m, N m/rad], superstructure
-        damping, bearing positions [m] with their counts and gravity loads [N], the bearing;
-        with ``model.overturning`` the floors stand at the plan's heights [m] (module
-        docstring).
-    pendulum : {"singlefp", "spring"}
-        singleFPBearing (N = P + F . u / R), or flatSliderBearing plus linear springs N / R
-        (N = P: our law without overturning or a vertical). Not used for FPBearingPTV.
-
-    Raises
-    ------
-    ValueError
-        For a bearing or damping the model cannot represent.
-    """
+    """Build ``model`` (our building, SI units; with ``model.overturning`` the tall layout) on
+    its bearings in the (wiped) openseespy domain ``ops`` and return its :class:`Twin`;
+    ``pendulum`` as :func:`~structures.opensees.elements.add_bearing` (not used for FPBearingPTV).
+    Raises ValueError for a bearing or damping the model cannot represent."""
     owner = "build_model"
     pendulum = check_choice(pendulum, "pendulum", owner, PENDULUMS)
     bearing, building = model.bearing, model.building
@@ -336,7 +224,7 @@ def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -
                 ops.rigidLink("beam", master, slave)
         elif plan and level_slaves:
             ops.rigidDiaphragm(3, master, *level_slaves)
-        elif not plan:  # X only (module docstring)
+        elif not plan:  # X only (a diaphragm would tie them to fixed DOFs)
             for slave in level_slaves:
                 ops.equalDOF(master, slave, 1)
     ops.timeSeries("Constant", 1)
@@ -363,11 +251,9 @@ def level_heights(building) -> np.ndarray:
 
 
 def _storey_link(ops, tag: Callable[[], int], link: Link, lower: int, upper: int) -> None:
-    """``link`` as a vertical ``twoNodeLink`` from node ``lower`` up to node ``upper``: its
-    coefficients in the local directions 2 and 3 (shears along the link's axes) and 4
-    (twist), and, where it has a storey stiffness k (the larger of its two shears), rigid
-    directions 1 (axial, ``STOREY_RIGIDITY k``) and 5, 6 (bending, ``STOREY_RIGIDITY k L^2``,
-    L the link's length)."""
+    """``link`` as a vertical ``twoNodeLink`` from ``lower`` up to ``upper``: its coefficients
+    in local directions 2, 3 (shears) and 4 (twist); with a storey stiffness k, rigid in 1
+    (axial, ``STOREY_RIGIDITY k``) and 5, 6 (bending, ``STOREY_RIGIDITY k L^2``, L its length)."""
     pairs = list(zip((2, 3, 4), link.stiffness, link.damping, strict=True))
     lateral = max(link.stiffness[:2])
     if lateral > 0.0:
@@ -385,8 +271,7 @@ def _storey_link(ops, tag: Callable[[], int], link: Link, lower: int, upper: int
 
 
 def _label(first, plan: bool, n_bearings: int) -> str:
-    """``singleFPBearing Coulomb``, ``flatSliderBearing 3D Coulomb + linear springs N_i/R``,
-    ``6 x FPBearingPTV``, ..."""
+    """The twin's element label: ``singleFPBearing Coulomb``, ``6 x FPBearingPTV``, ..."""
     if first.name == "FPBearingPTV":
         return f"{n_bearings} x FPBearingPTV"
     if not plan:

@@ -1,17 +1,8 @@
-"""Import openseespy so that a plain ``pip install openseespy`` works.
-
-The Linux wheel of openseespy 3.7.1.2 (the newest for Python 3.11) ships ``opensees.so`` with
-its own BLAS, LAPACK and GNU Fortran runtime in ``openseespylinux/lib``. ``opensees.so`` finds
-its direct dependencies there through its RUNPATH (``$ORIGIN/lib``), but RUNPATH does not
-reach the dependencies of those libraries: the bundled ``liblapack.so.3`` has no RUNPATH and
-looks for ``libblas.so.3`` and ``libgfortran.so.4`` on the system, and ``libgfortran.so.4``
-for ``libquadmath.so.0``. On a machine without a system BLAS the import fails with
-``ImportError: libblas.so.3: cannot open shared object file`` (openseespy re-raises it as
-``RuntimeError: Failed to import openseespy on Linux.``).
-
-:func:`import_opensees` loads the bundled libraries, leaves first, with ``RTLD_GLOBAL`` so the
-dynamic loader reuses them by soname, then imports ``openseespy.opensees``. It runs once per
-process; openseespy is imported only inside it, so the rest of the package runs without it.
+"""Import openseespy so that a plain ``pip install openseespy`` works: the Linux wheel
+(3.7.1.2, the newest for Python 3.11) bundles BLAS, LAPACK and the GNU Fortran runtime in
+``openseespylinux/lib``, but its ``liblapack.so.3`` looks for ``libblas.so.3`` and
+``libgfortran.so.4`` on the system, so :func:`import_opensees` preloads them with
+``RTLD_GLOBAL``. openseespy is imported only there.
 """
 
 from __future__ import annotations
@@ -50,11 +41,8 @@ def bundled_library_dir() -> Path | None:
 
 
 def preload_bundled_libraries() -> list[str]:
-    """Load the wheel's bundled libraries globally; return the names loaded.
-
-    Libraries missing from the wheel are skipped (a later wheel may not bundle them); one that
-    is present but fails to load raises ``ImportError`` naming it.
-    """
+    """Load the wheel's bundled libraries globally; return the names loaded. Missing ones are
+    skipped; one present that fails to load raises ``ImportError`` naming it."""
     folder = bundled_library_dir()
     if folder is None:
         return []
@@ -75,19 +63,9 @@ def preload_bundled_libraries() -> list[str]:
 
 
 def import_opensees() -> ModuleType:
-    """Return the ``openseespy.opensees`` module, loading its bundled libraries first.
-
-    Returns
-    -------
-    module
-        ``openseespy.opensees`` (the same object on every call).
-
-    Raises
-    ------
-    ImportError
-        If openseespy is not installed, with the command that installs it, or if it cannot be
-        loaded even with its bundled libraries.
-    """
+    """Return ``openseespy.opensees`` (the same object on every call), its bundled libraries
+    loaded first. Raises ImportError if openseespy is not installed (with the command that
+    installs it) or cannot be loaded even with its bundled libraries."""
     global _module
     if _module is not None:
         return _module

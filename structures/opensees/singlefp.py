@@ -1,22 +1,8 @@
-"""singleFPBearing's normal force given to our bearing, to attribute the differences.
-
-singleFPBearing (``SingleFPSimple3d.cpp``) does not slide under the load it is given: it
-iterates its normal force ``N = P + F_X u_X / R_x + F_Y u_Y / R_y`` (P the axial load, the
-radii crossed, :func:`~structures.opensees.elements.singlefp_restoring`; along one axis
-``P + F u / R``). Ours takes ``N = P``. The lift, about ``(|u| / R)(|u| / R + mu)``, is most of
-the gap between the two; giving our element the same N leaves the rest (the crossed radii of
-its restoring law and its return map with a fixed k0):
-
-- :func:`singlefp_normal_force`: N under an imposed history, by fixed-point iteration on our
-  test rig (:func:`isolator.testrig.run_test`), to be given as the bearing's axial load;
-- :class:`SingleFPNormalForce`: our building whose bearings take that N at every trial, solved
-  by fixed-point iteration on the element (the map contracts by about
-  ``|u| / R (|u| / R + mu)``); :func:`run_singlefp_normal` runs it.
-
-The building is a diagnostic twin, not our model: the tangent leaves out ``dN / du`` (Newton
-still converges, on the exact residual), the overturning of the floors' inertia forces is in
-``P`` only when asked for (as in the OpenSees twin), and the friction must not depend on the
-load beyond ``mu N`` (Coulomb).
+"""singleFPBearing's normal force ``N = P + F . u / R`` (``SingleFPSimple3d.cpp``, radii
+crossed) given to our bearing (``N = P``), to attribute the differences: that lift is most of
+the gap. :func:`singlefp_normal_force` for our test rig; :class:`SingleFPNormalForce`, run by
+:func:`run_singlefp_normal`, for our building (a diagnostic twin: Coulomb friction only, the
+tangent without ``dN / du``).
 """
 
 from __future__ import annotations
@@ -45,8 +31,7 @@ _ITERATIONS = 50
 
 
 def _lever(displacement, radius: float, dimension: int) -> np.ndarray:
-    """``(u_X / R_x, u_Y / R_y)`` [-] of (..., 2) displacements [m] (``dimension`` 2), or
-    ``u / R`` along one axis."""
+    """``(u_X / R_x, u_Y / R_y)`` of (..., 2) displacements [m] (``dimension`` 2), or ``u / R``."""
     u = np.asarray(displacement, dtype=float)
     if dimension == 2:
         return singlefp_restoring(np.ones(u.shape[:-1]), u, radius)
@@ -62,12 +47,10 @@ def singlefp_normal_force(
     tolerance: float = 1e-12,
     max_iterations: int = 20,
 ) -> AxialLoadHistory:
-    """The normal force singleFPBearing uses under an imposed history, from our element.
-
-    Fixed-point iteration on :func:`~isolator.testrig.run_test`: N_0 = W,
-    N_(k+1) = W + F_k . (u_X / R_x, u_Y / R_y). The map contracts by about |u| / R
-    (|u| / R + mu) (0.4 % for |u| = 0.2 m, R = 4.5 m), so a few iterations reach
-    ``tolerance``. The history's times are relative to its first (as the test rig's).
+    """The normal force singleFPBearing uses under an imposed history, from our element, as an
+    ``AxialLoadHistory`` [N] (times relative to the first): fixed-point iteration on
+    :func:`~isolator.testrig.run_test`, N_0 = W, N_(k+1) = W + F_k . (u_X / R_x, u_Y / R_y),
+    contracting by about |u| / R (|u| / R + mu) (0.4 % for |u| = 0.2 m, R = 4.5 m).
 
     Parameters
     ----------
@@ -76,15 +59,10 @@ def singlefp_normal_force(
     time, displacement, velocity
         As :func:`~isolator.testrig.run_test`: (n,) times [s], (n,) or (n, 2) displacement
         [m] and velocity [m/s].
-    tolerance : float
-        Largest change of N between iterations, relative to W [-].
-    max_iterations : int
-        Iterations allowed.
+    tolerance, max_iterations
+        Largest change of N between iterations, relative to W [-]; iterations allowed.
 
-    Raises
-    ------
-    ValueError
-        If the axial load is not constant, or the iteration does not converge.
+    Raises ValueError if the axial load is not constant or the iteration does not converge.
     """
     owner = "singlefp_normal_force"
     weight = constant_axial_load(bearing, owner)
@@ -106,19 +84,10 @@ def singlefp_normal_force(
 
 
 class SingleFPNormalForce(IsolatedShearBuilding):
-    """:class:`IsolatedShearBuilding` whose bearings see singleFPBearing's normal force.
-
-    Parameters
-    ----------
-    building, bearing, n_bearings, overturning, vertical
-        As :class:`IsolatedShearBuilding` (but ``overturning`` False by default); the friction
-        must be the constant model and the radius finite.
-
-    Raises
-    ------
-    ValueError
-        For another friction model or an infinite radius.
-    """
+    """:class:`IsolatedShearBuilding` whose bearings see singleFPBearing's normal force (a
+    fixed point per bearing at every trial). Arguments as :class:`IsolatedShearBuilding`
+    (``overturning`` False by default); raises ValueError unless the friction is the constant
+    model and the radius finite."""
 
     def __init__(self, building: ShearBuilding, bearing: DCFPBearing,
                  n_bearings: int | None = None, *, overturning: bool = False,
@@ -163,15 +132,9 @@ def run_singlefp_normal(building: ShearBuilding, bearing: DCFPBearing,
                         overturning: bool = False, tolerance: float = 1e-8,
                         max_subdivisions: int = 6):
     """:func:`structures.analysis.run` (reference engine) on :class:`SingleFPNormalForce`: the
-    Dataset of a run, ``engine`` attribute ``"reference, singleFPBearing N"``.
-
-    Parameters
-    ----------
-    building, bearing, motion, integrator, n_bearings, dt, tolerance, max_subdivisions
-        As :func:`~structures.analysis.run` (each bearing takes its gravity share).
-    overturning : bool
-        In plan, ``P`` with the overturning of the floors' inertia forces. Default False.
-    """
+    Dataset of a run, ``engine`` attribute ``"reference, singleFPBearing N"``. Arguments as
+    :func:`~structures.analysis.run` (each bearing takes its gravity share); ``overturning``
+    (default False): in plan, ``P`` with the overturning of the floors' inertia forces."""
     pair = isinstance(motion, GroundMotionPair)
     model = SingleFPNormalForce(building, replace(bearing, axial_load=None), n_bearings,
                                 overturning=overturning, vertical=motion.z if pair else None)
