@@ -1,10 +1,7 @@
-"""The DCFPB element for the compiled engine: the kernels of the hot path
-(:mod:`~isolator.compiled.kernels`: Eq. 7 solved with the newest flux, the heat-history update;
-compiled by numba or run as Python), the element as arrays for every bearing row of a building
-(:mod:`~isolator.compiled.element`), the monitor points held as a group
-(:mod:`~isolator.compiled.plate`), the packing of a bearing into those arrays and back
-(:mod:`~isolator.compiled.packing`) and the named layout of the friction constants with its
-one packer (:mod:`~isolator.compiled.layout`)."""
+"""The DCFPB element for the compiled engine: :mod:`~isolator.compiled.kernels` (the hot path),
+:mod:`~isolator.compiled.element` (the element as arrays per bearing row),
+:mod:`~isolator.compiled.plate` (the monitor points as a group), :mod:`~isolator.compiled.packing`
+(a bearing into those arrays and back), :mod:`~isolator.compiled.layout` (friction constants)."""
 
 from __future__ import annotations
 

@@ -1,30 +1,18 @@
 """The DCFPB element, its friction and heating as arrays, for the compiled engine.
 
 :func:`set_trials` and :func:`commit_trials` are ``set_trial`` (with the trial's axial load) and
-``commit`` of :class:`isolator.bearing.BearingElement` for every bearing row, its state a row of
-the ``committed`` / ``trial`` arrays (``TIME`` ... ``AXIAL_LOAD``, then the trial's tangents,
-its pending heat and its frame), operation for operation: the isotropic return map (on a line,
-the clip of z to +-1, to the bit), the linear / spherical / flat restoring law, uplift (no load:
-no force, no heat, the plates cool), and the friction of :mod:`isolator.friction` through the
-kernels of :mod:`isolator.compiled.kernels` (``initial_friction``, ``heated_window``,
-``ptv_friction``; the step factors of :func:`isolator.heating.step_factors`, exact for every
-step size):
+``commit`` of :class:`isolator.bearing.BearingElement` for every bearing row, operation for
+operation, each row's state a row of the ``committed`` / ``trial`` arrays: the isotropic return
+map (on a line, the clip of z to +-1, to the bit), the linear / spherical / flat restoring law,
+uplift (no load: no force, no heat, the plates cool) and the friction of :mod:`isolator.friction`
+through :mod:`isolator.compiled.kernels`: constant (Eq. 8, no heat); PTV without heating (Eq. 7
+at the initial temperature); simplified (Eq. 6: the centre point at the distance |u| /
+surfaces); precise (Eq. 5: the monitor points under the slider, :mod:`isolator.compiled.plate`;
+a line along x in one direction, the grid in two, its frame fixed at the first heated commit).
 
-- constant (Eq. 8): mu_c, no heat;
-- PTV without heating: Eq. 7 at the initial temperature, with the trial's pressure;
-- simplified (Eq. 6): the centre point at the distance |u| / surfaces, its history updated as
-  ``advance_states`` does, bit for bit;
-- precise (Eq. 5): the monitor points under the slider held as a group
-  (:mod:`isolator.compiled.plate`): in one direction the monitor line (one row across, e1
-  along x), in two the grid (its frame fixed by the motion at the first heated commit, as the
-  reference's).
-
-In one direction the element moves along x with ``uy = vy = 0``. A bearing row may stand for
-several identical bearings (``MULTIPLICITY``): the engine multiplies its force and tangent, the
-element does not. Errors the element would raise come back as status codes, with what
-:func:`isolator.compiled.packing.trial_error` needs to word them (``STEP_BELOW_MIN_LAG``,
-``LEFT_MONITOR_LINE``, ``BEYOND_RADIUS``). The Python side (packing a bearing into these
-arrays, the errors' words, the plate field) is :mod:`isolator.compiled.packing`.
+In one direction the element moves along x (``uy = vy = 0``). Force and tangent are those of
+one bearing; the engine multiplies them by ``MULTIPLICITY``. Errors come back as status codes
+(``STEP_BELOW_MIN_LAG`` ...) that :func:`isolator.compiled.packing.trial_error` words.
 """
 
 from __future__ import annotations
@@ -77,19 +65,12 @@ def set_trials(time, motion, parameters, ptv, committed, trial, rates, weights, 
                marks, pending, accumulators, offsets, cache_keys, cache_values, cache_state,
                scalars, factors, decays, slots, table, windows):
     """BearingElement.set_trial of every bearing row at ``time`` [s]: fills the rows of
-    ``trial`` (state, tangents ``KXX`` ... ``CYY`` of one bearing of the row).
-
-    ``motion`` (n_b, MOTION_SIZE) holds each row's trial displacement and velocity (x, y)
-    [m], [m/s] and axial load [N] (``MOTION_UX`` ... ``MOTION_LOAD``); ``parameters`` and
-    ``ptv`` (one row per bearing) are :mod:`isolator.compiled.packing`'s, ``rates`` ...
-    ``windows`` the arrays of :class:`isolator.compiled.plate.PlateHeat`.
-
-    Returns
-    -------
-    status, bearing : int, int
-        SUCCESS and -1, or the code of the error the element would raise and the row that
-        raised it (the rows after it are not evaluated).
-    """
+    ``trial`` (state, tangents ``KXX`` ... ``CYY`` of one bearing of the row) from ``motion``
+    (n_b, MOTION_SIZE; ``MOTION_UX`` ...), ``parameters`` and ``ptv`` (those of
+    :class:`isolator.compiled.packing.CompiledBearings`) and the arrays of
+    :class:`isolator.compiled.plate.PlateHeat` (``rates`` ... ``windows``). Returns
+    ``(status, row)``: ``(SUCCESS, -1)``, or the code of the error the element would raise and
+    the row that raised it (the rows after it are not evaluated)."""
     for b in range(motion.shape[0]):
         ux, uy = motion[b, MOTION_UX], motion[b, MOTION_UY]
         vx, vy = motion[b, MOTION_VX], motion[b, MOTION_VY]

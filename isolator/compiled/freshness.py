@@ -1,18 +1,10 @@
 """numba's disk cache of our compiled functions, invalidated by the code they depend on.
 
-numba keys a cached function on its own source file only. Our compiled functions call
-functions and read constants of other modules (the engine in
-``structures/compiled/integrator.py`` inlines the bearing of ``isolator/compiled/bearing.py``
-and indexes its arrays by the constants of ``structures/compiled/workspace.py``): after an
-edit of one of those, numba would load the old machine code, built with the old callees and
-constants, and the engine would disagree with the source (or index its arrays wrongly).
-
-:class:`DependencyStampLocator` is a numba cache locator (put first in numba's list by
-:func:`install`) that finds the cache where numba would, and stamps it with a digest of the
-function's own file *and* every module of ours it imports, transitively (read from the import
-statements, so without importing anything): an edit anywhere in that closure makes numba
-compile afresh, as an edit of the file itself always did. Files outside our packages (numba,
-numpy) are not followed; numba's own version is part of its cache index already.
+numba keys a cached function on its own source file only, but ours use functions and constants
+of other modules (the engine inlines the element and the workspace's layout), so after an edit
+there numba would load stale machine code. :class:`DependencyStampLocator` (first in numba's
+locators, by :func:`install`) stamps the cache with a digest of the function's file and every
+module of ours it imports, transitively, read from the import statements without importing.
 """
 
 from __future__ import annotations
@@ -77,18 +69,8 @@ def _imports(path: Path) -> frozenset[str]:
 
 @functools.cache
 def dependency_closure(py_file: str) -> tuple[Path, ...]:
-    """The file ``py_file`` and the files of every module of ours it imports, transitively,
-    sorted.
-
-    Parameters
-    ----------
-    py_file : str
-        A source file [path].
-
-    Returns
-    -------
-    tuple of Path
-    """
+    """The source file ``py_file`` (a path) and the files of every module of ours it imports,
+    transitively, as a sorted tuple of Path."""
     start = Path(py_file).resolve()
     seen, todo = {start}, [start]
     while todo:

@@ -1,12 +1,9 @@
 """Compiled kernels of the isolator's hot path, with the same functions in plain Python.
 
-The per-step work of the friction models is done here on floats and arrays: the history part
-of the contact temperature, the exponential-sum state update, and the implicit solve of
-mu = mu_cold beta(T(mu)). With numba installed the functions are compiled on first use and
-cached on disk; without it, or with the environment variable ``DCFPB_DISABLE_NUMBA=1``, the
-same source runs as plain Python. Every compiled function keeps its Python original as
-``py_func`` so the tests check both.
-"""
+The contact temperature's history part, the exponential-sum state update and the implicit
+solve of mu = mu_cold beta(T(mu)). With numba they are compiled on first use and cached on
+disk; without it, or with ``DCFPB_DISABLE_NUMBA=1``, the same source runs as plain Python.
+Every compiled function keeps its Python original as ``py_func``."""
 
 from __future__ import annotations
 
@@ -36,16 +33,12 @@ try:  # pragma: no cover - exercised by whichever environment runs the tests
     COMPILED = True
 
     def jit(function):
-        """Compile ``function`` with numba (cached on disk), without the C-callable wrapper
-        (nothing here is used as a ``cfunc``; the wrapper was compile time for nothing)."""
+        """Compile ``function`` with numba, cached on disk, without the unused C wrapper."""
         return numba.njit(cache=True, nogil=True, no_cfunc_wrapper=True)(function)
 
     def jit_unmanaged(function):
-        """:func:`jit` without numba's reference counting (its runtime, NRT, off): for
-        functions that allocate nothing and only read and write arrays their caller keeps
-        alive (the engine's loop, the element, the plate). No count is taken of any array they
-        pass on or take apart, so none is paid per call, and none is compiled (the counting
-        code was a third of the engine's unoptimised IR and half its run time)."""
+        """:func:`jit` with numba's reference counting (NRT) off, for functions that allocate
+        nothing and only touch arrays their caller keeps alive: no counting to compile or run."""
         return numba.njit(cache=True, nogil=True, no_cfunc_wrapper=True, _nrt=False)(function)
 
 except ImportError:  # pragma: no cover
@@ -57,7 +50,6 @@ except ImportError:  # pragma: no cover
         return function
 
     jit_unmanaged = jit
-
 
 
 _paper_pressure = jit(paper_pressure_raw)
@@ -118,13 +110,9 @@ def contact_history(states, weighted_decay, lo, hi):
 
 @jit
 def advance_states(states, step, lo, hi, heated_lo, heated_hi, flux):
-    """G_jk <- exp(-s_k dt) G_jk + q (1 - exp(-s_k dt)) / s_k, in place; returns ``(lo, hi)``.
-
-    ``step`` stacks exp(-s_k dt) and (1 - exp(-s_k dt)) / s_k, shape (2, K). The flux ``q``
-    [W/m^2] enters the points ``heated_lo:heated_hi`` only. ``[lo, hi)`` are the points ever
-    heated (the others are zero and stay so); the range grown by this step's heated points is
-    returned.
-    """
+    """G_jk <- exp(-s_k dt) G_jk + q (1 - exp(-s_k dt)) / s_k in place (``step``: the two
+    factors, shape (2, K)); the flux ``q`` [W/m^2] enters points ``heated_lo:heated_hi`` only.
+    ``[lo, hi)``, the points ever heated (the others are zero), is returned grown by those."""
     if flux != 0.0 and heated_hi > heated_lo:
         lo = min(lo, heated_lo)
         hi = max(hi, heated_hi)
@@ -143,26 +131,12 @@ def advance_states(states, step, lo, hi, heated_lo, heated_hi, flux):
 
 @jit
 def solve_friction(code, mu_cold, dmu_cold, use_temperature, base, a, newest_per_mu_speed):
-    """Solve mu = mu_cold beta(base + a mu) by Newton's method.
+    """Solve mu = mu_cold beta(base + a mu) by Newton: ``(mu, dmu_dspeed, temperature)``.
 
-    Parameters
-    ----------
-    code : int
-        Factor set (0 paper, 1 Kumar).
-    mu_cold, dmu_cold : float
-        mu_t0 gamma alpha and its derivative with respect to |v|.
-    use_temperature : bool
-        Whether beta acts.
-    base : float
-        Contact temperature without the newest interval [degC].
-    a : float
-        d T / d mu through the newest interval's flux [degC].
-    newest_per_mu_speed : float
-        a / |v| (d T / d(mu |v|)) [degC s/m].
-
-    Returns
-    -------
-    mu, dmu_dspeed, temperature : float
+    ``code``: factor set (0 paper, 1 Kumar); ``mu_cold``, ``dmu_cold``: mu_t0 gamma alpha and
+    its derivative with respect to |v| [s/m]; ``use_temperature``: whether beta acts; ``base``:
+    the contact temperature without the newest interval [degC]; ``a``: d T / d mu through that
+    interval's flux [degC]; ``newest_per_mu_speed``: a / |v| [degC s/m].
     """
     if not use_temperature:
         return mu_cold, dmu_cold, base + a * mu_cold
@@ -193,12 +167,10 @@ def initial_friction(parameters, pressure, speed):
 
 @jit
 def heated_window(position, first, spacing, n_points, half_width, average_over_contact):
-    """Points ``[lo, hi)`` within ``half_width`` of the slider centre at ``position`` [m].
-
-    For a line of points (``average_over_contact``) at ``first + j spacing``; for the single
-    centre point, ``(0, 1)`` when it is covered and ``(0, 0)`` when not. The window is closed
-    (Eq. 5, 6: delta <= half width) with a relative slack of 1e-9 of a spacing against
-    rounding. ``inside`` is False when the window reaches past either end of the line.
+    """``(lo, hi, inside)``: points ``[lo, hi)`` within ``half_width`` of the slider centre at
+    ``position`` [m], on a line of points at ``first + j spacing`` (``average_over_contact``)
+    or the single centre point (``(0, 1)`` covered, ``(0, 0)`` not). Closed window (Eq. 5, 6:
+    delta <= half width, slack 1e-9 of a spacing); ``inside`` False past either end of the line.
     """
     if average_over_contact:
         lo = int(np.ceil((position - half_width - first) / spacing - 1e-9))
@@ -211,16 +183,12 @@ def heated_window(position, first, spacing, n_points, half_width, average_over_c
 
 @jit
 def ptv_friction(rise, heated, parameters, newest, pressure, speed):
-    """Eq. 7 for a contact whose temperature history part is ``rise``: the end of a PTV trial.
+    """Eq. 7 for a contact whose temperature history part is ``rise``, the end of a PTV trial:
+    ``(mu, dmu_dspeed, temperature, flux)``.
 
-    The contact temperature is T0 + c ``rise`` plus the newest interval's share, whose flux
-    q = mu p |v| / surfaces enters only when the averaged points take it (``heated``).
-    ``rise`` is :func:`contact_history` over the averaged points (or the same sum held by
-    :mod:`isolator.contact_window`); the other arguments are those of :func:`ptv_trial`.
-
-    Returns
-    -------
-    mu, dmu_dspeed, temperature, flux : float
+    The contact temperature is T0 + c ``rise`` (:func:`contact_history` over the averaged
+    points) plus the newest interval's share, whose flux q = mu p |v| / surfaces enters only
+    when those points take it (``heated``); the other arguments as for :func:`ptv_trial`.
     """
     fraction = 1.0 if heated else 0.0
     base = parameters[L.INITIAL_TEMPERATURE] + parameters[L.FLUX_COEFFICIENT] * rise
@@ -239,19 +207,13 @@ def ptv_friction(rise, heated, parameters, newest, pressure, speed):
 def ptv_trial(states, weighted_decay, parameters, position, newest, pressure, speed):
     """One trial of the precise or simplified friction model, fused for speed.
 
-    Finds the monitor points under the slider (``position`` on the plate [m]), forms the
-    contact temperature from their committed history, and solves Eq. 7 with the newest
-    interval's flux q = mu p |v| / surfaces entering the temperature (``newest`` = 2 c
-    sqrt(dt) [degC m^2/W]). ``parameters`` is :func:`~isolator.compiled.layout.pack_ptv` of it.
-    It is :func:`heated_window`, :func:`contact_history` and :func:`ptv_friction` in turn.
+    :func:`heated_window`, :func:`contact_history` and :func:`ptv_friction` in turn: the
+    points under the slider at ``position`` [m] on the plate, their committed history, Eq. 7
+    with the newest flux (``newest`` = 2 c sqrt(dt) [degC m^2/W]); ``parameters`` from
+    :func:`~isolator.compiled.layout.pack_ptv`, ``pressure`` [Pa], ``speed`` [m/s].
 
-    Returns
-    -------
-    mu, dmu_dspeed, temperature, flux : float
-    heated_lo, heated_hi : int
-        Points ``[lo, hi)`` that take the flux.
-    inside : bool
-        False when the slider has left the monitor line (nothing else is valid then).
+    Returns ``(mu, dmu_dspeed, temperature, flux, heated_lo, heated_hi, inside)``: the points
+    ``[lo, hi)`` take the flux; ``inside`` is False (nothing else valid) off the monitor line.
     """
     average_over_contact = parameters[L.AVERAGE_OVER_CONTACT] != 0.0
     lo, hi, inside = heated_window(position, parameters[L.FIRST_POINT], parameters[L.SPACING],

@@ -1,13 +1,8 @@
 """The layout of the friction constants the compiled kernels read: one specification, one packer.
 
-:func:`isolator.compiled.kernels.ptv_trial` and the compiled bearing take the constants of a
-precise or simplified friction model as one float array. Its order is :data:`PTV_PARAMETERS`;
-the kernels index it by the named constants below (numba folds them at compile time), and
-both :class:`isolator.friction.PTVFrictionState` and the building engine
-(:mod:`structures.compiled.engine`) fill it through :func:`pack_ptv`, so no code reads the
-array by a bare index number. ``tests/verification/test_friction_reference.py`` checks that the
-names and the order agree.
-"""
+The kernels take a precise or simplified friction model's constants as one float array in the
+order :data:`PTV_PARAMETERS`, indexed by the named constants below (folded at compile time);
+everyone fills it through :func:`pack_ptv`, so no code reads it by a bare index number."""
 
 from __future__ import annotations
 
@@ -42,20 +37,9 @@ surfaces
 
 
 def pack_ptv(values: Mapping[str, float]) -> np.ndarray:
-    """The ``parameters`` array of the PTV kernels from constants given by name.
-
-    Parameters
-    ----------
-    values : mapping of str to float
-        Constants named as in :data:`PTV_PARAMETERS`; a missing one is 0.0 (a model without
-        heating leaves the monitor line out).
-
-    Raises
-    ------
-    KeyError
-        For a name that is not in :data:`PTV_PARAMETERS` (a misspelt constant would otherwise
-        be dropped without a word).
-    """
+    """The ``parameters`` array of the PTV kernels from ``values``, constants named as in
+    :data:`PTV_PARAMETERS` (a missing one is 0.0: a model without heating leaves the monitor
+    line out). Raises ``KeyError`` for a name not in :data:`PTV_PARAMETERS`."""
     unknown = sorted(set(values) - set(PTV_PARAMETERS))
     if unknown:
         raise KeyError(f"pack_ptv: unknown constant(s) {unknown}; known: {PTV_PARAMETERS}")

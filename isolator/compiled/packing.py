@@ -1,15 +1,7 @@
 """The Python side of the compiled element: a bearing and its reference elements packed into the
 arrays of :mod:`isolator.compiled.element`, and back (the element's errors in the reference's
-words, the plate temperature field).
-
-The engine of a building (:mod:`structures.compiled`) asks this module whether a bearing has
-a compiled form (:func:`unsupported_reason`), has it packed (:func:`pack_bearings`), and
-turns a failed trial into the reference element's error (:func:`trial_error`); it never looks
-at the friction or heating classes itself. The reference elements are those of the model
-(:class:`~isolator.bearing.BearingElement` in one direction, moving along x, or in two): their
-friction states hold the heating objects whose constants are packed, and their committed
-states at rest are the engine's first committed rows.
-"""
+words, the plate temperature field). The engine of a building asks here whether a bearing has a
+compiled form and never looks at the friction or heating classes itself."""
 
 from __future__ import annotations
 
@@ -40,14 +32,12 @@ class CompiledBearings(NamedTuple):
     Attributes
     ----------
     parameters : ndarray, shape (n_b, PARAMETERS_SIZE)
-        One row per bearing (:mod:`isolator.compiled.element`: position [m], gravity load
-        [N], multiplicity, the restoring law, the friction model's code ...), SI units.
-    ptv : ndarray, shape (n_b, PTV_PARAMETERS)
+        One row per bearing (:mod:`isolator.compiled.element`'s ``X`` ...: position [m],
+        gravity load [N], multiplicity, the codes of the restoring law and friction model ...).
+    ptv : ndarray, shape (n_b, len(PTV_PARAMETERS))
         The friction constants of each bearing (:func:`isolator.compiled.layout.pack_ptv`).
-    committed : ndarray, shape (n_b, STATE_SIZE)
-        The elements' committed states at rest.
-    heat : PlateHeat
-        The plates' heat histories, zero (:func:`isolator.compiled.plate.new_plate_heating`).
+    committed, heat : ndarray, shape (n_b, STATE_SIZE), and PlateHeat
+        The elements' committed states at rest; the plates' zero heat histories.
     """
 
     parameters: np.ndarray
@@ -73,8 +63,7 @@ def unsupported_reason(bearing: DCFPBearing) -> str | None:
 
 
 def _pair(value) -> tuple[float, float]:
-    """(x, y) of a state's vector, or (value, 0) of the scalar of an element in one
-    direction."""
+    """(x, y) of a state's vector, or (value, 0.0) of a scalar (one direction)."""
     array = np.atleast_1d(np.asarray(value, dtype=float))
     return (float(array[0]), float(array[1]) if array.size > 1 else 0.0)
 
@@ -101,14 +90,11 @@ def pack_bearings(bearing: DCFPBearing, elements: Sequence, positions: np.ndarra
     bearing : DCFPBearing
         The bearing of every position (its own axial load is not read).
     elements : sequence of BearingElement
-        The model's reference elements at rest, one per row (their friction states give the
-        heating's constants, their committed states the first committed rows).
-    positions : ndarray, shape (n_b, 2)
-        Plan positions [m].
-    multiplicity : ndarray, shape (n_b,)
-        Identical bearings each row stands for [-].
-    gravity : ndarray, shape (n_b,)
-        Axial load of each at rest [N].
+        The model's reference elements at rest, one per row (for the heating's constants and
+        the first committed rows).
+    positions, multiplicity, gravity : ndarray, shape (n_b, 2), (n_b,), (n_b,)
+        Each row's plan position [m], the identical bearings it stands for, and the axial
+        load of each at rest [N] (as in :class:`structures.compiled.view.EngineView`).
     constant_load : bool
         The axial loads never change (no overturning, no vertical record): the pressure
         factor of Eq. 7 is then evaluated once per bearing, to the same bits.
@@ -165,33 +151,13 @@ def pack_bearings(bearing: DCFPBearing, elements: Sequence, positions: np.ndarra
 
 def trial_error(element, status: int, displacement: tuple[float, float],
                 axes: tuple[float, float], value: float, time: float) -> CapacityExceeded:
-    """The reference element's error for a trial the compiled one could not evaluate.
+    """The reference ``element``'s error, a ``CapacityExceeded`` the run ends with
+    (:func:`isolator.bearing.trial_failure`), for a trial the compiled one could not evaluate.
 
-    Parameters
-    ----------
-    element : BearingElement
-        The reference element of the bearing whose trial failed.
-    status : int
-        The element's code (``LEFT_MONITOR_LINE``, ``STEP_BELOW_MIN_LAG``, ``BEYOND_RADIUS``).
-    displacement : (float, float)
-        The trial displacement (x, y) [m].
-    axes : (float, float)
-        The frame's e1 of the trial (the precise model's monitor points).
-    value : float
-        The trial's step [s] (for ``STEP_BELOW_MIN_LAG``).
-    time : float
-        The trial's time [s].
-
-    Returns
-    -------
-    CapacityExceeded
-        A trial beyond the model's range (:func:`isolator.bearing.trial_failure`): the run
-        ends with it.
-
-    Raises
-    ------
-    ValueError
-        For a step below the heating kernel's shortest lag, the reference's error.
+    ``status`` is ``LEFT_MONITOR_LINE``, ``STEP_BELOW_MIN_LAG`` or ``BEYOND_RADIUS``;
+    ``displacement`` the trial's (x, y) [m], ``axes`` its frame's e1 (precise model), ``value``
+    its step and ``time`` its time [s]. Raises the reference's ``ValueError`` for a step below
+    the heating kernel's shortest lag.
     """
     heating = getattr(element.friction_state, "heating", None)
     if status == E.STEP_BELOW_MIN_LAG:

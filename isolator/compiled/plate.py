@@ -1,41 +1,27 @@
 """The precise model's monitor points on a plate, held for the compiled element in array form.
 
-The points form a rectangle of ``n_along`` x ``n_across`` points, point ``(i, k)`` at flat
-index ``j = i n_across + k`` (``i`` along the frame's first axis e1, ``k`` along e2): the
-monitor grid of :class:`~isolator.monitor_grid.GridHeating` is a square of n x n, the
-monitor line of :class:`~isolator.heating.SurfaceHeating` is the same code with one row
-across (``n_across = 1``, e1 along x). The reference stores a history G_j (K exponential
-terms) for every point heated and, per trial, decays and sums the points under the slider
-(about 2,800 on a grid, 53 on a line, for a 300 mm slider at 5 mm spacing). Here the points
-under the slider all take the same flux, so they are carried as one group, and a trial costs
-O(K) and a step O(K) plus O(K) per point entering or leaving the rectangle under the slider:
+The points form a rectangle of ``n_along`` x ``n_across``, point ``(i, k)`` at flat index
+``j = i n_across + k`` (``i`` along the frame's e1, ``k`` along e2): the n x n grid of
+:class:`~isolator.monitor_grid.GridHeating`, or the line of
+:class:`~isolator.heating.SurfaceHeating` (``n_across = 1``, e1 along x). The points under the
+slider all take the same flux, so they are held as one group: a trial costs O(K) (K
+exponential terms) and a step O(K) plus O(K) per point entering or leaving the window:
 
-- a point outside the window keeps ``B_j`` = G_j at its ``stamp`` and decays implicitly
-  (G_j(t) = exp(-s (t - tau_j)) B_j); ``stamp < 0`` marks a point never touched (G = 0);
-- an ``accumulator`` A(t) holds the history of a point heated at every step since t = 0,
+- a point outside the window keeps ``B_j`` = G_j at its ``stamp`` tau_j and decays implicitly,
+  G_j(t) = exp(-s (t - tau_j)) B_j; ``stamp < 0`` marks a point never touched (G = 0);
+- an ``accumulator`` A holds the history of a point heated at every step since t = 0,
   A <- exp(-s dt) A + q (1 - exp(-s dt)) / s (:func:`advance_window`);
-- a point inside the window keeps ``C_j`` = G_j(tau_j) - A(tau_j), and the ``offsets``
-  E(t) = sum_j exp(-s (t - tau_j)) C_j, so the window's column sums are W A + E and the history
-  part of the contact temperature is sum_k w_k exp(-s_k dt) (W A_k + E_k) / W
-  (:func:`window_history`);
-- the window is a rectangle of indices, so a move touches only the difference of two
-  rectangles (:func:`move_window`); :func:`reanchor_window` re-forms E from the points every
-  ``REANCHOR_EVERY`` heated commits, so that its round-off cannot drift.
+- a point inside keeps ``C_j`` = G_j(tau_j) - A(tau_j), and the ``offsets``
+  E(t) = sum_j exp(-s (t - tau_j)) C_j, so the history part of the contact temperature over the
+  window's W points is sum_k w_k exp(-s_k dt) (W A_k + E_k) / W (:func:`window_history`);
+- a move touches only the difference of two rectangles (:func:`move_window`), the decay factors
+  of points sharing a stamp computed once (a small cache keyed by stamp, for one bearing and
+  time); :func:`reanchor_window` re-forms E every ``REANCHOR_EVERY`` heated commits against drift.
 
-The decay factors exp(-s (t - tau_j)) of the points that move depend on tau_j alone, and the
-points of a row or column entered or left together share it: a small cache keyed by the stamp
-(valid for one bearing and one time) makes a move cost one set of K exponentials per distinct
-stamp, not per point.
-
-Which points the reference stores (the plate temperature field of a run) is kept too: a point
-entering the window is put on a ``pending`` list, and the next commit that heats the window
-gives it the number of that commit (``marks``); the reference's order of storage is then the
-order of (mark, i, k) (:func:`field_temperatures`).
-
-All times are the heat history's own clock (the sum of the committed heated steps), never
-the element's. These are exact rearrangements of the reference's updates: only the round-off
-differs. Every function is a compiled kernel with a plain-Python twin
-(:mod:`isolator.compiled.kernels`).
+A point entering the window waits on ``pending`` until the next commit that heats the window
+gives it that commit's number (``marks``): the reference's order of storage is that of
+(mark, i, k). All times are the heat history's clock (the committed heated steps' sum), not the
+element's. These are exact rearrangements of the reference's updates: only round-off differs.
 """
 
 from __future__ import annotations
@@ -76,24 +62,21 @@ class PlateHeat(NamedTuple):
     ----------
     rates, weights : ndarray, shape (K,)
         The kernel's s_k [1/s] and w_k [s^-0.5].
-    states : ndarray, shape (n_b, points, K)
-        B_j or C_j of each point (module docstring) [W s^0.5 / m^2].
-    stamps : ndarray, shape (n_b, points)
-        When each point was last brought up to date on the heat clock [s]; -1: never.
-    marks : ndarray of int64, shape (n_b, points)
-        The heated commit that stored each point (``UNTOUCHED``, ``PENDING_MARK``).
-    pending : ndarray of int64, shape (n_b, points + 1)
-        Points waiting for a mark: their number, then their indices.
+    states, stamps : ndarray, shape (n_b, points, K), (n_b, points)
+        B_j or C_j of each point (module docstring) [W s^0.5 / m^2], and when it was last
+        brought up to date on the heat clock [s] (-1: never).
+    marks, pending : ndarray of int64, shape (n_b, points), (n_b, points + 1)
+        The heated commit that stored each point (or ``UNTOUCHED``, ``PENDING_MARK``); the
+        points waiting for a mark: their number, then their indices.
     accumulators, offsets : ndarray, shape (n_b, K)
         A and E of each plate's window.
     cache_keys, cache_values, cache_state : ndarray, shape (CACHE_SLOTS,), (CACHE_SLOTS, K), (2,)
         Decay vectors exp(-s (t - tau)) by stamp tau, for one bearing and time.
     scalars : ndarray, shape (n_b, SCALARS_SIZE)
         ``HEAT_TIME`` ... ``ANCHORED_AGO`` of each plate.
-    factors, decays : ndarray, shape (FACTOR_SLOTS, 2, K), (FACTOR_SLOTS, K)
-        exp(-s dt) and (1 - exp(-s dt)) / s, and w exp(-s dt), per step size.
-    slots : ndarray, shape (FACTOR_SLOTS, 2)
-        The step [s] of each slot and its 2 c sqrt(dt) [degC m^2 / W].
+    factors, decays, slots : ndarray, shape (S, 2, K), (S, K), (S, 2), S = FACTOR_SLOTS
+        Per step size: exp(-s dt) and (1 - exp(-s dt)) / s; w exp(-s dt); the step [s] and
+        2 c sqrt(dt) [degC m^2 / W].
     table : ndarray, shape (3,)
         ``PREPARED_STEP``, ``SLOT``, ``NEXT_SLOT``.
     windows : ndarray of int64, shape (n_b, 2, 4)
@@ -123,8 +106,7 @@ def new_plate_heating(n_bearings: int, points: int, rates: np.ndarray,
                       weights: np.ndarray) -> PlateHeat:
     """The heat history of ``n_bearings`` plates of ``points`` monitor points each
     (n_along x n_across; 1 for the centre point) for the kernel's ``rates`` [1/s] and
-    ``weights`` [s^-0.5], shape (K,): zero history, unheated, no frame. Made in Python and
-    handed to the engine, which allocates nothing."""
+    ``weights`` [s^-0.5], shape (K,): zero history, unheated, no frame."""
     k = rates.shape[0]
     return PlateHeat(
         np.array(rates, dtype=float, order="C"), np.array(weights, dtype=float, order="C"),
@@ -162,12 +144,8 @@ def prepare_step(dt, coefficient, min_lag, rates, weights, factors, decays, slot
 
 @jit_unmanaged
 def advance_window(accumulator, offsets, step, flux):
-    """One committed step of the window: every point in it takes the flux ``q`` [W/m^2].
-
-    ``step`` stacks exp(-s_k dt) and (1 - exp(-s_k dt)) / s_k, shape (2, K), as for
-    :func:`~isolator.compiled.kernels.advance_states`; points outside the window are untouched
-    (their decay is implied by their stamps).
-    """
+    """One committed step of the window: every point in it takes the ``flux`` [W/m^2]; ``step``
+    as for :func:`~isolator.compiled.kernels.advance_states`; points outside are untouched."""
     decay = step[0]
     gain = step[1]
     for k in range(accumulator.shape[0]):
@@ -177,10 +155,8 @@ def advance_window(accumulator, offsets, step, flux):
 
 @jit_unmanaged
 def window_history(accumulator, offsets, weighted_decay, points):
-    """:func:`~isolator.compiled.kernels.contact_history` of a window of ``points`` points.
-
-    sum_k w_k exp(-s_k dt) (points A_k + E_k) / points [W s^0.5 / m^2]; 0 for an empty window.
-    """
+    """:func:`~isolator.compiled.kernels.contact_history` of a window of ``points`` points:
+    sum_k w_k exp(-s_k dt) (points A_k + E_k) / points [W s^0.5 / m^2]; 0 for an empty one."""
     if points <= 0:
         return 0.0
     n_terms = weighted_decay.shape[0]
@@ -220,13 +196,10 @@ def move_window(b, n_across, old, new, time, rates, states, stamps, accumulator,
     """Make the rectangle ``new`` the window of bearing ``b`` in place of ``old`` at ``time``.
 
     ``old`` and ``new`` are (i_lo, i_hi, k_lo, k_hi) (either may be empty); ``n_across``
-    points per column; the arrays are ``PlateHeat``'s, those of the bearing (``states``,
-    ``stamps``, ``accumulator``, ``offsets``, ``marks``, ``pending``) its rows. The points
-    leaving keep G_j = A + exp(-s (t - tau_j)) C_j, those entering C_j = G_j - A (those never
-    heated wait on the ``pending`` list); in four passes, each over lines of points that
-    share their stamps: the old points not in the new rectangle, whole columns (contiguous in
-    memory) then the rows of the columns both hold (strided by a column), then the new points
-    not in the old rectangle the same way.
+    points per column; the arrays are ``PlateHeat``'s, those of the bearing (``states`` ...
+    ``pending``) its rows. Points leaving keep G_j = A + exp(-s (t - tau_j)) C_j, points
+    entering C_j = G_j - A; four passes over lines of points sharing their stamps (the old
+    points, then the new, each by whole columns, then rows of the columns both hold).
     """
     n_terms = rates.shape[0]
     a0, a1, b0, b1 = old[0], old[1], old[2], old[3]
@@ -302,11 +275,9 @@ def reanchor_window(b, n_across, window, time, rates, states, stamps, offsets, k
 @jit_unmanaged
 def field_temperatures(points, inside, time, initial_temperature, coefficient, rates, weights,
                        states, stamps, accumulator, out):
-    """Temperatures [degC] of a bearing's stored ``points`` (flat indices) at the heat
-    clock's ``time`` into ``out``: T0 + coefficient sum_k w_k G_jk, with G_j = exp(-s (t -
-    tau_j)) B_j for a point out of the window and that plus the accumulator A for one in it
-    (``inside``); the plate field of a run, one pass over the points (the arrays as for
-    :func:`move_window`)."""
+    """Temperatures [degC] of a bearing's stored ``points`` (flat indices) at the heat clock's
+    ``time`` into ``out``: T0 + coefficient sum_k w_k G_jk, G_j = exp(-s (t - tau_j)) B_j, plus
+    A for a point in the window (``inside``); the arrays as for :func:`move_window`."""
     for m in range(points.shape[0]):
         j = points[m]
         elapsed = time - stamps[j]

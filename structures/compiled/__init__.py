@@ -1,11 +1,9 @@
-"""The compiled engine of :func:`structures.analysis.run`, in one direction and in plan: the
-whole run as one
-numba function (:mod:`~structures.compiled.integrator`), what it sees of a model
-(:mod:`~structures.compiled.view`), the adapter that packs the view into arrays and the result
-back (:mod:`~structures.compiled.engine`), its numerical pieces
-(:mod:`~structures.compiled.linear`, the two dense LAPACK solves of
-:mod:`~structures.compiled.lapack`) and the compilation in two processes on a cold cache
-(:mod:`~structures.compiled.ahead`). Without numba the same source runs as Python."""
+"""The compiled engine of :func:`structures.analysis.run`: the whole run as one numba function
+(:mod:`~structures.compiled.integrator`), its view of a model (:mod:`~structures.compiled.view`),
+the adapter packing that view and unpacking the result (:mod:`~structures.compiled.engine`), its
+numerical pieces (:mod:`~structures.compiled.linear`, :mod:`~structures.compiled.lapack`) and the
+compilation in a second process (:mod:`~structures.compiled.ahead`). Without numba the same
+source runs as Python."""
 
 from __future__ import annotations
 

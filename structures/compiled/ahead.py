@@ -1,23 +1,14 @@
 """Compile the engine in a second process while the first one gets on with the rest.
 
-On a cold numba cache the compiled engine (:mod:`structures.compiled.integrator`) takes most of a
-first run's time to compile, while the run itself needs a fraction of a second. The compilation is
-pure Python work in numba, which a thread cannot overlap with the caller's own Python work
-(imports, reading the record, the fixed-base reference, spectra); a process can, on a second
-core. :func:`compile_ahead` starts ``python -m structures.compiled.ahead``, which compiles the
-engine's callees but the bearings' trials (:func:`structures.compiled.engine.warm_up_late`),
-then the engine exactly as the first run would (:func:`structures.compiled.engine.warm_up`),
-and writes numba's disk cache. Meanwhile the caller compiles the bearings' trials
-(:meth:`CompileAhead.help`, :func:`structures.compiled.engine.warm_up_early`), which that
-process then finds in the cache, does its own work, and waits
-(:meth:`CompileAhead.wait`) before its first engine call, which then loads the machine code
-from the cache. What is computed does
-not change: the cached code is the code the caller would have compiled itself.
-
-Nothing is started when the cache already holds the engine, without numba (or with
-``DCFPB_DISABLE_NUMBA=1``), or with ``DCFPB_COMPILE_AHEAD=0``. If the second process fails,
-the caller compiles as it always did.
-"""
+Compiling on a cold numba cache takes most of a first run's time and is pure Python work, which
+a thread cannot overlap with the caller's work; a process can, on a second core.
+:func:`compile_ahead` starts ``python -m structures.compiled.ahead``, which compiles the engine
+and writes numba's disk cache (:func:`structures.compiled.engine.warm_up_late`, then ``warm_up``)
+while the caller compiles the bearings' trials (:meth:`CompileAhead.help`), does its own work
+and waits (:meth:`CompileAhead.wait`) before its first engine call, which then loads the same
+code it would have compiled. Nothing is started when the cache holds the engine, without numba
+(or with ``DCFPB_DISABLE_NUMBA=1``), or with ``DCFPB_COMPILE_AHEAD=0``; if the second process
+fails, the caller compiles itself."""
 
 from __future__ import annotations
 
@@ -38,13 +29,9 @@ _ENGINE_INDEX = "integrator.integrate-*.nbi"  # numba's index file of the engine
 
 
 def engine_in_cache() -> bool:
-    """Whether numba's disk cache seems to hold the engine already.
-
-    Looks for the engine's index file where numba keeps it: under ``NUMBA_CACHE_DIR`` when
-    that is set, else beside the source (``__pycache__``) or in the user-wide numba cache.
-    A stale entry (the source changed since) counts as present: the run then compiles as it
-    would have anyway.
-    """
+    """Whether numba's disk cache seems to hold the engine: its index file under
+    ``NUMBA_CACHE_DIR`` when set, else in ``__pycache__`` or the user-wide numba cache. A stale
+    entry counts as present (the run then compiles as it would have anyway)."""
     chosen = os.environ.get("NUMBA_CACHE_DIR", "")
     if chosen:
         return any(Path(chosen).glob(f"*/{_ENGINE_INDEX}"))
@@ -55,10 +42,7 @@ def engine_in_cache() -> bool:
 
 
 class CompileAhead:
-    """A handle on the compiling process (or on none); a context manager.
-
-    Leaving the ``with`` block stops the process if it is still running.
-    """
+    """A handle on the compiling process (or on none); leaving its ``with`` block stops it."""
 
     def __init__(self, process: subprocess.Popen | None) -> None:
         self.process = process
@@ -70,14 +54,9 @@ class CompileAhead:
         return self.process is not None
 
     def help(self) -> float:
-        """Compile here, meanwhile, the bearings' trials
-        (:func:`structures.compiled.engine.warm_up_early`), which the second process needs
-        only once it has compiled the rest of the engine's callees, so that it finds them in
-        the cache; return the time spent [s] (0 when no process was started).
-
-        Call it right after :func:`compile_ahead`, before this process's own work: both then
-        compile on their own core, and the second one sooner reaches the end.
-        """
+        """Compile the bearings' trials here (:func:`structures.compiled.engine.warm_up_early`)
+        for the second process to find in the cache; the time spent [s] (0 when no process
+        runs). Call it right after :func:`compile_ahead`, before this process's own work."""
         if self.process is None or self.process.poll() is not None:
             return 0.0
         from structures.compiled.engine import warm_up_early
@@ -85,10 +64,8 @@ class CompileAhead:
         return warm_up_early()
 
     def wait(self) -> bool:
-        """Block until the engine is compiled; return whether the process succeeded.
-
-        Returns True at once when no process was started.
-        """
+        """Block until the engine is compiled; whether the process succeeded (True at once
+        when none was started)."""
         if self.process is None:
             return True
         start = time.perf_counter()
@@ -115,13 +92,8 @@ class CompileAhead:
 
 
 def compile_ahead() -> CompileAhead:
-    """Start compiling the engine in a second process when that will help.
-
-    Returns
-    -------
-    CompileAhead
-        The handle; ``started`` is False when nothing needed compiling or numba is off.
-    """
+    """Start compiling the engine in a second process when that will help; the handle
+    (``started`` False when nothing needed compiling or numba is off)."""
     if os.environ.get("DCFPB_COMPILE_AHEAD", "1") == "0":
         return CompileAhead(None)
     if os.environ.get("DCFPB_DISABLE_NUMBA", "") not in ("", "0") or engine_in_cache():
@@ -147,12 +119,11 @@ def compile_ahead() -> CompileAhead:
 if __name__ == "__main__":  # the second process
     import gc
 
-    gc.set_threshold(50_000, 20, 20)  # numba's compilation: 1.5 -> 0.4 s of collections
+    gc.set_threshold(50_000, 20, 20)  # fewer collections while numba compiles
 
     from structures.compiled.engine import warm_up, warm_up_late
 
     warm_up_late()  # while the first process compiles the bearings' trials
     warm_up()
-    # numba's cache is written and its files closed: leave without the interpreter's teardown
-    # (its last collection and module cleanup: 0.1 to 0.5 s the first process would wait for)
+    # the cache is written: skip the teardown the first process would otherwise wait for
     os._exit(0)

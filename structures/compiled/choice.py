@@ -1,11 +1,5 @@
-"""Which engine runs a building: the compiled one when it can, else the readable reference.
-
-:func:`choose_engine` turns the ``engine`` argument (:data:`ENGINES`) and the reason the
-compiled engine cannot run a model (None when it can) into ``"compiled"`` or
-``"reference"``; :func:`unsupported` gives that reason for an isolated building (whether
-its bearing has a compiled form is :func:`isolator.compiled.packing.unsupported_reason`'s
-answer); :func:`select_engine` puts the two together.
-"""
+"""Which engine runs a building: the compiled one when it can, else the readable reference
+(:func:`select_engine`: :func:`choose_engine` on the reason :func:`unsupported` gives)."""
 
 from __future__ import annotations
 
@@ -34,12 +28,7 @@ def unsupported(model: object, method: object) -> str | None:
 def choose_engine(engine: str, reason: str | None, owner: str) -> str:
     """``"compiled"`` or ``"reference"``: the ``engine`` asked of ``owner`` (one of
     :data:`ENGINES`), given why the compiled one cannot run (``reason``; None when it can).
-
-    Raises
-    ------
-    ValueError
-        For an unknown ``engine``, or ``"compiled"`` with a ``reason``.
-    """
+    Raises ``ValueError`` for an unknown ``engine``, or ``"compiled"`` with a ``reason``."""
     check_choice(engine, "engine", owner, ENGINES)
     if engine == "compiled" and reason is not None:
         raise ValueError(f"The 'engine' parameter of {owner} is 'compiled' but {reason}; use "
@@ -50,6 +39,5 @@ def choose_engine(engine: str, reason: str | None, owner: str) -> str:
 
 
 def select_engine(engine: str, model: object, method: object, owner: str = "run") -> str:
-    """The engine of :func:`structures.analysis.run` (``owner``): :func:`choose_engine` on
-    :func:`unsupported`."""
+    """The engine of :func:`structures.analysis.run` (``owner``) for ``model``, ``method``."""
     return choose_engine(engine, unsupported(model, method), owner)

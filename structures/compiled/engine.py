@@ -1,15 +1,10 @@
 """The Python side of the compiled engine: pack a model's view, run it, unpack its histories.
 
 :func:`compiled_run` runs :func:`structures.compiled.integrator.integrate` on an
-:class:`~structures.compiled.view.EngineView` (a building in one direction or in plan)
-and returns the reference integrator's result, every bearing's record (``RECORD_FIELDS`` of
-:mod:`isolator.compiled.element`), the total restoring force, the times and the precise
-model's plate field. The failure contract is the reference's: a trial the element cannot
-evaluate ends the run with its message, a step below the heat kernel's shortest lag raises its
-``ValueError``, a time limit is looked at every ``CHUNK_STEPS`` steps, a step that does not
-converge ends the run with the integrator's message. :func:`compiled_history` is the same run
-of an isolated building in the form :func:`structures.analysis.run` reads.
-"""
+:class:`~structures.compiled.view.EngineView` and ends as the reference does: a trial the
+element cannot evaluate, or a step that does not converge, ends the run with its message; a
+step below the heat kernel's shortest lag raises its ``ValueError``. :func:`compiled_history` is
+the same run in the form :func:`structures.analysis.run` reads."""
 
 from __future__ import annotations
 
@@ -44,19 +39,13 @@ class CompiledRun(NamedTuple):
     ----------
     result : IntegrationResult
         Time, relative response, iterations, success and message.
-    record : ndarray, shape (nt, n_b, RECORD_SIZE)
-        Every bearing row's committed state at every step (one bearing of the row; the
-        columns of :data:`isolator.compiled.element.RECORD_FIELDS`, see :func:`bearing_fields`).
-    restoring : ndarray, shape (nt, n)
-        Total restoring force (storey springs + all bearings) [N, N m].
-    wall_time : float
-        Time spent integrating [s], compilation left out.
-    compile_time : float
-        Time spent compiling or loading the engine before the run [s]; 0.0 when this process
-        had it already.
+    record, restoring : ndarray
+        As :class:`structures.compiled.workspace.Outputs`, over the steps taken (the record's
+        fields: :func:`bearing_fields`).
+    wall_time, compile_time : float
+        Time integrating, and compiling or loading the engine first (0.0: already had) [s].
     plate : tuple of ndarray or None
-        The precise model's plate field at the end (positions (n_b, m, 2) [m], temperatures
-        (n_b, m) [degC], NaN-padded; on a line, the points along x), None for the others.
+        :func:`isolator.compiled.packing.plate_field` at the end (precise model only).
     """
 
     result: IntegrationResult
@@ -85,12 +74,10 @@ def time_limit_error(limit: float, time: float) -> TimeLimitExceeded:
 
 def run_in_chunks(function, arguments: tuple, nt: int, start: float,
                   time_limit: float | None, compile_first=None) -> bool:
-    """Run the compiled engine through the record: in one call, or, with a ``time_limit``
-    [s] from ``start`` (``perf_counter``), in calls of ``CHUNK_STEPS`` steps with a look at the
-    clock between them (the same arithmetic: see ``integrate``'s ``steps``). True when the
-    limit stopped it. ``arguments`` are the engine's groups, ``outputs`` (with its ``info``)
-    last; ``compile_first``, if given, is called when ``function`` is not compiled yet, so that
-    the limit is the run's own time."""
+    """Run ``function`` through the record: in one call, or with a ``time_limit`` [s] from
+    ``start`` (``perf_counter``) in calls of ``CHUNK_STEPS`` steps, looking at the clock between
+    them; True when the limit stopped it. ``arguments``: the engine's groups, ``outputs`` last;
+    ``compile_first()`` runs first when ``function`` is not compiled yet."""
     info = arguments[-1].info
     steps = np.array([1, nt if time_limit is None else 1], dtype=np.int64)
     if time_limit is None:
@@ -111,12 +98,9 @@ def run_in_chunks(function, arguments: tuple, nt: int, start: float,
 
 def run_outcome(info: np.ndarray, time: np.ndarray, timed_out: bool, time_limit: float | None,
                 tolerance: float, model_error) -> tuple[int, bool, str, float | None, str]:
-    """How a compiled run ended, from its ``info`` row: ``(last step, success, failure kind,
-    failed_at [s] or None, message)``, the reference integrator's.
-
-    ``model_error()`` gives the element's error (a ``CapacityExceeded``) when the status is
-    one of the element's (beyond ``NOT_CONVERGED``).
-    """
+    """How a compiled run ended, from its ``info``: ``(last step, success, failure kind,
+    failed_at [s] or None, message)`` as the reference's; ``model_error()`` gives the element's
+    error (``CapacityExceeded``) for its status codes (beyond ``NOT_CONVERGED``)."""
     status, last = int(info[W.STATUS]), int(info[W.LAST_STEP])
     success = status == E.SUCCESS and not timed_out
     failure, failed_at = "", None
@@ -150,8 +134,7 @@ def failure_message(info: np.ndarray, tolerance: float) -> str:
 
 
 def _model_error(info: np.ndarray, view: EngineView):
-    """The reference element's error for the engine's failure ``info`` (a ``ValueError``
-    raised here for a step below the heat kernel's shortest lag)."""
+    """The reference element's error for the failure in ``info`` (or its ``ValueError``)."""
     b = int(info[W.FAIL_BEARING])
     return trial_error(view.elements[b], int(info[W.STATUS]),
                        (float(info[W.FAIL_UX]), float(info[W.FAIL_UY])),
@@ -179,28 +162,24 @@ def compiled_run(view: EngineView, acceleration: np.ndarray, step: float,
     Parameters
     ----------
     view : EngineView
-        The model (:func:`structures.compiled.view.engine_view` of a fresh one); not changed.
+        The model (:func:`~structures.compiled.view.engine_view` of a fresh one); not changed.
     acceleration : ndarray, shape (nt, c)
-        Ground acceleration of the c horizontal components on the analysis steps [m/s^2].
+        Ground acceleration of the c horizontal components [m/s^2].
     step : float
         Analysis step [s].
-    method : Newmark or HHT
-        Integration method.
-    tolerance, max_iterations, max_subdivisions
-        As :func:`structures.integrators.integrate`.
+    method, tolerance, max_iterations, max_subdivisions
+        As :func:`structures.integrators.integrate` (Newmark or HHT).
     time_limit : float, optional
-        Wall-clock limit of the integration [s] (compilation left out): past it the run ends
-        with ``success=False``, failure ``"timeout"`` and the steps taken so far.
-    python : bool
-        Run the Python original of the loop (tests; slow).
-    with_plate : bool
-        Read the precise model's plate field at the end (``CompiledRun.plate``; else None).
+        Wall-clock limit [s], compilation left out: past it the run ends with
+        ``success=False``, failure ``"timeout"`` and the steps taken so far.
+    python, with_plate : bool
+        Run the Python original of the loop (tests; slow); read the precise model's plate
+        field at the end (else ``CompiledRun.plate`` is None).
 
     Raises
     ------
     ValueError
-        Where the reference element raises: a (sub-)step shorter than the heating kernel's
-        shortest lag.
+        For a (sub-)step shorter than the heating kernel's shortest lag, as the reference.
     """
     acceleration = np.array(acceleration, dtype=float, order="C")  # writable: one type
     nt, n = acceleration.shape[0], view.mass.shape[0]
@@ -247,10 +226,9 @@ def compiled_run(view: EngineView, acceleration: np.ndarray, step: float,
 def compiled_history(model, acceleration: np.ndarray, dt: float, method: Newmark | HHT, *,
                      tolerance: float, max_iterations: int = 25, max_subdivisions: int,
                      python: bool = False, time_limit: float | None = None) -> EngineHistory:
-    """:func:`compiled_run` of a fresh :class:`~structures.isolated_building.
-    IsolatedShearBuilding` through ``acceleration`` [m/s^2], (nt,) in one direction or (nt, 2)
-    in plan, every ``dt`` [s], as :func:`structures.analysis.run` reads an engine's history
-    (the arguments as :func:`compiled_run`)."""
+    """:func:`compiled_run` of a fresh isolated building through ``acceleration`` [m/s^2], (nt,)
+    in one direction or (nt, 2) in plan, every ``dt`` [s], as the history
+    :func:`structures.analysis.run` reads (the other arguments as :func:`compiled_run`)."""
     acceleration = np.asarray(acceleration, dtype=float)
     run = compiled_run(engine_view(model), acceleration.reshape(acceleration.shape[0], -1), dt,
                        method, tolerance=tolerance, max_iterations=max_iterations,
@@ -263,12 +241,8 @@ _WARMING_UP = False  # set while warm_up runs its own small model through the en
 
 
 def compile_engine() -> float:
-    """Compile the engine (or load it from numba's disk cache) unless this process has it.
-
-    Returns the time it took [s], 0.0 when there was nothing to do (without numba, or compiled
-    already). A run calls it before starting its clock, so that ``wall_time`` measures the
-    analysis alone and ``compile_time`` the one-off cost.
-    """
+    """Compile the engine (or load it from numba's disk cache) unless this process has it;
+    the time [s], 0.0 with nothing to do. A run calls it before starting its clock."""
     function = compiled.integrate
     if _WARMING_UP or not hasattr(function, "signatures") or function.signatures:
         return 0.0  # warming up already, plain Python (no numba), or compiled in this process
@@ -288,8 +262,7 @@ def _parts(late: bool) -> list:
         return [(E.set_trials, (0.0, np.zeros((1, E.MOTION_SIZE)), parameters, parameters,
                                 states, states, *heat))]
     pivots, vector = np.zeros(1, dtype=np.int32), np.zeros(1)
-    return [  # the commit last: by then the plate's functions it shares with the trials are
-        # in the cache (from the other process)
+    return [  # the commit last: the plate functions it shares with the trials are cached by then
         (linear.woodbury, (square, rows, rows, 1, 1.0, 1.0, vector, vector, rows)),
         (linear.effective_inverse, (1.0, square, square, square, 1.0, 1.0, 1.0, square,
                                     square, square, pivots)),
@@ -314,19 +287,14 @@ def _compile_parts(late: bool) -> float:
 
 def warm_up_early() -> float:
     """Compile (or load) the bearings' trials (:func:`isolator.compiled.element.set_trials`
-    and what it calls) for the engine's argument types; return the time [s].
-
-    The engine's compilation reaches them first; :mod:`structures.compiled.ahead` has this
-    process compile them while the second process compiles the rest of the engine's callees
-    (:func:`warm_up_late`) and then finds them in numba's cache for the engine itself.
-    """
+    and its callees) for the engine's argument types; the time [s]. See
+    :mod:`structures.compiled.ahead`."""
     return _compile_parts(False)
 
 
 def warm_up_late() -> float:
-    """Compile (or load) the engine's callees other than the bearings' trials (the commit,
-    the Woodbury solve, the inverse and the solve, the interpolation ...) for the engine's
-    argument types; return the time [s]. See :func:`warm_up_early`."""
+    """Compile (or load) the engine's callees other than the bearings' trials; the time [s].
+    See :func:`warm_up_early`."""
     return _compile_parts(True)
 
 

@@ -1,38 +1,20 @@
 """The compiled engine: a whole time-history run of an isolated building in one numba function.
 
-:func:`integrate` is the time loop of :func:`structures.integrators.integrate` on an isolated
-building: the Newmark / HHT-alpha Newton step with a ground acceleration of ``c`` horizontal
-components, the building's storey springs and dampers (:mod:`structures.compiled.workspace`'s
-``Model``) and its bearings, the compiled element of :mod:`isolator.compiled.element` at their
-plan positions with their axial loads per trial (the gravity share, times 1 + a_z / g with a
-vertical record, plus the overturning of the storey forces, with its consistent tangent), for
-the one model (:class:`~structures.isolated_building.IsolatedShearBuilding`): in one direction
-one DOF per level and one bearing row at (0, 0) standing for the ``n_bearings`` identical
-bearings (force and tangent times their number), moving along x under a constant load; in
-plan three DOFs per level (x, y, theta) and one row per bearing at its position.
+:func:`integrate` is the time loop of :func:`structures.integrators.integrate` for an
+:class:`~structures.isolated_building.IsolatedShearBuilding` (1 DOF per level, x, or 3: x, y,
+theta): Newmark / HHT-alpha Newton steps under ``c`` horizontal ground components, with the
+storey springs and dampers and the bearings of :mod:`isolator.compiled.element` at their plan
+positions (force and tangent times their multiplicity; axial load per trial: gravity times
+1 + a_z / g plus the overturning of the storey forces, with its consistent tangent).
 
-It mirrors the reference operation for operation, so the two agree to round-off: the same
-predictor, residual, force reference and convergence tests (the force residual and the Newton
-correction, both relative to ``tolerance``), the same depth-first step halving (an explicit
-stack instead of recursion) with the ground accelerations interpolated linearly and the
-bearings committed after each sub-step, the same trial / commit / revert semantics of every
-bearing and its heat.
-
-One thing is done differently, an exact rearrangement: the Newton matrix is the reference's
-``c0 M + (1 + alpha)(c1 (C + C_t) + K_t)``, and the bearings and the overturning change only
-the base slab's rows of it (1 or 3), so it is ``A + E X`` with
-``A = c0 M + (1 + alpha)(c1 C + K)`` constant for a step size (its inverse formed once per
-step size and halving depth by LAPACK, :mod:`structures.compiled.lapack`) and ``E`` the first
-unit columns: each iteration solves with the Woodbury formula (Sherman-Morrison for one
-column), O(n^2), instead of factorising the matrix.
-
-The loop allocates nothing (its work arrays come from Python,
-:func:`structures.compiled.workspace.new_workspace`), so it and the element are compiled
-without numba's reference counting (:func:`isolator.compiled.kernels.jit_unmanaged`): no
-count is taken of the arrays handed from call to call. Without numba, or with
-``DCFPB_DISABLE_NUMBA=1``, the same source runs as plain Python; ``integrate.py_func`` is the
-Python original of the loop. The Python side (the model's view, packing, messages, result) is
-:mod:`structures.compiled.engine`.
+It mirrors the reference operation for operation (predictor, residual, force reference,
+convergence tests, depth-first halving, trial / commit / revert of every bearing and its heat),
+so the two agree to round-off, with one exact rearrangement: the bearings and the overturning
+change only the base slab's rows (1 or 3) of the Newton matrix, ``A + E X`` with
+``A = c0 M + (1 + alpha)(c1 C + K)`` inverted once per step size and halving depth (LAPACK), so
+each iteration solves by the Woodbury formula, O(n^2). The loop allocates nothing, so it is
+compiled without reference counting (:func:`isolator.compiled.kernels.jit_unmanaged`);
+``integrate.py_func`` is its Python original.
 """
 
 from __future__ import annotations
@@ -55,19 +37,11 @@ __all__ = ["integrate"]
 def integrate(model, motion, settings, state, outputs, steps):
     """Integrate the isolated building through the record, from rest; fill the outputs.
 
-    ``steps`` = (first, end) takes the steps ``first .. end - 1``: (1, nt) is the whole run.
-    A call with ``first > 1`` resumes where the call that ended at ``first - 1`` stopped, from
-    the state it left in ``state`` (the same arithmetic as one call: the committed time and
-    ground acceleration are then ``time[first - 1]`` and ``ground[first - 1]``, exactly what
-    the step to ``first - 1`` committed). The groups are the NamedTuples of
-    :mod:`structures.compiled.workspace`; the committed bearing states must hold the elements
-    at rest before the first call.
-
-    Each (sub-)step is NewmarkStepper._solve: the predictor, then Newton iterations of the
-    restoring force (storey springs and dampers; the bearings at their trial loads), the
-    residual and the correction, until both tests pass; on success the committed rows move to
-    the new state and the bearings are committed; on failure the step is halved, down to
-    ``max_subdivisions`` halvings.
+    The groups are the NamedTuples of :mod:`structures.compiled.workspace`; the committed
+    bearing states must hold the elements at rest before the first call. ``steps`` (int64,
+    (2,)) = (first, end) takes the steps ``first .. end - 1``: (1, nt) is the whole run; a call
+    with ``first > 1`` resumes from ``state`` where the call ending at ``first - 1`` stopped,
+    with the same arithmetic as one call. Each (sub-)step is ``NewmarkStepper._solve``.
     """
     heat, ws = state.heat, state.workspace  # every array out of its group, once
     method, parameters, ptv, flags = settings.method, settings.parameters, settings.ptv, \

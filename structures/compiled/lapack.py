@@ -1,16 +1,8 @@
-"""The two dense solves of the compiled engine, as direct LAPACK calls.
-
-:func:`invert` and :func:`solve` are what ``np.linalg.inv`` and ``np.linalg.solve`` do inside
-numba (``dgetrf`` then ``dgetri``; ``dgesv``), through the same LAPACK entry points numba's own
-implementations call, so the results are the same bits. What they leave out is numba's
-generic front end (layout dispatch, finiteness checks, error strings), which cost about 5 s of
-the engine's one-off compilation and gave nothing the engine needs: its matrices are square,
-C-ordered, finite and small. The caller supplies the work arrays, so nothing is allocated.
-
-Without numba (or with ``DCFPB_DISABLE_NUMBA=1``) both fall back to ``numpy.linalg``, as the
-engine did before; that path agrees to round-off, not bit for bit (numpy's inverse is a
-``dgesv`` against the identity).
-"""
+"""The two dense solves of the compiled engine, as direct LAPACK calls: :func:`invert` and
+:func:`solve` call the routines behind numba's ``np.linalg.inv`` and ``np.linalg.solve``
+(``dgetrf``, ``dgetri``; ``dgesv``), to the same bits, without numba's generic front end (its
+checks cost compile time; the engine's matrices are small, square, C-ordered and finite). The
+caller supplies the work arrays. Without numba: ``numpy.linalg``, equal to round-off only."""
 
 from __future__ import annotations
 
@@ -41,24 +33,9 @@ if _LAPACK_CALLS:  # pragma: no cover - depends on the environment
 
     @jit_unmanaged
     def invert(matrix, inverse, work, pivots):
-        """``inverse <- matrix^-1`` by LU factorisation (LAPACK ``dgetrf``, ``dgetri``).
-
-        Parameters
-        ----------
-        matrix : ndarray, shape (n, n)
-            A non-singular matrix (not changed).
-        inverse : ndarray, shape (n, n)
-            Output.
-        work : ndarray, shape (n, n)
-            Work array (holds the matrix in Fortran order).
-        pivots : ndarray of int32, shape (n,)
-            Work array for the row interchanges.
-
-        Returns
-        -------
-        int
-            LAPACK's ``info``: 0 on success, > 0 for an exactly singular matrix.
-        """
+        """``inverse <- matrix^-1``, both (n, n), by LU factorisation (LAPACK ``dgetrf``,
+        ``dgetri``); ``matrix`` is not changed, ``work`` (n, n) and ``pivots`` (int32, (n,)) are
+        work arrays. Returns LAPACK's ``info``: 0 on success, > 0 for a singular matrix."""
         n = matrix.shape[0]
         for i in range(n):
             for j in range(n):
@@ -73,24 +50,9 @@ if _LAPACK_CALLS:  # pragma: no cover - depends on the environment
 
     @jit_unmanaged
     def solve(matrix, rhs, solution, work, pivots):
-        """``solution <- matrix^-1 rhs`` by LU factorisation (LAPACK ``dgesv``).
-
-        Parameters
-        ----------
-        matrix : ndarray, shape (n, n)
-            A non-singular matrix (not changed).
-        rhs : ndarray, shape (n,)
-            Right-hand side (not changed).
-        solution : ndarray, shape (n,)
-            Output.
-        work, pivots : ndarray, shape (n, n) and int32 (n,)
-            Work arrays, as for :func:`invert`.
-
-        Returns
-        -------
-        int
-            LAPACK's ``info``.
-        """
+        """``solution <- matrix^-1 rhs``, both (n,), by LU factorisation (LAPACK ``dgesv``);
+        ``matrix`` and ``rhs`` are not changed, ``work`` and ``pivots`` as for :func:`invert`.
+        Returns LAPACK's ``info``."""
         n = matrix.shape[0]
         for i in range(n):
             solution[i] = rhs[i]

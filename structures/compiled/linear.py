@@ -1,10 +1,7 @@
-"""The engine's small numerical pieces: the linear interpolation of a record at one time
-(numpy's ``interp`` for one point) and the Newton matrix: the bearings' blocks on the base
-slab's DOFs (:func:`add_block`), the inverse of the matrix without them for a step size
-(:func:`effective_inverse`) and the solve of the whole one by the Woodbury formula on it
-(:func:`woodbury`; with one DOF on the base slab, the Sherman-Morrison formula). Compiled
-functions of their own that the loop of :mod:`structures.compiled.integrator` calls.
-"""
+"""The engine's small compiled pieces: one-point linear interpolation of a record, and the
+Newton matrix: the bearings' blocks on the base slab (:func:`add_block`), the inverse without
+them for a step size (:func:`effective_inverse`), the Woodbury solve with them (:func:`woodbury`;
+Sherman-Morrison with one DOF on the base slab)."""
 
 from __future__ import annotations
 
@@ -72,10 +69,9 @@ def effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse, 
 @jit_unmanaged
 def woodbury(inverse, top_k, top_c, columns, weight, c1, residual, du, update):
     """du <- (A + E X)^-1 residual, A^-1 = ``inverse``, E the first ``columns`` (1 or 3) unit
-    columns and X = (1 + alpha)(c1 top_c + top_k) the base slab's rows the bearings add
-    (Woodbury: y - A^-1 E (I + X A^-1 E)^-1 X y, y = A^-1 r; with one column the
-    Sherman-Morrison formula). ``update`` is a (3, n) work array. False when I + X A^-1 E is
-    singular (the reference's singular Newton matrix)."""
+    columns, X = (1 + alpha)(c1 top_c + top_k) the base slab's rows the bearings add, by
+    y - A^-1 E (I + X A^-1 E)^-1 X y, y = A^-1 r. ``update`` is a (3, n) work array. False when
+    I + X A^-1 E is singular (the reference's singular Newton matrix)."""
     n = inverse.shape[0]
     for j in range(n):
         update[0, j] = weight * (c1 * top_c[0, j] + top_k[0, j])

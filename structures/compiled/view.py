@@ -1,13 +1,6 @@
 """What the compiled engine sees of a model: :class:`EngineView`, and :func:`engine_view` of an
-isolated building.
-
-The engine (:mod:`structures.compiled.engine`) reads a model through this small record only:
-the building's matrices, how the ground moves it, where its bearings are and how they are
-loaded, and the bearing with its reference elements (whose friction and heating objects
-:mod:`isolator.compiled.packing` packs). A building in one direction is the special case of
-one DOF per level, one bearing row at (0, 0) standing for its ``n_bearings`` identical
-bearings, no overturning.
-"""
+isolated building. A building in one direction is the special case of one DOF per level, one
+bearing row at (0, 0) standing for its ``n_bearings`` identical bearings, no overturning."""
 
 from __future__ import annotations
 
@@ -27,33 +20,24 @@ class EngineView(NamedTuple):
     Attributes
     ----------
     mass, damping, stiffness : ndarray, shape (n, n)
-        Mass [kg, kg m^2], superstructure damping [N s/m ...] and superstructure stiffness
-        (without the isolators) [N/m ...] on the levels' DOFs, the base slab's first.
+        Mass [kg, kg m^2], superstructure damping [N s/m ...] and stiffness (without the
+        isolators) [N/m ...] on the levels' DOFs, the base slab's first.
     influence : ndarray, shape (n, c)
         Influence of the c horizontal ground components [-] (c = 1: x only).
     level_dofs : int
         DOFs per level: 1 (x) or 3 (x, y and the rotation theta about the plan's origin).
-    positions : ndarray, shape (n_b, 2)
-        Plan position of each bearing row [m].
-    multiplicity : ndarray, shape (n_b,)
-        Identical bearings each row stands for [-]: its force and tangent count that many
-        times on the base slab.
-    gravity : ndarray, shape (n_b,)
-        Axial load of one bearing of each row at rest [N].
-    overturning : ndarray, shape (n_b, n)
-        Axial load per unit storey force ``K u + C v`` [-, 1/m] (zeros without overturning).
-    load_du, load_dv : ndarray, shape (n_b, n)
-        d N / d u [N/m] and d N / d v [N s/m] of the axial loads.
+    positions, multiplicity, gravity : ndarray, shape (n_b, 2), (n_b,), (n_b,)
+        Each bearing row's plan position [m], the identical bearings it stands for (its force
+        and tangent count that many times) and one bearing's axial load at rest [N].
+    overturning, load_du, load_dv : ndarray, shape (n_b, n)
+        Axial load per unit storey force ``K u + C v`` [-, 1/m] (zeros without overturning),
+        and its d N / d u [N/m] and d N / d v [N s/m].
     with_overturning : bool
         Whether the overturning acts on the axial loads.
     vertical : GroundMotion or None
-        Vertical ground acceleration [m/s^2], positive up (``time`` and ``acceleration``),
-        scaling the gravity loads by 1 + a_z / g; None for none.
-    bearing : DCFPBearing
-        The bearing of every row.
-    elements : tuple
-        The model's reference elements at rest, one per row (``BearingElement`` moving along x
-        or in two directions).
+        Vertical ground acceleration [m/s^2], positive up, scaling gravity by 1 + a_z / g.
+    bearing, elements : DCFPBearing, tuple
+        The bearing of every row; the model's reference elements at rest, one per row.
     """
 
     mass: np.ndarray
@@ -74,8 +58,7 @@ class EngineView(NamedTuple):
 
 
 def engine_view(model: IsolatedShearBuilding) -> EngineView:
-    """The :class:`EngineView` of an :class:`~structures.isolated_building.IsolatedShearBuilding`
-    (a fresh model: its bearings at rest)."""
+    """The :class:`EngineView` of a fresh isolated building (its bearings at rest)."""
     n = model.mass_matrix.shape[0]
     influence = np.asarray(model.influence, dtype=float).reshape(n, -1)
     return EngineView(

@@ -1,13 +1,8 @@
-"""The layout of the compiled engine's arrays and its five argument groups.
+"""The compiled engine's five argument groups and the layout of its arrays.
 
-:func:`structures.compiled.integrator.integrate` takes the building, the record, the constants,
-the carried state and the outputs as five NamedTuples (:class:`Model`, :class:`Motion`,
-:class:`Settings`, :class:`State`, :class:`Outputs`; numba types them as tuples, so the
-compiled function sees named fields at no cost per step), and indexes its arrays by the names
-defined here; :func:`new_workspace` allocates the work arrays in Python so that the compiled
-loop allocates nothing. The adapter :mod:`structures.compiled.engine` packs and reads the same
-names.
-"""
+:func:`structures.compiled.integrator.integrate` takes :class:`Model`, :class:`Motion`,
+:class:`Settings`, :class:`State` and :class:`Outputs` (numba types them as tuples: named fields
+at no cost per step) and indexes its arrays by the names defined here."""
 
 from __future__ import annotations
 
@@ -37,9 +32,8 @@ STOREY, DOF_ROWS = 15, 16
 # the step's start and end, and the (sub-)step's.
 GROUND_COMMITTED, GROUND_START, GROUND_END, GROUND_NOW = range(4)
 
-# Layout of the ``info`` array filled by the engine: status, the last committed step and, on
-# failure, where and why; the bearing whose trial failed, its trial displacement (x, y) [m]
-# and the frame of that trial.
+# Layout of the ``info`` array: status, last committed step and, on failure, where and why
+# (the bearing whose trial failed, its trial displacement (x, y) [m] and frame).
 STATUS, LAST_STEP, FAIL_TIME, FAIL_SUBSTEP, FAIL_DEPTH, FAIL_ITERATIONS, FAIL_RESIDUAL = range(7)
 FAIL_REFERENCE, FAIL_VALUE, FAIL_BEARING, FAIL_UX, FAIL_UY, FAIL_E1X, FAIL_E1Y = range(7, 14)
 INFO_SIZE = 14
@@ -51,21 +45,9 @@ INVERSES, INVERSE_STEPS, UPDATE, GROUND = range(13, 17)
 
 
 class Model(NamedTuple):
-    """The building, on the levels' DOFs, base slab first (1 per level: x; 3: x, y, theta).
-
-    Attributes
-    ----------
-    mass, damping, stiffness : ndarray, shape (n, n)
-        Mass [kg, kg m^2], superstructure damping and stiffness (no isolators) [N/m ...].
-    influence : ndarray, shape (n, c)
-        Influence of the c horizontal ground components [-].
-    overturning : ndarray, shape (n_b, n)
-        Axial load of each bearing per unit storey force [-, 1/m] (zeros without).
-    load_du, load_dv : ndarray, shape (n_b, n)
-        d N / d u [N/m] and d N / d v [N s/m] (``overturning @ K``, ``overturning @ C``).
-    vertical_time, vertical_acceleration : ndarray, shape (m,)
-        The vertical record [s], [m/s^2] (positive up; any two points without a vertical).
-    """
+    """The building: the fields of :class:`structures.compiled.view.EngineView` of the same
+    names (C-ordered floats), and the vertical record ``vertical_time`` [s],
+    ``vertical_acceleration`` [m/s^2], shape (m,), positive up (any two points without one)."""
 
     mass: np.ndarray
     damping: np.ndarray
@@ -86,20 +68,9 @@ class Motion(NamedTuple):
 
 
 class Settings(NamedTuple):
-    """The constants of the run.
-
-    Attributes
-    ----------
-    method : ndarray, shape (6,)
-        gamma, beta, alpha [-], tolerance [-], max_iterations, max_subdivisions (indexed by
-        ``GAMMA`` ... ``MAX_SUBDIVISIONS``).
-    parameters : ndarray, shape (n_b, PARAMETERS_SIZE)
-        One row per bearing (:mod:`isolator.compiled.element`), SI units.
-    ptv : ndarray, shape (n_b, PTV_PARAMETERS)
-        The friction constants per bearing (:func:`isolator.compiled.layout.pack_ptv`).
-    flags : ndarray, shape (FLAGS_SIZE,)
-        ``LEVEL_DOFS``, ``OVERTURNING``, ``VERTICAL``.
-    """
+    """The constants of the run: ``method`` (6,), gamma, beta, alpha, tolerance,
+    max_iterations, max_subdivisions (``GAMMA`` ...); ``parameters`` and ``ptv`` of
+    :class:`isolator.compiled.packing.CompiledBearings`; ``flags`` (``LEVEL_DOFS`` ...)."""
 
     method: np.ndarray
     parameters: np.ndarray
@@ -108,9 +79,8 @@ class Settings(NamedTuple):
 
 
 class State(NamedTuple):
-    """What the engine carries from step to step and from call to call (changed in place):
-    ``heat`` (:class:`isolator.compiled.plate.PlateHeat`) and ``workspace``
-    (:func:`new_workspace`)."""
+    """What the engine carries between steps and calls, changed in place: ``heat``
+    (:class:`isolator.compiled.plate.PlateHeat`) and ``workspace`` (:func:`new_workspace`)."""
 
     heat: PlateHeat
     workspace: tuple
@@ -124,8 +94,8 @@ class Outputs(NamedTuple):
     displacement, velocity, acceleration : ndarray, shape (nt, n)
         Relative response [m, rad], [m/s, rad/s], [m/s^2, rad/s^2].
     record : ndarray, shape (nt, n_b, RECORD_SIZE)
-        Each bearing's committed state (columns of
-        :data:`isolator.compiled.element.RECORD_FIELDS`), one bearing of its row.
+        Each row's committed state, one bearing of it (columns:
+        :data:`isolator.compiled.element.RECORD_FIELDS`).
     restoring : ndarray, shape (nt, n)
         Storey springs plus all bearings on the base slab [N, N m].
     iterations, subdivisions : ndarray of int64, shape (nt - 1,)
@@ -145,18 +115,9 @@ class Outputs(NamedTuple):
 
 
 def new_workspace(n: int, components: int, n_bearings: int, max_subdivisions: int) -> tuple:
-    """The engine's work arrays for ``n`` DOFs, ``components`` ground components,
-    ``n_bearings`` bearing rows and ``max_subdivisions`` halvings, indexed by ``COMMITTED`` ...
-    ``GROUND``.
-
-    Allocated here, in Python, so that the compiled loop allocates nothing: the bearings'
-    committed and trial states (n_b, STATE_SIZE), the halving stack, the ``dofs`` rows, the
-    Newton matrix and LAPACK's work (n, n) and pivots (int32), M r (n, c), the rows of the base
-    slab's DOFs (3, n) the bearings add to the tangent in stiffness and damping, each row's
-    trial motion and axial load (n_b, MOTION_SIZE), ``A^-1`` per halving depth
-    (depth + 1, n, n) with the step it was formed for (-1: none yet), the Woodbury update's
-    work (3, n) and the ground rows (4, c).
-    """
+    """The engine's work arrays (indexed by ``COMMITTED`` ... ``GROUND``) for ``n`` DOFs,
+    ``components`` ground components, ``n_bearings`` rows and ``max_subdivisions`` halvings,
+    made in Python so that the compiled loop allocates nothing."""
     depths = max_subdivisions + 2
     return (np.zeros((n_bearings, STATE_SIZE)), np.zeros((n_bearings, STATE_SIZE)),
             np.zeros(depths), np.zeros(depths), np.zeros(depths, dtype=np.int64),
