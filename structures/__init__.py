@@ -1,12 +1,8 @@
-"""Structures layer: the shear building on its isolators, in one direction or in plan, the
-integrators, the analysis and its results, building files, the fixed base and floor spectra;
-below it the compiled engine (:mod:`structures.compiled`), above it the workflows
-:mod:`structures.opensees` (the OpenSees twin), :mod:`structures.suites` (Dask suites) and
-:mod:`structures.diagnosis` (the building-level diagnosis adapter).
+"""Structures layer: the shear building on its isolators, in one direction or in plan, its
+integration, results, building files, fixed base and floor spectra (engine:
+:mod:`structures.compiled`; workflows: :mod:`structures.opensees`, :mod:`structures.suites`,
+:mod:`structures.diagnosis`). The names in ``__all__`` are imported on first use::
 
-The names in ``__all__`` are imported on first use (the engine imports numba and xarray)::
-
-    import structures
     result = structures.run("examples/five_storey.toml", "record.at2", model="precise")
     print(structures.peaks(result))
 """

@@ -1,16 +1,11 @@
-"""Time-history analysis of a shear building on DCFPB isolators under a ground motion: one
-record for a building in one direction, a pair (x, y and optionally a vertical) for a building
-in plan.
+"""Time-history analysis of a shear building on DCFPB isolators: under one record in one
+direction, under a pair (x, y and optionally a vertical) in plan.
 
-:func:`run` builds the dynamic model (:class:`~structures.isolated_building.IsolatedShearBuilding`),
-integrates it with Newmark or HHT-alpha, records every bearing position at each committed step
-and returns an ``xarray.Dataset`` (:func:`structures.results.response_dataset`) with the energy
-balance. :func:`peaks` reduces it to the numbers engineers look at first.
-
-Two engines give the same result: :func:`reference_history`, the integrator of
-:mod:`structures.integrators` on the model objects (the readable specification), and the
-compiled engine of :mod:`structures.compiled` (the same algorithm as one numba function),
-which ``run`` uses whenever it can.
+:func:`run` integrates :class:`~structures.isolated_building.IsolatedShearBuilding` with Newmark
+or HHT-alpha on one of two engines giving the same result, :func:`reference_history` (the
+integrators on the model objects: the specification) or :mod:`structures.compiled` (the same
+algorithm in numba), and returns the Dataset of :func:`structures.results.response_dataset`;
+:func:`peaks` reduces it to the numbers engineers look at first.
 """
 
 from __future__ import annotations
@@ -39,9 +34,8 @@ from structures.results import (
 from structures.shear_building import ShearBuilding
 
 DEFAULT_MAX_STEP = 0.005
-"""Largest default analysis step [s]: the step of the example building file, at which the
-bearing's EDC and temperature have converged to 0.1 % and 0.2 degC
-(tests/verification/test_time_step_convergence.py) and the building agrees with OpenSees."""
+"""Largest default analysis step [s], at which the bearing's EDC and temperature converge to
+0.1 % and 0.2 degC (tests/verification/test_time_step_convergence.py)."""
 
 
 def default_step(record_dt: float) -> float:
@@ -51,9 +45,8 @@ def default_step(record_dt: float) -> float:
 
 
 def resampled_record(motion: GroundMotion, dt: float | None) -> tuple[np.ndarray, float]:
-    """The record on the analysis step ``dt`` (None: :func:`default_step`): the record's own,
-    or a finer one by linear interpolation (exact for the piecewise-linear record the
-    integrators assume)."""
+    """The record on the analysis step ``dt`` (None: :func:`default_step`) [s]: its own, or a
+    finer one interpolated linearly (exact for the piecewise-linear record integrated)."""
     if dt is None:
         dt = default_step(motion.dt)
     if abs(dt - motion.dt) <= 1e-12 * motion.dt:
@@ -80,9 +73,8 @@ def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, st
                       max_iterations: int = 25, max_subdivisions: int,
                       time_limit: float | None = None) -> EngineHistory:
     """The reference engine: :func:`integrate` on the model, recording every bearing position
-    at each committed step (the arguments as
-    :func:`structures.compiled.engine.compiled_history`; the ``time_limit`` [s] is checked
-    after every step)."""
+    at each committed step; arguments as :func:`structures.compiled.engine.compiled_history`
+    (``time_limit`` [s] checked after every step)."""
     nt, positions = acceleration.shape[0], len(model.elements)
     record = {name: np.zeros((nt, positions, size) if size else (nt, positions))
               for name, size in BEARING_RECORD.items()}
@@ -123,8 +115,8 @@ def reference_history(model: IsolatedShearBuilding, acceleration: np.ndarray, st
 
 
 def compile_kernels() -> float:
-    """Compile the friction and heating kernels the reference element calls, unless this
-    process has them; the time it took [s] (kept out of the run's ``wall_time``)."""
+    """Compile the friction and heating kernels of the reference element unless this process
+    has them; return the time it took [s] (kept out of the run's ``wall_time``)."""
     from isolator.compiled.kernels import ptv_trial, warm_up
 
     if not getattr(ptv_trial, "signatures", True):  # numba, nothing compiled yet
@@ -158,41 +150,34 @@ def run(
     building : ShearBuilding
         The superstructure and base slab; with a plan, the building in plan.
     bearing : DCFPBearing
-        The bearing of every position; its axial load becomes the building's weight shared by
-        the bearings (see :class:`~structures.isolated_building.IsolatedShearBuilding`).
+        The bearing of every position; its axial load becomes the position's share of the
+        weight (:class:`~structures.isolated_building.IsolatedShearBuilding`).
     motion : GroundMotion or GroundMotionPair
-        Ground acceleration [m/s^2] (scale it first with ``motion.scaled``): one record for a
-        building in one direction; a pair (x and y of the plan, optionally a vertical z,
-        positive up) for a building in plan.
+        Ground acceleration [m/s^2] (scale it first with ``motion.scaled``): one record in one
+        direction; in plan a pair (x and y of the plan, optionally a vertical z, positive up).
     integrator : {"newmark", "hht"} or Newmark or HHT
         Time integration method (default Newmark average acceleration).
     n_bearings : int, optional
         Identical bearings sharing the weight in one direction (default 1); in plan, the
         plan's positions (leave it out).
     dt : float, optional
-        Analysis step [s], at most the record's (finer steps interpolate the record linearly).
-        Default: the record's step divided into the fewest equal parts of at most 5 ms
-        (:func:`default_step`).
+        Analysis step [s], at most the record's (a finer one interpolates the record linearly);
+        default :func:`default_step`.
     tolerance, max_subdivisions
         Passed to :func:`structures.integrators.integrate`.
     engine : {"auto", "compiled", "reference"}
-        ``"reference"``: :func:`structures.integrators.integrate` on the model objects (the
-        specification); ``"compiled"``: the same algorithm as one numba function;
-        ``"auto"`` (default): the compiled engine whenever numba is available and it supports
-        the configuration. Both give the same Dataset.
+        ``"reference"`` (:func:`reference_history`), ``"compiled"``, or ``"auto"`` (default):
+        the compiled engine whenever numba is available and supports the configuration.
     floor_spectra : bool
-        Add the 5 %-damped floor response spectra per direction and the record's spectrum
-        (:func:`structures.floor_spectra.with_floor_spectra`: ``floor_spectrum``,
-        ``ground_spectrum``, coordinate ``period``).
+        Add the 5 %-damped floor and ground spectra
+        (:func:`structures.floor_spectra.with_floor_spectra`).
     time_limit : float, optional
-        Wall-clock limit of the integration [s] (compiling the engine is not counted). Past
-        it the run ends as a failure (``failure = "timeout"``) with the histories so far:
-        the reference engine looks at the clock after every step, the compiled one after
-        every ``CHUNK_STEPS`` steps. Default: none.
+        Wall-clock limit of the integration [s], compilation not counted (default none): past
+        it the run fails, ``"timeout"``, checked after every step (reference) or every
+        ``CHUNK_STEPS`` steps (compiled).
     max_steps : int
-        Most time steps the run may take (default 2,000,000, see :mod:`isolator.limits`):
-        a longer run, or one whose histories would not fit in the memory available, is
-        refused before anything is allocated (:func:`structures.limits.check_run`).
+        Most time steps (default 2,000,000, :mod:`isolator.limits`): a longer run, or one too
+        large for memory, is refused first (:func:`structures.limits.check_run`).
     overturning : bool
         In plan, load the bearings with the overturning moment of the floors' inertia forces
         (needs the plan's ``storey_heights``). Default True.
@@ -202,16 +187,11 @@ def run(
     Returns
     -------
     xarray.Dataset
-        See :func:`structures.results.response_dataset`. Attributes describe the model and the
-        run, including ``success``, ``message``, ``energy_balance_error`` and ``engine``.
-
-        A run that fails ends there, for every friction model and both engines alike: a
-        bearing beyond its ``displacement_capacity`` (a committed step past it, or a trial
-        the precise model's monitor points no longer cover), a step that does not converge,
-        or the ``time_limit``. The Dataset then holds the histories up to the failure, with
-        ``success = 0``, the reason in ``message``, ``failure`` (``"capacity"``,
-        ``"convergence"``, ``"timeout"``, ``"model"``), ``failed_at`` [s] and
-        ``peaks_up_to_failure = 1``.
+        :func:`structures.results.response_dataset`, with ``attrs`` describing the model and
+        the run (``success``, ``message``, ``energy_balance_error``, ``engine``...). A run
+        that fails (a bearing beyond its ``displacement_capacity`` or outside the precise
+        model's monitor points, no convergence, the ``time_limit``) ends there, for every
+        friction model and both engines: see the Notes of ``response_dataset``.
     """
     pair = isinstance(motion, GroundMotionPair)
     if not isinstance(building, ShearBuilding):
@@ -266,24 +246,21 @@ def _resultant(values: np.ndarray) -> np.ndarray:
 
 
 def peaks(result) -> dict[str, Any]:
-    """Peak responses of a run (SI units) and the run's bookkeeping.
-
-    The peaks are those of the histories the Dataset holds: for a failed run, up to the
-    failure, which the keys ``peaks_up_to_failure`` (bool), ``failed_at`` (time [s], None
-    for a run that finished) and ``failure`` (the reason's kind, ``""`` for none) say.
+    """Peak responses of a run [SI units] and its bookkeeping, over the histories the Dataset
+    holds (for a failed run, up to the failure).
 
     Returns
     -------
     dict
-        ``peak_isolator_displacement`` [m], the largest (resultant) displacement of any
-        bearing; ``peak_base_shear`` [N], resultant; ``max_temperature`` [degC], the highest
-        contact temperature of any bearing; in one direction ``peak_roof_acceleration``
-        [m/s^2], absolute, and ``peak_storey_drift`` [m], over the storeys; in plan instead
-        ``peak_roof_acceleration_x``/``_y`` and ``peak_storey_drift_x``/``_y``, and
-        ``peak_centre_displacement`` [m] (the base slab at the plan's reference point),
-        ``corner_bearing`` (the index of the bearing with the largest displacement) and
-        ``peak_base_rotation`` [rad]; then ``energy_balance_error``, ``steps``,
-        ``wall_time`` [s], ``peaks_up_to_failure``, ``failed_at`` [s], ``failure``.
+        ``peak_isolator_displacement`` [m] (resultant, any bearing), ``peak_base_shear`` [N]
+        (resultant), ``max_temperature`` [degC] (contact, any bearing); in one direction
+        ``peak_roof_acceleration`` [m/s^2] (absolute) and ``peak_storey_drift`` [m]; in plan
+        ``peak_roof_acceleration_x``/``_y``, ``peak_storey_drift_x``/``_y``,
+        ``peak_centre_displacement`` [m] (the base slab at the reference point),
+        ``corner_bearing`` (index of the bearing of largest displacement) and
+        ``peak_base_rotation`` [rad]; then ``energy_balance_error``, ``steps``, ``wall_time``
+        [s], ``peaks_up_to_failure`` (bool), ``failed_at`` [s] (None for a run that finished)
+        and ``failure`` (its kind, ``""`` for none).
     """
     reach = _resultant(result["bearing_displacement"].values).max(axis=0)
     roof = np.abs(result["absolute_acceleration"].isel(floor=-1).values).max(axis=0)

@@ -1,9 +1,6 @@
-"""A building and its isolators from a TOML file (see ``examples/five_storey.toml``).
-
-One place turns the file into the objects every workflow uses (single runs, suites, the
-OpenSees comparison), so that they all build the same model. Every value is checked first by
-:mod:`structures.config_schema` (types, ranges, unknown keys, so that a typo never falls back to
-a default; settings without effect are warned about), then the objects are built.
+"""A building and its isolators from a TOML file (see ``examples/five_storey.toml``): the one
+place every workflow (single runs, suites, the OpenSees comparison) builds its model from, once
+:mod:`structures.config_schema` has checked every value.
 """
 
 from __future__ import annotations
@@ -33,10 +30,9 @@ MAX_FILE_BYTES = 10_000_000
 
 @dataclass(frozen=True)
 class BuildingConfig:
-    """Everything a run needs besides the ground motion: the ``building`` (with the plan of a
-    file with a ``[plan]`` table, a building in plan; none otherwise), the number and geometry of
-    its bearings, their friction parameters, the integrator and the analysis step ``dt`` [s]
-    (None: the record's)."""
+    """Everything a run needs besides the ground motion: the ``building`` (in plan for a file
+    with a ``[plan]`` table), its bearings' number and geometry, their friction parameters, the
+    integrator and the analysis step ``dt`` [s] (None: the record's)."""
 
     name: str
     building: ShearBuilding
@@ -52,8 +48,7 @@ class BuildingConfig:
         return self.building.plan
 
     def bearing(self, model: str | None = None) -> DCFPBearing:
-        """One bearing with the friction ``model`` (default: the file's), loaded by W / count
-        [N]."""
+        """One bearing with the friction ``model`` (default: the file's), loaded by W / n [N]."""
         model = check_choice(model or self.friction["model"], "model", "BuildingConfig", MODELS)
         load = self.building.weight / self.n_bearings
         area = math.pi * (0.5 * self.bearing_geometry["slider_diameter"]) ** 2
@@ -140,16 +135,14 @@ def _build(tables: dict[str, dict], path: Path) -> BuildingConfig:
 
 
 def load_config(path: str | Path) -> BuildingConfig:
-    """Read a building file (TOML, UTF-8; see ``examples/five_storey.toml``) into a
-    :class:`BuildingConfig`.
+    """Read a building file (TOML, UTF-8) into a :class:`BuildingConfig`.
 
     Raises
     ------
     ConfigError
-        An :class:`~dcfpb.common.errors.InputError`, for anything wrong with the file: missing,
+        An :class:`~dcfpb.common.errors.InputError` for anything wrong with the file: missing,
         not UTF-8, not TOML, an unknown or missing key, a value of the wrong type or outside its
-        range (the file, section and key named with what is allowed), or a combination the model
-        objects refuse.
+        range (file, section and key named), or a combination the model objects refuse.
 
     Warns
     -----

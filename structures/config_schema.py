@@ -1,36 +1,15 @@
-"""The building file's schema: every section and key, its TOML type and its allowed range, the
-optional ``[plan]`` table of a building in plan included.
+"""The building file's schema: every section and key, its TOML type and allowed range
+(:data:`SCHEMA`; :data:`PLAN_SCHEMA` for the ``[plan]`` table of a building in plan, as in
+``examples/five_storey_plan.toml``).
 
-:func:`check_tables` checks every value of a building file's table (read by
-:func:`structures.config.read_toml`) before any object is built: numbers are numbers (``true``
-and ``"6"`` are not), integers are integers (``2.7`` and ``true`` are not), arrays hold what
-they should (no nested arrays or tables where numbers belong), each value lies in its range,
-and every friction parameter is checked whatever model the file chooses, since ``--model`` and
-suites run the others. Every error is a :class:`ConfigError` naming the file, the section and
-the key, the allowed type and range and the value given::
-
-    five_storey.toml: [bearing] 'count' must be an integer in [1, 10000]. Got 2.7 (a float)
-    instead.
-
-A setting that does not apply to the chosen integrator or damping (``alpha`` under Newmark,
-``modes`` under modal damping) is accepted with a :class:`ConfigWarning` saying it is ignored.
-
-A building file with a ``[plan]`` table (:func:`check_plan`, :class:`structures.plan.Plan`)
-describes a building in plan; without one the building moves in one direction::
-
-    [plan]
-    # Bearing positions (x, y) from the centre of stiffness [m]; at least 3, not on a line.
-    bearing_coordinates = [[-6.0, -5.0], [6.0, -5.0], [6.0, 5.0], [-6.0, 5.0]]
-    # Centre of mass of the floors (e_x, e_y) [m]: one pair, or one per floor.
-    eccentricity = [1.2, 0.0]
-    # Plan dimensions (a, b) along x and y [m]: the default inertias m (a^2 + b^2) / 12 and
-    # torsional stiffnesses (k_x b^2 + k_y a^2) / 12.
-    dimensions = [12.0, 10.0]
-    # Storey heights [m], one for all or one per storey: the overturning's lever arms.
-    storey_heights = 3.5
-
-The other keys, with their units, are those of :data:`PLAN_SCHEMA`; ``[bearing] count``, if
-given, must equal the number of bearing coordinates.
+:func:`check_tables` and :func:`check_plan` check every value before any object is built:
+numbers are numbers (not ``true`` or ``"6"``), integers are integers (not ``2.7`` or ``true``),
+arrays hold numbers, values lie in their ranges, and every friction parameter is checked
+whatever model the file chooses (``--model`` and suites run the others). An error is a
+:class:`ConfigError` naming the file, section, key, what is allowed and the value given, e.g.
+``five_storey.toml: [bearing] 'count' must be an integer in [1, 10000]. Got 2.7 (a float)
+instead.`` A setting without effect (``alpha`` under Newmark, ``modes`` under modal damping) is
+accepted with a :class:`ConfigWarning`.
 """
 
 from __future__ import annotations
@@ -201,8 +180,7 @@ class Text:
 
 @dataclass(frozen=True)
 class Array:
-    """An array of ``item`` values, ``length`` of them or between ``min_length`` and
-    ``max_length``."""
+    """An array of ``item`` values: ``length`` of them, or ``min_length`` to ``max_length``."""
 
     item: Number | Integer
     min_length: int = 1
@@ -380,13 +358,12 @@ def _building(b: dict[str, Any], path: Path) -> None:
 def check_tables(raw: dict[str, Any], path: Path) -> dict[str, dict[str, Any]]:
     """Check a building file's table against :data:`SCHEMA` and the rules between its keys;
     return ``{section: table}`` for ``""``, ``"building"``, ``"building.damping"``,
-    ``"bearing"``, ``"friction"`` and ``"analysis"`` (absent ones empty), the values as the file
-    gives them.
+    ``"bearing"``, ``"friction"`` and ``"analysis"`` (absent ones empty), values as given.
 
     Raises
     ------
     ConfigError
-        Naming the file, the section, the key, what is allowed and the value given.
+        For a key or value the schema refuses (module docstring).
 
     Warns
     -----
@@ -476,17 +453,15 @@ _PER_STOREY = ("floor_inertias", "storey_stiffnesses_y", "torsional_stiffnesses"
 
 def check_plan(raw: dict[str, Any], n_storeys: int, bearing: dict[str, Any],
                path: Path) -> dict[str, Any] | None:
-    """Check the ``[plan]`` table of a building file's whole table ``raw`` (None when it has
-    none) against :data:`PLAN_SCHEMA`, for the ``n_storeys`` floors of ``[building]`` (a
-    per-storey key holds one value each) and the checked ``[bearing]`` table (its ``count`` must
-    match the coordinates); ``path`` names the file in the messages.
+    """Check the ``[plan]`` table of a building file's table ``raw`` against :data:`PLAN_SCHEMA`
+    (None when there is none), for the ``n_storeys`` floors of ``[building]`` and the checked
+    ``[bearing]`` table, whose ``count`` must match the coordinates; ``path`` names the file.
 
     Raises
     ------
     ConfigError
-        Naming the file, ``[plan]``, the key, what is allowed and the value given: an unknown or
-        missing key, a value of the wrong kind or outside its range, a per-storey key of another
-        length.
+        For an unknown or missing key, a value of the wrong kind or outside its range, or a
+        per-storey key of another length (module docstring).
     """
     if "plan" not in raw:
         return None

@@ -1,10 +1,7 @@
-"""Energy balance of a time-history run in the relative frame of the ground, for a building in
-one direction or in plan.
-
-Every term is a work integral over the displacement increments of each step by the trapezoid
-rule, the identity the average-acceleration Newmark method satisfies: for gamma = 1/2,
-beta = 1/4 the balance closes to round-off, for linear, nonlinear and hysteretic restoring
-forces alike; under HHT-alpha the closure error is the method's numerical dissipation.
+"""Energy balance of a time-history run in the relative frame of the ground, in one direction or
+in plan. Each term is a trapezoidal work integral over the steps' displacement increments, the
+identity average-acceleration Newmark satisfies (closure to round-off for any restoring force;
+under HHT-alpha the error is the method's numerical dissipation)::
 
     input    E_I = sum du . (p_n + p_n+1) / 2,          p = -M R a_g
     kinetic  E_K = v . M v / 2                            (relative velocity)
@@ -13,8 +10,7 @@ forces alike; under HHT-alpha the closure error is the method's numerical dissip
     friction E_F = sum over the bearings of sum du_i . (F_f,i,n + F_f,i,n+1) / 2
     error = E_I - (E_K + E_D + E_S + E_F)
 
-with ``du_i`` the displacement increment of bearing ``i`` and ``F_f,i`` its friction force, so
-that the friction work is counted where it is done, torsion included.
+with ``du_i`` and ``F_f,i`` the displacement increment and friction force of bearing ``i``.
 """
 
 from __future__ import annotations

@@ -1,14 +1,9 @@
 """The same superstructure on a fixed base: the reference an isolation system is judged against.
 
-:func:`run_fixed_base` computes the linear response of a :class:`ShearBuilding` standing on the
-ground (no base slab, no isolators) by modal superposition: its damping is classical (Rayleigh
-or modal), so each fixed-base mode is an oscillator, solved with the exact recurrence of
-:mod:`groundmotions.spectra` (no integration error for the piecewise-linear record). The result
-holds the variables of :func:`structures.analysis.run` that describe the superstructure, so that
-the two compare through :func:`superstructure_peaks` and :func:`ratios_to_fixed_base`. Floor 0
-is the ground level: it moves with the ground (relative displacement 0, absolute acceleration
-a_g); the base shear is the first-storey shear, the sum of the inertia forces of the floors
-above.
+:func:`run_fixed_base` gives the linear response of a :class:`ShearBuilding` on the ground (no
+base slab, no isolators) by superposing its classically damped modes, each solved by the exact
+recurrence of :mod:`groundmotions.spectra`; :func:`superstructure_peaks` and
+:func:`ratios_to_fixed_base` compare it with an isolated run.
 
 References
 ----------
@@ -59,25 +54,23 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion | GroundMotionP
     Parameters
     ----------
     building : ShearBuilding
-        The superstructure (its base slab is no part of the fixed-base building), in one
-        direction or in plan.
+        The superstructure (its base slab is no part of it), in one direction or in plan.
     motion : GroundMotion or GroundMotionPair
-        Ground acceleration [m/s^2] (scale it first with ``motion.scaled``): one record in one
-        direction, a pair (x, y; a vertical is left out) in plan.
-    dt : float, optional
-        Output step [s], at most the record's; a finer one interpolates the record linearly, as
-        :func:`structures.analysis.run` does, so that the two share a time axis.
-    max_steps : int
-        Most time steps the run may take, as in :func:`structures.analysis.run`.
+        Ground acceleration [m/s^2]: one record in one direction, a pair (x, y; a vertical is
+        left out) in plan.
+    dt, max_steps : float, int, optional
+        Output step [s] and most time steps, as in :func:`structures.analysis.run` (so that the
+        two share a time axis).
 
     Returns
     -------
     xarray.Dataset
-        The layout of :func:`structures.results.response_dataset` for the superstructure (floor 0
-        the ground level): ``displacement``, ``velocity``, ``absolute_acceleration``,
-        ``storey_drift``, ``storey_shear``, ``base_shear``, ``ground_acceleration`` and, in plan,
-        ``rotation`` and ``storey_twist``; attributes ``configuration = "fixed base"``, the
-        record, ``dt``, the modal periods and damping ratios, ``success`` and ``wall_time``.
+        The layout of :func:`structures.results.response_dataset` for the superstructure:
+        ``displacement``, ``velocity``, ``absolute_acceleration`` (floor 0, the ground level,
+        moves with the ground), ``storey_drift``, ``storey_shear``, ``base_shear`` (the
+        first-storey shear), ``ground_acceleration`` and, in plan, ``rotation`` and
+        ``storey_twist``; attributes ``configuration = "fixed base"``, the record, ``dt``, the
+        modal periods and damping ratios, ``success`` and ``wall_time``.
 
     Raises
     ------
@@ -201,7 +194,6 @@ def superstructure_peaks(result) -> dict[str, float]:
 
 
 def ratios_to_fixed_base(result, fixed_base) -> dict[str, float]:
-    """Each of :func:`superstructure_peaks` of ``result`` over the same peak of ``fixed_base``
-    [-]: below 1 where the isolation reduces the response, above 1 where it amplifies it."""
+    """Each of :func:`superstructure_peaks` of ``result`` over that of ``fixed_base`` [-]."""
     isolated, fixed = superstructure_peaks(result), superstructure_peaks(fixed_base)
     return {name: isolated[name] / fixed[name] for name in isolated}

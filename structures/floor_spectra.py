@@ -1,15 +1,11 @@
 """Floor response spectra: what the contents of each floor feel, beside what the ground does.
 
-Equipment and non-structural parts are designed from the 5 %-damped pseudo-acceleration
-spectrum of the floor they stand on. :func:`with_floor_spectra` adds to the Dataset of a run
-(:func:`structures.analysis.run` or :func:`structures.fixed_base.run_fixed_base`), in each
-direction the building moves in, ``floor_spectrum`` (floor, direction, period) [m/s^2], Sa of
-each floor's absolute acceleration on the run's time step, and ``ground_spectrum`` (direction,
-period) [m/s^2], Sa of the record as read on its own time step (what ``dcfpb spectrum``
-gives). Both come from the exact recurrence of :mod:`groundmotions.spectra`, all floors in one
-pass. At period 0 a spectrum is the peak absolute acceleration: the peak floor acceleration, or
-the PGA. Peaks are taken at the samples, so for periods below a few time steps (the record's
-step for the ground) a spectrum can miss a peak between them.
+:func:`with_floor_spectra` adds to a run's Dataset (:func:`structures.analysis.run` or
+:func:`structures.fixed_base.run_fixed_base`) the 5 %-damped pseudo-acceleration spectra of each
+floor's absolute acceleration and of the record, by the exact recurrence of
+:mod:`groundmotions.spectra`. At period 0 a spectrum is the peak absolute acceleration (peak
+floor acceleration, or PGA); peaks are taken at the samples, so for periods below a few time
+steps a spectrum can miss a peak between them.
 """
 
 from __future__ import annotations
@@ -31,8 +27,7 @@ FLOOR_SPECTRUM_DAMPING = 0.05
 
 
 def _histories(result) -> np.ndarray:
-    """The absolute acceleration of every floor in every direction as columns (time, floor *
-    direction), floor by floor [m/s^2]."""
+    """Every floor's absolute acceleration per direction as columns (time, floor * direction)."""
     acceleration = np.asarray(result["absolute_acceleration"].transpose("time", "floor",
                                                                           "direction"))
     return acceleration.reshape(acceleration.shape[0], -1)
@@ -41,10 +36,9 @@ def _histories(result) -> np.ndarray:
 def floor_spectra(result, periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
                   damping: float = FLOOR_SPECTRUM_DAMPING) -> np.ndarray:
     """Pseudo-acceleration spectra Sa [m/s^2] of every floor's absolute acceleration in each
-    direction, shape (floors, directions, len(periods)), floor 0 (the base slab, or the ground
-    level of a fixed base) first: for a run with ``absolute_acceleration`` (time, floor,
-    direction) and the attribute ``dt`` [s], at ``periods`` >= 0 [s] and the damping ratio
-    ``damping`` in [0, 1) [-]."""
+    direction, shape (floors, directions, len(periods)), floor 0 first, of a run with
+    ``absolute_acceleration`` (time, floor, direction) and the attribute ``dt`` [s], at
+    ``periods`` >= 0 [s] and the damping ratio ``damping`` in [0, 1) [-]."""
     sa = response_spectra(_histories(result), float(result.attrs["dt"]), periods, damping).sa
     return sa.reshape(result.sizes["floor"], result.sizes["direction"], -1)
 
@@ -59,9 +53,9 @@ def with_floor_spectra(result, motion: GroundMotion | GroundMotionPair | None = 
     result : xarray.Dataset
         A run (``absolute_acceleration``, ``ground_acceleration``, attribute ``dt``).
     motion : GroundMotion or GroundMotionPair, optional
-        The record(s) the run was driven by, scaled as they were: their spectra, on their own
-        step, are ``ground_spectrum``; without them, the run's ``ground_acceleration`` (on the
-        run's step) serves.
+        The record(s) of the run, scaled as they were: their spectra, on the record's own step
+        (as ``dcfpb spectrum`` gives them), are ``ground_spectrum``; without them, the run's
+        ``ground_acceleration`` (on the run's step) serves.
     periods, damping : array_like, float
         Periods of the spectra, >= 0 [s], and their damping ratio in [0, 1) [-].
 
@@ -79,9 +73,8 @@ def with_floor_spectra(result, motion: GroundMotion | GroundMotionPair | None = 
 def with_floor_spectra_all(results: dict, motion: GroundMotion | GroundMotionPair | None = None,
                            *, periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
                            damping: float = FLOOR_SPECTRUM_DAMPING) -> dict:
-    """:func:`with_floor_spectra` of several runs of one motion, keyed alike; the runs that share
-    a time step and a length go through the spectrum code in one pass (the same numbers as one at
-    a time)."""
+    """:func:`with_floor_spectra` of several runs of one motion, keyed alike, the runs of one time
+    step and length through the spectrum code in one pass."""
     periods = np.atleast_1d(np.asarray(periods, dtype=float))
     groups: dict[tuple[float, int], list] = {}
     for key, result in results.items():

@@ -1,8 +1,5 @@
-"""The time-integration methods as data: Newmark's family and HHT-alpha.
-
-A method is a small frozen parameter set (``gamma``, ``beta``, ``alpha``) over the one shared
-algorithm of :mod:`structures.integrators`; :data:`METHODS` names them and :func:`as_method`
-turns a name or an instance into an instance.
+"""The time-integration methods as data: Newmark's family and HHT-alpha, frozen parameter sets
+(``gamma``, ``beta``, ``alpha``) over the one algorithm of :mod:`structures.integrators`.
 """
 
 from __future__ import annotations
@@ -18,15 +15,9 @@ __all__ = ["HHT", "METHODS", "Newmark", "as_method"]
 
 @dataclass(frozen=True)
 class Newmark:
-    """Newmark's method; the default pair is the average acceleration (trapezoidal) rule.
-
-    Parameters
-    ----------
-    gamma : float
-        Velocity weight, in [1/2, 1] (1/2: no numerical damping).
-    beta : float
-        Displacement weight, in (0, 1/2] (1/4: average, 1/6: linear acceleration).
-    """
+    """Newmark's method, by default the average acceleration (trapezoidal) rule: velocity weight
+    ``gamma`` in [1/2, 1] (1/2: no numerical damping), displacement weight ``beta`` in (0, 1/2]
+    (1/4: average, 1/6: linear acceleration) [-]."""
 
     gamma: float = 0.5
     beta: float = 0.25
@@ -52,14 +43,9 @@ class Newmark:
 
 @dataclass(frozen=True)
 class HHT:
-    """The HHT-alpha method: second order, numerical damping of the high modes.
-
-    Parameters
-    ----------
-    alpha : float
-        In [-1/3, 0]; the spectral radius at ``dt/T -> inf`` is ``(1 + alpha)/(1 - alpha)``.
-        ``gamma = (1 - 2 alpha)/2`` and ``beta = (1 - alpha)^2/4`` follow from it.
-    """
+    """The HHT-alpha method, second order with numerical damping of the high modes: ``alpha``
+    in [-1/3, 0], spectral radius ``(1 + alpha)/(1 - alpha)`` at ``dt/T -> inf``,
+    ``gamma = (1 - 2 alpha)/2`` and ``beta = (1 - alpha)^2/4``."""
 
     alpha: float = -0.05
 
@@ -85,12 +71,11 @@ class HHT:
 
 
 METHODS: dict[str, type[Newmark] | type[HHT]] = {"newmark": Newmark, "hht": HHT}
-"""Method names accepted by :func:`structures.integrators.integrate`, each mapped to its class
-(default parameters)."""
+"""Method names of :func:`structures.integrators.integrate`, mapped to their classes."""
 
 
 def as_method(method: object) -> Newmark | HHT:
-    """The method for a name from :data:`METHODS` (with its default parameters) or an instance; a
+    """The method for a name from :data:`METHODS` (default parameters) or an instance; a
     ``TypeError`` for anything else."""
     if isinstance(method, Newmark | HHT):
         return method

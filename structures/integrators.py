@@ -1,35 +1,27 @@
 """Implicit time integration of ``M a + C v + f(u, v) = -M r a_g(t)``: Newmark and HHT-alpha.
 
-The ground acceleration is a scalar per step with an influence vector ``r`` of shape (n,) (a
-building in one direction), or k components per step with an influence matrix of shape (n, k)
-(e.g. x and y for a building in plan). As in ``scipy.integrate``, a method is data over one
-shared algorithm: :class:`Newmark` and :class:`HHT` (:mod:`structures.integration_methods`,
-re-exported here) are frozen parameter sets (``gamma``, ``beta``, ``alpha``) and
-:class:`NewmarkStepper` is the one Newton step that uses them; :func:`integrate` takes a name
-from :data:`METHODS` or an instance. Misuse raises; a numerical failure ends the run with
-``success=False`` and a message, keeping the steps already taken, and so does a
-:class:`dcfpb.common.errors.RunFailure` raised by the model (a bearing beyond its displacement
-capacity) or by the ``on_commit`` hook (a time limit).
+The influence ``r`` has shape (n,) for a scalar ground acceleration, or (n, k) for k components
+(e.g. x and y in plan). A method (:class:`Newmark`, :class:`HHT`, re-exported from
+:mod:`structures.integration_methods`) runs on the one Newton step of :class:`NewmarkStepper`.
+Misuse raises; a numerical failure or a :class:`dcfpb.common.errors.RunFailure` ends the run with
+``success=False``, keeping the steps already taken.
 
-The step from ``t_n`` to ``t_{n+1} = t_n + h`` solves for ``u_{n+1}`` (Hilber, Hughes & Taylor
-1977; ``alpha = 0`` is Newmark)::
+The step from ``t_n`` to ``t_{n+1} = t_n + h`` (Hilber, Hughes & Taylor 1977; ``alpha = 0`` is
+Newmark)::
 
     M a_{n+1} + (1 + alpha) [C v_{n+1} + f_{n+1}] - alpha [C v_n + f_n]
         = (1 + alpha) p_{n+1} - alpha p_n
     u_{n+1} = u_n + h v_n + h^2 [(1/2 - beta) a_n + beta a_{n+1}]
     v_{n+1} = v_n + h [(1 - gamma) a_n + gamma a_{n+1}]
 
-by Newton's method on the consistent tangent
-``K_eff = c0 M + (1 + alpha) [c1 (C + df/dv) + df/du]``, ``c0 = 1/(beta h^2)``,
-``c1 = gamma/(beta h)``, from the predictor ``a_{n+1} = a_n``. With ``R`` the residual (right
-side minus left side) and ``du = K_eff^-1 R`` the next correction, an iterate is accepted when
-``|R| <= tolerance * F_ref`` [N] and ``|du| <= tolerance * max(|u_{n+1}|, |u_n|)`` [m]
-(Euclidean norms), ``F_ref`` the largest norm among ``M a_{n+1}``, ``C v_{n+1} + f_{n+1}``,
-``p_{n+1}``, ``C v_n + f_n`` and ``p_n``. One iteration is one restoring-force evaluation, so a
-linear model converges in two: a correction and the check of it. A step that does not converge
-in ``max_iterations`` is reverted and solved as two half steps, the ground acceleration
-interpolated linearly, recursively down to ``max_subdivisions`` halvings; the model is
-committed after each sub-step.
+is solved by Newton on ``K_eff = c0 M + (1 + alpha) [c1 (C + df/dv) + df/du]``,
+``c0 = 1/(beta h^2)``, ``c1 = gamma/(beta h)``, from ``a_{n+1} = a_n``. With the residual ``R``
+and ``du = K_eff^-1 R``, an iterate is accepted when ``|R| <= tolerance * F_ref`` [N] and
+``|du| <= tolerance * max(|u_{n+1}|, |u_n|)`` [m] (Euclidean norms), ``F_ref`` the largest of
+``|M a_{n+1}|``, ``|C v_{n+1} + f_{n+1}|``, ``|p_{n+1}|``, ``|C v_n + f_n|`` and ``|p_n|``; one
+iteration is one restoring-force evaluation (a linear model takes two). A step that does not
+converge in ``max_iterations`` is reverted and solved as two half steps (the ground acceleration
+interpolated linearly), down to ``max_subdivisions`` halvings, committing after each sub-step.
 """
 
 from __future__ import annotations
@@ -51,31 +43,13 @@ __all__ = [
 
 @dataclass(frozen=True, eq=False)
 class IntegrationResult:
-    """A time history relative to the ground, up to the last committed step.
-
-    Attributes
-    ----------
-    time : numpy.ndarray
-        Times of the committed steps, shape (nt,) [s].
-    displacement, velocity, acceleration : numpy.ndarray
-        Response relative to the ground, shape (nt, n) [m], [m/s], [m/s^2].
-    absolute_acceleration : numpy.ndarray
-        ``acceleration + r a_g``, shape (nt, n) [m/s^2] (the translational ground acceleration
-        added along each DOF the influence names).
-    success, message : bool, str
-        Whether the whole record was integrated, and why the run ended (on failure: the time,
-        iteration count and residual norm).
-    iterations, subdivisions : numpy.ndarray
-        Newton iterations (failed attempts included) and step halvings of each committed step,
-        shape (nt-1,).
-    method : Newmark or HHT
-        The method used.
-    failure : str
-        Why the run ended early: ``""`` (it did not), ``"convergence"``, or the ``kind`` of the
-        :class:`dcfpb.common.errors.RunFailure` that ended it (``"capacity"``, ``"timeout"``...).
-    failed_at : float or None
-        Time of the step that failed [s] (None on success).
-    """
+    """A time history relative to the ground, up to the last committed step: ``time`` (nt,)
+    [s]; ``displacement``, ``velocity``, ``acceleration`` (nt, n) [m], [m/s], [m/s^2] and
+    ``absolute_acceleration = acceleration + r a_g`` [m/s^2]; ``success`` (the whole record
+    integrated) and ``message`` (why the run ended); ``iterations`` (Newton, failed attempts
+    included) and ``subdivisions`` (halvings) of each committed step, (nt-1,); the ``method``;
+    ``failure`` (``""``, ``"convergence"`` or the ``kind`` of the
+    :class:`dcfpb.common.errors.RunFailure` that ended the run) and ``failed_at`` [s] (None)."""
 
     time: np.ndarray
     displacement: np.ndarray
@@ -102,16 +76,14 @@ def _matrix(value: object, name: str, shape: tuple[int, ...]) -> np.ndarray:
 
 
 class NewmarkStepper:
-    """The shared Newton step of the Newmark family, with step subdivision.
+    """The shared Newton step of the Newmark family, with step subdivision (module docstring).
 
-    It holds the committed state ``(t, u, v, a)``, the ground acceleration ``ag`` and the
-    committed internal force ``q = C v + f`` and load ``p`` that the HHT balance needs.
-    :meth:`step` is the bookkeeping (subdivision, commit, messages), :meth:`_solve` one Newton
-    attempt on one (sub-)step. Arrays handed to the model are never modified afterwards, so a
-    model may keep references to its trial state. The initial ``time`` [s],
-    ``ground_acceleration`` [m/s^2] (a float, or shape (k,) for an influence of shape (n, k)),
-    ``displacement`` [m] and ``velocity`` [m/s] (n,) must match the model's committed state; the
-    rest is as :func:`integrate`.
+    It holds the committed state ``(t, u, v, a)``, the ground acceleration ``ag``, and the
+    committed internal force ``q = C v + f`` and load ``p`` of the HHT balance; arrays handed to
+    the model are never modified afterwards (it may keep references). The initial ``time`` [s],
+    ``ground_acceleration`` [m/s^2] (a float, or shape (k,)), ``displacement`` [m] and
+    ``velocity`` [m/s] (n,) must match the model's committed state; the rest is as
+    :func:`integrate`.
     """
 
     def __init__(
@@ -200,10 +172,8 @@ class NewmarkStepper:
     def _solve(
         self, h: float, time: float, ground_acceleration: float | np.ndarray
     ) -> tuple[bool, int, float, float]:
-        """One Newton attempt; on success the committed state moves to ``time``.
-
-        Returns ``(converged, iterations, residual norm [N], force reference [N])``.
-        """
+        """One Newton attempt (moving the committed state to ``time`` on success): ``(converged,
+        iterations, residual norm [N], force reference [N])``."""
         alpha, weight = self.alpha, 1.0 + self.alpha
         c0, c1 = 1.0 / (self.beta * h * h), self.gamma / (self.beta * h)
         p = self._load(ground_acceleration)
@@ -265,7 +235,7 @@ def integrate(
     max_subdivisions: int = 4,
     on_commit: Callable[[int, float, np.ndarray, np.ndarray, np.ndarray], None] | None = None,
 ) -> IntegrationResult:
-    """Integrate a model through a ground-acceleration record.
+    """Integrate a model through a ground-acceleration record (module docstring).
 
     Parameters
     ----------
@@ -273,7 +243,7 @@ def integrate(
         The structure; its committed state must be that of the initial conditions.
     ground_acceleration : array_like
         Ground acceleration sampled every ``dt`` from ``t = 0`` [m/s^2], shape (nt,), or (nt, k)
-        for a model whose influence has shape (n, k) (one column per component, e.g. x and y).
+        for a model whose influence has shape (n, k).
     dt : float
         Time step of the record and of the integration [s].
     method : {"newmark", "hht"} or Newmark or HHT
@@ -286,10 +256,9 @@ def integrate(
         Newton iterations per attempt (>= 1) and nested halvings of a step that does not converge
         (>= 0).
     on_commit : callable, optional
-        ``on_commit(step_index, time, u, v, a)`` after each committed full step (index >= 1),
-        e.g. to record the bearing state; the arrays are rows of the result, not to be modified.
-        It may end the run by raising :class:`dcfpb.common.errors.RunFailure` (e.g. a time
-        limit); that step is kept.
+        ``on_commit(step_index, time, u, v, a)`` after each committed full step (index >= 1);
+        the arrays are rows of the result, not to be modified. Raising
+        :class:`dcfpb.common.errors.RunFailure` ends the run, that step kept.
 
     Returns
     -------

@@ -1,41 +1,24 @@
-"""A shear building on DCFPB isolators, in one direction or in plan, as a dynamic model (the
-integrators' protocol).
+"""A shear building on DCFPB isolators, in one direction or in plan, as a
+:class:`~structures.model.DynamicModel` on the degrees of freedom of
+:class:`~structures.shear_building.ShearBuilding`.
 
-Degrees of freedom: those of :class:`~structures.shear_building.ShearBuilding`, the base slab's
-first. The isolation level is a list of bearing positions (:attr:`ShearBuilding.bearing_positions`),
-each with a multiplicity and a :class:`~isolator.bearing.BearingElement`, reached only through
-the element contract ``set_trial / commit / revert``:
-
-- in one direction, one group of ``n_bearings`` identical bearings at the reference point, each
-  element moving along x with the base slab; the group's force is ``n_bearings`` times one
-  bearing's;
-- in plan, one bearing at each position ``(x_i, y_i)``, whose plates move apart by
-  ``u_i = T_i q_b = (u_x - theta y_i, u_y + theta x_i)``; its force acts on the base slab as
-  ``T_i^T F_i`` (force x, force y, torque about the reference point) and its 2x2 tangents as
-  ``T_i^T K_i T_i``.
-
-No viscous damping acts on the isolation level. Axial loads, evaluated at every trial
-(:meth:`IsolatedShearBuilding.axial_loads`)::
+Each bearing position holds a multiplicity and a :class:`~isolator.bearing.BearingElement`,
+used only through ``set_trial / commit / revert``: in one direction one group of ``n_bearings``
+identical bearings moving with the base slab along x; in plan one bearing at each ``(x_i, y_i)``,
+displaced by ``u_i = T_i q_b`` (:func:`structures.plan.bearing_transformation`) and acting on
+the base slab as ``T_i^T F_i``, tangent ``T_i^T K_i T_i``. The isolation level has no viscous
+damping; P-delta effects are not modelled. The axial load of one bearing at each position, at
+every trial (:meth:`IsolatedShearBuilding.axial_loads`), is::
 
     N_i = N_i,gravity (1 + a_z(t) / g) + G_i1 sum_j H_j F_x,j + G_i2 sum_j H_j F_y,j
 
-- ``N_i,gravity``: the weight shared by the bearings (W / n in one direction; in plan, the
-  statics of the rigid base, :func:`structures.plan.gravity_shares`);
-- ``a_z``: the vertical ground acceleration [m/s^2], positive up, when a vertical component
-  is given (the building is rigid vertically, so it scales the weight and its moments alike);
-- in plan, the overturning: the floors' inertia forces ``F_j``, equal to the storey forces
-  acting on floor j, ``(K_s u + C v)_j``, at the floor's height ``H_j`` above the isolation
-  level; their moments are shared linearly over the bearings (``G`` of
-  :func:`structures.plan.axial_distribution`). Being a function of ``(u, v)``, the loads enter
-  the tangent: ``dF_i / dN_i`` times ``dN_i / du`` and ``dN_i / dv``, with
-  ``dF_i / dN_i = F_i / N_i`` (exact for the constant model; the PTV models' pressure
-  dependence of mu is left out of the tangent only, the residual is exact). P-delta effects
-  are not modelled.
-
-Uplift is the element's: a bearing whose load is not positive carries no force and makes no
-heat (the loads are not redistributed to the others). With a symmetric plan, equal shares and
-no overturning, a motion along x or y is the building in one direction with ``n_bearings``
-bearings.
+with the weight shares ``N_i,gravity`` (W / n in one direction,
+:func:`structures.plan.gravity_shares` in plan), the vertical ground acceleration ``a_z``
+[m/s^2], positive up, and, in plan with overturning, the storey forces on each floor
+``F_j = (K_s u + C v)_j`` [N] at its height ``H_j`` [m], shared by ``G``
+(:func:`structures.plan.axial_distribution`). The tangent includes ``F_i / N_i`` times
+``dN_i / du`` and ``dN_i / dv`` (the PTV models' pressure dependence of mu left out). A bearing
+whose load is not positive lifts off: no force, no heat, no redistribution.
 """
 
 from __future__ import annotations
@@ -65,9 +48,9 @@ class IsolatedShearBuilding:
     building : ShearBuilding
         The superstructure and base slab, with its plan for a building in plan.
     bearing : DCFPBearing
-        The bearing of every position, best described without an axial load
-        (``axial_load=None``): each takes its share of the building's weight. A load given on
-        the bearing is replaced, with an :class:`~dcfpb.common.errors.InputWarning`.
+        The bearing of every position, best given with ``axial_load=None``: each takes its
+        share of the weight (a load given is replaced, with an
+        :class:`~dcfpb.common.errors.InputWarning`).
     n_bearings : int, optional
         Identical bearings under the base slab in one direction (default 1). In plan, one per
         bearing position: leave it out or give that number.
@@ -161,8 +144,7 @@ class IsolatedShearBuilding:
 
     @property
     def overturning_matrix(self) -> np.ndarray:
-        """``G H``: the axial loads' share of the storey forces ``K_s u + C v``, shape
-        (n_b, n_dof) [-, 1/m] (zeros without overturning)."""
+        """``G H``, the axial loads per storey force ``K_s u + C v``, (n_b, n_dof) [-, 1/m]."""
         return self._overturning
 
     @property
@@ -182,16 +164,14 @@ class IsolatedShearBuilding:
         return float(np.interp(time, self.vertical.time, self.vertical.acceleration))
 
     def vertical_accelerations(self, times: np.ndarray) -> np.ndarray:
-        """Vertical ground acceleration at each of ``times`` [s] (the values of
-        :meth:`vertical_acceleration`), shape of ``times`` [m/s^2]."""
+        """Vertical ground acceleration [m/s^2] at each of ``times`` [s], shape of ``times``."""
         times = np.asarray(times, dtype=float)
         if self.vertical is None:
             return np.zeros_like(times)
         return np.interp(times, self.vertical.time, self.vertical.acceleration)
 
     def axial_loads(self, u: np.ndarray, v: np.ndarray, time: float) -> np.ndarray:
-        """Axial load of one bearing at each position at a trial state (module docstring),
-        shape (n_b,) [N]; zero or negative is uplift."""
+        """Axial load of one bearing at each position at a trial state, (n_b,) [N]; <= 0: uplift."""
         if self.vertical is None and not self.overturning:
             return self.gravity_loads
         loads = self.gravity_loads * (1.0 + self.vertical_acceleration(time) / STANDARD_GRAVITY)

@@ -1,15 +1,8 @@
 """The length of a building run, estimated before it starts: its steps and its memory.
 
-:func:`check_run` is called by :func:`structures.analysis.run` and
-:func:`structures.fixed_base.run_fixed_base` before anything is allocated, and by the command
-line (``--max-steps``) before it waits for the engine; the limit and its default are those of
-:mod:`isolator.limits`. The memory per step counts what a run holds at once, 8 bytes a value:
-the fields the result Dataset stores (:func:`structures.results.response_dataset`: the levels'
-displacement, velocity and absolute acceleration per direction and their rotations in plan, the
-storeys' drift and shear, seven histories per bearing position, the base shear and the ground
-acceleration per direction, six energies and the time) and the engine's working histories
-beside them (displacement, velocity, acceleration and restoring force on every degree of
-freedom, ten fields per bearing position, iterations, subdivisions, the record and the time).
+:func:`check_run` is called by :func:`structures.analysis.run`,
+:func:`structures.fixed_base.run_fixed_base` and the command line (``--max-steps``) before
+anything is allocated; the limit and its default are those of :mod:`isolator.limits`.
 """
 
 from __future__ import annotations
@@ -28,9 +21,12 @@ _BYTES = 8  # one float64 (or int64) per field and step
 
 
 def building_fields(n_storeys: int, level_dofs: int = 1, positions: int = 1) -> int:
-    """Values a building run holds per step, the Dataset's and the engine's (module docstring),
-    for ``level_dofs`` degrees of freedom per level (1 in one direction, 3 in plan) and
-    ``positions`` bearing positions."""
+    """Values (8 bytes each) a building run holds per step, for ``level_dofs`` degrees of
+    freedom per level (1 in one direction, 3 in plan) and ``positions`` bearing positions: the
+    Dataset's (levels' motion per direction and rotations in plan, storey drift and shear, seven
+    histories per position, base shear and ground acceleration, six energies, time) and the
+    engine's (u, v, a and restoring force per degree of freedom, ten fields per position,
+    iterations, subdivisions, record, time)."""
     components = 1 if level_dofs == 1 else 2
     levels = level_dofs * (n_storeys + 1)
     dataset = levels + 2 * components * (n_storeys + 1) + 2 * components * n_storeys \
@@ -38,10 +34,11 @@ def building_fields(n_storeys: int, level_dofs: int = 1, positions: int = 1) -> 
         + 2 * components + 8
     engine = 4 * levels + 10 * positions + 3 * components + 4
     return dataset + engine
+
+
 def fixed_base_fields(n_storeys: int) -> int:
-    """Values a fixed-base run holds per step: its Dataset (displacement, velocity, absolute
-    acceleration, drift and shear of n floors; base shear, ground acceleration, time) and the
-    modal responses (two per mode)."""
+    """Values a fixed-base run holds per step: its Dataset (five histories per floor, base
+    shear, ground acceleration, time) and the modal responses (two per mode)."""
     return 7 * n_storeys + 3
 
 

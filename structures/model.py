@@ -1,10 +1,9 @@
-"""The seam between the integrators and what they integrate: the dynamic-model protocol.
+"""The dynamic-model protocol between the integrators and what they integrate.
 
-An integrator solves ``M a + C v + f(u, v) = p(t)``, ``p = -M r a_g(t)``, and never sees a
-bearing: it asks a :class:`DynamicModel` for its constant matrices and for the restoring force
-``f`` with its tangents at a trial state. As in OpenSees materials, a trial is a pure function
-of the committed history and the trial state, so Newton may call
-:meth:`DynamicModel.restoring_force` as often as it likes; the history moves only on
+An integrator solves ``M a + C v + f(u, v) = p(t)``, ``p = -M r a_g(t)``: it asks a
+:class:`DynamicModel` for its constant matrices and for ``f`` with its tangents at a trial state.
+A trial is a pure function of the committed history and the trial state (Newton may call
+:meth:`DynamicModel.restoring_force` as often as it likes); the history moves only on
 :meth:`DynamicModel.commit`, and :meth:`DynamicModel.revert` discards every trial since.
 """
 
@@ -30,10 +29,7 @@ class RestoringForce(NamedTuple):
 
 @runtime_checkable
 class DynamicModel(Protocol):
-    """What an integrator needs from a structure: matrices, a restoring force, commit/revert.
-
-    All displacements, velocities and accelerations are relative to the ground.
-    """
+    """What an integrator needs from a structure, all motion relative to the ground."""
 
     @property
     def mass_matrix(self) -> np.ndarray:
@@ -53,8 +49,7 @@ class DynamicModel(Protocol):
 
     def restoring_force(self, u: np.ndarray, v: np.ndarray, time: float) -> RestoringForce:
         """Restoring force and tangents at the trial displacement ``u`` [m] and velocity ``v``
-        [m/s], shape (n,), at the trial ``time`` [s] (the end of the step or sub-step being
-        solved): a pure function of the committed history and the trial state."""
+        [m/s], shape (n,), at the trial ``time`` [s] (the end of the (sub-)step solved)."""
         ...
 
     def commit(self) -> None:
@@ -92,13 +87,12 @@ class LinearModel:
         Mass [kg] (symmetric positive definite), viscous damping [N s/m] and stiffness [N/m]
         matrices, shape (n, n).
     influence : array_like
-        Ground-motion influence ``r``, shape (n,) [-], or (n, k) for a ground acceleration of k
-        components.
+        Ground-motion influence ``r``, shape (n,) or (n, k) for k components [-].
 
     Raises
     ------
     ValueError
-        If a shape disagrees, a value is not finite or the mass matrix is not symmetric positive
+        For a shape that disagrees, a value not finite or a mass matrix not symmetric positive
         definite.
     """
 

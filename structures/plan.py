@@ -1,18 +1,10 @@
 """The plan of an isolated building: where its bearings stand and where its masses sit.
 
-Coordinates x and y [m] are taken from a reference point ``O``, the centre of stiffness of every
-storey (the storeys' centres of stiffness on one vertical line). The bearings stand at
-``(x_i, y_i)``; each floor's centre of mass lies at its eccentricity ``(e_x, e_y)`` from ``O``
-(the base slab's at ``base_eccentricity``).
-
-Axial loads: the base slab is rigid and the bearings are equally stiff vertically, so a vertical
-resultant ``F_z`` [N] and the moments ``S_x = sum N_i x_i``, ``S_y = sum N_i y_i`` [N m] it must
-balance are shared linearly over the bearings, ``N_i = a + b x_i + c y_i``, the one linear
-distribution that meets the three equilibrium equations (:func:`axial_distribution`). For the
-weight, ``F_z = W`` and ``(S_x, S_y) = W (x_G, y_G)``, G the centre of mass of the whole building
-(:func:`gravity_shares`); with G at the bearings' centroid the shares are equal, W / n. Bearings
-on one line cannot balance a moment about that line, and a plan in which a share is not
-positive cannot carry the weight: both are errors before any work.
+Coordinates x, y [m] are taken from the reference point ``O``, the centre of stiffness of every
+storey (all on one vertical line): the bearings stand at ``(x_i, y_i)``, each floor's centre of
+mass at its eccentricity ``(e_x, e_y)`` (the base slab's at ``base_eccentricity``). The rigid
+base on equally stiff bearings shares a vertical resultant and its moments linearly over them
+(:func:`axial_distribution`); the weight's shares are :func:`gravity_shares`.
 """
 
 from __future__ import annotations
@@ -55,11 +47,9 @@ def _positive(value: object, name: str, high: float) -> np.ndarray:
 
 
 def axial_distribution(coordinates: np.ndarray) -> np.ndarray:
-    """The linear distribution of a vertical resultant and its moments over bearings at
-    ``coordinates`` ``(x_i, y_i)``, shape (n_b, 2) [m]: ``G``, shape (n_b, 3) [1, 1/m, 1/m], such
-    that the axial loads ``N = G @ (F_z, S_x, S_y)`` [N] are linear in ``(x_i, y_i)`` and satisfy
-    ``sum N = F_z``, ``sum N x = S_x`` and ``sum N y = S_y`` (``G = A^T (A A^T)^-1``,
-    ``A = [1; x; y]``: the least-squares, minimum-norm solution of ``A N = (F_z, S_x, S_y)``).
+    """``G``, shape (n_b, 3) [1, 1/m, 1/m], sharing a vertical resultant ``F_z`` [N] and its
+    moments ``S_x = sum N x``, ``S_y = sum N y`` [N m] linearly over bearings at ``coordinates``
+    (n_b, 2) [m]: ``N = G @ (F_z, S_x, S_y)`` [N], ``G = A^T (A A^T)^-1``, ``A = [1; x; y]``.
 
     Raises
     ------
@@ -90,8 +80,7 @@ def gravity_shares(coordinates: np.ndarray, masses: np.ndarray,
     ------
     InputError
         If the bearings lie on one line, or a share is not positive (the centre of mass too far
-        from the bearings' centroid for the linear distribution to keep every bearing in
-        compression), naming the bearing and the centre of mass.
+        from the bearings' centroid), naming the bearing and the centre of mass.
     """
     weights = STANDARD_GRAVITY * np.asarray(masses, dtype=float)
     total = float(weights.sum())
@@ -112,16 +101,16 @@ def gravity_shares(coordinates: np.ndarray, masses: np.ndarray,
 
 @dataclass(frozen=True, eq=False)
 class Plan:
-    """The plan of a building on isolators (the frame of the module docstring).
+    """The plan of a building on isolators (coordinates: module docstring).
 
     Parameters
     ----------
     bearing_coordinates : array_like
-        Bearing positions ``(x_i, y_i)`` from the centre of stiffness, shape (n_b, 2) [m], in
-        [-10000, 10000]; at least 3, not on one line.
+        Bearing positions ``(x_i, y_i)``, shape (n_b, 2) [m], in [-10000, 10000]; at least 3,
+        not on one line.
     eccentricity : array_like
-        Centre of mass of the floors ``(e_x, e_y)`` from the centre of stiffness [m]: one pair
-        for every floor, shape (2,), or one per floor from the first up, shape (n, 2).
+        Centre of mass of the floors ``(e_x, e_y)`` [m]: one pair for every floor, shape (2,),
+        or one per floor from the first up, shape (n, 2).
     dimensions : tuple of float, optional
         Dimensions ``(a, b)`` of a rectangular plan along x and y [m], in (0, 10000]: the default
         of the inertias (``m (a^2 + b^2) / 12``) and of the torsional stiffness.
@@ -132,15 +121,13 @@ class Plan:
         Centre of mass of the base slab ``(e_x, e_y)`` [m].
     storey_stiffnesses_y : array_like, optional
         Storey stiffnesses along y, first storey up, shape (n,) [N/m], > 0; by default those
-        along x (the building's ``storey_stiffnesses``).
+        along x.
     torsional_stiffnesses : array_like, optional
-        Torsional storey stiffnesses about the centre of stiffness, shape (n,) [N m/rad], > 0; by
-        default the lateral stiffness spread uniformly over the rectangle ``a x b``, walls along
-        x resisting over the depth b and along y over the width a: ``(k_x b^2 + k_y a^2) / 12``.
+        Torsional storey stiffnesses, shape (n,) [N m/rad], > 0; by default the lateral ones
+        spread uniformly over the rectangle ``a x b``: ``(k_x b^2 + k_y a^2) / 12``.
     storey_heights : float or array_like, optional
         Storey heights, one for all or one per storey [m], in (0, 1000]: the lever arms of the
-        floors' inertia forces, whose overturning moment loads the bearings; required when the
-        overturning is modelled (:class:`structures.isolated_building.IsolatedShearBuilding`).
+        overturning (required when it is modelled).
 
     Raises
     ------
@@ -251,11 +238,10 @@ class Plan:
 
 
 def level_mass_matrix(mass: float, inertia: float, centre: np.ndarray) -> np.ndarray:
-    """Mass matrix (3, 3) [kg, kg m, kg m^2] of a rigid level with the degrees of freedom (u_x,
-    u_y, theta) at the reference point. A level of ``mass`` m [kg] and ``inertia`` J_G [kg m^2]
-    about its centre of mass G = O + e, ``centre`` e = (e_x, e_y) [m], moves G at ``(u_x - theta
-    e_y, u_y + theta e_x)``: its kinetic energy is ``m/2 [(u_x' - theta' e_y)^2 + (u_y' + theta'
-    e_x)^2] + J_G/2 theta'^2``, whose Hessian in the velocities this is."""
+    """Mass matrix (3, 3) [kg, kg m, kg m^2] of a rigid level on (u_x, u_y, theta) at the
+    reference point, of ``mass`` m [kg] and ``inertia`` J_G [kg m^2] about its centre of mass at
+    ``centre`` e = (e_x, e_y) [m]: the Hessian of the kinetic energy
+    ``m/2 [(u_x' - theta' e_y)^2 + (u_y' + theta' e_x)^2] + J_G/2 theta'^2``."""
     ex, ey = float(centre[0]), float(centre[1])
     return np.array([[mass, 0.0, -mass * ey],
                      [0.0, mass, mass * ex],
@@ -263,14 +249,13 @@ def level_mass_matrix(mass: float, inertia: float, centre: np.ndarray) -> np.nda
 
 
 def bearing_transformation(x: float, y: float) -> np.ndarray:
-    """``T_i``: the displacement of a bearing at ``(x, y)`` [m] from the base slab's
-    ``(u_x, u_y, theta)``, ``u_i = (u_x - theta y, u_y + theta x)``, shape (2, 3)."""
+    """``T_i`` (2, 3): a bearing's displacement at ``(x, y)`` [m] from the base slab's
+    ``(u_x, u_y, theta)``, ``u_i = (u_x - theta y, u_y + theta x)``."""
     return np.array([[1.0, 0.0, -y], [0.0, 1.0, x]])
 
 
 def bearing_stiffness_matrix(coordinates: np.ndarray, stiffnesses: np.ndarray) -> np.ndarray:
-    """``sum_i k_i T_i^T T_i`` on the base slab's DOFs for isotropic linear bearings, (3, 3)
-    [N/m, N, N m/rad]."""
+    """``sum_i k_i T_i^T T_i`` (3, 3) [N/m, N, N m/rad] of isotropic linear bearings."""
     out = np.zeros((3, 3))
     for (x, y), k in zip(coordinates, stiffnesses, strict=True):
         t = bearing_transformation(x, y)

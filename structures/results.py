@@ -1,12 +1,6 @@
-"""The result of a building run as an ``xarray.Dataset``: one layout for every building and
-every program.
-
-:func:`response_dataset` turns the histories of a run (ours, with either engine, or
-OpenSees's) into the Dataset :func:`structures.analysis.run` documents, with the energy balance
-(:func:`structures.energy.energy_balance`) and the displacement-capacity check of every
-bearing, so every producer gives the same variables, units and attributes. A building in one
-direction has the one direction ``x``; a building in plan has ``x`` and ``y`` and the levels'
-rotations.
+"""The result of a building run as an ``xarray.Dataset``, one layout for every engine and
+program: :func:`response_dataset` turns the histories of a run (either engine, or OpenSees)
+into it, with the energy balance and the bearings' displacement-capacity check.
 """
 
 from __future__ import annotations
@@ -36,29 +30,12 @@ _ENERGIES = ("input", "kinetic", "damping", "strain", "friction", "error")
 
 
 class EngineHistory(NamedTuple):
-    """What an engine (the reference or the compiled one) hands to :func:`response_dataset`.
-
-    Attributes
-    ----------
-    result : IntegrationResult
-        Time, relative response on the model's degrees of freedom, iterations, success and
-        message.
-    bearings : dict of str to ndarray
-        One bearing at each position at every committed step, :data:`BEARING_RECORD` (time,
-        position, then the (x, y) axis of the vectors) [SI units].
-    restoring : ndarray, shape (nt, n_dof)
-        Total restoring force (storeys and all bearings) at every step [N, N m].
-    wall_time : float
-        Time spent integrating [s], compilation left out.
-    engine : str
-        ``"reference"`` or ``"compiled"``.
-    compile_time : float
-        Time spent compiling (or loading from numba's disk cache) before the run [s]; 0.0
-        when this process had compiled it already.
-    plate : tuple of ndarray or None
-        The monitor points' temperature field at the end (:func:`temperature_fields`), None
-        for the models without monitor points.
-    """
+    """What an engine hands to :func:`response_dataset`: the integration ``result``, the
+    ``bearings`` record (:data:`BEARING_RECORD` at every committed step), the total ``restoring``
+    force of storeys and bearings, shape (nt, n_dof) [N, N m], the ``wall_time`` of the
+    integration and the ``compile_time`` before it (0.0 if compiled already) [s], the
+    ``engine`` (``"reference"`` or ``"compiled"``) and the monitor points' ``plate`` temperature
+    field at the end (:func:`temperature_fields`; None without monitor points)."""
 
     result: IntegrationResult
     bearings: dict[str, np.ndarray]
@@ -70,9 +47,8 @@ class EngineHistory(NamedTuple):
 
 
 def temperature_fields(model: IsolatedShearBuilding) -> tuple[np.ndarray, np.ndarray] | None:
-    """The temperature field each bearing's monitor points hold after the last commit (the
-    models with monitor points; None for the others): positions (n_b, m, 2) [m] on the plate
-    and temperatures (n_b, m) [degC], padded with NaN to the bearing with the most points."""
+    """Each bearing's monitor-point temperature field after the last commit (None for the models
+    without): positions (n_b, m, 2) [m] and temperatures (n_b, m) [degC], NaN-padded."""
     fields = [element.friction_state.temperature_field() for element in model.elements]
     if any(field is None for field in fields):
         return None
@@ -86,16 +62,15 @@ def temperature_fields(model: IsolatedShearBuilding) -> tuple[np.ndarray, np.nda
 
 def _by_position(positions: np.ndarray,
                  temperatures: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Each bearing's monitor points ordered by x, then y (the NaN padding last), so that the
-    field does not depend on the order an engine stored its points in."""
+    """Each bearing's monitor points ordered by x, then y (NaN padding last), engine-independent."""
     order = np.lexsort((positions[..., 1], positions[..., 0]), axis=-1)
     return (np.take_along_axis(positions, order[..., None], axis=1),
             np.take_along_axis(temperatures, order, axis=1))
 
 
 def _capacity(reach: np.ndarray, capacity: float, step: float) -> tuple[int, str]:
-    """The steps kept and the capacity failure's message ("" if none), from the largest
-    resultant displacement of any bearing at each step ``reach`` [m]."""
+    """The steps kept and the capacity failure's message ("" if none), from ``reach`` [m], the
+    largest bearing displacement at each step."""
     beyond = np.flatnonzero(reach > capacity)
     if not beyond.size:
         return reach.size, ""
@@ -134,7 +109,7 @@ def response_dataset(
     Parameters
     ----------
     model : IsolatedShearBuilding
-        The model that was run (building, bearings, positions).
+        The model that was run.
     motion : GroundMotion or GroundMotionPair
         The record or records (names and processing go to the attributes).
     step : float
@@ -145,26 +120,20 @@ def response_dataset(
         Relative displacement [m, rad] and velocity, absolute acceleration, on the model's
         degrees of freedom.
     bearings : dict of str to ndarray
-        One bearing at each position at each step, :data:`BEARING_RECORD` (time first, the
-        position second, then the (x, y) axis of the vectors; y = 0 in one direction).
+        One bearing at each position at each step, :data:`BEARING_RECORD` (time, position,
+        then the (x, y) axis; y = 0 in one direction).
     integrator : str
         Description of the time integration.
-    success, message : bool, str
-        The producer's outcome; a response beyond the bearings' displacement capacity turns
-        it into a failure with its own message, for every friction model alike.
+    success, message, failure, failed_at : bool, str, str, float or None
+        The producer's outcome, the kind of its failure (``"convergence"``, ``"timeout"``...;
+        ``"error"`` when it did not say) and its time [s]; see Notes for the capacity check.
     attrs : dict
         Producer-specific attributes (iterations, wall time, engine or program...).
     restoring : ndarray, shape (nt, n_dof), optional
-        Total restoring force (storeys and bearings) the producer recorded [N, N m]; by
-        default it is formed from the displacements and the bearing forces.
-    failure : str
-        The kind of the producer's failure (``"convergence"``, ``"capacity"``,
-        ``"timeout"``...); ``"error"`` when it failed without saying.
-    failed_at : float, optional
-        Time of the producer's failure [s].
+        Total restoring force (storeys and bearings) [N, N m]; by default formed from the
+        displacements and the bearing forces.
     plate : tuple of ndarray, optional
-        The monitor points' temperature field at the end: positions (n_b, m, 2) [m] and
-        temperatures (n_b, m) [degC], NaN-padded (:func:`temperature_fields`).
+        The monitor points' temperature field at the end (:func:`temperature_fields`).
 
     Returns
     -------
@@ -183,19 +152,18 @@ def response_dataset(
         ``ground_acceleration`` (time, direction) and, with a vertical,
         ``vertical_ground_acceleration`` (time); the energies ``energy_input``,
         ``energy_kinetic``, ``energy_damping``, ``energy_strain``, ``energy_friction``,
-        ``energy_error`` (time); with monitor points, ``plate_temperature`` (bearing,
-        plate_point) [degC] at ``plate_point_x``, ``plate_point_y`` [m].
+        ``energy_error`` (time) [J]; with monitor points, ``plate_temperature`` (bearing,
+        plate_point) [degC] at ``plate_point_x``, ``plate_point_y`` [m]. SI units throughout.
 
     Notes
     -----
-    The failure contract: the first committed step at which a bearing's displacement (the
-    length of its (x, y) vector) exceeds ``displacement_capacity`` ends the run there. Every
-    history is cut after that step (the response beyond it is not physical) and the run is a
-    failure, ``"capacity"``, at that step's time, whatever the producer said (its own failure
-    can only come later). A failed run's Dataset has ``success = 0``, ``message`` (the reason,
-    then up to when the histories go), ``failure``, ``failed_at`` [s] and
-    ``peaks_up_to_failure = 1``; a run that finished has ``failure = ""`` and
-    ``peaks_up_to_failure = 0``.
+    The first committed step at which a bearing's resultant displacement exceeds
+    ``displacement_capacity`` ends the run there, for every producer and friction model: every
+    history is cut after it and the run fails, ``"capacity"``, at its time (a producer's own
+    failure can only come later). A failed run has ``success = 0``, ``message`` (the reason,
+    then up to when the histories go), ``failure`` (``"capacity"``, ``"convergence"``,
+    ``"timeout"``, ``"model"``, ``"error"``), ``failed_at`` [s] and ``peaks_up_to_failure = 1``;
+    a run that finished has ``failure = ""`` and ``peaks_up_to_failure = 0``.
     """
     import xarray as xr
 

@@ -1,8 +1,5 @@
-"""One path from a building description and a ground motion to a result, for the command line and
-for Python alike: :func:`run` takes a building file (or its :class:`BuildingConfig`) and a
-record file, a :class:`GroundMotion` or a :class:`GroundMotionPair`, applies what the caller
-overrides (friction model, integrator, step, scale) and runs :func:`structures.analysis.run` on
-the model objects (a :class:`ShearBuilding`, a :class:`DCFPBearing` and the number of bearings).
+"""One path from a building file and a ground motion to a result, for the command line and for
+Python alike (:func:`run`).
 
 Example
 -------
@@ -38,13 +35,13 @@ def run(
     floor_spectra: bool = False,
     **options: Any,
 ):
-    """Run a building under a ground motion.
+    """Run a building file under a ground motion, with the caller's overrides, through
+    :func:`structures.analysis.run` (the bearings on their shares of the weight).
 
     Parameters
     ----------
     config : BuildingConfig or str or Path
-        The building: a TOML building file (``examples/five_storey.toml``) or its loaded form
-        (:func:`structures.config.load_config`).
+        A TOML building file or its loaded form (:func:`structures.config.load_config`).
     motion : GroundMotion or GroundMotionPair or str or Path
         The ground acceleration [m/s^2], or a record file (PEER .AT2 or text;
         :func:`groundmotions.readers.read_record`). A pair (x, y and optionally z) runs a
@@ -55,23 +52,21 @@ def run(
         (``"newmark"``, ``"hht"`` or an instance); by default the building file's.
     dt : float, optional
         Analysis step [s]: by default the building file's, capped by the record's step with a
-        warning, else the record's step cut into parts of at most 5 ms
-        (:func:`structures.analysis.default_step`).
+        warning, else :func:`structures.analysis.default_step`.
     scale : float
         Amplitude scale factor of the record(s) [-], > 0.
-    engine : {"auto", "compiled", "reference"}
-        As :func:`structures.analysis.run`.
-    floor_spectra : bool
-        Add the 5 %-damped floor response spectra (``floor_spectrum``, ``ground_spectrum``).
-    **options
-        Further keywords of :func:`structures.analysis.run` (``tolerance``, ``max_subdivisions``,
-        ``overturning``, ...).
+    engine, floor_spectra, **options
+        As :func:`structures.analysis.run` (``tolerance``, ``overturning``, ...).
 
     Returns
     -------
     xarray.Dataset
-        The result of :func:`structures.analysis.run`, with ``attrs["building"]`` naming the
-        building.
+        The result of :func:`structures.analysis.run`, ``attrs["building"]`` naming the building.
+
+    Raises
+    ------
+    dcfpb.common.errors.InputError
+        For a pair of records on a building file without a ``[plan]`` table.
     """
     import dataclasses
 

@@ -1,14 +1,12 @@
 """A shear building on an isolation level, in one direction or in plan: storey masses and
 stiffnesses, superstructure damping, and its matrices on the levels' degrees of freedom.
 
-The fixed-base building has L degrees of freedom per floor (L = 1: u_x; L = 3 with a
-:class:`~structures.plan.Plan`: u_x, u_y, theta at the centre of stiffness), relative to its
-base; on isolators it gains the base slab, level 0, first. The superstructure matrices act on
-the storey drifts only, through ``T = [-I | I]`` (each floor's degrees of freedom minus the base
-slab's): ``K = T^T K_fb T`` and ``C = T^T C_fb T``. A rigid-body motion of the building on its
-isolators is thus neither resisted nor damped by the superstructure, and the isolation level
-gets no viscous damping from it: the isolators bring their own forces, added by the model that
-couples the two (:class:`~structures.isolated_building.IsolatedShearBuilding`).
+Each floor has L degrees of freedom relative to the base (L = 1: u_x; L = 3 with a
+:class:`~structures.plan.Plan`: u_x, u_y, theta at the centre of stiffness); on isolators the
+base slab, level 0, comes first. The superstructure acts on the storey drifts only,
+``T = [-I | I]``: ``K = T^T K_fb T``, ``C = T^T C_fb T``, so it neither resists nor damps a
+rigid-body motion on the isolators, whose forces
+:class:`~structures.isolated_building.IsolatedShearBuilding` adds.
 """
 
 from __future__ import annotations
@@ -62,8 +60,7 @@ class ModalProperties(NamedTuple):
 
 def shear_stiffness_matrix(storey_stiffnesses: np.ndarray) -> np.ndarray:
     """Tridiagonal stiffness matrix (n, n) [N/m] of a fixed-base shear building with the lateral
-    ``storey_stiffnesses`` (n,) [N/m] from the bottom up (storey ``i`` joins floors ``i-1``,
-    ``i``)."""
+    ``storey_stiffnesses`` (n,) [N/m] from the bottom up (storey i joins floors i-1 and i)."""
     k = np.asarray(storey_stiffnesses, dtype=float)
     above = np.append(k[1:], 0.0)
     return np.diag(k + above) - np.diag(k[1:], 1) - np.diag(k[1:], -1)
@@ -189,19 +186,13 @@ def _frozen(array: np.ndarray) -> np.ndarray:
 @dataclass(frozen=True, eq=False)
 class ShearBuilding:
     """A shear building on a fixed base or on an isolation level, in one direction or, with a
-    :class:`~structures.plan.Plan`, in plan.
+    :class:`~structures.plan.Plan`, in plan (degrees of freedom: module docstring).
 
-    Without a plan each level (the base slab, level 0, and the floors 1..n) has one lateral
-    degree of freedom along x. With a plan each level is a rigid diaphragm with ``(u_x, u_y,
-    theta)`` at the plan's reference point (the centre of stiffness), numbered level by level:
-    its mass matrix follows from its centre of mass and inertia
-    (:func:`~structures.plan.level_mass_matrix`), storey ``s`` joins levels ``s-1`` and ``s``
-    with ``k_x``, ``k_y`` and ``k_theta`` at the centre of stiffness, and the ground translates
-    without turning (influence: ones on the x and on the y degrees of freedom). The
-    superstructure matrices act on the drifts only (module docstring). Rayleigh damping takes
-    ``a0, a1`` from the fixed-base modes along x (with a symmetric plan the x response is damped
-    as in one direction) and applies them to the matrices in plan; modal damping in plan takes
-    one ratio for every mode (the mode numbers of one direction do not name the modes in plan).
+    In plan each level is a rigid diaphragm (:func:`~structures.plan.level_mass_matrix`),
+    storey ``s`` joins levels ``s-1`` and ``s`` with ``k_x``, ``k_y`` and ``k_theta`` at the
+    centre of stiffness, and the ground translates without turning. Rayleigh damping takes
+    ``a0, a1`` from the fixed-base modes along x and applies them in plan; modal damping in
+    plan takes one ratio for every mode.
 
     Parameters
     ----------
@@ -212,18 +203,18 @@ class ShearBuilding:
     base_mass : float
         Mass of the base slab above the isolators [kg].
     damping : RayleighDamping or ModalDamping
-        Damping of the superstructure, defined on the fixed-base building.
+        Damping of the superstructure, defined on the fixed-base building (default
+        ``RayleighDamping()``: 2 % at modes 1 and 2).
     plan : Plan, optional
-        Bearings, eccentricities, inertias, stiffnesses along y and in torsion, storey heights:
-        the building in plan. None: in one direction.
+        The building in plan (None: in one direction).
 
     Raises
     ------
     InputError
-        For a value outside its range; with a plan, if the plan does not fit the building (a
+        For a value outside its range; with a plan, a plan that does not fit the building (a
         per-storey field of another length, an inertia or torsional stiffness with neither its
-        value nor the plan's dimensions), if the bearings cannot carry the weight
-        (:func:`~structures.plan.gravity_shares`), or for per-mode modal damping ratios.
+        value nor the plan's dimensions), bearings that cannot carry the weight
+        (:func:`~structures.plan.gravity_shares`), or per-mode modal damping ratios.
     """
 
     floor_masses: np.ndarray
@@ -275,15 +266,10 @@ class ShearBuilding:
         damping: RayleighDamping | ModalDamping = _DEFAULT_DAMPING,
         plan: Plan | None = None,
     ) -> ShearBuilding:
-        """Scale a storey-stiffness ``profile`` to the fixed-base fundamental period along x
-        ``fixed_base_period`` [s] (periods scale as ``1 / sqrt(stiffness)``: one scaling hits
-        it).
-
-        ``profile`` gives the relative storey stiffnesses: ``"uniform"`` (equal),
-        ``"triangular"`` (``n, n-1, ..., 1`` from the bottom up), ``"storey_shear"``
-        (proportional to the mass each storey carries) or a positive (n,) array. The other
-        arguments are the class's.
-        """
+        """The building whose fixed-base period along x is ``fixed_base_period`` [s], its storey
+        stiffnesses [N/m] a scaled ``profile``: ``"uniform"``, ``"triangular"`` (``n, ..., 1``
+        from the bottom up), ``"storey_shear"`` (proportional to the mass each storey carries)
+        or a positive (n,) array. The other arguments are the class's."""
         owner = f"{cls.__name__}.from_period"
         masses = check_array(floor_masses, "floor_masses", owner, low=0.0, low_open=True)
         target = check_real(fixed_base_period, "fixed_base_period", owner, low=0.0, low_open=True)
@@ -336,8 +322,7 @@ class ShearBuilding:
 
     @cached_property
     def bearing_positions(self) -> np.ndarray:
-        """Where the bearings stand, shape (n_b, 2) [m]: the plan's coordinates, or one
-        group at the reference point in one direction."""
+        """Bearing positions (n_b, 2) [m]: the plan's, or the reference point in one direction."""
         if self.plan is None:
             return _frozen(np.zeros((1, 2)))
         return self.plan.bearing_coordinates
@@ -349,8 +334,7 @@ class ShearBuilding:
 
     @cached_property
     def level_centres(self) -> np.ndarray:
-        """Centres of mass of the base slab and the floors, shape (n+1, 2) [m] (at the
-        reference point in one direction)."""
+        """Centres of mass of the base slab and the floors, (n+1, 2) [m] (0 in one direction)."""
         if self.plan is None:
             return _frozen(np.zeros((self.n_storeys + 1, 2)))
         floors = self.plan.floor_eccentricities(self.n_storeys)
@@ -372,8 +356,7 @@ class ShearBuilding:
 
     @cached_property
     def gravity_shares(self) -> np.ndarray:
-        """Each bearing position's share of the weight, shape (n_b,) [N], summing to the
-        weight (the whole weight on the one group in one direction)."""
+        """Each bearing position's share of the weight, (n_b,) [N] (all of it in one direction)."""
         if self.plan is None:
             return _frozen(np.array([self.weight]))
         return _frozen(gravity_shares(self.plan.bearing_coordinates, self.level_masses,
@@ -400,8 +383,7 @@ class ShearBuilding:
 
     @cached_property
     def fixed_base_mass_matrix(self) -> np.ndarray:
-        """Fixed-base mass matrix of the floors, shape (n L, n L) [kg, kg m, kg m^2], L the
-        level's degrees of freedom."""
+        """Fixed-base mass matrix of the floors, (n L, n L) [kg, kg m, kg m^2]."""
         return _frozen(self._level_masses(range(1, self.n_storeys + 1)))
 
     @cached_property
@@ -467,9 +449,8 @@ class ShearBuilding:
 
     def isolated_modes(self, isolator_stiffness: float | np.ndarray) -> ModalProperties:
         """Periods [s] and mass-normalised shapes on linear isotropic isolators of lateral
-        stiffness ``isolator_stiffness`` [N/m]: the total, shared equally by the bearing
-        positions (e.g. ``W / R_eff`` of a friction pendulum, or an effective stiffness), or one
-        value per bearing position, shape (n_b,) (e.g. ``N_i / R_eff``)."""
+        ``isolator_stiffness`` [N/m]: a total shared equally by the bearing positions (e.g.
+        ``W / R_eff``), or one value per position, shape (n_b,) (e.g. ``N_i / R_eff``)."""
         return modal_analysis(self.isolated_mass_matrix, self._with_isolator(isolator_stiffness))
 
     def fixed_base_model(self) -> LinearModel:

@@ -1,5 +1,5 @@
-"""The diagnosis at building level: the bearing histories of a building run as the diagnosis
-reads them (:mod:`~structures.diagnosis.adapter`) and the truth models of its validation panels
+"""The diagnosis at building level: a building run's bearing histories as the diagnosis reads
+them (:mod:`~structures.diagnosis.adapter`) and the truth models of its validation panels
 (:mod:`~structures.diagnosis.truths`)."""
 
 from __future__ import annotations

@@ -1,9 +1,6 @@
-"""From a building response to the bearing-level histories the diagnosis reads.
-
-A shake-table test of an isolated building measures the isolation level: the bearings'
-relative displacement and the force through them. :func:`bearing_records` takes the same from
-a :func:`structures.analysis.run` result, so that :func:`isolator.diagnosis.diagnose` can
-treat a computed response as a measured one. ``isolator`` never imports this module.
+"""From a building response to the bearing-level histories the diagnosis reads, as a
+shake-table test measures them at the isolation level (relative displacement, force), so that
+:func:`isolator.diagnosis.diagnose` treats a computed response as a measured one.
 """
 
 from __future__ import annotations
@@ -22,21 +19,20 @@ if TYPE_CHECKING:
 
 def bearing_records(result: xr.Dataset, *, name: str | None = None, per_bearing: bool = True,
                     velocity: bool = True) -> list[BearingRecord]:
-    """The isolators' histories of a building response in one direction, as a list of one
-    record: the bearings are identical and share the weight, so one stands for each.
+    """The isolators' histories of a :func:`structures.analysis.run` result in one direction,
+    as a list of one record (the bearings are identical: one stands for each).
 
     Parameters
     ----------
     result : xarray.Dataset
-        Output of :func:`structures.analysis.run`.
+        A run in one direction (a run in plan raises an ``InputError``).
     name : str, optional
         Name of the record (default: the record name of the run).
     per_bearing : bool
-        The force [N] and axial load [N] of one bearing (default), else of the isolation
-        level (times the number of bearings).
+        The force [N] and axial load [N] of one bearing (default), else of the isolation level.
     velocity : bool
-        Pass the computed isolator velocity as the measured one (default); False leaves the
-        diagnosis to derive it from the displacement.
+        Pass the computed isolator velocity [m/s] as the measured one (default); False leaves
+        the diagnosis to derive it.
     """
     if result.sizes["direction"] != 1:
         raise InputError("bearing_records reads a building in one direction: the diagnosis "
@@ -53,9 +49,9 @@ def bearing_records(result: xr.Dataset, *, name: str | None = None, per_bearing:
 
 
 def bearing_campaign(results: Sequence[xr.Dataset], **kwargs: object) -> Campaign:
-    """A campaign of the bearing histories of one or more building responses, in order,
-    with the bearing geometry their attributes agree on (``kwargs``: :func:`bearing_records`).
-    """
+    """A campaign of the bearing histories of building responses, in order, with the bearing
+    geometry they share (``kwargs``: :func:`bearing_records`); a ``ValueError`` if none, or if
+    their geometries differ."""
     results = list(results)
     if not results:
         raise ValueError("bearing_campaign needs at least one building response.")

@@ -1,16 +1,9 @@
 """Truth models for the diagnosis's validation panel: richer than the baseline it is told.
 
-A truth drives a bearing through an imposed displacement history and returns what a test
-machine would record, before measurement noise:
-
-- our element (:func:`isolator.testrig.run_test`) with effects the diagnosed baseline lacks
-  (``PTVFriction`` with some of its dependencies) or another effective radius than told;
-- its friction force modulated in shapes other than the candidate library's: a breakaway
-  peak fading quadratically over a length (:class:`Breakaway`), wear as a power law of the
-  campaign's travel (:class:`Wear`);
-- OpenSees elements (:func:`structures.opensees.bearing.run_opensees_test`):
-  ``FPBearingPTV`` with temperature dependence, ``singleFPBearing`` with ``VelDependent`` or
-  ``Coulomb`` friction.
+A truth drives a bearing through an imposed displacement history and returns what a test machine
+would record before noise: our element with effects the baseline lacks (PTV friction, another
+effective radius, :class:`Breakaway`, :class:`Wear`), or an OpenSees element
+(``FPBearingPTV``, ``singleFPBearing`` with ``VelDependent`` or ``Coulomb`` friction).
 """
 
 from __future__ import annotations
@@ -26,21 +19,15 @@ from isolator.testrig import run_test
 
 @dataclass(frozen=True)
 class Breakaway:
-    """Static friction peak after each reversal: m = 1 + ratio (1 - s / length)^2 for s < length.
-
-    Attributes
-    ----------
-    ratio : float
-        Extra friction right at a reversal (and at the start of motion) [-].
-    length : float
-        Travel since the reversal over which the peak fades to nothing [m].
-    """
+    """Static friction peak after each reversal, m = 1 + ``ratio`` (1 - s / ``length``)^2 for
+    s < ``length``: ``ratio`` [-] the extra friction at a reversal (and at the start of motion),
+    ``length`` [m] the travel s since it over which the peak fades."""
 
     ratio: float = 0.35
     length: float = 0.01
 
     def factor(self, displacement: np.ndarray) -> np.ndarray:
-        """m(t) for a clean displacement history [-]."""
+        """m(t) [-] for a clean displacement history [m]."""
         u = np.asarray(displacement, dtype=float)
         du = np.diff(u)
         sign = np.sign(du)
@@ -55,17 +42,9 @@ class Breakaway:
 
 @dataclass(frozen=True)
 class Wear:
-    """Friction drifting with the campaign's accumulated travel S: m = 1 + change (S/S_end)^p.
-
-    Attributes
-    ----------
-    change : float
-        Relative change of friction at the end of the campaign [-] (negative: run-in).
-    power : float
-        Exponent p of the drift [-].
-    campaign_travel : float
-        Travel of the whole campaign S_end [m] (set by the panel).
-    """
+    """Friction drifting with the campaign's accumulated travel S, m = 1 + ``change``
+    (S / ``campaign_travel``)^``power``: ``change`` [-] the relative change at the end of the
+    campaign (negative: run-in), ``campaign_travel`` [m] the whole travel (set by the panel)."""
 
     change: float = -0.2
     power: float = 0.6
@@ -97,22 +76,10 @@ def element_truth(
     wear: Wear | None = None,
     travel_before: float = 0.0,
 ) -> TruthRecord:
-    """Our element through ``history``, optionally with a varying axial load and breakaway
-    or wear on its friction force.
-
-    Parameters
-    ----------
-    bearing : DCFPBearing
-        The true bearing (friction model and effective radius).
-    history : ImposedHistory
-        The imposed displacement and its exact velocity.
-    axial_load : ndarray, optional
-        Axial load at each sample [N], instead of the bearing's constant one.
-    breakaway, wear : optional
-        Extra physics on the friction force (see the classes).
-    travel_before : float
-        Travel of the campaign before this test [m] (for the wear).
-    """
+    """Our element (:func:`isolator.testrig.run_test`) as the true ``bearing`` (friction model,
+    effective radius) through the imposed ``history`` [m, m/s], optionally under an
+    ``axial_load`` [N] per sample instead of its constant one, and with ``breakaway`` or
+    ``wear`` on its friction force, the campaign having travelled ``travel_before`` [m]."""
     t, u, v = history.time, history.displacement, history.velocity
     if axial_load is not None:
         bearing = replace(bearing, axial_load=AxialLoadHistory(t - t[0], axial_load))
@@ -128,9 +95,9 @@ def element_truth(
 
 
 def opensees_truth(bearing: DCFPBearing, history: ImposedHistory, element: str) -> TruthRecord:
-    """An OpenSees element through ``history`` (see
-    :func:`structures.opensees.bearing.run_opensees_test`); the axial force recorded is the
-    bearing's constant load (what a test machine's vertical actuator holds)."""
+    """An OpenSees ``element`` through ``history``
+    (:func:`structures.opensees.bearing.run_opensees_test`), recording the bearing's constant
+    axial load (what a test machine's vertical actuator holds)."""
     from structures.opensees.bearing import run_opensees_test
 
     result = run_opensees_test(bearing, history.time, history.displacement, history.velocity,
@@ -142,20 +109,9 @@ def opensees_truth(bearing: DCFPBearing, history: ImposedHistory, element: str) 
 def measured(truth: TruthRecord, rng: np.random.Generator, *, force_noise: float,
              displacement_noise: float, velocity_noise: float | None,
              axial_noise: float | None) -> dict[str, np.ndarray]:
-    """The columns a test machine would write: the truth plus white measurement noise.
-
-    Parameters
-    ----------
-    truth : TruthRecord
-        The clean histories.
-    rng : numpy.random.Generator
-        Noise source.
-    force_noise, displacement_noise : float
-        Standard deviations [N], [m].
-    velocity_noise, axial_noise : float or None
-        Standard deviation [m/s] and relative standard deviation of the axial force [-];
-        None leaves that column out.
-    """
+    """The columns a test machine would write: the truth plus white measurement noise of the
+    standard deviations ``force_noise`` [N], ``displacement_noise`` [m], ``velocity_noise``
+    [m/s] and ``axial_noise`` (relative) [-], drawn from ``rng``; None leaves that column out."""
     n = truth.time.size
     out = {"time": truth.time,
            "displacement": truth.displacement + rng.normal(0.0, displacement_noise, n),

@@ -1,8 +1,5 @@
-"""Ground-motion suites: records or pairs of records x scale factors x friction models x property
-modifiers through Dask, one result file per run (:mod:`~structures.suites.suite`; the motions
-:mod:`~structures.suites.sources`, the runs :mod:`~structures.suites.runs`, their files
-:mod:`~structures.suites.store`) and the statistics of their peaks
-(:mod:`~structures.suites.summary`)."""
+"""Ground-motion suites through Dask, one result file per run (:mod:`~structures.suites.suite`),
+and the statistics of their peaks (:mod:`~structures.suites.summary`)."""
 
 from __future__ import annotations
 

@@ -1,9 +1,6 @@
-"""The run of a suite's runs through Dask, into its folder, and what comes out of it.
-
-:func:`compute_runs` keeps the runs already complete in the folder, records the runs whose
-ground motion cannot be read, computes the others on the cluster (each batch of one ground
-motion a Dask task, :mod:`structures.suites.tasks`) and stores each as it finishes;
-:func:`finish` writes the table of the invocation, its failures and its summary.
+"""The run of a suite's runs through Dask into its folder: :func:`compute_runs` (each batch of
+one ground motion a task, :mod:`structures.suites.tasks`) and :func:`finish`, which writes the
+table of the invocation, its failures and its summary.
 """
 
 from __future__ import annotations
@@ -32,25 +29,11 @@ __all__ = ["SuiteResult", "check_run_options", "compute_runs", "finish"]
 
 @dataclass
 class SuiteResult:
-    """What a suite produced.
-
-    Attributes
-    ----------
-    peaks, summary : pandas.DataFrame
-        One row per run in suite order (the :data:`structures.suites.runs.COLUMNS` of the suite's
-        kind; SI units, times [s]), and its statistics
-        (:func:`structures.suites.summary.summarize`).
-    failures : list of dict
-        ``{"run": run id, "reason": ...}`` of every failed run.
-    wall_time : float
-        Wall-clock time of this invocation [s].
-    out_dir : Path
-        The result folder.
-    computed, skipped : int
-        Runs computed now, and runs kept from an earlier invocation.
-    runs : list of RunSpec
-        The runs, in suite order.
-    """
+    """What a suite produced: the ``peaks`` table, one row per run in suite order
+    (:data:`structures.suites.runs.COLUMNS`), its ``summary``
+    (:func:`structures.suites.summary.summarize`), the ``failures`` (``{"run": run id,
+    "reason": ...}``), the ``wall_time`` of this invocation [s], the ``out_dir``, the runs
+    ``computed`` now and ``skipped`` (complete from before), and the ``runs`` in suite order."""
 
     peaks: pd.DataFrame
     failures: list[dict[str, str]]
@@ -76,14 +59,12 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
                  n_workers: int | None, scheduler_address: str | None, write: str,
                  progress: bool, run_timeout: float | None, max_steps: int,
                  ship: bool) -> tuple[dict[str, dict[str, Any]], int, int]:
-    """Compute the runs that are not complete in the folder and store each as it finishes.
+    """Compute the runs not complete in ``store`` and store each as it finishes; return the row
+    of every run by run id, and the numbers of runs computed now and complete from before.
 
-    ``specs`` are the suite's runs in table order; ``motions`` the ground motions read here, by
-    ``spec.motion`` (sent to the workers when ``ship``, else each task reads its own);
-    ``unreadable`` why each motion that could not be read here cannot (its runs fail with it);
-    ``config`` the building file and ``store`` the result folder; the other keywords are those of
-    :func:`structures.suites.suite.run_suite` (``run_timeout`` [s]). Returns the row of every run
-    by run id, the number of runs computed now and of those complete from before.
+    ``motions`` are those read here, by ``spec.motion`` (sent to the workers when ``ship``,
+    else each task reads its own); ``unreadable`` the reason of each motion that could not be
+    read (its runs fail with it); the other keywords are those of ``run_suite``.
     """
     from distributed import as_completed
     from tqdm import tqdm
@@ -149,9 +130,8 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
 
 def finish(specs: Sequence[RunSpec], rows: dict[str, dict[str, Any]], store: RunStore,
            computed: int, skipped: int, start: float, columns: Sequence[str]) -> SuiteResult:
-    """Write ``peaks.csv`` (``columns``), ``failures.json`` and the summary
-    (:func:`structures.suites.summary.summarize`) and return the result; ``start`` is the
-    invocation's ``time.perf_counter()`` [s]."""
+    """Write ``peaks.csv`` (``columns``), ``failures.json`` and the summary and return the
+    result; ``start`` is the invocation's ``time.perf_counter()`` [s]."""
     import pandas as pd
 
     wall = time.perf_counter() - start

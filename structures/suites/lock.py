@@ -1,23 +1,13 @@
 """One suite at a time per result folder: a lock file made by an atomic exclusive create.
 
-Two suites writing into one folder would compute every run twice and, worse, the second would
-remove the first's temporary files as strays (:meth:`RunStore.clean_temporary`).
-:class:`SuiteLock` guards the folder for the whole of a suite:
-
-- taking it creates ``OUT/.suite.lock`` with ``os.open(..., O_CREAT | O_EXCL)``, which the
-  file system grants to one process only, and writes the holder in it (pid, host, start time
-  in UTC, the process's own start time, the command);
-- a second suite finds the file and refuses at once (:class:`SuiteLocked`, an
-  :class:`~dcfpb.common.errors.InputError`: exit status 2), naming the folder and the holder;
-  with ``wait`` it polls until the lock is free or the wait is over;
-- a lock whose holder is gone (its pid no longer runs on this host, or runs a process started
-  after the lock was taken: a pid reused) is stale and taken over with a warning, by one process
-  at a time (a second exclusive file, ``.suite.lock.takeover``, held for the few milliseconds
-  it takes); a lock from another host cannot be judged and is respected, and a lock file that
-  cannot be read (its holder killed between creating and writing it) is stale once older than
-  :data:`UNREADABLE_STALE_AFTER`;
-- leaving the ``with`` block releases it, on errors and ``KeyboardInterrupt`` too; a process
-  killed outright leaves a stale lock, which the next suite takes over.
+Two suites in one folder would compute every run twice, and the second would remove the first's
+temporary files as strays. :class:`SuiteLock` creates ``OUT/.suite.lock`` with ``O_CREAT |
+O_EXCL`` and writes its holder in it (pid, host, UTC start, the process's own start time, the
+command); a second suite refuses (:class:`SuiteLocked`) or, with ``wait``, polls. A lock whose
+holder is gone (its pid no longer runs on this host, or runs a later process) is stale and taken
+over with a warning, one process at a time (``.suite.lock.takeover``); a lock from another host
+is respected, and an unreadable one is stale after :data:`UNREADABLE_STALE_AFTER`. Leaving the
+``with`` block releases the lock, on errors too; a process killed outright leaves a stale one.
 """
 
 from __future__ import annotations
@@ -61,8 +51,7 @@ def _process_start(pid: int) -> float | None:
 
 
 def _alive(pid: int, started: float | None) -> bool:
-    """Whether process ``pid`` of this host still runs, and is the one that started at
-    ``started`` (a pid reused by a later process is not)."""
+    """Whether process ``pid`` of this host runs and started at ``started`` (not a reused pid)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -82,14 +71,13 @@ def _describe(holder: dict[str, Any]) -> str:
 
 class SuiteLock:
     """The lock of a suite's result ``folder`` (created if needed), as a context manager;
-    ``wait`` [s] is how long to wait for a held lock: 0 refuses at once, ``math.inf`` waits as
-    long as it takes.
+    ``wait`` [s] for a held lock: 0 refuses at once, ``math.inf`` waits as long as it takes.
 
     Raises
     ------
     SuiteLocked
-        On entering, when another suite holds the folder (after ``wait``), naming the folder, the
-        holder's pid, host and start time, and the lock file.
+        On entering, when another suite holds the folder (after ``wait``), naming the folder,
+        the holder and the lock file.
     """
 
     def __init__(self, folder: str | Path, *, wait: float = 0.0) -> None:

@@ -1,13 +1,6 @@
-"""One run of a suite: what it is, its stable id, its row and the work that computes it.
-
-A run is a ground motion (:class:`~structures.suites.sources.MotionSource`: a record, run on the
-building in one direction, or a pair, run on the building in plan) at a scale factor under one
-friction model with one property modifier. :class:`RunSpec` defines it and its stable id, a
-readable name plus a hash of everything that changes the answer (the motion's file names and
-bytes, how a pair is read, scale, model, modifier, truncation, step, building and, in plan, its
-plan: :func:`fingerprint`). :func:`execute_run` computes it, pure: a spec and a motion in, its
-row (the peaks of :func:`structures.analysis.peaks` and the suite's own columns) and the netCDF
-bytes out; the files are written by :mod:`structures.suites.store`.
+"""One run of a suite: :class:`RunSpec`, its stable id and its row, and :func:`execute_run`, the
+pure work that computes it (a spec and a motion in, its peaks row and netCDF bytes out; the
+files are written by :mod:`structures.suites.store`).
 """
 
 from __future__ import annotations
@@ -37,8 +30,8 @@ PEAK_COLUMNS = {
              "max_temperature", "energy_balance_error", "steps", "wall_time",
              "peaks_up_to_failure"),
 }
-"""Columns of the peaks table filled from :func:`structures.analysis.peaks` (SI units, wall
-time [s]), by the kind of motion: a record's runs in one direction, a pair's in plan."""
+"""Columns of the peaks table from :func:`structures.analysis.peaks` (SI units, wall time [s]),
+by the kind of motion: a record's runs in one direction, a pair's in plan."""
 
 COLUMNS = {
     kind: ("run_id", *MOTION_COLUMNS[kind], "scale", "record_factor", "multiplier", "model",
@@ -46,29 +39,25 @@ COLUMNS = {
            "worker", "failure", "failed_at")
     for kind in MOTION_COLUMNS
 }
-"""Columns of the peaks table, one row per run, by the kind of motion: the motion
-(:data:`~structures.suites.sources.MOTION_COLUMNS`), the scale (``record_factor`` times the suite's
-``multiplier``), model and modifier, the peaks (:data:`PEAK_COLUMNS`), then how the run went.
-A failed run keeps the peaks of the part that ran (up to ``failed_at`` [s] of the motion, empty
-when it never ran); ``failure`` is its kind, one of :data:`FAILURE_KINDS` (empty for a run that
-finished)."""
+"""Columns of the peaks table, one row per run, by the kind of motion: the motion, its scale
+(``record_factor`` times ``multiplier``), model and modifier, the peaks (:data:`PEAK_COLUMNS`;
+a failed run's up to ``failed_at`` [s], empty when it never ran), then how the run went
+(``failure``: one of :data:`FAILURE_KINDS`, empty for a run that finished)."""
 
 FAILURE_KINDS = ("capacity", "convergence", "timeout", "error")
-"""Why a run failed: a bearing past its displacement capacity; a step that did not converge;
-past its time limit (``run_suite(run_timeout=...)``); anything else (an exception, a motion
-that cannot be read, a worker that kept dying, a model outside its range)."""
+"""Why a run failed: past its displacement capacity, no convergence, past its time limit
+(``run_suite(run_timeout=...)``), anything else (an exception, an unreadable motion, a worker
+that kept dying)."""
 
 MODEL_COST = {"precise": 2.0, "simplified": 1.5, "constant": 1.0}
 """Relative cost of a time step per friction model (the order in which runs start)."""
 
 NETCDF_ENGINE = "scipy"
-"""xarray engine of the result files: netCDF3 (64-bit offset) written to bytes in memory,
-needing only scipy (netCDF4 and h5netcdf are optional and cannot both write to bytes)."""
+"""xarray engine of the result files: netCDF3 written to bytes in memory with scipy only."""
 
 
 def failure_kind(row: dict[str, Any]) -> str:
-    """The :data:`FAILURE_KINDS` entry of a failed run's row (``""`` for a finished run); a row
-    without a ``failure`` kind is classified by its reason."""
+    """The :data:`FAILURE_KINDS` entry of a run's row (``""`` if finished), by failure or reason."""
     if row.get("status") == "done":
         return ""
     kind = row.get("failure")
@@ -89,9 +78,8 @@ def _hash(payload: Any, digits: int) -> str:
 
 
 def fingerprint(config: BuildingConfig, in_plan: bool = False) -> str:
-    """A 12-hex-digit hash of everything in a building file that changes a run's answer: the
-    building, bearings, friction and integration and, for a run in plan, the plan; not the file's
-    ``name``, so that renaming a building keeps its results."""
+    """A 12-hex-digit hash of what in a building file changes a run's answer (building, bearings,
+    friction, integration and, in plan, the plan), not its ``name``."""
     b = config.building
     digest = _hash({
         "floor_masses": [float(x) for x in b.floor_masses],
@@ -113,8 +101,7 @@ def fingerprint(config: BuildingConfig, in_plan: bool = False) -> str:
 
 
 def analysis_step(requested: float | None, motion_dt: float) -> float:
-    """The analysis step of a run [s]: the requested step, or the motion's when that is finer
-    (``run`` cannot take a step longer than the motion's). ``None`` means the motion's."""
+    """A run's analysis step [s]: the requested one (None: the motion's), at most the motion's."""
     return motion_dt if requested is None else min(float(requested), motion_dt)
 
 
@@ -124,28 +111,12 @@ def _safe(text: str) -> str:
 
 @dataclass(frozen=True)
 class RunSpec:
-    """One run of a suite.
-
-    Parameters
-    ----------
-    motion : MotionSource
-        The ground motion: a record (the building runs in one direction) or a pair (in plan).
-    digests : tuple of str
-        sha256 of each of the motion's files (:meth:`MotionSource.digests`).
-    model : str
-        Friction model, ``"precise"``, ``"simplified"`` or ``"constant"``.
-    record_factor, multiplier : float
-        The motion's own scale factor (e.g. to a target spectrum) and the suite-wide multiplier
-        of it [-]; the run's scale is their product.
-    modifier : float
-        Property modification factor on the friction coefficient [-]
-        (``friction.scaled(modifier)``).
-    duration, dt : float or None
-        The first ``duration`` seconds of the motion kept [s] (None: all of it), and the
-        requested analysis step [s] (None: the building file's, else the motion's).
-    settings : str
-        :func:`fingerprint` of the building.
-    """
+    """One run of a suite: the ``motion`` (a record, run in one direction, or a pair, in plan)
+    with the sha256 ``digests`` of its files, the friction ``model``, the motion's own
+    ``record_factor`` and the suite-wide ``multiplier`` of it [-], the ``modifier`` of the
+    friction coefficient [-], the first ``duration`` seconds kept [s] (None: all), the requested
+    analysis step ``dt`` [s] (None: the building file's, else the motion's) and the building's
+    ``settings`` (:func:`fingerprint`)."""
 
     motion: MotionSource
     digests: tuple[str, ...]
@@ -164,10 +135,9 @@ class RunSpec:
 
     @cached_property
     def run_id(self) -> str:
-        """Stable id: ``<name>_x<scale>_<model>_m<modifier>-<hash>``, e.g.
-        ``A-BEN360_x2_precise_m1-3f9a2c1b07``. The hash covers the motion's files by name
-        (not their folder) and bytes, how a pair is read, the exact scale and modifier, the
-        truncation, the step and the building (:meth:`MotionSource.identity`,
+        """Stable id ``<name>_x<scale>_<model>_m<modifier>-<hash>``, e.g.
+        ``A-BEN360_x2_precise_m1-3f9a2c1b07``, the hash over everything that changes the answer
+        (:meth:`MotionSource.identity`, the exact scale and modifier, truncation, step,
         :func:`fingerprint`)."""
         key = self.motion.identity(self.digests) | {
             name: getattr(self, name) for name in ("model", "record_factor", "multiplier",
@@ -189,8 +159,7 @@ class RunSpec:
         return (row or self.row()) | {"status": "failed", "reason": reason, "failure": kind}
 
     def cost(self, motion: Any, config: BuildingConfig) -> int:
-        """Estimated cost, steps (or, for a motion not read here, its files' bytes) x model
-        weight: the longest runs start first, so fewer workers idle at the end of the suite."""
+        """Estimated cost (steps, or a motion's file bytes, x model weight): longest first."""
         if motion is None:
             try:
                 size = sum(os.path.getsize(f) for f in self.motion.files)
@@ -206,10 +175,9 @@ class RunSpec:
 def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
                 time_limit: float | None = None, max_steps: int = DEFAULT_MAX_STEPS,
                 ) -> tuple[dict[str, Any], bytes | None]:
-    """Compute one run, the work of a Dask task: what ``structures.run(config, motion, model=...,
-    dt=..., scale=...)`` runs, with the friction coefficient times the modifier; a record on the
-    building in one direction (a file's ``[plan]`` table left out), a pair on the building in
-    plan, each bearing on its share of the weight.
+    """Compute one run, the work of a Dask task: ``structures.run`` on the record (the building
+    in one direction) or the pair (in plan), scaled, truncated, with the friction coefficient
+    times the modifier.
 
     Parameters
     ----------
@@ -220,20 +188,18 @@ def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
     config : BuildingConfig
         The building file.
     time_limit : float, optional
-        Wall-clock limit of the run's integration [s] (``run(time_limit=...)``): past it the run
-        fails with the reason ``"timeout after N s: ..."``.
+        Wall-clock limit of the run's integration [s]: past it the run fails with the reason
+        ``"timeout after N s: ..."``.
     max_steps : int
-        A run of more steps (a record whose DT is wrong) fails with the reason before anything is
-        allocated (``run(max_steps=...)``).
+        A run of more steps fails with the reason before anything is allocated.
 
     Returns
     -------
     row : dict
         The peaks-table row (:data:`COLUMNS`, and every key of
         :func:`structures.analysis.peaks`): status ``"done"``, or ``"failed"`` with the
-        ``reason`` (any exception, e.g. a motion that cannot be read, or a run that stopped
-        early, whose peaks up to then are kept), the ``failure`` kind and the time ``failed_at``
-        [s].
+        ``reason`` (any exception, or a run that stopped early, its peaks up to then kept), the
+        ``failure`` kind and ``failed_at`` [s].
     data : bytes or None
         The result as netCDF (:data:`NETCDF_ENGINE`); None for a failed run.
     """

@@ -1,19 +1,9 @@
 """Where the ground motions of a suite are: record files, or the component files of pairs.
 
-A :class:`MotionSource` names one ground motion of a suite and its files: one record file (a
-run of the building in one direction), or the x, y (and z) component files of a pair (a run of
-the building in plan). :func:`motion_sources` lists them, without reading them, from either list
-a suite takes:
-
-- records: a folder (its ``*.AT2`` files, any case) or a CSV whose first column holds record
-  files relative to it (a first row whose first cell is ``file``, ``filename``, ``file_name``,
-  ``record`` or ``path`` is a header; other columns are ignored);
-- pairs: the manifest of :func:`groundmotions.pairs.read_pair_manifest` (a header naming the
-  columns ``name``, ``x``, ``y`` and optionally ``z``, ``dt`` [s], ``units``), read by
-  :func:`groundmotions.pairs.pair.manifest_rows`.
-
-A list that cannot be understood is an error before any work; a file that is missing or cannot
-be read is not: its runs fail with the reason and the others carry on.
+A :class:`MotionSource` names one ground motion and its files (a record: a run in one
+direction; the components of a pair: a run in plan); :func:`motion_sources` lists them without
+reading them. A list that cannot be understood is an error before any work; a file that cannot
+be read fails its runs only.
 """
 
 from __future__ import annotations
@@ -30,8 +20,7 @@ __all__ = ["MOTION_COLUMNS", "MotionSource", "file_digest", "motion_sources"]
 
 MOTION_COLUMNS = {"record": ("record", "record_file"),
                   "pair": ("pair", "x_file", "y_file", "z_file")}
-"""The columns naming a motion in a row of the peaks table, by its kind
-(:meth:`MotionSource.columns`)."""
+"""The columns naming a motion in a peaks-table row, by kind (:meth:`MotionSource.columns`)."""
 _LIST_HEADERS = {"file", "filename", "file_name", "record", "path"}
 
 
@@ -45,10 +34,9 @@ def file_digest(path: str | Path) -> str:
 
 @dataclass(frozen=True)
 class MotionSource:
-    """One ground motion of a suite and where it is read from: its ``name`` (a record file's
-    stem, a pair's name from its manifest), its ``files`` (absolute paths: one record file, or a
-    pair's x and y and optionally z, vertical, components), the time step ``dt`` [s] of
-    one-column text records and the ``units`` of files whose header states none."""
+    """One ground motion of a suite: its ``name`` (a record file's stem, or a pair's name), its
+    ``files`` (absolute paths: one record, or a pair's x, y and optionally z components), the
+    step ``dt`` [s] of one-column text records and the ``units`` of files whose header has none."""
 
     name: str
     files: tuple[str, ...]
@@ -68,20 +56,17 @@ class MotionSource:
 
     @property
     def kind(self) -> str:
-        """``"record"`` (one file: the building runs in one direction) or ``"pair"``
-        (the building runs in plan)."""
+        """``"record"`` (one direction) or ``"pair"`` (in plan)."""
         return "record" if len(self.files) == 1 else "pair"
 
     def columns(self) -> dict[str, Any]:
-        """The columns naming the motion in a row of the peaks table: ``record`` (the stem)
-        and ``record_file``, or ``pair`` and ``x_file``, ``y_file``, ``z_file`` (None
-        without a vertical); file names without their folder."""
+        """The columns naming the motion in a peaks-table row (:data:`MOTION_COLUMNS`; ``z_file``
+        None without a vertical), file names without their folder."""
         names = [self.name, *(Path(f).name for f in self.files), None]
         return dict(zip(MOTION_COLUMNS[self.kind], names, strict=False))
 
     def identity(self, digests: tuple[str, ...]) -> dict[str, Any]:
-        """What of the motion a run's id covers (:attr:`structures.suites.runs.RunSpec.run_id`):
-        the files' names and ``digests`` of their bytes, and how a pair is read."""
+        """What of the motion a run's id covers: file names, ``digests``, how a pair is read."""
         columns = self.columns()
         if self.kind == "record":
             return {"record_file": columns["record_file"], "record_digest": digests[0]}
@@ -93,8 +78,7 @@ class MotionSource:
 
     def read(self) -> Any:
         """The motion, unscaled and untruncated: a ``GroundMotion`` or a ``GroundMotionPair``
-        (raises if it cannot be read: a missing or unreadable file, a pair's components of
-        different steps or lengths)."""
+        (raises for a missing or unreadable file, or a pair's mismatched components)."""
         if self.kind == "record":
             from groundmotions.readers import read_record
 
@@ -106,16 +90,19 @@ class MotionSource:
 
 
 def motion_sources(path: str | Path, *, pairs: bool = False) -> tuple[MotionSource, ...]:
-    """The motions of a record list (a folder or a CSV) or, with ``pairs``, of a pair
-    manifest (see the module docstring), without reading them.
+    """The motions of a record list or, with ``pairs``, of a pair manifest, without reading them.
+
+    A record list is a folder (its ``*.AT2`` files, any case) or a CSV whose first column holds
+    record files relative to it (a first cell ``file``, ``filename``, ``file_name``, ``record``
+    or ``path`` is a header; other columns are ignored); a pair manifest is that of
+    :func:`groundmotions.pairs.read_pair_manifest` (columns ``name``, ``x``, ``y`` and optionally
+    ``z``, ``dt`` [s], ``units``).
 
     Raises
     ------
     InputError
-        Records: no such folder or file, or no records in it. Pairs: no such file, an empty
-        manifest, an unknown, missing or repeated column, a row of the wrong number of cells,
-        an empty required cell, a repeated pair name, a bad ``dt``; the message starts with
-        ``"<manifest>, line <n>"``.
+        Records: no such folder or file, or no records in it. Pairs: no such file, or a manifest
+        empty or with a bad column, row, cell, pair name or ``dt`` (``"<manifest>, line <n>"``).
     """
     if pairs:
         from groundmotions.pairs.pair import manifest_rows

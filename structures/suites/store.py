@@ -8,16 +8,11 @@ Layout of ``OUT/``::
     suite.log                   one line per event: "<UTC time> <event> <run id> <details>"
     peaks.csv, failures.json    the table of the last invocation (``structures.suites.suite``)
 
-Every file is written under a temporary name in its folder and renamed over its final name with
-``os.replace`` (atomic on POSIX and Windows), so a file under its final name is whole once its
-writer has closed it. A run is complete when its row exists, parses, names the run as done and
-its netCDF file has the size the row records; anything else is computed again, so killing a
-suite (or a worker) loses at most the runs in flight. Files are not fsynced: that would cost as
-much as a short run and guard only against a power cut, after which a file the disk did not
-keep whole fails the same test and is recomputed. The writers are the workers (or the client,
-``run_suite(write=...)``); the log is appended with one ``write`` per line, which POSIX keeps
-whole between processes on a local file system. One suite at a time per folder: stray temporary
-files of a killed suite are removed when the next one starts.
+Every file is written under a temporary name and renamed with ``os.replace`` (atomic), so a file
+under its final name is whole. A run is complete when its row parses, names the run as done and
+its netCDF file has the size the row records; anything else is computed again. Files are not
+fsynced: one lost to a power cut fails the same test. A log line is one ``write``, kept whole
+between processes on a local POSIX file system.
 """
 
 from __future__ import annotations
@@ -46,8 +41,7 @@ def atomic_write(path: Path, data: bytes) -> None:
 
 
 def _json_safe(value: Any) -> Any:
-    """NaN and infinities become None (JSON has no such numbers); numpy scalars become
-    Python numbers."""
+    """NaN and infinities as None (not JSON numbers), numpy scalars as Python numbers."""
     if hasattr(value, "item") and not isinstance(value, str | bytes):
         value = value.item()
     if isinstance(value, float) and not math.isfinite(value):

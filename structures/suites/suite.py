@@ -1,17 +1,11 @@
 """Ground-motion suites: records or pairs x scale factors x friction models x property modifiers.
 
-A :class:`Suite` is a set of independent runs (:class:`structures.suites.runs.RunSpec`), each
-with a stable id, of one building under the motions of a list
-(:func:`~structures.suites.sources.motion_sources`): records run the building in one direction,
-pairs run a building file with a ``[plan]`` table in plan. :func:`run_suite` computes them with
-``dask.distributed``, on a local cluster (:func:`structures.suites.tasks.local_cluster`) or on
-any running cluster given its scheduler address, and each run's files are written atomically
-(:mod:`structures.suites.store`). Rerunning a suite into the same folder skips the runs that are
-complete and computes the rest: killing a suite loses at most the runs in flight, and a worker
-lost in the middle of a batch has its batch redone elsewhere by Dask, keeping the runs of it
-already stored (:mod:`structures.suites.tasks`). A run that fails (a motion that cannot be read,
-a run stopping early, any exception, a worker that keeps dying) is recorded with its reason and
-retried on the next run; the others carry on. One suite at a time per folder
+A :class:`Suite` is a set of independent runs of one building (records run it in one
+direction, pairs in plan). :func:`run_suite` computes them with ``dask.distributed``, on a local
+or a running cluster, each run's files written atomically (:mod:`structures.suites.store`).
+Rerunning a suite into its folder computes only the runs not complete, so a killed suite or a
+lost worker loses at most the runs in flight; a failed run is recorded with its reason and
+retried next time, the others carry on. One suite at a time per folder
 (:mod:`structures.suites.lock`).
 
 Example::
@@ -50,8 +44,7 @@ Factors = Mapping[Any, float] | Callable[[Sequence[Any]], Any]
 
 
 def _lookup(factors: Mapping[Any, float], source: MotionSource, name: str) -> float | None:
-    """A motion's factor in a mapping keyed by its source, its record file's path, file name
-    or stem, or its name."""
+    """A motion's factor keyed by its source, record path, file name or stem, or name."""
     files = (source.files[0], Path(source.files[0]).name) if source.kind == "record" else ()
     for key in (source, *files, source.name, name):
         if key in factors:
@@ -69,26 +62,23 @@ class Suite:
         The building file (:func:`structures.config.load_config`); for pairs, one with a
         ``[plan]`` table.
     motions : sequence of MotionSource, str or Path
-        The records or the pairs (:func:`~structures.suites.sources.motion_sources`; a path is a
-        record file), all of one kind; pairs of distinct names.
+        Records or pairs, not mixed (:func:`~structures.suites.sources.motion_sources`; a path
+        is a record file); pairs of distinct names.
     models : sequence of str
-        Friction models among ``"precise"``, ``"simplified"``, ``"constant"``.
+        Friction models among ``"precise"``, ``"simplified"``, ``"constant"`` (default all).
     scales : sequence of float
-        Suite-wide multipliers of the per-motion factors [-] (plain scale factors without
-        ``factors``).
+        Suite-wide multipliers of the per-motion factors [-].
     property_modifiers : sequence of float
-        Factors on the reference friction coefficient [-], e.g. ``(lambda_min, 1.0, lambda_max)``
-        (``friction.scaled(modifier)``: ``mu_t0`` of the precise and simplified models, ``mu0``
-        of the constant one; ASCE 7-16 Sec. 17.2.8.4).
+        Factors on the reference friction coefficient (``mu_t0``, or ``mu0`` of the constant
+        model) [-], e.g. ``(lambda_min, 1.0, lambda_max)`` (ASCE 7-16 Sec. 17.2.8.4).
     factors : mapping or callable, optional
-        Per-motion scale factors [-] (one for all the components of a pair): a mapping keyed by a
-        record's path, file name or stem, or a pair's name; or a hook given the readable motions
-        in order that returns their factors as a sequence or as such a mapping, e.g. ``lambda
-        motions: scale_suite(motions, target, period_range).scale_factors``. Default 1.
+        Per-motion scale factors [-] (default 1): a mapping keyed by a record's path, file name
+        or stem, or a pair's name; or a hook given the readable motions in order and returning
+        their factors as a sequence or such a mapping, e.g. ``lambda motions:
+        scale_suite(motions, target, period_range).scale_factors``.
     duration, dt : float, optional
         The first ``duration`` seconds of each motion kept [s]; the analysis step [s] (default
-        the building file's; a motion with a finer step runs at its own, as the ``dt`` column
-        says).
+        the building file's; a motion with a finer step runs at its own).
 
     Raises
     ------
@@ -100,7 +90,7 @@ class Suite:
     Warns
     -----
     InputWarning
-        Records on a building file with a ``[plan]`` table: they run it in one direction.
+        Records on a building file with a ``[plan]`` table (they run it in one direction).
     """
 
     config: BuildingConfig
@@ -190,12 +180,9 @@ class Suite:
 
     def runs(self, *, read: bool = True
              ) -> tuple[list[RunSpec], dict[MotionSource, Any], dict[MotionSource, str]]:
-        """The runs, in table order (motion, multiplier, model, modifier), the readable
-        motions and the reasons of the unreadable ones.
-
-        With ``read=False`` the motions are read only if a factor hook needs them; otherwise
-        both dicts are empty and each run reads its motion where it runs.
-        """
+        """The runs in table order (motion, multiplier, model, modifier), the readable motions
+        and the reasons of the unreadable ones. With ``read=False`` the motions are read only if
+        a factor hook needs them (else both dicts are empty and each run reads its own)."""
         read = read or callable(self.factors)
         motions, unreadable = self.read() if read else ({}, {})
         factors = self._factors(motions, read)
@@ -230,22 +217,18 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
         Address of a running scheduler, e.g. ``"tcp://10.0.0.5:8786"``, whose workers can import
         this package; ``n_workers`` is then ignored.
     write : {"workers", "client"}
-        Who writes a run's files: the worker that computed it (the folder must be reachable under
-        the same path by the workers, as on this machine or a cluster with a shared file system),
-        or this process, to which every result then travels (any cluster, with no file system
-        shared with it; the writing is serial).
+        Who writes a run's files: the worker that computed it (the folder under the same path on
+        every worker), or this process, serially (any cluster, no shared file system).
     progress : bool
         Show a progress bar (runs done, failed, ETA) on stderr.
     run_timeout : float, optional
-        Wall-clock limit of each run's integration [s], checked inside the run on whichever
-        worker it runs (``structures.analysis.run(time_limit=)``): a run past it is recorded as
-        failed, ``"timeout after N s"``, with its peaks up to then, and the suite goes on.
+        Wall-clock limit of each run's integration [s] (``structures.analysis.run(time_limit=)``):
+        a run past it fails, ``"timeout after N s"``, with its peaks up to then.
     lock, wait_lock : bool, float
         Hold the folder's lock (:class:`~structures.suites.lock.SuiteLock`; False when the caller
         holds it), and how long to wait for a folder locked by another suite [s] (0: refuse).
     max_steps : int
-        A run of more steps fails with its step count, before anything is allocated
-        (:mod:`isolator.limits`).
+        A run of more steps fails before anything is allocated (:mod:`isolator.limits`).
 
     Returns
     -------

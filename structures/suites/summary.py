@@ -1,14 +1,8 @@
-"""Statistics of a suite's peaks per friction model: mean, median and 84th percentile.
-
-The groups are the friction model, the property modifier and the suite-wide scale multiplier
-(one group per model for a plain suite). The statistics are over the runs that finished
-(``n``), and every group says beside them how many runs it has (``n_runs``) and how many
-failed, by kind (``n_failed``, ``n_capacity``, ``n_convergence``, ``n_timeout``,
-``n_error``): a failed run is never dropped silently. Failures are not random: the runs past
-the bearings' capacity are the strongest ones, so the statistics of a group with failures
-understate its responses. A group whose runs all failed has its counts and no statistics (NaN).
-The 84th percentile interpolates linearly between order statistics (``numpy.percentile``'s
-default), the usual stand-in for the median plus one logarithmic standard deviation.
+"""Statistics of a suite's peaks per group of runs (friction model, property modifier, scale
+multiplier): mean, median and 84th percentile (linear between order statistics, numpy's default)
+over the runs that finished, beside the counts of runs and failures by kind. A failed run is
+never dropped silently: the runs past the bearings' capacity are the strongest, so a group with
+failures understates its responses; a group whose runs all failed has NaN statistics.
 """
 
 from __future__ import annotations
@@ -37,11 +31,8 @@ QUANTITIES = {
     "peak_storey_drift_y": "m",
     "peak_base_rotation": "rad",
 }
-"""Peak responses summarised, with their units: those among the columns of a peaks table. A
-suite of records (runs in one direction) has the isolator displacement, base shear, roof
-acceleration and storey drift; one of pairs (runs in plan) the corner bearing's and the centre's
-resultant displacement, the resultant base shear, roof acceleration and storey drift per
-direction and the base rotation (:func:`structures.analysis.peaks`)."""
+"""Peak responses summarised, with their units, when among a peaks table's columns: those of
+:func:`structures.analysis.peaks`, in one direction or in plan."""
 
 GROUP_KEYS = ("model", "modifier", "multiplier")
 COUNT_COLUMNS = ("n_runs", "n_failed", *(f"n_{kind}" for kind in FAILURE_KINDS))
@@ -53,14 +44,10 @@ STATISTICS_OVER = "successful runs"
 
 
 def summarize(peaks: pd.DataFrame) -> pd.DataFrame:
-    """Mean, median and 84th percentile of the peak responses, per group of runs, of a suite's
-    peaks table (``SuiteResult.peaks``, one row per run; its columns among :data:`QUANTITIES`).
-
-    Returns a tidy table, one row per group and quantity: ``model``, ``modifier``,
-    ``multiplier``, ``quantity``, ``units``, ``n`` (the finished runs the statistics are over),
-    ``mean``, ``median`` and ``p84`` in the quantity's SI units (NaN when no run of the group
-    finished), then :data:`COUNT_COLUMNS`; empty for an empty table.
-    """
+    """Mean, median and 84th percentile of a peaks table's (``SuiteResult.peaks``) responses
+    per group of runs: a tidy table, one row per group and quantity, columns ``model``,
+    ``modifier``, ``multiplier``, ``quantity``, ``units``, ``n`` (the finished runs), ``mean``,
+    ``median``, ``p84`` [SI] (NaN when none finished), then :data:`COUNT_COLUMNS`."""
     import pandas as pd
 
     quantities = {q: units for q, units in QUANTITIES.items() if q in peaks.columns}
@@ -84,8 +71,7 @@ def summarize(peaks: pd.DataFrame) -> pd.DataFrame:
 
 
 def group_labels(table: pd.DataFrame, separator: str = ", ") -> list[str]:
-    """A label per row of ``table`` (columns ``model``, ``modifier``, ``multiplier``): the
-    model, followed by the modifier and the scale multiplier only if they vary in the table,
+    """A label per row of ``table``: the model, then the modifier and multiplier if they vary,
     e.g. ``"precise"`` or ``"precise, modifier 1.2, scale x2"``."""
     show_modifier = table["modifier"].nunique() > 1
     show_scale = table["multiplier"].nunique() > 1
@@ -102,10 +88,9 @@ def group_labels(table: pd.DataFrame, separator: str = ", ") -> list[str]:
 
 
 def summary_dict(summary: pd.DataFrame) -> dict[str, Any]:
-    """The summary as nested JSON-ready dicts: ``{group: {quantity: {n, mean, median, p84,
-    units, over, n_runs, n_failed, n_capacity, ...}}}``; the group is labelled by
-    :func:`group_labels`, ``over`` says what the statistics are over (:data:`STATISTICS_OVER`)
-    and a statistic without a finished run is None."""
+    """The summary as JSON-ready ``{group label: {quantity: {n, mean, median, p84, units, over,
+    n_runs, n_failed, n_capacity, ...}}}`` (:func:`group_labels`, :data:`STATISTICS_OVER`; None
+    for a statistic without a finished run)."""
     out: dict[str, Any] = {}
     for label, row in zip(group_labels(summary), summary.to_dict("records"), strict=True):
         out.setdefault(label, {})[row["quantity"]] = {
@@ -118,19 +103,15 @@ def summary_dict(summary: pd.DataFrame) -> dict[str, Any]:
 
 
 def failure_counts(peaks: pd.DataFrame) -> dict[str, int]:
-    """Failed runs of a peaks table by kind (:data:`FAILURE_KINDS`), and ``"failed"``, all
-    of them."""
+    """Failed runs of a peaks table by kind (:data:`FAILURE_KINDS`), and ``"failed"`` in all."""
     kinds = [failure_kind(row) for row in peaks.to_dict("records")]
     return {"failed": sum(map(bool, kinds))} | {kind: kinds.count(kind)
                                                  for kind in FAILURE_KINDS}
 
 
 def write_summary(summary: pd.DataFrame, out_dir: str | Path) -> list[Path]:
-    """Write ``summary.csv`` and ``summary.parquet`` (atomically) to ``out_dir``.
-
-    Parquet needs pyarrow (the ``suite`` extra); without it only the CSV is written and a
-    ``UserWarning`` says so.
-    """
+    """Write ``summary.csv`` and, with pyarrow (the ``suite`` extra; else a ``UserWarning``),
+    ``summary.parquet`` to ``out_dir``, atomically; return the paths written."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written = [out / "summary.csv"]

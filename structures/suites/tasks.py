@@ -1,10 +1,6 @@
 """The Dask side of a suite (:func:`structures.suites.suite.run_suite`): the cluster, and the
-tasks, each a batch of runs (:class:`structures.suites.runs.RunSpec`) of one record or pair
-computed and stored one by one.
-
-A worker lost in the middle of a batch (killed, out of memory) has its task redone by Dask on
-another worker; :func:`compute_and_store` then keeps the runs of the batch that were stored
-already instead of computing them again, so nothing finished is lost or computed twice.
+tasks, each a batch of runs of one record or pair computed and stored one by one; a batch redone
+after its worker was lost keeps the runs it stored already (:func:`compute_and_store`).
 """
 
 from __future__ import annotations
@@ -22,11 +18,9 @@ from structures.suites.store import RunStore
 
 
 def local_cluster(n_workers: int | None = None) -> Any:
-    """A ``distributed.LocalCluster`` of this machine for suites: ``n_workers`` processes
-    (default: the number of CPUs) of one thread each, every socket on the loopback
-    interface, no dashboard. (The scheduler's small HTTP server of health and metrics
-    routes cannot be turned off; it gets a free loopback port instead of 8787, so suites
-    running side by side do not compete for that port.)"""
+    """A ``distributed.LocalCluster`` of ``n_workers`` single-thread processes (default: the
+    number of CPUs) on the loopback interface, without a dashboard (the scheduler's HTTP server
+    gets a free port instead of 8787, so suites side by side do not compete for it)."""
     from distributed import LocalCluster
 
     workers = (os.cpu_count() or 1) if n_workers is None else n_workers
@@ -38,8 +32,8 @@ def local_cluster(n_workers: int | None = None) -> Any:
 
 @contextmanager
 def client_for(n_workers: int | None, scheduler_address: str | None) -> Iterator[Any]:
-    """A Dask client: of the scheduler at ``scheduler_address``, or of a new
-    :func:`local_cluster` of ``n_workers``, closed (with its cluster) on leaving."""
+    """A Dask client of ``scheduler_address``, or of a new :func:`local_cluster` of
+    ``n_workers``, closed with its cluster on leaving."""
     from distributed import Client
 
     if scheduler_address:
@@ -57,11 +51,8 @@ BATCH_SIZE = 6
 def compute_and_store(spec: RunSpec, motion: Any, config: BuildingConfig,
                        out_dir: str, time_limit: float | None = None,
                        max_steps: int = DEFAULT_MAX_STEPS) -> dict[str, Any]:
-    """The task of ``write="workers"``: compute a run and write its files where it ran.
-
-    A run already complete in the folder is not computed again: its batch is being redone
-    after the worker that held it was lost, and this run was stored before.
-    """
+    """The task of ``write="workers"``: compute a run and write its files where it ran, unless
+    it is complete in the folder already (a batch redone after a lost worker)."""
     store = RunStore(out_dir)
     row = store.completed_row(spec.run_id)
     if row is not None:
@@ -74,13 +65,8 @@ def run_batch(task: Any, specs: list[RunSpec], motion: Any, config: BuildingConf
               *extra: Any) -> list[Any]:
     """One Dask task: ``task`` (:func:`compute_and_store`, or
     :func:`~structures.suites.runs.execute_run` when the client writes) of each run of one
-    ground motion (a record, or a pair), in turn.
-
-    The motion is read once for all of them (``specs[0].motion.read()``; one that cannot be read
-    is left to each run, which then fails with the reader's reason). Batching the runs of a
-    motion cuts the scheduling overhead per run, which matters for runs of a few tens of
-    milliseconds.
-    """
+    ground motion in turn, the motion read once for all (one that cannot be read is left to
+    each run, which fails with the reader's reason)."""
     if motion is None:
         try:
             motion = specs[0].motion.read()
@@ -90,8 +76,7 @@ def run_batch(task: Any, specs: list[RunSpec], motion: Any, config: BuildingConf
 
 
 def batches(pending: list[RunSpec], size: int) -> list[list[RunSpec]]:
-    """The pending runs grouped by ground motion (``spec.motion``), in chunks of at most
-    ``size`` runs."""
+    """The pending runs grouped by ``spec.motion``, in chunks of at most ``size`` runs."""
     groups: dict[Any, list[RunSpec]] = {}
     for spec in pending:
         groups.setdefault(spec.motion, []).append(spec)
