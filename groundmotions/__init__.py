@@ -1,10 +1,6 @@
-"""Ground motions: records, readers, units, processing, spectra, scaling and synthetics.
-
-Every name in ``__all__`` is importable from the package (``from groundmotions import
-read_record, spectrum``). Of the project it imports only `dcfpb.common` (errors, units,
-validation). Inside it, `groundmotions.records` imports only `groundmotions.processing` (which
-reads a record through a Protocol); the readers, the bundled records and the pairs import
-`groundmotions.records`.
+"""Ground motions: records, readers, units, processing, spectra, scaling and synthetics; every
+name in ``__all__`` is importable from the package. Of the project it imports only
+`dcfpb.common`.
 """
 
 from groundmotions.bundled import bundled_names, load_bundled

@@ -1,20 +1,15 @@
 """What every record reader needs from a file: its lines, its numbers, the units its header
-states, and the plausibility of what was read.
+states (:func:`record_units`) and the plausibility of what was read (:func:`check_plausible`).
 
-The units of a record (:func:`record_units`), in this order of authority:
+The units of a record, in this order of authority:
 
 1. a *statement* in the header: ``UNITS OF G``, ``The units are (g)``, ``units=cm/sec/sec``,
-   ``Units: gal`` (the word ``unit(s)`` followed by ``of``, ``are``, ``is``, ``in``, ``=`` or
-   ``:``). Statements that disagree with each other, name a velocity or a length, or name a
-   unit the readers do not know, are refused (the last unless the caller gives the units);
-2. otherwise a *mention* of an acceleration unit: ``Acceleration in g``, ``(g)``, ``[m/s^2]``,
-   ``CM/SEC/SEC`` anywhere in the header (mentions that disagree are refused);
-3. the units given by the caller (``units=``; ``--units`` on the command line), which must
-   agree with the header when the header states or mentions known units;
+   ``Units: gal``. Statements that disagree, name a velocity or a length, or name an unknown
+   unit are refused (the last unless the caller gives the units);
+2. otherwise a *mention* of an acceleration unit anywhere in the header: ``Acceleration in g``,
+   ``(g)``, ``[m/s^2]``, ``CM/SEC/SEC`` (mentions that disagree are refused);
+3. the units given by the caller (``units=``, ``--units``), which must agree with the header's;
 4. otherwise :data:`groundmotions.units.DEFAULT_UNITS` (g, the PEER AT2 convention).
-
-:func:`check_plausible` then refuses a record whose PGA lies outside
-:data:`groundmotions.units.PGA_LIMITS_G`, naming the unit that would make it plausible.
 """
 
 from __future__ import annotations
@@ -77,9 +72,6 @@ class RecordUnits(NamedTuple):
     """The units as written in the header (or as given)."""
 
 
-# --------------------------------------------------------------------------------- file text
-
-
 def read_lines(path: Path) -> list[str]:
     """Lines of a text file (UTF-8, else Latin-1) without their ends; LF, CR LF, CR CR LF
     and CR each count once."""
@@ -123,9 +115,6 @@ def check_step(dt: object, owner: str) -> float:
         return check_real(dt, "dt", owner, low=0.0, low_open=True)
     except ValueError as error:
         raise InputError(str(error)) from None
-
-
-# ------------------------------------------------------------------------------------ units
 
 
 def _squeezed(line: str) -> str:
@@ -198,11 +187,9 @@ def _from_header(path: Path, header: Sequence[tuple[int, str]],
 
 def record_units(path: Path, header: Sequence[tuple[int, str]], given: object,
                  owner: str) -> RecordUnits:
-    """The units of a record's values, by the order of authority of the module docstring.
-
-    ``header`` holds the header lines with their line numbers; ``given``, the caller's units (any
-    spelling :func:`groundmotions.units.parse_units` reads) or None; ``path`` and ``owner``, the
-    file and the function that takes ``given``, name them in messages.
+    """The units of a record's values, by the order of authority of the module docstring, from
+    the ``header`` lines with their numbers and the caller's units ``given`` (any spelling
+    :func:`groundmotions.units.parse_units` reads, or None); messages name ``path`` and ``owner``.
 
     Raises
     ------
@@ -230,13 +217,10 @@ def record_units(path: Path, header: Sequence[tuple[int, str]], given: object,
 
 def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
                     line_ends: Sequence[tuple[int, int]]) -> None:
-    """Refuse a record whose PGA lies outside :data:`groundmotions.units.PGA_LIMITS_G`.
-
-    ``values`` are the finite values as written in the file, in ``units`` [file units];
-    ``line_ends`` the ``(line number, values up to and including that line)`` pairs, to name the
-    line of the peak. The `RecordFormatError` gives the PGA, the allowed range and the units that
-    would bring the PGA into :data:`groundmotions.units.TYPICAL_PGA_G`.
-    """
+    """Refuse a record whose PGA lies outside :data:`groundmotions.units.PGA_LIMITS_G`, for the
+    ``values`` as written in the file in ``units``, and ``line_ends`` the ``(line number, values
+    so far)`` pairs; the `RecordFormatError` names the line of the peak, the PGA, the range and
+    the units that would bring it into :data:`groundmotions.units.TYPICAL_PGA_G`."""
     index = int(np.argmax(np.abs(values)))
     peak = float(abs(values[index]))
     pga = peak * (units.factor / STANDARD_GRAVITY)  # never overflows: factor / g <= 1

@@ -1,10 +1,8 @@
 """Reader of PEER .AT2 acceleration records (`read_peer_at2`).
 
-The NPTS/DT line is found by search after a free-text header of any length, in the layouts
-``NPTS=  7996, DT= .00500 SEC``, ``NPTS=   1451, dt=  .02000``, ``NPTS=   7998, DT=   .0050 SEC,``
-(trailing comma) and the NGA "values first" ``7997 0.0050 NPTS, DT``. A trailing
-``*** End Data ***`` line is allowed; line ends may be LF, CR LF, CR CR LF or CR (each counts
-once in the line numbers of messages).
+The NPTS/DT line is found after a free-text header of any length, as ``NPTS=  7996, DT= .00500
+SEC`` (any case, with or without unit or trailing comma) or the NGA ``7997 0.0050 NPTS, DT``. A
+trailing ``*** End Data ***`` line is allowed.
 """
 
 from __future__ import annotations
@@ -85,12 +83,8 @@ def _find_npts_dt(path: Path, lines: list[str]) -> tuple[int, int, float]:
 def _read_values(
     path: Path, lines: list[str], start: int, npts: int
 ) -> tuple[np.ndarray, list[tuple[int, int]], list[str]]:
-    """Exactly ``npts`` numbers read row by row from ``lines[start:]``, their
-    ``(line number, values so far)`` pairs and the non-numeric trailer after them.
-
-    Nothing of size ``npts`` is allocated before the values are read, so a header claiming more
-    values than the file holds costs no more than the file.
-    """
+    """Exactly ``npts`` numbers read row by row from ``lines[start:]`` (nothing of size ``npts``
+    allocated before), their ``(line number, values so far)`` pairs and the non-numeric trailer."""
     values: list[float] = []
     line_ends: list[tuple[int, int]] = []
     trailer: list[str] = []
@@ -197,7 +191,8 @@ def parse_peer(path: Path, lines: list[str], name: str | None = None,
 def read_peer_at2(
     path: PathLike, *, name: str | None = None, units: str | None = None
 ) -> GroundMotion:
-    """Read a PEER .AT2 acceleration record.
+    """Read a PEER .AT2 acceleration record (with the PEER 4-line header, event, date, time,
+    station, component and agency go to the metadata from line 2).
 
     Parameters
     ----------
@@ -223,12 +218,6 @@ def read_peer_at2(
         outside 1e-4 to 5 g (naming the units that would fit).
     InputError
         ``units`` is not an acceleration unit.
-
-    Notes
-    -----
-    With the PEER 4-line header, event, date, time, station, component and agency are read from
-    line 2: station and component split at the last comma, and only a trailing parenthesised group
-    is the agency (station names may hold parentheses).
     """
     path = Path(path)
     return parse_peer(path, read_lines(path), name, units)

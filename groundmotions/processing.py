@@ -1,9 +1,7 @@
 """Record processing: integration, baseline correction, filtering, resampling, Arias intensity
-and significant durations.
-
-The functions are pure: each returns a new record whose ``processing`` ends with what was done
-(added once the work has succeeded). A record is taken, as everywhere in `groundmotions`, as a
-piecewise-linear acceleration between samples, and the integrals here are exact for it.
+and significant durations. The functions are pure: each returns a new record whose
+``processing`` ends with what was done. A record is a piecewise-linear acceleration [m/s^2]
+between samples, and the integrals here are exact for it.
 """
 
 from __future__ import annotations
@@ -79,11 +77,7 @@ def velocity_and_displacement(
     acceleration: np.ndarray, dt: float
 ) -> tuple[np.ndarray, np.ndarray]:
     """Ground velocity [m/s] and displacement [m] from rest of ``acceleration`` [m/s^2] sampled
-    every ``dt`` [s], exact for an acceleration linear between samples.
-
-    ``v[i+1] = v[i] + dt (a[i] + a[i+1]) / 2`` and
-    ``d[i+1] = d[i] + dt v[i] + dt^2 (a[i] / 3 + a[i+1] / 6)``, both 0 at the first sample.
-    """
+    every ``dt`` [s], exact for an acceleration linear between samples."""
     a = np.asarray(acceleration, dtype=float)
     velocity = np.concatenate(([0.0], np.cumsum(0.5 * dt * (a[1:] + a[:-1]))))
     increments = dt * velocity[:-1] + dt * dt * (a[:-1] / 3.0 + a[1:] / 6.0)
@@ -91,11 +85,8 @@ def velocity_and_displacement(
 
 
 def baseline_corrected(motion: GroundMotion, order: int = 1) -> GroundMotion:
-    """Remove the least-squares polynomial of degree ``order`` in time from the acceleration.
-
-    ``order`` is in [0, 10] and below the number of samples (0 removes the mean, 1 a linear drift).
-    The fit, ``numpy.polynomial.Legendre.fit`` on time mapped to [-1, 1], is well conditioned for
-    any record length; what remains is orthogonal to the fitted polynomial.
+    """Remove the least-squares polynomial of degree ``order`` in time from the acceleration;
+    ``order`` in [0, 10] and below the number of samples (0 removes the mean, 1 a linear drift).
     """
     owner = "baseline_corrected"
     motion = _check_motion(motion, owner)
@@ -110,21 +101,10 @@ def baseline_corrected(motion: GroundMotion, order: int = 1) -> GroundMotion:
 def zero_residuals(motion: GroundMotion, order: int = 3) -> GroundMotion:
     """Correct the acceleration so that the final ground velocity and displacement are zero.
 
-    Subtracts ``P''(t)``, where the displacement correction P is a polynomial of degree ``order``
-    (3 to 10) in t / T (T the duration) with P(0) = P'(0) = 0, so the record still starts from
-    rest. The final velocity and displacement, integrated by `velocity_and_displacement`, are zero
-    to round-off.
-
-    Notes
-    -----
-    P is built on ``(t / T)^2`` times shifted Legendre polynomials, for conditioning. ``P''`` is
-    sampled and, like the record, taken as linear between samples, so each basis term's end
-    velocity and displacement come from the same exact integrals as the record's. The coefficients
-    minimise the least-squares misfit between P and the displacement history subject to zero final
-    velocity and displacement (a KKT system). With ``order = 3`` the two constraints fix the two
-    coefficients (a straight-line correction acceleration); a higher order also removes more of the
-    long-period drift of the displacement, as the displacement-fit baseline corrections of
-    strong-motion processing do.
+    Subtracts ``P''(t)``, P a polynomial of degree ``order`` (3 to 10) in t / T (T the duration)
+    with P(0) = P'(0) = 0, so the record still starts from rest; P is the least-squares fit to
+    the displacement history under the two end constraints (order 3: a straight-line correction
+    acceleration; higher orders also remove more long-period drift).
     """
     owner = "zero_residuals"
     motion = _check_motion(motion, owner)
@@ -194,10 +174,9 @@ def filtered(
 ) -> GroundMotion:
     """Zero-phase Butterworth filter: high-pass (``low``), low-pass (``high``) or band-pass (both).
 
-    The corners are in Hz, 0 < low < high < Nyquist = 1 / (2 dt); the Butterworth ``order`` is
-    in [1, 10]. The result has the record's dt and length. ``scipy.signal.sosfiltfilt``
-    runs the filter forward and backward: no phase shift, the magnitude response squared (twice the
-    roll-off; gain 1/2, -6 dB, at a corner), the ends padded by odd extension.
+    Corners in Hz, 0 < low < high < Nyquist = 1 / (2 dt); ``order`` in [1, 10]. The filter runs
+    forward and backward (``scipy.signal.sosfiltfilt``): gain 1/2 (-6 dB) at a corner; the
+    result has the record's dt and length.
     """
     owner = "filtered"
     motion = _check_motion(motion, owner)
@@ -223,14 +202,12 @@ def _positions(npts_new: int, ratio: float, npts_old: int) -> tuple[np.ndarray, 
 
 def resampled(motion: GroundMotion, dt: float, *, anti_alias: bool = True) -> GroundMotion:
     """The record at the time step ``dt`` [s], in (0, duration], sampled at every
-    ``k dt <= duration`` (a duration not a multiple of ``dt`` loses its last, shorter step).
+    ``k dt <= duration``.
 
-    Finer: linear interpolation, exact for the piecewise-linear record (its spectra, Arias intensity
-    and velocity are unchanged). Coarser: with ``anti_alias``, a zero-phase Butterworth low-pass
-    (order 8, forward and backward) with its corner at 0.8 of the new Nyquist frequency (gain 1/2
-    there, 0.03 at the new Nyquist), then decimation (an integer ratio: every m-th sample, exactly)
-    or linear interpolation; without it the record is sampled at the new times. Resampling finer
-    and back with ``anti_alias=False`` returns the record exactly.
+    Finer: linear interpolation, exact for the piecewise-linear record. Coarser: with
+    ``anti_alias``, a zero-phase Butterworth low-pass (:data:`ANTI_ALIAS_ORDER`, corner at
+    :data:`ANTI_ALIAS_FRACTION` of the new Nyquist frequency), then decimation (integer ratio) or
+    linear interpolation; without it the record is sampled at the new times.
     """
     owner = "resampled"
     motion = _check_motion(motion, owner)
@@ -253,7 +230,8 @@ def resampled(motion: GroundMotion, dt: float, *, anti_alias: bool = True) -> Gr
 
 
 def arias_intensity(motion: GroundMotion) -> tuple[np.ndarray, np.ndarray]:
-    """Cumulative Arias intensity ``I_A(t) = pi / (2 g) * integral_0^t a^2 dt``.
+    """Cumulative Arias intensity ``I_A(t) = pi / (2 g) * integral_0^t a^2 dt``, exact for the
+    piecewise-linear record.
 
     Returns
     -------
@@ -261,11 +239,6 @@ def arias_intensity(motion: GroundMotion) -> tuple[np.ndarray, np.ndarray]:
         Sample times [s].
     cumulative : numpy.ndarray
         I_A at those times [m/s]; the last value is the record's Arias intensity.
-
-    Notes
-    -----
-    Exact for the piecewise-linear record: ``dt (a_i^2 + a_i a_{i+1} + a_{i+1}^2) / 3`` per step;
-    g is ``dcfpb.common.units.STANDARD_GRAVITY``.
     """
     motion = _check_motion(motion, "arias_intensity")
     a = motion.acceleration
@@ -278,8 +251,7 @@ def significant_duration(motion: GroundMotion, start: float = 0.05, stop: float 
     """Time [s] for the Arias intensity to grow from ``start`` to ``stop`` of its total.
 
     ``0 <= start < stop <= 1`` [-]: (0.05, 0.75) gives D5-75, (0.05, 0.95) D5-95. The record must
-    have a non-zero Arias intensity. The crossing times are interpolated linearly between samples
-    (within a fraction of a step of the exact crossing of the cubic in between).
+    have a non-zero Arias intensity; crossing times are interpolated linearly between samples.
     """
     owner = "significant_duration"
     motion = _check_motion(motion, owner)

@@ -1,12 +1,6 @@
-"""Reading a record file: `read_record` chooses `read_peer_at2` (PEER .AT2,
-`groundmotions.peer`) or `read_text_record` (one or two columns, `groundmotions.text_records`),
-both re-exported here.
-
-Every reader takes the units of the values from the header (`groundmotions.filetext`), else
-from ``units=``, else g, and refuses a record whose PGA is outside 1e-4 to 5 g, naming the units
-that would fit. A file that cannot be read as written raises `RecordFormatError` naming the file
-and the line: nothing is silently fixed (a missing value is never padded, an extra one never
-dropped).
+"""Reading a record file: `read_record` chooses `read_peer_at2` (PEER .AT2) or
+`read_text_record` (one or two columns), both re-exported here. A file that cannot be read as
+written raises `RecordFormatError` naming the file and the line: nothing is silently fixed.
 """
 
 from __future__ import annotations

@@ -1,11 +1,6 @@
-"""`GroundMotion`, one ground-acceleration record, and `RecordFormatError`, the error of its
-readers.
-
-A record is a read-only acceleration array [m/s^2] at a fixed time step with a checked header.
-Its methods return new records and append what they did to ``processing`` (as obspy does), so a
-scaled or truncated record still says where it came from; ``baseline_corrected``, ``filtered``
-and ``resampled`` call the pure functions of `groundmotions.processing`. The readers
-(`groundmotions.readers`) and the bundled records (`groundmotions.bundled`) import this module.
+"""`GroundMotion`, one ground-acceleration record [m/s^2] at a fixed time step, and
+`RecordFormatError`, the error of its readers. A record's methods return new records and append
+what they did to ``processing``.
 """
 
 from __future__ import annotations
@@ -50,7 +45,8 @@ def _type_error(name: str, kind: str, value: object) -> TypeError:
 
 @dataclass(frozen=True, eq=False)
 class GroundMotion:
-    """One horizontal ground-acceleration record at a fixed time step.
+    """One horizontal ground-acceleration record at a fixed time step (equality is identity:
+    compare ``acceleration`` arrays to compare records).
 
     Parameters
     ----------
@@ -65,10 +61,6 @@ class GroundMotion:
         ``units_in_file``, ``header_lines`` ...); a shallow copy is stored.
     processing : tuple of str
         What was done to the record, oldest first.
-
-    Notes
-    -----
-    Equality is identity (``eq=False``): compare ``acceleration`` arrays to compare records.
     """
 
     acceleration: np.ndarray
@@ -144,8 +136,6 @@ class GroundMotion:
         )
         n = min(self.npts, math.floor(d / self.dt + 1e-9) + 1)
         return self.derived(self.acceleration[:n], f"truncated to {d:g} s ({n} samples)")
-
-    # Thin wrappers of the pure functions in `groundmotions.processing` (see there for details).
 
     def baseline_corrected(self, order: int = 1) -> GroundMotion:
         """`groundmotions.processing.baseline_corrected` of this record."""

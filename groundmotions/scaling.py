@@ -1,12 +1,9 @@
 """Target spectra and amplitude scaling of a ground-motion suite (ASCE 7-16 for isolation).
 
 `scale_suite` scales each record, or each pair (every component alike), so that the suite's mean
-spectrum (of pairs: RotD100 by default) is nowhere below the target over the period range.
-ASCE 7-16 Section 17.3.3 (isolated structures): for an analysis in plan a maximum-direction
-spectrum is formed for each pair, one factor scales both components, and over 0.75 T_M
-(upper-bound properties) to 1.25 T_M (lower-bound properties) the average of the suite's
-spectra may not fall below the target. Section 16.2.3.1 (fixed-base structures) asks for 90 %
-of the target over its own range: ``fraction=0.9`` and that range.
+spectrum (of pairs: RotD100 by default) is nowhere below the target over the period range:
+ASCE 7-16 Section 17.3.3 over `isolated_period_range`; Section 16.2.3.1 (fixed-base structures)
+is ``fraction=0.9`` over its own range.
 """
 
 from __future__ import annotations
@@ -65,12 +62,6 @@ class TargetSpectrum:
         Label for reports and plots.
     damping : float
         Damping ratio of the spectrum, in [0, 1) [-].
-
-    Notes
-    -----
-    ``sa_at`` interpolates linearly in log(T)-log(Sa), which is exact for the power-law branches
-    of code spectra (constant, 1/T, 1/T^2), and does not extrapolate: a period outside the table
-    raises ``ValueError``.
     """
 
     periods: np.ndarray
@@ -100,7 +91,8 @@ class TargetSpectrum:
         object.__setattr__(self, "damping", damping)
 
     def sa_at(self, periods: Any) -> np.ndarray:
-        """Pseudo-spectral acceleration [m/s^2] at ``periods`` [s] within the table's range."""
+        """Pseudo-spectral acceleration [m/s^2] at ``periods`` [s], interpolated in
+        log(T)-log(Sa); ``ValueError`` for a period outside the table."""
         t = check_array(np.atleast_1d(np.asarray(periods, dtype=float)), "periods",
                         f"TargetSpectrum.sa_at ({self.name})", low=self.periods[0],
                         high=self.periods[-1])
@@ -132,10 +124,7 @@ def asce7_design_spectrum(
 
     Notes
     -----
-    With ``T_0 = 0.2 S_D1 / S_DS`` and ``T_S = S_D1 / S_DS`` (Eq. 11.4-5 to 11.4-8):
-    ``Sa = S_DS (0.4 + 0.6 T / T_0)`` for T < T_0, ``S_DS`` for T_0 <= T <= T_S, ``S_D1 / T`` for
-    T_S < T <= T_L, and ``S_D1 T_L / T^2`` for T > T_L. Log-log interpolation of the table is exact
-    except on the rising branch below T_0.
+    Eq. 11.4-5 to 11.4-8, with ``T_0 = 0.2 S_D1 / S_DS`` and ``T_S = S_D1 / S_DS``.
     """
     owner = "asce7_design_spectrum"
     s_ds = check_real(S_DS, "S_DS", owner, low=0.0, low_open=True)
@@ -163,12 +152,9 @@ def isolated_period_range(
     lower_bound_period: float, upper_bound_period: float
 ) -> tuple[float, float]:
     """The ASCE 7-16 Section 17.3.3 scaling period range of an isolated structure,
-    ``(0.75 lower_bound_period, 1.25 upper_bound_period)`` [s].
-
-    ``lower_bound_period`` [s], > 0, is the shorter effective isolated period T_M, computed with the
-    upper-bound isolator properties (stiffer, more friction); ``upper_bound_period`` [s], not
-    shorter, is the T_M computed with the lower-bound properties.
-    """
+    ``(0.75 lower_bound_period, 1.25 upper_bound_period)`` [s], from the effective period T_M
+    [s] with the upper-bound isolator properties (> 0) and with the lower-bound ones (not
+    shorter)."""
     owner = "isolated_period_range"
     lower = check_real(lower_bound_period, "lower_bound_period", owner, low=0.0, low_open=True)
     upper = check_real(upper_bound_period, "upper_bound_period", owner, low=lower)
@@ -361,9 +347,8 @@ def scale_suite(
     damping : float
         Damping ratio of the spectra, in [0, 1) [-].
     method : {"mean", "individual"}
-        ``"mean"`` (ASCE 7-16 17.3.3): the arithmetic mean spectrum of the scaled suite is nowhere
-        on the grid below ``fraction`` times the target and equals it at the tightest period.
-        ``"individual"``: each record's (pair's) own spectrum does so (more conservative).
+        ``"mean"`` (ASCE 7-16 17.3.3): the mean spectrum of the scaled suite is nowhere on the
+        grid below ``fraction`` times the target; ``"individual"``: each one's own spectrum.
     measure : {"sa", "rotd100", "rotd50"}, optional
         The spectrum the factors are fitted on: ``"sa"``, a record's own (the only one of
         records); ``"rotd100"`` (the default of pairs, ASCE 7-16 17.3.3) or ``"rotd50"``, a
@@ -382,14 +367,9 @@ def scale_suite(
 
     Notes
     -----
-    Step 1 scales each record (pair) to the target on average over the range: its factor is the
-    geometric mean over the log-spaced grid of ``target / measure`` (a least-squares fit in
-    log(Sa), so no single period dominates). Step 2 multiplies all by one common factor
-    ``1 / min_T(mean_i(Sa_i) / target)``, so the mean touches the target at one grid period and is
-    above it at the others; with ``"individual"`` step 2 is made per record. A spectrum, RotD
-    spectra included (|k u_theta| = |k| |u_theta| at every angle), scales with its record, so the
-    spectra are computed once, unscaled. The criterion is checked on the grid only: between grid
-    periods the mean may dip by the spectrum's variation over one grid interval.
+    Step 1: each record's (pair's) factor is the geometric mean over the grid of
+    ``target / measure``. Step 2: one common factor ``1 / min_T(mean_i(Sa_i) / target)`` (per
+    record with ``"individual"``). The criterion is checked on the grid only.
     """
     owner = "scale_suite"
     suite, kind = _suite(motions, owner)

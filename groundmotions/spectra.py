@@ -1,14 +1,8 @@
 """Elastic response spectra and peak ground values: pure functions on arrays.
 
-The response of a linear oscillator to a ground acceleration sampled at a fixed step is computed
-with the exact recurrence of Nigam & Jennings (1969): with the ground acceleration linear between
-samples, the equation of motion
-
-    u'' + 2 zeta omega u' + omega^2 u = -a_g(t)
-
-is solved in closed form over each step, so the only approximation is the piecewise-linear
-input (no step-size condition, no period elongation). One pass over the record updates every
-oscillator at once.
+The response of a linear oscillator, u'' + 2 zeta omega u' + omega^2 u = -a_g(t), is computed
+with the exact recurrence of Nigam & Jennings (1969) for a ground acceleration linear between
+samples (no step-size condition), every oscillator in one pass over the record.
 
 References
 ----------
@@ -97,13 +91,8 @@ def nigam_jennings_coefficients(omega: np.ndarray, damping: float, dt: float) ->
     numpy.ndarray, shape (2, 4, len(omega))
         ``[[A, B, C, D], [A', B', C', D']]`` such that, with p = -a_g (Chopra, Table 5.2.1),
         ``u[i+1] = A u[i] + B v[i] + C p[i] + D p[i+1]`` and
-        ``v[i+1] = A' u[i] + B' v[i] + C' p[i] + D' p[i+1]``.
-
-    Notes
-    -----
-    C, D, C' and D' are differences of nearly equal terms when omega dt is small: they keep about
-    ``-log10(1e-16 / (omega dt)^2)`` digits, ~1e-9 relative at T = 10 s with dt = 0.005 s and ~1e-6
-    at T = 100 s.
+        ``v[i+1] = A' u[i] + B' v[i] + C' p[i] + D' p[i+1]``; C, D, C' and D' lose digits
+        when omega dt is small (~1e-9 relative at T = 10 s with dt = 0.005 s).
     """
     owner = "nigam_jennings_coefficients"
     w = check_array(np.atleast_1d(omega), "omega", owner, low=0.0, low_open=True)
@@ -139,12 +128,8 @@ def oscillator_recurrence(
     out: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Run the recurrence from rest over the record, all oscillators at once; return max |u|
-    per oscillator [m].
-
-    Given ``out = (u, v)`` of shape (npts, n), the histories are written into them too. A record of
-    shape (npts, m), m records side by side, drives every oscillator with each and gives shape
-    (m, n), element by element the arithmetic of the single record.
-    """
+    per oscillator [m], shape (n,), or (m, n) for m records side by side (npts, m). Given
+    ``out = (u, v)`` of shape (npts, n), the histories are written into them too."""
     (a, b, c, d), (a1, b1, c1, d1) = nigam_jennings_coefficients(omega, damping, dt)
     p = -acceleration
     p = p[:, :, None] if p.ndim == 2 else p[:, None]  # (npts, [m,] 1) against (n,) oscillators
@@ -180,12 +165,8 @@ def sdof_response(
     damping: float | np.ndarray = 0.05,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Relative displacement [m] and velocity [m/s] histories, each of shape
-    (npts, len(periods)), of linear oscillators starting from rest.
-
-    ``acceleration`` [m/s^2] is sampled every ``dt`` [s] and linear between samples; ``periods``
-    [s] are > 0; ``damping`` is a ratio in [0, 1) [-], or one per period (e.g. the modes of a
-    building).
-    """
+    (npts, len(periods)), of linear oscillators from rest under ``acceleration`` [m/s^2] sampled
+    every ``dt`` [s]; ``periods`` > 0 [s], ``damping`` in [0, 1) [-], one or one per period."""
     owner = "sdof_response"
     acc, step = _check_record(acceleration, dt, owner)
     t = _check_periods(periods, owner, allow_zero=False)
@@ -244,12 +225,9 @@ def _spectra(acc: np.ndarray, step: float, t: np.ndarray, zeta: float,
 def response_spectra(
     accelerations: np.ndarray, dt: float, periods: np.ndarray, damping: float = 0.05
 ) -> Spectrum:
-    """`response_spectrum` of m records sampled alike, in one pass over the samples (every floor
-    of a run, say); each row of the result is `response_spectrum` of that record.
-
-    ``accelerations`` has shape (npts, m) [m/s^2]; ``dt`` [s], ``periods`` [s] (0: the peak
-    acceleration) and ``damping`` [-] are as for `response_spectrum`. The `Spectrum`'s ``sd`` [m],
-    ``sv`` [m/s] and ``sa`` [m/s^2] have shape (m, len(periods)).
+    """`response_spectrum` of m records sampled alike, ``accelerations`` of shape (npts, m)
+    [m/s^2], in one pass; ``dt``, ``periods`` and ``damping`` as there. The `Spectrum`'s ``sd``
+    [m], ``sv`` [m/s] and ``sa`` [m/s^2] have shape (m, len(periods)).
     """
     owner = "response_spectra"
     acc = check_array(accelerations, "accelerations", owner, ndim=2, min_length=2)
@@ -266,12 +244,8 @@ def spectrum(motion: GroundMotion, periods: np.ndarray, damping: float = 0.05) -
 
 def peak_ground_values(acceleration: np.ndarray, dt: float) -> tuple[float, float, float]:
     """Peak ground acceleration [m/s^2], velocity [m/s] and displacement [m] of ``acceleration``
-    [m/s^2] sampled every ``dt`` [s].
-
-    Velocity and displacement are integrated from rest by the trapezoid rule, without baseline
-    correction or filtering: the velocity is exact for an acceleration linear between samples, the
-    displacement has an O(dt^2) error, and both follow any baseline drift the record carries.
-    """
+    [m/s^2] sampled every ``dt`` [s], integrated from rest by the trapezoid rule without
+    baseline correction."""
     acc, step = _check_record(acceleration, dt, "peak_ground_values")
     velocity = np.concatenate(([0.0], np.cumsum(0.5 * step * (acc[1:] + acc[:-1]))))
     displacement = np.concatenate(([0.0], np.cumsum(0.5 * step * (velocity[1:] + velocity[:-1]))))

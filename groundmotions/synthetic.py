@@ -1,22 +1,16 @@
 """Synthetic ground motions: filtered white noise (Kanai-Tajimi, Clough-Penzien) with an envelope.
 
 A record is a stationary Gaussian process of the Kanai-Tajimi (or Clough-Penzien) power spectral
-density times a deterministic time envelope. The white noise comes from
-``numpy.random.Generator(PCG64(seed))``: a record is reproducible bit for bit from its seed
-(with the same numpy version and platform), and every parameter and the seed are in its
-``metadata``. `synthetic_pair` draws its components with the seeds ``seed``, ``seed + 1`` (and
-``seed + 2``): independent realisations of one process, so no direction is preferred (numpy
-hashes the seed, so neighbouring seeds give unrelated streams).
+density times a deterministic time envelope, its white noise from
+``numpy.random.Generator(PCG64(seed))``: reproducible bit for bit from its seed (same numpy and
+platform), with every parameter and the seed in its ``metadata``.
 
-Power spectral densities are two-sided and per rad/s: the variance of a process is
-``integral_{-inf}^{inf} S(omega) d omega``. With the white-noise intensity S0
+Power spectral densities are two-sided and per rad/s. With the white-noise intensity S0
 [m^2/s^3 = (m/s^2)^2 / (rad/s)]
 
     S_KT(omega) = S0 (w_g^4 + 4 z_g^2 w_g^2 omega^2) / ((w_g^2 - omega^2)^2 + 4 z_g^2 w_g^2 omega^2)
 
-and Clough-Penzien multiplies it by ``omega^4 / ((w_f^2 - omega^2)^2 + 4 z_f^2 w_f^2 omega^2)``,
-which removes Kanai-Tajimi's finite acceleration PSD at omega = 0 (and with it the unbounded
-variance of ground velocity and displacement).
+and Clough-Penzien multiplies it by ``omega^4 / ((w_f^2 - omega^2)^2 + 4 z_f^2 w_f^2 omega^2)``.
 
 References
 ----------
@@ -276,11 +270,8 @@ def kanai_tajimi(
 
     Notes
     -----
-    The white noise (variance ``2 pi S0 / dt``: PSD S0 up to the Nyquist frequency) is filtered in
-    the frequency domain by the Kanai-Tajimi transfer function
-    ``(w_g^2 + 2i z_g w_g w) / (w_g^2 - w^2 + 2i z_g w_g w)``. The filtering is a circular
-    convolution over the record, so the process is stationary from the first sample (no filter
-    start-up transient) and its expected PSD is exactly S_KT at the FFT frequencies.
+    The white noise is filtered in the frequency domain (a circular convolution), so the process
+    is stationary from the first sample and its expected PSD is S_KT at the FFT frequencies.
     """
     return _filtered_white_noise(
         "Kanai-Tajimi", duration, dt,
@@ -298,8 +289,7 @@ def clough_penzien(
 
     As `kanai_tajimi`, with the output passed through a second-order high-pass filter of circular
     frequency ``filter_frequency`` (w_f, in (0, pi / dt) [rad/s], typically about w_g / 10) and
-    damping ratio ``filter_damping`` (z_f > 0 [-]), which suppresses the low-frequency content and
-    so the drift of ground velocity and displacement.
+    damping ratio ``filter_damping`` (z_f > 0 [-]).
     """
     return _filtered_white_noise(
         "Clough-Penzien", duration, dt,
@@ -333,7 +323,8 @@ def synthetic_pair(
         The generator, by name or as a function with the signature of `kanai_tajimi`:
         ``(duration, dt, *, seed, name, **parameters) -> GroundMotion``.
     seed : int
-        Seed of the pair, >= 0: x uses ``seed``, y ``seed + 1``, z ``seed + 2``.
+        Seed of the pair, >= 0: x uses ``seed``, y ``seed + 1``, z ``seed + 2`` (independent
+        realisations of one process).
     duration, dt : float
         Record length, > 0 [s], and time step [s] (see the generator).
     vertical_ratio : float, optional

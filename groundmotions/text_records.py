@@ -76,8 +76,7 @@ def _time_step(path: Path, times: np.ndarray, numbers: list[int], dt: float | No
             path, numbers[-1], f"the time column does not increase to a finite time "
             f"(from {times[0]:g} s to {times[-1]:g} s)",
         )  # fmt: skip
-    # Uniform if every time lies within 1 % of a step of the grid from the first to the last
-    # time (robust to times printed with few digits: rounding does not accumulate).
+    # uniform: every time within 1 % of a step of the grid from the first to the last time
     with np.errstate(over="ignore", invalid="ignore"):
         off = np.abs(times - (times[0] + step * np.arange(times.size)))
     if not off.max() <= 0.01 * step:
@@ -106,11 +105,9 @@ def read_text_record(
     path: PathLike, dt: float | None = None, units: str | None = None, *,
     name: str | None = None,
 ) -> GroundMotion:
-    """Read a one-column (acceleration) or two-column (time, acceleration) text record.
-
-    Columns are separated by blanks, commas or semicolons. The header, kept in the metadata, is the
-    leading non-numeric lines and lines starting with ``#`` or ``%``; it may state the units
-    (``# units: gal``, ``acc [m/s^2]``, ``time, acc (g)``; `groundmotions.filetext`).
+    """Read a one-column (acceleration) or two-column (time, acceleration) text record, columns
+    separated by blanks, commas or semicolons. The header (kept in the metadata) is the leading
+    non-numeric lines and lines starting with ``#`` or ``%``; it may state the units.
 
     Parameters
     ----------

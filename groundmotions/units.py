@@ -130,12 +130,9 @@ def check_units(units: object, owner: str) -> str:
 
 
 def likely_units(peak: float, current: str) -> list[tuple[str, float]]:
-    """The known units, other than ``current``, that bring a record's peak into
-    :data:`TYPICAL_PGA_G`, as (canonical unit, PGA [g]) pairs, likeliest first.
-
-    ``peak`` is max |value| as written in the file [file units]. The likeliest unit gives the PGA
-    nearest, in log10, to the middle of :data:`TYPICAL_PGA_G` (the geometric mean, about 0.14 g).
-    """
+    """The known units, other than ``current``, that bring a record's ``peak`` (max |value| in
+    the file's units) into :data:`TYPICAL_PGA_G`, as (canonical unit, PGA [g]) pairs, likeliest
+    (nearest the geometric middle of the range) first."""
     low, high = TYPICAL_PGA_G
     middle = math.log10(math.sqrt(low * high))
     found = []

@@ -1,11 +1,8 @@
 """Isolator layer: friction laws, frictional heating, the DCFPB element in one or two
 directions, bearing tests (imposed histories and orbits) and their force-deflection
 characteristics; the compiled element in :mod:`isolator.compiled`, the diagnosis of the
-sim-to-real gap in :mod:`isolator.diagnosis`.
-
-The names in ``__all__`` are imported on first use (the element's kernels import numba)::
-
-    from isolator import DCFPBearing, PTVFriction, MonitorLine, run_test, sine
+sim-to-real gap in :mod:`isolator.diagnosis`. The names in ``__all__`` are imported on first use
+(the element's kernels import numba).
 """
 
 from __future__ import annotations

@@ -1,24 +1,20 @@
 """The double concave friction pendulum bearing (DCFPB) element, in one or two directions.
 
-Horizontal force for a relative displacement u and velocity v of the two concave plates
+Horizontal force [N] for a relative displacement u [m] and velocity v [m/s] of the two plates
 (floats along x in one direction, (x, y) vectors in two):
 
     F = N u / R_eff + mu(p, |v|, T) N z,
 
-with N the axial load, R_eff the effective radius, p = N / (pi r^2) the contact pressure and z
-the hysteretic variable of an isotropic elastic-plastic return map with a small yield
-displacement (:func:`isotropic_return_map`), so that the friction force has the magnitude mu N
-and the direction of sliding. The restoring law is ``"linear"``, N u / R_eff (the paper's), or
-``"spherical"``, N u / sqrt(R_eff^2 - |u|^2) (OpenSees FPBearingPTV's). mu, the contact
-temperature and the heat flux come from the bearing's friction model
-(:class:`isolator.friction.FrictionModel`), asked at every trial.
+N the axial load [N], R_eff the effective radius [m], p = N / (pi r^2) the contact pressure [Pa],
+z the hysteretic variable of an isotropic return map (:func:`isotropic_return_map`), so the
+friction force has magnitude mu N and the direction of sliding. The restoring law is
+``"linear"``, N u / R_eff (the paper's), or ``"spherical"``, N u / sqrt(R_eff^2 - |u|^2)
+(OpenSees FPBearingPTV's). mu, temperature and heat flux come from the friction model
+(:class:`isolator.friction.FrictionModel`) at every trial.
 
-:class:`DCFPBearing` holds the frozen parameters, :class:`BearingElement` the state, with the
-contract of OpenSees elements: ``set_trial`` returns the force and the consistent tangents
-d F / d u and d F / d v (from d mu / d|v|), ``commit`` accepts the trial (and only then adds
-its heat), ``revert`` drops it. Along any fixed direction through the centre the element in two
-directions gives the force, mu and temperature of the element in one
-(``tests/verification/test_two_directions.py``).
+:class:`DCFPBearing` holds the frozen parameters, :class:`BearingElement` the state, with
+set_trial / commit / revert as OpenSees elements. Along any fixed direction through the centre
+the element in two directions gives the element in one.
 """
 
 from __future__ import annotations
@@ -91,14 +87,10 @@ class BearingState(NamedTuple):
 
 def isotropic_return_map(zx: float, zy: float, dux: float, duy: float,
                          yield_displacement: float) -> tuple[float, ...]:
-    """The hysteretic variable after a displacement increment (``dux``, ``duy``) [m] from the
-    committed (``zx``, ``zy``) [-], |z| <= 1, for a yield displacement u_y [m], and its tangent.
-
-    The elastic predictor z* = z_c + du / u_y is kept when |z*| < 1, else projected on the unit
-    circle, z* / |z*| (radial return; along one axis, the clip of z to +-1). Returns the trial z
-    (x, y) [-] and d z / d u row by row (xx, xy, yx, yy) [1/m]: I / u_y when elastic,
-    (I - z z^T) / (u_y |z*|) when sliding.
-    """
+    """The trial hysteretic variable z (x, y) [-], |z| <= 1, after a displacement increment
+    (``dux``, ``duy``) [m] from the committed (``zx``, ``zy``) for a yield displacement u_y [m],
+    and d z / d u row by row (xx, xy, yx, yy) [1/m]: z* = z_c + du / u_y kept when |z*| < 1, else
+    the radial return z* / |z*|."""
     px = zx + dux / yield_displacement
     py = zy + duy / yield_displacement
     size = abs(px) if py == 0.0 else math.hypot(px, py)
@@ -122,9 +114,8 @@ class DCFPBearing:
     slider_diameter : float
         Slider diameter [m]; the contact radius is half of it.
     axial_load : float or AxialLoadHistory or None
-        Compressive axial load N [N], constant or in time; a bearing test needs one. None for a
-        bearing in a building, which loads it with its share of the weight
-        (:class:`structures.isolated_building.IsolatedShearBuilding`).
+        Compressive axial load N [N], constant or in time (a bearing test needs one); None for a
+        bearing in a building, which loads it with its share of the weight.
     friction : FrictionModel
         Friction model of the sliding surfaces (required): a ``ConstantFriction``, a
         ``PTVFriction`` or any object with their ``bind``, ``name`` and ``initial_temperature``.
@@ -213,12 +204,9 @@ class DCFPBearing:
 
 def beyond_capacity_message(displacement: float, time: float, capacity: float, *,
                             trial: bool = False, detail: str = "") -> str:
-    """The message of a run ended by a bearing beyond its displacement capacity, one wording for
-    every friction model, both engines and the check of the committed steps
-    (:func:`structures.results.response_dataset`): the isolator ``displacement`` [m] at ``time``
-    [s] past the ``capacity`` [m], in a ``trial`` of a step that could not be evaluated (so not
-    committed) or in a committed step, with what the model said (``detail``, e.g. the precise
-    model's monitor line)."""
+    """The message of a run ended by a bearing beyond its displacement capacity: the isolator
+    ``displacement`` [m] at ``time`` [s] past the ``capacity`` [m], in an uncommitted ``trial``
+    or a committed step, with what the model said (``detail``, e.g. the monitor line)."""
     where = " in a trial of the step" if trial else ""
     detail = f" ({detail[:1].lower()}{detail[1:].rstrip('.')})" if detail else ""
     return (f"Capacity exceeded: the isolator displacement reached {abs(displacement):.4g} m "
@@ -229,11 +217,8 @@ def beyond_capacity_message(displacement: float, time: float, capacity: float, *
 
 def trial_failure(bearing: DCFPBearing, displacement: float, time: float,
                   detail: str) -> CapacityExceeded:
-    """The error of a trial displacement [m] at ``time`` [s] that the bearing's model cannot
-    evaluate (the slider off the monitor line, beyond the spherical law's radius; ``detail`` says
-    what the model refused): a capacity failure beyond the displacement capacity, else a
-    ``"model"`` failure (the model's range is shorter than the capacity). Both engines use these
-    words."""
+    """The error of a trial displacement [m] at ``time`` [s] the model cannot evaluate (``detail``
+    says why): a capacity failure beyond the displacement capacity, else a ``"model"`` failure."""
     capacity = bearing.displacement_capacity
     if abs(displacement) > capacity:
         return CapacityExceeded(beyond_capacity_message(displacement, time, capacity,
@@ -253,10 +238,8 @@ def _pair(value: ArrayLike, name: str) -> tuple[float, float]:
 
 
 class BearingElement:
-    """The DCFPB element in one or two directions, with set_trial / commit / revert.
-
-    A trial is a pure function of the committed state and the trial arguments, so Newton
-    iterations may call :meth:`set_trial` as often as they like.
+    """The DCFPB element in one or two directions, with set_trial / commit / revert; a trial is
+    a pure function of the committed state and its arguments.
 
     Parameters
     ----------
@@ -286,8 +269,7 @@ class BearingElement:
         self._constant_load = (None if isinstance(bearing.axial_load, AxialLoadHistory)
                                else bearing.axial_load)
         n0 = bearing.axial_load_at(0.0)
-        # at rest: mu at zero speed and the initial temperature (a trial of zero length adds
-        # no heat and leaves nothing to commit)
+        # at rest: mu at zero speed (a trial of zero length adds no heat)
         zero = (0.0, 0.0)
         mu0 = (self._friction.trial(zero, zero, n0 / bearing.contact_area, 0.0).mu
                if n0 > 0 else 0.0)
@@ -342,22 +324,17 @@ class BearingElement:
 
     def set_trial(self, displacement: float | ArrayLike, velocity: float | ArrayLike,
                   time: float, axial_load: float | None = None) -> BearingTrial:
-        """Force and tangents at a trial displacement [m], velocity [m/s] and time [s]: floats in
-        one direction, (x, y) pairs in two.
-
-        ``axial_load`` [N], when given, replaces the bearing's own
-        (:meth:`DCFPBearing.axial_load_at`) for this trial: a building computes it per bearing
-        and per trial (gravity share, vertical motion, overturning). Zero or negative is uplift:
-        no contact, force or heat, and the plates cool. The tangents are taken at fixed load.
+        """Force [N] and tangents d F / d u [N/m], d F / d v [N s/m] (at fixed load) at a trial
+        displacement [m], velocity [m/s] and time [s]: floats in one direction, (x, y) pairs in
+        two. ``axial_load`` [N], when given, replaces the bearing's own for this trial; zero or
+        negative is uplift: no contact, force or heat, and the plates cool.
 
         Raises
         ------
         ValueError
             If ``time`` is before the last committed time, or a vector is not a finite pair.
         dcfpb.common.errors.CapacityExceeded
-            If the model cannot evaluate the displacement (the slider off the monitor points, at
-            the spherical law's radius; :func:`trial_failure`); an integration ends there with
-            ``success=False``.
+            If the model cannot evaluate the displacement (:func:`trial_failure`).
         """
         if self.dimension == 1:
             ux, uy, vx, vy = float(displacement), 0.0, float(velocity), 0.0

@@ -1,16 +1,11 @@
-"""Per-cycle force-deflection characteristics of a bearing test (paper Section 3.1, Fig. 7).
+"""Per-cycle force-deflection characteristics of a bearing test (paper Section 3.1, Fig. 7,
+Eq. 9-11, after ASCE/SEI 7-16).
 
-Each complete cycle of a displacement and force history gets Fmax, Fmin, the post-yield
-stiffnesses Kru and Krl (least squares) and Kra (Eq. 9), the energy dissipated per cycle EDC
-(loop integral), Keff (Eq. 10) and beta_eff (Eq. 11): the ASCE 7-16 quantities of the bilinear
-loop. Cycles are found from the displacement alone (:func:`find_cycles`), never from an assumed
-period, and each loop is closed in displacement (both ends interpolated onto the mid-level), so
-EDC does not change when a constant is added to the force, and the EDCs of consecutive cycles
-add up to the integral over all of them.
-
-References
-----------
-ssb-part2-friction-models, Section 3.1, Eq. (9)-(11) and Fig. 7, after ASCE/SEI 7-16 [7].
+Each complete cycle of a displacement [m] and force [N] history gets Fmax, Fmin, the post-yield
+stiffnesses Kru, Krl (least squares) and Kra (Eq. 9), the energy dissipated per cycle EDC (loop
+integral), Keff (Eq. 10) and beta_eff (Eq. 11). Cycles are found from the displacement alone
+(:func:`find_cycles`); each loop is closed on the mid-level, so EDC does not change when a
+constant is added to the force and the EDCs of consecutive cycles add up.
 """
 
 from __future__ import annotations
@@ -128,15 +123,13 @@ def find_cycles(
 ) -> list[tuple[int, int]]:
     """Complete displacement cycles, each from one upward crossing of the mid-level to the next.
 
-    An upward crossing at index i means ``u[i-1] < mid <= u[i]``, or i = 0 when the history
-    starts on the mid-level (to 1e-9 of the largest excursion). Against noise, a crossing bounds
-    a cycle only when the displacement has left the band ``mid +- crossing_band * max|u - mid|``
-    downward before it and leaves it upward after it (of several crossings in between, the last
-    one). A history that ends on the mid-level, coming up from below, closes its last cycle
-    there. A cycle counts only if its positive and negative excursions from the mid-level are
-    both at least ``min_excursion`` times the larger. The lead-in before the first crossing and
-    an incomplete last cycle are dropped; a pause on the mid-level reached from below (a rest
-    between the blocks of a sequence) belongs to the cycle that follows it.
+    An upward crossing at i means ``u[i-1] < mid <= u[i]`` (or i = 0 when the history starts on
+    the mid-level). A crossing bounds a cycle only when the displacement has left the band
+    ``mid +- crossing_band * max|u - mid|`` downward before it and leaves it upward after it (the
+    last of several crossings in between); a history ending on the mid-level from below closes
+    its last cycle there. A cycle counts only if its smaller excursion is at least
+    ``min_excursion`` times the larger. The lead-in and an incomplete last cycle are dropped; a
+    rest on the mid-level reached from below belongs to the next cycle.
 
     Parameters
     ----------
@@ -222,19 +215,15 @@ def cycle_characteristics(
         How cycles are found (:func:`find_cycles`).
     transition_fraction : float
         Part f in [0, 0.5) of the stroke ``s = Dmax - Dmin`` left out of the least-squares fits
-        at each end of a branch [-]: the fits use the samples with ``Dmin + f s <= u <= Dmax - f
-        s``. This drops the transition after each reversal (elastic unloading, friction
-        breakaway) and the samples next to a reversal, which cannot be told from the other branch
-        without the velocity.
+        at each end of a branch [-] (the transition after each reversal): the fits use the
+        samples with ``Dmin + f s <= u <= Dmax - f s``.
 
     Notes
     -----
-    Within a cycle (which starts moving up) the samples before the largest displacement and after
-    the smallest form the upper branch (moving in +u), the samples between them the lower one.
-    EDC is positive for a dissipative loop (force higher on the way up than on the way down).
-    Eq. (10)-(11) use ``|Dmax| + |Dmin|`` and ``|Fmax| + |Fmin|``, written for loops around the
-    origin; the peak-to-peak ``Dmax - Dmin`` and ``Fmax - Fmin`` used here equal them there and
-    do not change with an offset of the displacement or the force.
+    The samples before the largest displacement and after the smallest form the upper branch
+    (moving in +u), those between them the lower one. EDC is positive for a dissipative loop.
+    Eq. 10-11 are taken peak to peak, ``Dmax - Dmin`` and ``Fmax - Fmin`` (equal to
+    ``|Dmax| + |Dmin|`` and ``|Fmax| + |Fmin|`` for a loop around the origin).
 
     Raises
     ------

@@ -2,11 +2,10 @@
 
 Two sets, chosen by name with :func:`factor_set`: ``"paper"``, the SSB paper's Eq. 1-3
 (Nishimoto et al. 2016; Nakamura et al. 2015), and ``"kumar"``, Kumar, Whittaker & Constantinou
-(2015) as in OpenSees ``FPBearingPTV``. Arguments are SI (Pa, m/s, degC); the paper's equations,
-in N/mm^2 and mm/s, are converted here and nowhere else. Every factor returns
-``(value, derivative)``, the derivative with respect to the SI argument (for velocity, the
-speed |v|), so that a friction model can build a consistent tangent. The ``*_raw`` kernels take
-floats or arrays and compile with numba.
+(2015) as in OpenSees ``FPBearingPTV``. Arguments are SI (Pa, m/s, degC; the paper's N/mm^2 and
+mm/s are converted here only); every factor returns ``(value, derivative)`` with respect to the
+SI argument (for velocity, the speed |v|). The ``*_raw`` kernels take floats or arrays and
+compile with numba.
 """
 
 from __future__ import annotations
@@ -78,37 +77,22 @@ def kumar_temperature_raw(temperature):
 
 
 def paper_pressure_factor(pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
-    """Pressure factor gamma [-] of Eq. 1 and its derivative [1/Pa] at a contact pressure > 0
-    [Pa] (float or array); gamma = 1.0004 at 60 N/mm^2.
-
-    References
-    ----------
-    Eq. 1: gamma = 2.03 sigma^-0.19 + 0.068, sigma in N/mm^2.
-    """
+    """Pressure factor gamma = 2.03 sigma^-0.19 + 0.068 [-] of Eq. 1 (sigma in N/mm^2) and its
+    derivative [1/Pa] at a contact pressure > 0 [Pa] (float or array); 1.0004 at 60 N/mm^2."""
     gamma, dgamma = paper_pressure_raw(np.asarray(pressure, dtype=float))
     return _scalar(gamma), _scalar(dgamma)
 
 
 def paper_velocity_factor(speed: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
-    """Velocity factor alpha [-] of Eq. 2 and its derivative [s/m] at a sliding speed |v| of the
-    plates [m/s] (float or array); alpha = 0.45 at rest, 0.9997 at 400 mm/s.
-
-    References
-    ----------
-    Eq. 2: alpha = 1 - 0.55 exp(-0.019 v), v in mm/s.
-    """
+    """Velocity factor alpha = 1 - 0.55 exp(-0.019 v) [-] of Eq. 2 (v in mm/s) and its derivative
+    [s/m] at a sliding speed |v| [m/s] (float or array); 0.45 at rest, 0.9997 at 400 mm/s."""
     alpha, dalpha = paper_velocity_raw(np.abs(np.asarray(speed, dtype=float)))
     return _scalar(alpha), _scalar(dalpha)
 
 
 def paper_temperature_factor(temperature: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
-    """Temperature factor beta [-] of Eq. 3 and its derivative [1/degC] at a contact temperature
-    [degC] (float or array); Eq. 3 as published gives 0.982, not 1, at 20 degC.
-
-    References
-    ----------
-    Eq. 3: beta = 1.13 exp(-0.007 T).
-    """
+    """Temperature factor beta = 1.13 exp(-0.007 T) [-] of Eq. 3 and its derivative [1/degC] at
+    a contact temperature T [degC] (float or array); 0.982, not 1, at 20 degC."""
     beta, dbeta = paper_temperature_raw(np.asarray(temperature, dtype=float))
     return _scalar(beta), _scalar(dbeta)
 

@@ -1,17 +1,15 @@
-"""Friction models of the sliding surfaces: the strategy a bearing element asks for mu.
+"""Friction models of the sliding surfaces: the strategy a bearing element asks for mu [-].
 
 :class:`ConstantFriction` is the paper's constant model (Eq. 8), :class:`PTVFriction` its
 precise and simplified models (Eq. 7, the contact temperature from monitor points, Eq. 4-6).
-A model is frozen parameters; its ``bind`` gives the evaluator (:class:`FrictionState`) of one
-bearing in one or two directions, as an OpenSees ``FrictionModel`` serves its element. The
-evaluator keeps the element contract: ``trial`` is a pure function of the committed history and
-the trial, ``commit`` accepts the last trial (and only then adds its heat), ``revert`` forgets
-it, and ``lifted`` is the trial of a slider out of contact.
+A model is frozen parameters; ``bind`` gives the evaluator (:class:`FrictionState`) of one
+bearing in one or two directions: ``trial`` is a pure function of the committed history and the
+trial, ``commit`` accepts it (and only then adds its heat), ``revert`` forgets it, ``lifted`` is
+the trial of a slider out of contact.
 
-Eq. 7 and 8 take the speed |v|; the element forms d mu / d v = d mu / d|v| v / |v|. The newest
-interval's flux q_n = mu_n p |v| / surfaces enters the current temperature, so mu_n solves
-mu = mu_t0 gamma alpha beta(T_base + b q(mu)) by Newton's method, and d mu / d|v| includes that
-coupling (it is negative on a hot plate at speed).
+Eq. 7 and 8 take the speed |v| [m/s]. The newest interval's flux q_n = mu_n p |v| / surfaces
+enters the current temperature, so mu_n solves mu = mu_t0 gamma alpha beta(T_base + b q(mu)) by
+Newton's method, and d mu / d|v| includes that coupling.
 """
 
 from __future__ import annotations
@@ -58,7 +56,7 @@ class Friction(NamedTuple):
 
 
 class FrictionState(Protocol):
-    """A bound friction model with trial / commit / revert (see the module docstring)."""
+    """A bound friction model with trial / commit / revert."""
 
     def trial(self, position: Pair, velocity: Pair, pressure: float, dt: float) -> Friction:
         """Friction at a trial relative displacement [m] and velocity [m/s] of the plates ((x, y)
@@ -216,12 +214,8 @@ def eq7(
     factors: PaperFactors | KumarFactors,
     dependencies: tuple[str, ...] = DEPENDENCIES,
 ) -> np.ndarray:
-    """Eq. 7 in plain numpy: mu_t = mu_t0 gamma(p) alpha(|v|) beta(T) [-], broadcast over the
-    inputs.
-
-    The readable reference of :func:`isolator.compiled.kernels.ptv_friction`, which solves the
-    same law with the contact temperature depending on mu through the newest flux
-    (``tests/verification/test_friction_reference.py``).
+    """Eq. 7 in plain numpy, mu_t = mu_t0 gamma(p) alpha(|v|) beta(T) [-], broadcast over the
+    inputs: the reference of :func:`isolator.compiled.kernels.ptv_friction`.
 
     Parameters
     ----------
@@ -338,13 +332,9 @@ class PTVFriction:
 
 
 class PTVFrictionState:
-    """Evaluator of :class:`PTVFriction` for one bearing (see the module docstring).
-
-    The contact temperature comes from the monitor points on each plate: the centre point
-    (simplified model), the precise model's line along x in one direction or its grid over the
-    plate in two (:class:`~isolator.monitor_grid.GridHeating`), all driven through
-    ``friction_trial`` (Eq. 7 solved with the newest interval's flux) and ``commit_trial``.
-    """
+    """Evaluator of :class:`PTVFriction` for one bearing: the contact temperature from the
+    centre point, the monitor line along x (one direction) or the monitor grid (two directions,
+    :class:`~isolator.monitor_grid.GridHeating`)."""
 
     def __init__(self, model: PTVFriction, contact_radius: float, travel: float,
                  dimension: int = 1, orientation: float | None = None) -> None:
@@ -373,7 +363,7 @@ class PTVFrictionState:
             **{f"use_{name}": name in model.dependencies
                for name in DEPENDENCIES}})
         """The constants of the compiled kernels (:func:`~isolator.compiled.layout.pack_ptv`):
-        the one place a model's parameters become the kernels' (the engine packs these)."""
+        the one place a model's parameters become the kernels'."""
         self._pending: tuple[float, float] | None = None
 
     def trial(self, position: Pair, velocity: Pair, pressure: float, dt: float) -> Friction:
@@ -393,11 +383,9 @@ class PTVFrictionState:
         return Friction(mu, dmu_dspeed, temperature, flux)
 
     def lifted(self, position: Pair, dt: float) -> Friction:
-        """Out of contact at ``position`` [m] for ``dt`` [s]: mu = 0 and no heat flux. The step
-        is staged with zero flux, so the commit advances the heat history by ``dt`` and the
-        plates cool as under a slider at rest; the temperature returned is theirs under
-        ``position``, from the trial at zero speed (no flux whatever mu, a temperature
-        independent of the pressure: the reference one serves)."""
+        """Out of contact at ``position`` [m] for ``dt`` [s]: mu = 0, no heat flux; the commit
+        advances the heat history by ``dt`` (the plates cool), and the temperature [degC] is the
+        plates' under ``position``."""
         friction = self.trial(position, (0.0, 0.0), REFERENCE_PRESSURE, dt)
         if self._pending is not None:
             self._pending = (self._pending[0], 0.0)

@@ -1,20 +1,18 @@
 """Frictional heating of a sliding surface: a semi-infinite solid under a moving heat source.
 
-The temperature rise at a point of the surface under a heat flux history q(t) is (Eq. 4)
+The temperature rise [degC] at a point of the surface under a heat flux history q(t) [W/m^2] is
+(Eq. 4)
 
     dT(t) = c * integral_0^t q(t - tau) / sqrt(tau) dtau,    c = sqrt(D) / (k sqrt(pi)),
 
-with k the thermal conductivity and D the diffusivity. A point takes the flux while the slider
-covers it: within sqrt(pi) r / 2 of the slider centre, the half side of the square of equal area
-(Eq. 5), or within lambda r for the refined centre point (Eq. 6).
+k the thermal conductivity, D the diffusivity. A point takes the flux while within
+sqrt(pi) r / 2 of the slider centre (Eq. 5), or within lambda r for the centre point (Eq. 6).
 
-The flux is piecewise constant over the time steps. The newest interval is integrated exactly,
-2 c q_n sqrt(dt_n); the older history is carried by a sum of exponentials
-1/sqrt(tau) ~ sum_k w_k exp(-s_k tau), valid for lags from ``min_lag`` to ``max_lag``, whose
-states obey an exact one-step recursion for any step: O(1) per step and monitor point, never a
-re-summation of the history (Jiang, Zhang, Zhang & Zhang 2017, Commun. Comput. Phys. 21;
-Beylkin & Monzon 2005). A trial never changes the state, a commit adds one interval, and an
-uncommitted trial is simply dropped.
+The flux is piecewise constant over the time steps: the newest interval is integrated exactly,
+2 c q_n sqrt(dt_n), the older history by a sum of exponentials 1/sqrt(tau) ~ sum_k w_k
+exp(-s_k tau) with an exact one-step recursion, O(1) per step and point (Jiang, Zhang, Zhang &
+Zhang 2017, Commun. Comput. Phys. 21; Beylkin & Monzon 2005). A trial never changes the state, a
+commit adds one interval, an uncommitted trial is dropped.
 """
 
 from __future__ import annotations
@@ -95,12 +93,8 @@ def sum_of_exponentials(
     min_lag: float = 1.0e-6, max_lag: float = 1.0e4, tolerance: float = 1.0e-7
 ) -> SumOfExponentials:
     """The sum of exponentials within the relative ``tolerance`` [-] of 1/sqrt(tau) for lags from
-    ``min_lag`` to ``max_lag`` [s].
-
-    The rates are geometric from 0.1 / max_lag to 10 / min_lag and the weights are fitted by
-    non-negative least squares to the relative error on a logarithmic grid; terms are added until
-    the largest relative error on a grid ten times denser is within ``tolerance``. About 50 terms
-    reach 4e-8 over the default ten decades of lag (1 us to 1e4 s).
+    ``min_lag`` to ``max_lag`` [s]: geometric rates, weights by non-negative least squares, terms
+    added until the tolerance is met (about 50 for the default ten decades).
 
     Raises
     ------
@@ -138,12 +132,9 @@ def sum_of_exponentials(
 @dataclass(frozen=True)
 class MonitorLine:
     """The precise model's monitor points: a line through the plate centre along the sliding
-    direction (Fig. 3a), a point every ``spacing`` [m] (the paper's 5 mm).
-
-    A point takes the flux while within sqrt(pi) r / 2 of the slider centre (Eq. 5); the contact
-    temperature is the mean over the points inside that half side of the equal-area square.
-    ``half_length`` [m] is measured on the plate from its centre; None sizes the line to cover
-    the slider's path at the bearing's displacement capacity.
+    direction (Fig. 3a), a point every ``spacing`` [m] (the paper's 5 mm), out to ``half_length``
+    [m] from the centre (None: the slider's path at the displacement capacity). The contact
+    temperature is the mean over the points within sqrt(pi) r / 2 of the slider centre (Eq. 5).
     """
 
     spacing: float = 0.005
@@ -172,12 +163,9 @@ class MonitorLine:
 
 @dataclass(frozen=True)
 class CentrePoint:
-    """The simplified model's single monitor point at the plate centre (Fig. 3b, 3c).
-
-    It takes the flux while the slider centre is within lambda r of it (Eq. 6), lambda the
-    ``refinement`` [-]: 0.5 is the paper's refined simplified model, sqrt(pi)/2 = 0.886 Kumar's
-    unrefined centre point (Eq. 5 at one point). Its temperature is the contact temperature.
-    """
+    """The simplified model's single monitor point at the plate centre (Fig. 3b, 3c), heated
+    while the slider centre is within lambda r of it (Eq. 6), lambda the ``refinement`` [-]: 0.5
+    the paper's refined model, sqrt(pi)/2 = 0.886 Kumar's unrefined centre point."""
 
     refinement: float = 0.5
 
@@ -215,10 +203,9 @@ def step_factors(rates, weights, coefficient, dt, step, weighted_decay):
 
 
 class SurfaceHeating:
-    """Temperature of one sliding surface under a moving slider, with trial / commit (see the
-    module docstring): the monitor points of ``layout`` for a slider of ``contact_radius`` r [m]
-    whose centre moves up to ``travel`` [m] from the plate centre, the plate's ``thermal``
-    properties and the history ``kernel``."""
+    """Temperature of one sliding surface under a moving slider, with trial / commit: the
+    monitor points of ``layout`` for a slider of ``contact_radius`` r [m] whose centre moves up to
+    ``travel`` [m] from the plate centre, the plate's ``thermal`` properties and ``kernel``."""
 
     def __init__(
         self,
@@ -248,10 +235,8 @@ class SurfaceHeating:
         self._staged = (0, 0)  # the points the last friction trial heats
 
     def prepare(self, dt: float) -> None:
-        """Make the step factors exp(-s_k dt) of the step ``dt`` [s] current, exactly: computed
-        for each distinct dt (a compiled kernel) and kept for the last few (a uniform history has
-        a handful, t_n - t_(n-1) taking a few rounded values), so a trial is a pure function of
-        its own dt."""
+        """Make the step factors exp(-s_k dt) of the step ``dt`` [s] current (computed exactly
+        for each distinct dt, kept for the last few)."""
         self.prepared_step = dt
         entry = self._factor_cache.get(dt)
         if entry is None:
@@ -282,8 +267,8 @@ class SurfaceHeating:
         return lo, hi
 
     def trial(self, position: float, dt: float) -> tuple[float, float, tuple[int, int]]:
-        """Contact temperature terms for the slider centre at ``position`` [m] on this plate
-        (from its centre) after a trial step ``dt`` [s] since the last commit.
+        """Contact temperature terms for the slider centre at ``position`` [m] on this plate after
+        a trial step ``dt`` [s] since the last commit.
 
         Returns
         -------
@@ -312,8 +297,7 @@ class SurfaceHeating:
         self._touched = advance_states(self.states, self._step, *self._touched, *heated, flux)
 
     def constants(self) -> dict[str, float]:
-        """The layout's constants of :func:`~isolator.compiled.layout.pack_ptv` (the points,
-        how the contact is read, the heat-conduction coefficient)."""
+        """The layout's constants of :func:`~isolator.compiled.layout.pack_ptv`."""
         return {"first_point": self.first_point, "spacing": self.spacing,
                 "n_points": self.n_points, "flux_half_width": self.flux_half_width,
                 "average_over_contact": self.average_over_contact,
@@ -324,10 +308,9 @@ class SurfaceHeating:
                        parameters: np.ndarray) -> tuple[float, float, float, float]:
         """Eq. 7 solved with this surface's contact temperature for the slider centre at
         ``position`` (x, y) [m] on the plate after ``dt`` [s]: ``(mu, d mu / d|v| [s/m],
-        temperature [degC], flux [W/m^2])`` (:func:`~isolator.compiled.kernels.ptv_trial` on
-        ``parameters`` packed by :func:`~isolator.compiled.layout.pack_ptv`). The line lies along
-        x; the centre point sees the distance from the centre; ``velocity`` is not used. The
-        heated points are kept for :meth:`commit_trial`.
+        temperature [degC], flux [W/m^2])`` (:func:`~isolator.compiled.kernels.ptv_trial` on the
+        packed ``parameters``); ``velocity`` is not used. The heated points are kept for
+        :meth:`commit_trial`.
 
         Raises
         ------
@@ -352,9 +335,8 @@ class SurfaceHeating:
         self.commit(dt, self._staged, flux)
 
     def temperature_field(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """Positions (m, 2) [m] of the monitor line's points ever heated, on the plate (along x),
-        and their temperatures (m,) [degC] after the last commit; None for the centre point,
-        which is no field."""
+        """Positions (m, 2) [m] on the plate of the monitor line's points ever heated and their
+        temperatures (m,) [degC] after the last commit; None for the centre point."""
         if not self.average_over_contact:
             return None
         lo, hi = self._touched

@@ -1,14 +1,8 @@
 """A bound on the time steps of a run and on the memory its histories take, checked before
-anything is allocated.
-
-A run's cost grows with its steps, duration / dt: a record with a wrong DT of 100 s read at an
-analysis step of 5 ms asks for 31 million steps and some 20 GB. :func:`check_steps` refuses such
-a run up front with its step count, where it comes from and how to raise the limit; the bearing
-tests (:mod:`isolator.protocols`) and the building runs (:mod:`structures.limits`) share it.
-The default, :data:`DEFAULT_MAX_STEPS` = 2,000,000, is well above the longest records (300 to
-600 s of a subduction event, 60,000 to 600,000 steps at 5 or 1 ms) and holds a five-storey
-building run in about 1.2 GB; past it the user raises the limit on purpose (``--max-steps``,
-``max_steps=``).
+anything is allocated (:func:`check_steps`), for the bearing tests (:mod:`isolator.protocols`)
+and the building runs (:mod:`structures.limits`). :data:`DEFAULT_MAX_STEPS` is well above the
+longest records (300 to 600 s at 5 or 1 ms) and holds a five-storey building run in about
+1.2 GB; past it the user raises the limit on purpose (``--max-steps``, ``max_steps=``).
 """
 
 from __future__ import annotations
@@ -57,12 +51,10 @@ def check_steps(
     meminfo: Path = MEMINFO,
 ) -> None:
     """Refuse a run of ``steps`` time steps past ``max_steps`` (>= 1) or past the memory
-    available (:func:`available_memory` from ``meminfo``) at ``bytes_per_step`` [bytes] (the
-    run's stored fields x 8 bytes).
-
-    The message names ``what`` is run (e.g. ``"the building run"``), the ``duration`` [s] and
-    ``dt`` [s] the steps come from, ``hint``, what to check first, and ``raise_with``, how the
-    user raises the limit (e.g. ``"--max-steps"`` or ``"max_steps="``).
+    available (:func:`available_memory` from ``meminfo``) at ``bytes_per_step`` [bytes]. The
+    message names ``what`` is run, the ``duration`` [s] and ``dt`` [s] the steps come from,
+    ``hint`` (what to check first) and ``raise_with`` (how to raise the limit, e.g.
+    ``"--max-steps"``).
 
     Raises
     ------

@@ -1,32 +1,17 @@
 """Frictional heating over a whole plate: the precise model's monitor points on a grid.
 
-The precise model (:class:`~isolator.heating.MonitorLine`, paper Fig. 3a) takes the contact as
-the square of equal area (half side a = sqrt(pi) r / 2, Eq. 5) and the contact temperature as
-the mean over the points inside it of a line along the sliding direction; for a square contact
-"one line of monitor points in the direction of sliding gives the same result as a grid". This
-module is that grid, for a slider moving anywhere on the plate:
+The precise model (:class:`~isolator.heating.MonitorLine`, Fig. 3a) reads the contact
+temperature as the mean over the points of a line along the sliding direction inside the square
+of equal area (half side a = sqrt(pi) r / 2, Eq. 5). For a slider moving anywhere on the plate
+this module puts the points on a grid (m s, n s) in a frame (e1, e2) fixed to the plate: a point
+with |x - p1| <= a and |y - p2| <= a in that frame takes the flux and holds the line's
+sum-of-exponentials history (Eq. 4); the contact temperature is the mean over those points.
 
-- points at (m s, n s), m and n integers, in a frame (e1, e2) fixed to the plate;
-- a point is under the slider when |x - p1| <= a and |y - p2| <= a in that frame (Eq. 5 on
-  each axis); it then takes the flux q of Eq. 5 and holds the same sum-of-exponentials history
-  as a point of the line (:mod:`isolator.heating`, Eq. 4);
-- the contact temperature is the mean over the points under the slider (touched or not).
-
-Along a straight path through the centre in the direction e1 the rows under the slider never
-change and every point of a column has the history of the line's point in that column, so the
-grid's mean equals the line's; a grid fixed to x/y cannot reproduce a line at 30 degrees (its
-columns are not perpendicular to the path). The frame therefore follows the motion by default
-(``orientation=None``): e1 points along the slider's position on the plate at the first commit
-that heats it (along the velocity if the slider is then at the centre, along x if both are zero)
-and stays there. A history in one direction thus gives the line at any angle; for an orbit the
-orientation is a modelling choice (the paper's square has none), and a fixed one can be given.
-The two models pick their points with the same kernel,
-:func:`~isolator.compiled.kernels.heated_window`, to the last rounding.
-
-Only points ever heated are stored (a growing array of histories, indexed per grid column), so
-the cost grows with the area the slider has swept, not with the plate. A stored point outside
-the window keeps its history and the time it was last advanced, and is decayed exactly,
-exp(-s_k elapsed), when the slider comes back.
+By default (``orientation=None``) e1 points along the slider's position at the first commit that
+heats the plate (along the velocity if the slider is then at the centre, else along x) and stays
+there, so a history in one direction gives the line at any angle; a fixed orientation may be
+given. Only points ever heated are stored, so the cost grows with the area swept; a stored point
+is decayed exactly, exp(-s_k elapsed), when the slider comes back.
 """
 
 from __future__ import annotations
@@ -47,11 +32,9 @@ _INITIAL_CAPACITY = 256  # stored points before the first growth of the arrays
 
 @dataclass(frozen=True)
 class MonitorGrid:
-    """The precise model's monitor points over the plate: a square grid of ``spacing`` [m] along
-    each axis (the paper's 5 mm), its first axis at ``orientation`` [deg] counter-clockwise from
-    x (None: following the motion, see the module docstring), over a square of half side
-    ``half_length`` [m] (None: sized like the line, :meth:`MonitorLine.points`, for the slider's
-    travel)."""
+    """The precise model's monitor points over the plate: a square grid of ``spacing`` [m] (the
+    paper's 5 mm), its first axis at ``orientation`` [deg] counter-clockwise from x (None:
+    following the motion), over a square of half side ``half_length`` [m] (None: as the line)."""
 
     spacing: float = 0.005
     orientation: float | None = None
@@ -93,11 +76,9 @@ def plate_frame(position: np.ndarray, hint: np.ndarray | None = None,
 
 
 class GridTrial(NamedTuple):
-    """The contact terms of a trial slider position on the grid: ``rise``, the mean over the
-    points under the slider of their committed history decayed to the trial time, sum_k w_k
-    exp(-s_k dt) G_jk [W s^0.5 / m^2] (``contact_history`` of the line); ``window``, the index
-    ranges ``[i_lo, i_hi) x [k_lo, k_hi)`` of those points; ``axes``, the frame (2, 2) the window
-    was found in."""
+    """The contact terms of a trial slider position on the grid: ``rise``, the mean of
+    sum_k w_k exp(-s_k dt) G_jk [W s^0.5 / m^2] over the points under the slider; ``window``,
+    their index ranges ``[i_lo, i_hi) x [k_lo, k_hi)``; ``axes``, the window's frame (2, 2)."""
 
     rise: float
     window: tuple[int, int, int, int]
@@ -113,9 +94,8 @@ class GridTrial(NamedTuple):
 class GridHeating:
     """Temperature of one plate under a slider moving in two directions: the grid of ``layout``
     for a slider of ``contact_radius`` r [m] whose centre moves up to ``travel`` [m] from the
-    plate centre, with the plate's ``thermal`` properties and the history ``kernel``. A trial
-    never changes the state and :meth:`commit` adds one interval of constant flux on the trial's
-    window; an uncommitted trial is dropped, so there is nothing to revert."""
+    plate centre, the plate's ``thermal`` properties and ``kernel``. A trial never changes the
+    state; :meth:`commit` adds one interval of constant flux on the trial's window."""
 
     def __init__(self, layout: MonitorGrid, contact_radius: float, travel: float,
                  thermal: ThermalProperties, kernel: SumOfExponentials) -> None:
@@ -263,11 +243,9 @@ class GridHeating:
     # --- trial / commit -------------------------------------------------------------------
 
     def trial(self, position: np.ndarray, dt: float, hint: np.ndarray | None = None) -> GridTrial:
-        """Contact terms for the slider centre at ``position`` [m] on the plate after ``dt`` [s].
-
-        ``hint`` (the velocity) orients a frame not yet fixed when the slider is at the centre.
-        The newest interval's share 2 c sqrt(dt) q is left to the friction solve.
-        """
+        """Contact terms for the slider centre at ``position`` [m] on the plate after ``dt`` [s]
+        (the newest interval left to the friction solve); ``hint`` (the velocity) orients a frame
+        not yet fixed while the slider is at the centre."""
         axes = self.frame(position, hint)
         window = self.window(position, axes)
         rows = self._rows(window)
@@ -290,9 +268,7 @@ class GridHeating:
         self._time += dt
 
     def constants(self) -> dict[str, float]:
-        """The grid's constants of :func:`~isolator.compiled.layout.pack_ptv` (the axes' points,
-        the contact read as a mean over the points under the slider, the heat-conduction
-        coefficient)."""
+        """The grid's constants of :func:`~isolator.compiled.layout.pack_ptv`."""
         return {"first_point": self.first_point, "spacing": self.spacing,
                 "n_points": self.n_points, "flux_half_width": self.flux_half_width,
                 "average_over_contact": True, "flux_coefficient": self.coefficient}
@@ -302,10 +278,8 @@ class GridHeating:
                        parameters: np.ndarray) -> tuple[float, float, float, float]:
         """Eq. 7 solved with the grid's contact temperature for the slider centre at
         ``position`` (x, y) [m] on the plate after ``dt`` [s]: ``(mu, d mu / d|v| [s/m],
-        temperature [degC], flux [W/m^2])`` (:func:`~isolator.compiled.kernels.ptv_friction`
-        with the newest interval's flux). ``velocity`` [m/s] orients a frame not yet fixed
-        while the slider is at the centre. The trial's window is kept for :meth:`commit_trial`.
-        """
+        temperature [degC], flux [W/m^2])``; ``velocity`` [m/s] as the :meth:`trial`'s hint. The
+        window is kept for :meth:`commit_trial`."""
         grid = self.trial(np.asarray(position, dtype=float), dt,
                           hint=np.asarray(velocity, dtype=float))
         _, _, newest = self.factors(dt)
@@ -336,10 +310,9 @@ class GridHeating:
         return local @ axes
 
     def point_temperatures(self, dt: float = 0.0) -> np.ndarray:
-        """Temperature of the stored points ``dt`` [s] after the last commit [degC]. The sum of
-        exponentials holds from the kernel's ``min_lag`` up: at ``dt`` = 0 a point heated in the
-        last step is short by the kernel's error near lag 0 (1e-4 of the rise for 10 ms steps;
-        the trials take that interval exactly)."""
+        """Temperature of the stored points ``dt`` [s] after the last commit [degC]; at ``dt`` = 0
+        a point heated in the last step is short by the kernel's error near lag 0 (1e-4 of the
+        rise for 10 ms steps)."""
         rows = np.arange(self._stored)
         weighted = self.kernel.weights * np.exp(-self.kernel.rates * max(dt, 0.0))
         rise = self._histories_now(rows) @ weighted

@@ -1,18 +1,12 @@
-"""Imposed orbits of a bearing test in two directions: circle, figure-eight, square, and the sine
-along a line at an angle.
+"""Imposed orbits of a bearing test in two directions (:class:`Orbit`): circle, figure-eight,
+square, and the sine along a line at an angle.
 
-An :class:`Orbit` is the 2D imposed path of a test: time [s], displacement (n, 2) [m], the exact
-analytic velocity (n, 2) [m/s] at every sample and labelled ``segments`` like
-:class:`~isolator.protocols.ImposedHistory` (``"lead-in"``, then one block per turn). Every
-orbit starts at rest at the plate centre; ``angle`` [deg] rotates it counter-clockwise about the
-centre (for :func:`line`, the direction of the sine).
-
-``dt`` is the largest time step allowed: a period is cut into equal steps, their number rounded
-up to a multiple of 4 (circle, figure-eight) or 8 (square) so that the lead-in and every corner
-fall on a sample. Where the velocity jumps (the end of a lead-in, a corner of the square) the
-sample takes the velocity of the block that ends there: the test rig moves each step with the
-velocity of its end sample (heat flux over (t_(n-1), t_n] from v_n), so every step keeps the
-velocity it was imposed with.
+Every orbit starts at rest at the plate centre, with a ``"lead-in"`` block and then one block
+per turn; ``angle`` [deg] rotates it counter-clockwise about the centre. ``dt`` is the largest
+time step allowed: a period is cut into equal steps, their number a multiple of 4 (circle,
+figure-eight) or 8 (square) so that the lead-in and every corner fall on a sample. Where the
+velocity jumps, the sample takes the velocity of the block that ends there (the test rig moves
+each step with the velocity of its end sample).
 """
 
 from __future__ import annotations
@@ -115,12 +109,9 @@ def _finish(name: str, time: np.ndarray, u: np.ndarray, v: np.ndarray, angle: fl
 
 def circle(radius: float, period: float, cycles: int, dt: float, *, angle: float = 0.0,
            max_steps: int = DEFAULT_MAX_STEPS) -> Orbit:
-    """A circle of ``radius`` [m] about the centre at constant speed 2 pi R / T.
-
-    A lead-in of a quarter period, R sin(2 pi t / T) along x, brings the slider from the
-    centre to (R, 0) at rest; then ``cycles`` counter-clockwise turns of period ``period`` [s].
-    Steps no longer than ``dt`` [s] (at most T / 20).
-    """
+    """A circle of ``radius`` R [m] about the centre at constant speed 2 pi R / T: a lead-in of a
+    quarter period along x to (R, 0), then ``cycles`` counter-clockwise turns of ``period`` T [s],
+    in steps no longer than ``dt`` [s] (at most T / 20)."""
     owner = "circle"
     radius, period, cycles, dt, angle = _check(owner, radius, "radius", period, cycles, dt,
                                                angle)
@@ -146,12 +137,9 @@ def circle(radius: float, period: float, cycles: int, dt: float, *, angle: float
 def figure_eight(amplitude: float, period: float, cycles: int, dt: float, *,
                  ratio: float = 0.5, angle: float = 0.0,
                  max_steps: int = DEFAULT_MAX_STEPS) -> Orbit:
-    """A figure-eight (lemniscate of Gerono): x = A sin(w t), y = ratio A sin(2 w t).
-
-    ``amplitude`` A [m] along x, ``ratio`` [-] of it across, w = 2 pi / ``period`` [s]; it
-    starts and ends each cycle at the centre (moving along (1, 2 ratio)). Steps no longer than
-    ``dt`` [s].
-    """
+    """A figure-eight (lemniscate of Gerono), x = A sin(w t), y = ratio A sin(2 w t), of
+    ``amplitude`` A [m], ``ratio`` [-] and w = 2 pi / ``period`` [s], each cycle from and to the
+    centre, in steps no longer than ``dt`` [s]."""
     owner = "figure_eight"
     amplitude, period, cycles, dt, angle = _check(owner, amplitude, "amplitude", period,
                                                   cycles, dt, angle)
@@ -174,12 +162,9 @@ _SQUARE_STEPS = (1, 2, 2, 2, 1)  # eighths of a turn per leg, from (a, 0) back t
 
 def square(half_side: float, period: float, cycles: int, dt: float, *, angle: float = 0.0,
            max_steps: int = DEFAULT_MAX_STEPS) -> Orbit:
-    """A square of half side ``half_side`` a [m] about the centre at constant speed 8 a / T.
-
-    A lead-in along x from the centre to (a, 0) at the same speed (T / 8), then ``cycles``
-    counter-clockwise turns through the corners (a, a), (-a, a), (-a, -a), (a, -a). A corner
-    sample keeps the velocity of the leg that ends there.
-    """
+    """A square of half side ``half_side`` a [m] about the centre at constant speed 8 a / T: a
+    lead-in along x to (a, 0) (T / 8), then ``cycles`` counter-clockwise turns through the
+    corners (a, a), (-a, a), (-a, -a), (a, -a)."""
     owner = "square"
     a, period, cycles, dt, angle = _check(owner, half_side, "half_side", period, cycles, dt,
                                           angle)
@@ -208,10 +193,8 @@ def square(half_side: float, period: float, cycles: int, dt: float, *, angle: fl
 def line(amplitude: float, period: float, cycles: int, dt: float, *, angle: float = 0.0,
          max_steps: int = DEFAULT_MAX_STEPS) -> Orbit:
     """The sine of :func:`isolator.protocols.sine` along the direction ``angle`` [deg], on the
-    same samples (u = u_sine (cos, sin)), so this test and the test in one direction see the same
-    history along the line. Each cycle is a block ``"line"`` when the cycles end on samples (the
-    sine's steps a multiple of ``cycles``, as when dt divides the period), else the whole history
-    is one block."""
+    same samples; each cycle is a block ``"line"`` when the cycles end on samples, else the whole
+    history is one block."""
     owner = "line"
     _check(owner, amplitude, "amplitude", period, cycles, dt, angle)
     history = sine(amplitude, period, cycles, dt, max_steps=max_steps)

@@ -1,15 +1,9 @@
-"""Imposed displacement histories for a virtual bearing test machine.
+"""Imposed displacement histories for a virtual bearing test machine (:class:`ImposedHistory`),
+up to the ASCE/SEI 7-16 Section 17.8.2.2 prototype sequence.
 
-An :class:`ImposedHistory` holds time [s], displacement [m] and the exact analytic velocity
-[m/s] at every sample, with labelled ``segments`` (one per loading block). ``dt`` is the largest
-time step allowed: a block of duration D is cut into ``ceil(D / dt)`` equal steps so that its
-last sample falls on its end (the step is ``dt`` when ``dt`` divides D). Blocks are joined at a
-shared sample (:func:`concatenate`).
-
-References
-----------
-ASCE/SEI 7-16, Section 17.8.2.2 "Sequence and Cycles", the paper's [7]; the paper's ASCE tests
-run at a period of 4.26 s, its wind-load test T02 at a peak velocity of about 15 mm/s.
+``dt`` is the largest time step allowed: a block of duration D is cut into ``ceil(D / dt)``
+equal steps so that its last sample falls on its end. Blocks are joined at a shared sample
+(:func:`concatenate`).
 """
 
 from __future__ import annotations
@@ -110,13 +104,10 @@ def sine(
     amplitude: float, period: float, cycles: int, dt: float, *, start_time: float = 0.0,
     max_steps: int = DEFAULT_MAX_STEPS,
 ) -> ImposedHistory:
-    """Fully reversed sine cycles ``u = A sin(2 pi (t - t0) / T)``, one segment labelled
-    ``"sine"``.
-
-    ``amplitude`` A > 0 [m], ``period`` T > 0 [s], ``cycles`` >= 1 full cycles, ``dt`` the
-    largest time step in (0, T/20] [s] and ``start_time`` t0 [s]; ``max_steps`` is checked before
-    any array is made (:mod:`isolator.limits`). The history starts and ends at exactly 0 m, its
-    last sample at the end of the last cycle, with the exact velocity.
+    """Fully reversed sine cycles ``u = A sin(2 pi (t - t0) / T)``, one segment ``"sine"``,
+    starting and ending at exactly 0 m: ``amplitude`` A > 0 [m], ``period`` T > 0 [s],
+    ``cycles`` >= 1, ``dt`` the largest time step in (0, T/20] [s], ``start_time`` t0 [s] and
+    ``max_steps`` checked before any array is made (:mod:`isolator.limits`).
     """
     owner = "sine"
     amplitude = check_real(amplitude, "amplitude", owner, low=0.0, low_open=True)
@@ -143,9 +134,8 @@ def wind_cycles(
 ) -> ImposedHistory:
     """Slow sine cycles standing for a wind load (the paper's test T02), labelled ``"wind"``.
 
-    ``amplitude`` A > 0 [m] (:func:`wind_displacement_from_force`) and ``peak_velocity``
-    v_peak > 0 [m/s] (the paper's 15 mm/s) give the period T = 2 pi A / v_peak; ``cycles`` >= 1
-    (ASCE 7-16 17.8.2.2 item 1 asks for 20); ``dt`` is the largest time step in (0, T/20] [s]
+    ``amplitude`` A > 0 [m] and ``peak_velocity`` v_peak > 0 [m/s] give the period
+    T = 2 pi A / v_peak; ``cycles`` >= 1; ``dt`` the largest time step in (0, T/20] [s]
     (None: T/100).
     """
     owner = "wind_cycles"
@@ -186,13 +176,9 @@ def hold(duration: float, dt: float) -> ImposedHistory:
 
 def concatenate(*histories: ImposedHistory, name: str | None = None) -> ImposedHistory:
     """Join histories end to start into one, named ``name`` (None: their names joined by
-    ``" + "``); segments keep their labels.
-
-    Each history is shifted in time so that its first sample is the previous one's last, and the
-    two become one joining sample. Displacement must be continuous at every join (to 1e-9 of the
-    largest displacement). Velocity may jump there: the joining sample takes the mean of the two
-    sides (the midpoint of the jump, as a central difference would give), which keeps their sign
-    when they agree, e.g. at the end of a sine block and the start of a rest.
+    ``" + "``); segments keep their labels. Each history is shifted in time so that its first
+    sample is the previous one's last, the two becoming one sample; the displacement must be
+    continuous there (to 1e-9 of the largest), the velocity takes the mean of the two sides.
     """
     owner = "concatenate"
     if not histories or not all(isinstance(h, ImposedHistory) for h in histories):
@@ -262,24 +248,20 @@ def asce7_prototype_sequence(
 ) -> ImposedHistory:
     """The cyclic prototype-test sequence of ASCE 7-16 Section 17.8.2.2 as one history.
 
-    The clauses implemented (17.8.2.2, paraphrased; to be checked against the standard's text):
+    The clauses (17.8.2.2, paraphrased; to be checked against the standard's text):
 
-    1. Twenty fully reversed cycles at a lateral force corresponding to the wind design force,
-       imposed here as displacement cycles of amplitude ``wind_displacement``
-       (:func:`wind_displacement_from_force`) at a slow period giving ``wind_peak_velocity`` (the
-       paper's T02: about 15 mm/s); a wind displacement of 0 (no sliding under wind) omits them.
-    2. (a) Three fully reversed cycles at each of 0.25, 0.5, 0.67 and 1.0 D_M; or (b),
-       dynamically at T_M, one continuous cycle at each of 1.0, 0.67, 0.5, 0.25 D_M followed by
-       one continuous cycle at each of 0.25, 0.5, 0.67, 1.0 D_M, a rest being permitted between
-       the two.
+    1. Twenty fully reversed cycles at the wind design force, imposed as cycles of amplitude
+       ``wind_displacement`` (:func:`wind_displacement_from_force`) at ``wind_peak_velocity``
+       (the paper's T02: about 15 mm/s); omitted for a wind displacement of 0.
+    2. (a) Three fully reversed cycles at each of 0.25, 0.5, 0.67 and 1.0 D_M; or (b) one
+       continuous cycle at each of 1.0, 0.67, 0.5, 0.25 D_M, then at each of 0.25, 0.5, 0.67,
+       1.0 D_M, a rest permitted between the two.
     3. Three fully reversed cycles at the total maximum displacement D_TM.
-    4. ``30 S_M1 / (S_MS B_M)``, but not less than 10, continuous fully reversed cycles at
-       0.75 D_TM (:func:`long_duration_cycles`).
+    4. ``30 S_M1 / (S_MS B_M)``, but not less than 10, cycles at 0.75 D_TM
+       (:func:`long_duration_cycles`).
 
-    The tests run dynamically at the effective period T_M (17.8.2.3), as in the paper (T =
-    4.26 s). Not implemented: the two extra vertical-load cases of item 2 for
-    vertical-load-carrying isolators, and splitting item 4 into segments of no fewer than five
-    cycles.
+    All but the wind block run at the effective period T_M (17.8.2.3; the paper's 4.26 s). Not
+    implemented: the extra vertical-load cases of item 2, splitting item 4 into segments.
 
     Parameters
     ----------

@@ -1,10 +1,6 @@
-"""A virtual bearing test machine: a bearing driven through an imposed displacement history.
-
-Each sample of the history is one trial of the element followed by a commit, as a
-displacement-controlled rig imposes it, in one direction (a history of shape (n,)) or in two (an
-orbit of shape (n, 2), :mod:`isolator.orbits`). The result holds the histories, with the
-per-cycle force-deflection characteristics along each axis and the energies (the work of the
-force and of its friction part, the heat put into the plates) one call away.
+"""A virtual bearing test machine: a bearing driven through an imposed displacement history,
+one trial and commit per sample, in one direction (shape (n,)) or in two (an orbit, shape
+(n, 2)); the result holds the histories, their per-cycle characteristics and energies.
 """
 
 from __future__ import annotations
@@ -59,7 +55,7 @@ class BearingTestResult:
         Monitor points per plate holding a history at the end (the precise model in two
         directions; 0 otherwise).
     wall_time : float
-        Time the run took [s] (for information; the benchmarks measure speed).
+        Time the run took [s].
     """
 
     time: np.ndarray
@@ -160,12 +156,9 @@ class BearingTestResult:
 
 def imposed_history(time: ArrayLike, displacement: ArrayLike, velocity: ArrayLike | None,
                     owner: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Check an imposed history and return it as float arrays ``(t [s], u [m], v [m/s])``.
-
-    Times must be strictly increasing; the displacement has the shape (n,) (one direction) or (n,
-    2) (two), the velocity the same or, when None, is the central-difference derivative of the
-    displacement (``numpy.gradient``). Errors name ``owner``.
-    """
+    """Check an imposed history and return it as float arrays ``(t [s], u [m], v [m/s])``:
+    strictly increasing times, a displacement of shape (n,) or (n, 2), a velocity of the same
+    shape or None (then ``numpy.gradient`` of the displacement). Errors name ``owner``."""
     t = check_array(time, "time", owner, min_length=2)
     if np.any(np.diff(t) <= 0.0):
         raise ValueError(f"The 'time' parameter of {owner} must be strictly increasing.")
@@ -207,8 +200,7 @@ def run_test(
         within the bearing's displacement capacity (a radius in two directions).
     velocity : array_like, optional
         Imposed relative velocity [m/s], the shape of ``displacement``; by default the
-        central-difference derivative of the displacement. Give the analytic velocity where it is
-        known.
+        central-difference derivative of the displacement.
     name : str
         Name of the history, kept in the result.
     grid_orientation : float or None

@@ -1,9 +1,6 @@
 """`GroundMotionPair`, two horizontal components of one recording and an optional vertical,
 and its readers: `read_pair` (two or three record files) and `read_pair_manifest` (the pairs
-listed in a CSV file).
-
-A bad pair is refused, never repaired: components of different time steps or lengths raise
-`dcfpb.common.errors.InputError` naming both components and the way to make them agree.
+listed in a CSV file). A bad pair is refused, never repaired.
 """
 
 from __future__ import annotations
@@ -51,8 +48,7 @@ class GroundMotionPair:
     ------
     InputError
         Components of different time steps (relative difference above 1e-9) or numbers of
-        samples; the message names both components and the way out (``resampled``,
-        ``truncated_to_common``).
+        samples, naming both and the way out (``resampled``, ``truncated_to_common``).
     """
 
     x: GroundMotion
@@ -275,13 +271,9 @@ class ManifestRow(NamedTuple):
 
 
 def manifest_rows(path: PathLike) -> tuple[ManifestRow, ...]:
-    """The rows of a pair manifest (`read_pair_manifest`), checked without reading a component.
-
-    No such file, an empty manifest, an unknown, missing or repeated column, a row of the wrong
-    number of cells, an empty required cell, a repeated pair name, a bad ``dt`` or no rows raise
-    `InputError` starting with ``"<manifest>, line <n>"`` (``"..., the header"`` for the header) and
-    naming the column.
-    """
+    """The rows of a pair manifest (`read_pair_manifest`), checked without reading a component;
+    a bad manifest raises `InputError` starting with ``"<manifest>, line <n>"`` and naming the
+    column."""
     path = Path(path)
     if not path.is_file():
         raise InputError(f"The pair manifest {str(path)!r} does not exist.")
@@ -338,12 +330,10 @@ def manifest_rows(path: PathLike) -> tuple[ManifestRow, ...]:
 
 
 def read_pair_manifest(path: PathLike) -> tuple[GroundMotionPair, ...]:
-    """Read every pair listed in a CSV manifest, in the order of the rows.
-
-    The header row names the columns: ``name``, ``x``, ``y`` (required), ``z`` (vertical), ``dt``
-    (time step of one-column text records [s]) and ``units`` (of files whose header states none);
-    cells of the last three may be empty. Paths are relative to the manifest's folder; blank lines
-    and lines starting with ``#`` are skipped.
+    """Read every pair listed in a CSV manifest, in the order of the rows: a header row naming
+    the columns ``name``, ``x``, ``y`` (required), ``z`` (vertical), ``dt`` (of one-column text
+    records [s]) and ``units`` (of files whose header states none; the last three may be empty),
+    paths relative to the manifest's folder; blank lines and ``#`` lines are skipped.
 
     Raises
     ------

@@ -1,11 +1,9 @@
 """Orientation-independent response spectra of a horizontal pair: RotD50, RotD100 (Boore 2010).
 
-The oscillator is linear, so its displacement under the ground motion projected on the direction
-theta is ``u_theta(t) = cos(theta) u_x(t) + sin(theta) u_y(t)``: both components' histories are
-computed in one pass of the recurrence of `groundmotions.spectra` and combined at every angle
-``0, step, ..., 180 - step`` deg (theta + 180 gives the same peak). RotDnn is the nn-th
-percentile over the angles of the peaks ``max_t |u_theta(t)|``: RotD100 the largest (the
-maximum-direction spectrum of ASCE 7-16), RotD50 the median.
+The oscillator displacement along the direction theta is ``u_theta(t) = cos(theta) u_x(t) +
+sin(theta) u_y(t)``, for theta = 0, step, ..., 180 - step deg. RotDnn is the nn-th percentile
+over the angles of the peaks ``max_t |u_theta(t)|``: RotD100 the largest (the maximum-direction
+spectrum of ASCE 7-16), RotD50 the median.
 
 References
 ----------
@@ -97,14 +95,8 @@ def rotd_peaks(u_x: np.ndarray, u_y: np.ndarray, angles_deg: np.ndarray) -> np.n
     shape (n, len(angles_deg)), in the units of the histories.
 
     ``u_x``, ``u_y`` of shape (npts, n) are the histories of the two components (e.g. oscillator
-    displacements [m], a column per period); ``angles_deg`` the directions theta [deg].
-
-    Notes
-    -----
-    A sample whose radius ``hypot(u_x, u_y)`` is below the smallest peak over the angles cannot be
-    the peak at any angle. That smallest peak is bounded from below by the peaks of the
-    ``_CANDIDATES`` samples of largest radius, and only the samples at or above the bound (less a
-    round-off margin of 1e-12) are projected on every angle: the result is the full computation's.
+    displacements [m], a column per period); ``angles_deg`` the directions theta [deg]. Only the
+    samples whose radius can hold a peak are projected; the result is the full computation's.
     """
     theta = np.radians(np.asarray(angles_deg, dtype=float))
     c, s = np.cos(theta), np.sin(theta)
@@ -148,9 +140,7 @@ def rotd_spectra(
 
     Notes
     -----
-    With ``u_y = 0`` the angle 0 gives ``u_x`` itself (cos 0 = 1, sin 0 = 0 exactly), so RotD100
-    is the x component's `groundmotions.spectrum` to the last digit. Rotating the pair by a whole
-    number of steps permutes the angles, so RotDnn is unchanged to round-off.
+    With ``u_y = 0`` RotD100 is the x component's `groundmotions.spectrum` to the last digit.
     """
     owner = "rotd_spectra"
     if not isinstance(pair, GroundMotionPair):
@@ -175,8 +165,7 @@ def rotd_spectra(
         by_angle[rigid] = rotd_peaks(ax, ay, angles)[0]
     if (~rigid).any():
         omega = 2 * np.pi / t[~rigid]
-        # both components in one pass of the recurrence (element by element the arithmetic
-        # of `sdof_response` of each): u[:, 0] and u[:, 1] are the x and y histories
+        # both components in one pass of the recurrence: u[:, 0] and u[:, 1] are x and y
         u = np.zeros((pair.npts, 2, omega.size))
         oscillator_recurrence(np.column_stack((ax[:, 0], ay[:, 0])), pair.dt, omega, zeta,
                     out=(u, np.zeros_like(u)))
