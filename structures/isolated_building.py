@@ -91,6 +91,7 @@ class IsolatedShearBuilding:
                                  f"Got {n_bearings!r} instead.")
             self.multiplicity = np.ones(len(positions), dtype=int)
         self.n_bearings = int(self.multiplicity.sum())
+        self._count = float(self.multiplicity[0])  # the one group's, in one direction
         self.gravity_loads = building.gravity_shares / self.multiplicity  # one bearing's [N]
         _warn_if_replaced(bearing.axial_load, self.gravity_loads, stacklevel=3)
         self.bearing = dataclasses.replace(bearing, axial_load=None)
@@ -196,13 +197,11 @@ class IsolatedShearBuilding:
         damping = np.zeros(stiffness.shape)
         loads = self.axial_loads(u, v, time)
         if self.level_dofs == 1:  # one group along x on the base slab's one DOF
-            ub, vb = float(u[0]), float(v[0])
-            for element, count, load in zip(self.elements, self.multiplicity.tolist(),
-                                            loads.tolist(), strict=True):
-                trial = element.set_trial(ub, vb, time, axial_load=load)
-                force[0] += count * trial.force
-                stiffness[0, 0] += count * trial.stiffness
-                damping[0, 0] += count * trial.damping
+            (element,), count = self.elements, self._count
+            trial = element.set_trial(float(u[0]), float(v[0]), time, axial_load=float(loads[0]))
+            force[0] += count * trial.force
+            stiffness[0, 0] += count * trial.stiffness
+            damping[0, 0] = count * trial.damping
             return RestoringForce(force, stiffness, damping)
         ub, vb = u[:3], v[:3]
         for element, t, load, du, dv in zip(self.elements, self.transformations, loads,
