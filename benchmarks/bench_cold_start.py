@@ -42,6 +42,8 @@ def demo_wall(tree: Path | None, cache: str, plots: str, extra_env: dict | None 
         env["PYTHONPATH"] = os.pathsep.join(p for p in (str(tree), env.get("PYTHONPATH"))
                                             if p)
     start = time.perf_counter()
+    Path(plots).mkdir(parents=True, exist_ok=True)  # a fresh folder each run: no --overwrite
+    plots = tempfile.mkdtemp(prefix="plots-", dir=plots)  # (a tree before it has no such flag)
     subprocess.run([sys.executable, "-m", "dcfpb.cli", "demo", *DEMO_FLAGS, "--plot", plots],
                    env=env,
                    cwd=tempfile.gettempdir(), check=True, stdout=subprocess.DEVNULL,

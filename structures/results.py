@@ -5,10 +5,13 @@ into it, with the energy balance and the bearings' displacement-capacity check.
 
 from __future__ import annotations
 
+import os
+from pathlib import Path
 from typing import Any, NamedTuple
 
 import numpy as np
 
+from dcfpb.common.files import atomic_output
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from isolator.bearing import beyond_capacity_message
@@ -16,7 +19,8 @@ from structures.energy import energy_balance
 from structures.integrators import IntegrationResult
 from structures.isolated_building import IsolatedShearBuilding
 
-__all__ = ["BEARING_RECORD", "EngineHistory", "response_dataset", "temperature_fields"]
+__all__ = ["BEARING_RECORD", "EngineHistory", "response_dataset", "temperature_fields",
+           "write_netcdf"]
 
 BEARING_RECORD: dict[str, int] = {
     "displacement": 2, "force": 2, "friction_force": 2, "mu": 0, "temperature": 0,
@@ -283,3 +287,13 @@ def response_dataset(
     if failed_at is not None:
         common["failed_at"] = float(failed_at)
     return xr.Dataset(data, coords=coords, attrs=common | attrs)
+
+
+def write_netcdf(result: Any, path: str | os.PathLike) -> Path:
+    """Write a result Dataset (:func:`response_dataset`) to the netCDF file ``path``
+    atomically (:func:`dcfpb.common.files.atomic_output`): a failed or interrupted write leaves
+    the file there before whole and no temporary file behind. Returns the path."""
+    path = Path(path)
+    with atomic_output(path) as temporary:
+        result.to_netcdf(temporary)
+    return path

@@ -47,16 +47,19 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="the same building in plan (six bearings, eccentric centre of mass) "
                    "under a synthetic pair of records: bearing orbits coloured by "
                    "temperature, torsion at the corner bearings, the plate's temperature field")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace output files that exist (never an input of the command)")
     p.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb demo``; returns the exit status."""
-    from dcfpb.cli.outputs import check_outputs
+    from dcfpb.cli.outputs import PLAN_FIGURES, RUN_FIGURES, check_outputs
     from structures.compiled.ahead import compile_ahead
 
     args.plot = args.plot or ("dcfpb-demo-plan" if args.plan else "dcfpb-demo")
-    check_outputs(folders={"--plot": args.plot})
+    check_outputs(folders={"--plot": args.plot}, overwrite=args.overwrite,
+                  writes={"--plot": PLAN_FIGURES if args.plan else RUN_FIGURES})
     with compile_ahead() as ahead:
         ahead.help()  # on a cold cache: compile a share of the engine, then do the rest
         from dcfpb.cli.run import example_path

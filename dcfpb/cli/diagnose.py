@@ -54,14 +54,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="yield displacement of the return map [m] (default: calibrated)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.add_argument("--report", metavar="DIR", help="write summary.md, JSON and plots here")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace output files that exist (never an input of the command)")
     p.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Run the diagnosis for parsed arguments; returns the exit status."""
-    from dcfpb.cli.outputs import check_outputs
+    from dcfpb.cli.outputs import REPORT_FILES, check_outputs
 
-    check_outputs(folders={"--report": args.report})  # before the slow imports
+    check_outputs(folders={"--report": args.report}, overwrite=args.overwrite,
+                  inputs={"the test file": list(args.files), "the manifest": args.manifest},
+                  writes={"--report": REPORT_FILES})  # before the slow imports
     from isolator.diagnosis import BaselineSpec, DataError, diagnose, load_campaign
     from isolator.diagnosis.manifest import load_manifest
 

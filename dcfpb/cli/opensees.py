@@ -55,6 +55,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    "(default: when the file's [plan] has storey_heights)")
     p.add_argument("--json", action="store_true", help="print the comparison as JSON")
     p.add_argument("--plot", metavar="DIR", help="write overlay plots to this folder")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace output files that exist (never an input of the command)")
     p.set_defaults(handler=run_building)
 
     b = subparsers.add_parser(
@@ -89,9 +91,9 @@ def _import_error(command: str, error: ImportError) -> int:
 def _inputs(args: argparse.Namespace, command: str):
     """The building file, the integrator and the (scaled, truncated) record or pair, every
     flag checked and the run's length bounded before any work."""
-    from dcfpb.cli.outputs import check_outputs
     from dcfpb.cli.run import (
         analysis_dt,
+        check_building_outputs,
         integrator_from_args,
         pair_from_args,
         read_record_from_args,
@@ -107,7 +109,7 @@ def _inputs(args: argparse.Namespace, command: str):
     if args.overturning and not pair:
         raise InputError("--overturning applies to a building in plan under a pair: give "
                          "--record-y (and a building file with a [plan] table).")
-    check_outputs(folders={"--plot": args.plot})
+    check_building_outputs(args, folders={"--plot": args.plot})
     check_real(args.scale, "--scale", command, low=0.0, low_open=True)
     if args.dt is not None:
         check_real(args.dt, "--dt", command, low=0.0, low_open=True, high=1.0)

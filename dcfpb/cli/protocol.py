@@ -49,7 +49,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     add_max_steps(p, "the test")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
-    p.add_argument("--output", metavar="FILE.csv", help="write the history to a CSV file")
+    p.add_argument("--output", metavar="FILE.csv", help="write the history to a CSV file (the "
+                   "name must end in .csv)")
     p.add_argument("--plot", metavar="FILE.png", help="draw the hysteresis loop(s) and the "
                    "temperature")
     p.add_argument("--orbit", choices=ORBIT_CHOICES, default=None,
@@ -59,6 +60,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--angle", type=float, default=None,
                    help="rotation of the orbit, the line's direction [deg] (default 0; with "
                    "--orbit)")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace output files that exist (never an input of the command)")
     p.set_defaults(handler=_run_protocol)
 
 
@@ -109,7 +112,8 @@ def _run_protocol(args: argparse.Namespace) -> int:
     from isolator.testrig import run_orbit, run_test
 
     command = "dcfpb protocol"
-    check_outputs(files={"--output": args.output}, figures={"--plot": args.plot})
+    check_outputs(files={"--output": args.output}, figures={"--plot": args.plot},
+                  overwrite=args.overwrite, formats={"--output": {".csv": "CSV"}})
     check_sine_flags(args, command)
     if args.orbit is None and args.angle is not None:
         raise InputError(f"{command}: --angle turns an --orbit; give --orbit or leave it out.")
@@ -146,7 +150,10 @@ def _run_protocol(args: argparse.Namespace) -> int:
                     "energy_per_cycle": [result.dissipated_energy(b) for b in blocks],
                     "cycles": {axis: _cycles(result, axis) for axis in ("x", "y")}}
     if args.output:
-        result.to_csv(args.output)
+        from dcfpb.common.files import atomic_output
+
+        with atomic_output(args.output) as temporary:
+            result.to_csv(temporary)
     if args.plot:
         from dcfpb.plotting import plot_bearing_test
 

@@ -40,8 +40,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_record_options(p)
     p.add_argument("--json", action="store_true", help="print the peaks as JSON")
     p.add_argument("--output", metavar="FILE.nc", help="write the full result (with floor spectra) "
-                   "to netCDF")
+                   "to netCDF (the name must end in .nc)")
     p.add_argument("--plot", metavar="DIR", help="write plots to this folder")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace output files that exist (never an input of the command)")
     p.set_defaults(handler=_run_building)
 
 
@@ -201,10 +203,9 @@ def pair_from_args(args: argparse.Namespace, config, command: str):
 
 
 def _run_building(args: argparse.Namespace) -> int:
-    from dcfpb.cli.outputs import check_outputs
     from structures.compiled.ahead import compile_ahead
 
-    check_outputs(files={"--output": args.output}, folders={"--plot": args.plot})
+    check_building_outputs(args, files={"--output": args.output}, folders={"--plot": args.plot})
     with compile_ahead() as ahead:  # the engine compiles while the inputs are read
         # bad input (a record of 31 M steps) is refused first, before this process compiles
         config, integrator, motion = building_run_inputs(args, "dcfpb run")
@@ -227,7 +228,9 @@ def _run_building(args: argparse.Namespace) -> int:
     result, fixed = results[model], results[FIXED_BASE]
     ratios = ratios_to_fixed_base(result, fixed)
     if args.output:
-        result.to_netcdf(args.output)
+        from structures.results import write_netcdf
+
+        write_netcdf(result, args.output)
     if args.plot:
         from dcfpb.plotting import plot_runs
 
@@ -245,6 +248,31 @@ def _run_building(args: argparse.Namespace) -> int:
         print_ratios({model: ratios}, fixed, float(abs(fixed["ground_acceleration"]).max()))
         print_failure(summary, result.attrs["message"])
     return 0 if result.attrs["success"] else 1
+
+
+RUN_FORMATS = {".nc": "netCDF"}
+"""The suffixes of ``dcfpb run --output`` and the format each writes."""
+
+
+def building_inputs(args: argparse.Namespace) -> dict[str, object]:
+    """The input files of a building command by what they are (for the output checks)."""
+    return {"the building file": args.building, "the record (--record)": args.record,
+            "the record (--record-y)": getattr(args, "record_y", None),
+            "the record (--record-z)": getattr(args, "record_z", None)}
+
+
+def check_building_outputs(args: argparse.Namespace, *, files: dict | None = None,
+                           folders: dict | None = None) -> None:
+    """Check the outputs of a building command (``run``, ``compare-opensees``) before any
+    work: ``--output`` a netCDF file (:data:`RUN_FORMATS`), ``--plot`` a folder of the figures
+    of :func:`dcfpb.plotting.plot_runs`, none of them an input, none there unless
+    ``--overwrite``."""
+    from dcfpb.cli.outputs import PLAN_FIGURES, RUN_FIGURES, check_outputs
+
+    plan = getattr(args, "record_y", None) is not None
+    check_outputs(files=files, folders=folders, inputs=building_inputs(args),
+                  overwrite=args.overwrite, formats={"--output": RUN_FORMATS},
+                  writes={"--plot": PLAN_FIGURES if plan else RUN_FIGURES})
 
 
 def print_failure(summary: dict, message: str) -> None:

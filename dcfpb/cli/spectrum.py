@@ -42,6 +42,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="periods of the table [s] (default: 0, 0.05 ... 5 s)")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument("--plot", metavar="FILE.png", help="draw Sa, Sv and Sd against period")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace output files that exist (never an input of the command)")
     p.set_defaults(handler=run)
 
 
@@ -76,7 +78,8 @@ def run(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb spectrum``; returns the exit status."""
     from dcfpb.cli.outputs import check_outputs
 
-    check_outputs(figures={"--plot": args.plot})
+    check_outputs(figures={"--plot": args.plot}, overwrite=args.overwrite,
+                  inputs={"the record": args.record})
     motion = read_record_from_args(args.record, args)
     periods = STANDARD_PERIODS if args.periods is None else args.periods
     summary = summarise(motion, periods, args.damping)
@@ -130,7 +133,8 @@ def plot_spectra(motion: Any, path: str | Path, *, damping: float = 0.05) -> Pat
         ax.grid(alpha=0.3, which="both")
         ax.set_ylim(bottom=0.0)
     fig.suptitle(f"{motion.name}: elastic response spectra, {100 * damping:g} % damping")
-    path = Path(path)
-    fig.savefig(path, dpi=120)
+    from dcfpb.plotting.base import save_figure
+
+    path = save_figure(fig, path, dpi=120)
     plt.close(fig)
     return path

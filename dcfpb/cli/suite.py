@@ -71,6 +71,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--max-steps", type=int, default=2_000_000, metavar="N",
                    help="refuse a run of more time steps (default 2,000,000); such a run is "
                    "recorded as failed with its step count and the suite goes on")
+    p.add_argument("--overwrite", action="store_true",
+                   help="write the suite's tables and plots into an --out folder that is not a "
+                   "suite folder but holds files of their names (a suite folder is resumed "
+                   "without it); never over an input")
     p.add_argument("--no-plots", action="store_true", help="do not draw the figures")
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
     p.add_argument("--json", action="store_true", help="print the outcome as JSON")
@@ -173,13 +177,17 @@ def _suite(args: argparse.Namespace, config, factors):
 
 
 def _run(args: argparse.Namespace) -> int:
-    from dcfpb.cli.outputs import check_outputs
+    from dcfpb.cli.outputs import check_suite_folder
     from dcfpb.common.validation import check_int, check_real
     from structures.config import load_config
     from structures.suites.lock import SuiteLock
     from structures.suites.suite import run_suite
 
-    check_outputs(folders={"--out": args.out})
+    target_file = args.target if args.target and not str(args.target).lower().startswith(
+        ("asce7:", "asce7-mce:")) else None
+    check_suite_folder(args.out, "--out", overwrite=args.overwrite, inputs={
+        "the building file": args.building, "the record manifest (--records)": args.records,
+        "the pair manifest (--pairs)": args.pairs, "the target spectrum (--target)": target_file})
     if args.run_timeout is not None:
         check_real(args.run_timeout, "--run-timeout", "dcfpb suite", low=0.0, low_open=True)
     check_real(args.wait_lock, "--wait-lock", "dcfpb suite", low=0.0, allow_inf=True)

@@ -24,6 +24,21 @@ PNG_OPTIONS = {"pil_kwargs": {"compress_level": 1}}
 """A fast zlib level for the PNGs: quicker to write than the default, files a little larger."""
 
 
+def save_figure(fig, path: str | os.PathLike, **options) -> Path:
+    """Save ``fig`` to ``path`` atomically (:func:`dcfpb.common.files.atomic_output`): a failed
+    or interrupted write leaves the file there before whole. The format is the suffix of
+    ``path`` (none: PNG); ``options`` go to ``savefig`` (``pil_kwargs`` only for a PNG)."""
+    from dcfpb.common.files import atomic_output
+
+    path = Path(path)
+    kind = path.suffix.lower().lstrip(".") or "png"
+    if kind != "png":
+        options.pop("pil_kwargs", None)
+    with atomic_output(path) as temporary:
+        fig.savefig(temporary, format=kind, **options)
+    return path
+
+
 def margins(fig, *, left: float = 0.85, right: float = 0.2, bottom: float = 0.6,
              top: float = 0.85, **spacing: float) -> None:
     """Fixed margins in inches (quicker to draw than a constrained layout)."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from dcfpb.plotting.base import PNG_OPTIONS, pyplot
+from dcfpb.plotting.base import PNG_OPTIONS, pyplot, save_figure
 
 
 def plot_bearing_test(result: Any, path: str | Path, *, title: str = "") -> Path:
@@ -40,6 +40,6 @@ def plot_bearing_test(result: Any, path: str | Path, *, title: str = "") -> Path
     if title:
         fig.suptitle(title)
     path = Path(path)
-    fig.savefig(path, dpi=120, **PNG_OPTIONS)
+    save_figure(fig, path, dpi=120, **PNG_OPTIONS)
     plt.close(fig)
     return path

@@ -9,7 +9,15 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from dcfpb.plotting.base import PNG_OPTIONS, colour, corner_bearing, draw, margins, pyplot
+from dcfpb.plotting.base import (
+    PNG_OPTIONS,
+    colour,
+    corner_bearing,
+    draw,
+    margins,
+    pyplot,
+    save_figure,
+)
 from dcfpb.plotting.plan import plot_bearing_orbits, plot_force_orbits, plot_plate_temperature
 from dcfpb.plotting.spectra import plot_floor_spectra, plot_isolation_effect
 
@@ -46,7 +54,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
         if title:
             fig.suptitle(title, fontsize=12 if fig.get_figwidth() > 7.0 else 9, wrap=True)
         path = directory / name
-        fig.savefig(path, dpi=120, **PNG_OPTIONS)
+        save_figure(fig, path, dpi=120, **PNG_OPTIONS)
         plt.close(fig)
         return path
 

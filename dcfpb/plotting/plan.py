@@ -8,7 +8,14 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from dcfpb.plotting.base import PNG_OPTIONS, colour, corner_bearing, margins, pyplot
+from dcfpb.plotting.base import (
+    PNG_OPTIONS,
+    colour,
+    corner_bearing,
+    margins,
+    pyplot,
+    save_figure,
+)
 
 __all__ = ["plot_bearing_orbits", "plot_force_orbits", "plot_plate_temperature"]
 
@@ -19,7 +26,7 @@ def _save(plt, fig, directory: Path, name: str, title: str) -> Path:
     if title:
         fig.suptitle(title, fontsize=12 if fig.get_figwidth() > 7.0 else 9, wrap=True)
     path = directory / name
-    fig.savefig(path, dpi=120, **PNG_OPTIONS)
+    save_figure(fig, path, dpi=120, **PNG_OPTIONS)
     plt.close(fig)
     return path
 

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from dcfpb.common.units import STANDARD_GRAVITY
-from dcfpb.plotting.base import PNG_OPTIONS, pyplot
+from dcfpb.plotting.base import PNG_OPTIONS, pyplot, save_figure
 
 FIXED_BASE_COLOUR = "0.25"
 PERIOD_TICKS = (0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0)  # [s], labelled as plain numbers
@@ -74,7 +74,7 @@ def plot_floor_spectra(results: dict[str, Any], path: str | Path, *, title: str 
     fig.suptitle((f"{title}\n" if title else "")
                  + f"floor response spectra, {damping:g} % damping (floor 0 = base)")
     path = Path(path)
-    fig.savefig(path, dpi=110, **PNG_OPTIONS)
+    save_figure(fig, path, dpi=110, **PNG_OPTIONS)
     plt.close(fig)
     return path
 
@@ -157,6 +157,6 @@ def plot_isolation_effect(results: dict[str, Any], fixed_base: Any, path: str | 
     if title:
         fig.suptitle(title)
     path = Path(path)
-    fig.savefig(path, dpi=110, **PNG_OPTIONS)
+    save_figure(fig, path, dpi=110, **PNG_OPTIONS)
     plt.close(fig)
     return path

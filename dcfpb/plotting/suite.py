@@ -12,6 +12,7 @@ import numpy as np
 
 from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.plotting.base import pyplot as _pyplot
+from dcfpb.plotting.base import save_figure
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -65,7 +66,7 @@ def plot_peak_distributions(peaks: pd.DataFrame, path: str | Path, *, title: str
     fig.suptitle(title or f"peak responses of {len(done)} runs (whiskers: 5-95 %)")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
     return path
 
@@ -124,6 +125,6 @@ def plot_scaled_spectra(
     ax.legend()
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
     return path

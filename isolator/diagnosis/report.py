@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from dcfpb.common.files import atomic_output
 from isolator.diagnosis.summary import Diagnosis, effect_parameters
 from isolator.diagnosis.where import DIMENSIONS
 
@@ -29,6 +30,18 @@ def _pyplot():
     return plt
 
 
+def _write_text(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` atomically (a failed write leaves an earlier file whole)."""
+    with atomic_output(path) as temporary:
+        temporary.write_text(text)
+
+
+def _save(fig, path: Path) -> None:
+    """Save a PNG figure atomically."""
+    with atomic_output(path) as temporary:
+        fig.savefig(temporary, format="png", dpi=110)
+
+
 def write_report(diagnosis: Diagnosis, folder: str | Path) -> list[Path]:
     """Write the summary, the JSON and the plots of ``diagnosis`` to ``folder``; return the
     paths written."""
@@ -36,14 +49,14 @@ def write_report(diagnosis: Diagnosis, folder: str | Path) -> list[Path]:
     folder.mkdir(parents=True, exist_ok=True)
     summary = diagnosis.to_json()
     written = [folder / "diagnosis.json"]
-    written[0].write_text(json.dumps(summary, indent=2))
+    _write_text(written[0], json.dumps(summary, indent=2))
     written += [_loops(diagnosis, folder / "loops.png"),
                 _breakdown(diagnosis, folder / "residual_breakdown.png"),
                 _candidates(diagnosis, summary, folder / "candidates.png"),
                 _cycle_errors(diagnosis, folder / "cycle_errors.png"),
                 _history(diagnosis, folder / "residual_history.png")]
     md = folder / "summary.md"
-    md.write_text(markdown(diagnosis, summary, [p.name for p in written[1:]]))
+    _write_text(md, markdown(diagnosis, summary, [p.name for p in written[1:]]))
     return [md, *written]
 
 
@@ -83,7 +96,7 @@ def _loops(d: Diagnosis, path: Path) -> Path:
     for ax in axes.flat[len(tests):]:
         ax.set_visible(False)
     axes.flat[0].legend(fontsize=7)
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
     return path
 
@@ -104,7 +117,7 @@ def _breakdown(d: Diagnosis, path: Path) -> Path:
         ax.grid(alpha=0.3, axis="y")
     axes[0, 0].legend(fontsize=7)
     axes[0, 0].set_title(d.where.statement, fontsize=8)
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
     return path
 
@@ -126,7 +139,7 @@ def _candidates(d: Diagnosis, summary: dict, path: Path) -> Path:
     ax.set_title("verdict: " + ", ".join(summary["verdict"]), fontsize=9)
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3, axis="y")
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
     return path
 
@@ -147,7 +160,7 @@ def _cycle_errors(d: Diagnosis, path: Path) -> Path:
         ax.set_ylabel(f"{quantity} error, held out [%]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
     return path
 
@@ -165,7 +178,7 @@ def _history(d: Diagnosis, path: Path) -> Path:
     ax.set_ylabel("measured - predicted [kN]")
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
     return path
 

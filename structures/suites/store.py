@@ -19,25 +19,20 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import uuid
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
-_TEMPORARY = ".*.tmp"
+from dcfpb.common.files import TEMPORARY_PATTERN, atomic_output
+
+_TEMPORARY = TEMPORARY_PATTERN
 
 
 def atomic_write(path: Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` atomically (a temporary file, then ``os.replace``)."""
-    temporary = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
-    try:
-        with open(temporary, "wb") as handle:
-            handle.write(data)
-        os.replace(temporary, path)
-    except BaseException:
-        temporary.unlink(missing_ok=True)
-        raise
+    """Write ``data`` to ``path`` atomically (:func:`dcfpb.common.files.atomic_output`: a
+    temporary file, then ``os.replace``)."""
+    with atomic_output(path) as temporary, open(temporary, "wb") as handle:
+        handle.write(data)
 
 
 def _json_safe(value: Any) -> Any:
