@@ -101,10 +101,12 @@ def run(args: argparse.Namespace) -> int:
     print_ratios(ratios, fixed, float(abs(fixed["ground_acceleration"]).max()))
     for model, summary in rows.items():
         print_failure(summary, results[model].attrs["message"])
+    from dcfpb.cli.outputs import writing
     from dcfpb.plotting import plot_runs
 
-    written = plot_runs(results, args.plot, title=f"{config.name}: {motion.name}",
-                        fixed_base=fixed, processes=2)  # half of the figures in a fork
+    with writing("--plot", args.plot):
+        written = plot_runs(results, args.plot, title=f"{config.name}: {motion.name}",
+                            fixed_base=fixed, processes=2)  # half of the figures in a fork
     print(f"plots written to {Path(args.plot).resolve()}/: "
           + ", ".join(p.name for p in written))
     return 0 if all(r.attrs["success"] for r in results.values()) else 1

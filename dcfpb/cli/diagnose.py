@@ -89,9 +89,11 @@ def run(args: argparse.Namespace) -> int:
     diagnosis = diagnose(campaign, spec, exclude=tuple(args.exclude))
     summary = diagnosis.to_json()
     if args.report:
+        from dcfpb.cli.outputs import writing
         from isolator.diagnosis.report import write_report
 
-        written = write_report(diagnosis, args.report)
+        with writing("--report", args.report):
+            written = write_report(diagnosis, args.report)
         summary["report"] = [str(p) for p in written]
     if args.json:
         print(json.dumps(summary, indent=2))

@@ -155,10 +155,13 @@ def run_building(args: argparse.Namespace) -> int:
     summary = result.summary
     plan = config.building.plan is not None
     if args.plot:
+        from dcfpb.cli.outputs import writing
         from dcfpb.plotting import plot_runs
 
-        plot_runs({"ours": result.ours, "opensees": result.opensees}, args.plot,
-                  title=f"{config.name}: {motion.name}, {args.model} model, ours and OpenSees")
+        with writing("--plot", args.plot):
+            plot_runs({"ours": result.ours, "opensees": result.opensees}, args.plot,
+                      title=f"{config.name}: {motion.name}, {args.model} model, ours and "
+                      "OpenSees")
     if args.json:
         print(json.dumps(summary, indent=2))
     else:

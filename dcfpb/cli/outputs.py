@@ -30,12 +30,15 @@ import errno
 import os
 import stat
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import InputError, RunFailure
 
 __all__ = ["FIGURE_FORMATS", "PLAN_FIGURES", "REPORT_FILES", "RUN_FIGURES", "SUITE_FILES",
-           "check_output_dir", "check_output_file", "check_outputs", "check_suite_folder"]
+           "check_output_dir", "check_output_file", "check_outputs", "check_suite_folder",
+           "writing"]
 
 FIGURE_FORMATS = frozenset({"png", "pdf", "svg", "svgz", "jpg", "jpeg", "eps", "ps", "tif",
                             "tiff", "webp", "pgf", "raw", "rgba", "avif"})
@@ -201,12 +204,16 @@ def _check_format(flag: str, file: Path, formats: dict[str, str]) -> None:
                       f"follows the suffix, one of: {allowed}.")
 
 
-def _check_file_target(flag: str, file: Path, inputs: list[tuple[str, object]],
-                       overwrite: bool) -> None:
+def _check_not_input(flag: str, file: Path, inputs: list[tuple[str, object]]) -> None:
     for label, source in inputs:
         if _same(file, source):
             raise _refuse(flag, file, f"is {label} {source}, an input of this command; writing "
                           f"it would destroy it. Give another {flag}.")
+
+
+def _check_file_target(flag: str, file: Path, inputs: list[tuple[str, object]],
+                       overwrite: bool) -> None:
+    _check_not_input(flag, file, inputs)
     if os.path.lexists(file) and not overwrite:
         raise _refuse(flag, file, f"exists; give --overwrite to replace it, or another {flag}.")
 
@@ -262,12 +269,14 @@ def check_outputs(files: dict[str, object] | None = None,
     sources = _inputs(inputs)
     for flag, path in (files or {}).items():
         if path is not None:
+            _check_not_input(flag, _as_path(path, flag), sources)
             file = check_output_file(path, flag)
             if formats and flag in formats:
                 _check_format(flag, file, formats[flag])
             _check_file_target(flag, file, sources, overwrite)
     for flag, path in (figures or {}).items():
         if path is not None:
+            _check_not_input(flag, _as_path(path, flag), sources)
             _check_file_target(flag, check_output_file(path, flag, figure=True), sources,
                                overwrite)
     for flag, path in (folders or {}).items():
@@ -290,3 +299,17 @@ def check_suite_folder(path: str | os.PathLike, flag: str, *,
             "suite into it again.")
     _check_folder_target(flag, folder, SUITE_FILES, sources, overwrite or resumed, hint)
     return folder
+
+
+@contextmanager
+def writing(flag: str, path: object) -> Iterator[None]:
+    """Write the output of ``flag`` (``path``) in this block: an ``OSError`` of the writing (a
+    full disk, a folder removed meanwhile) becomes a :class:`~dcfpb.common.errors.RunFailure`
+    naming the flag and the path (exit status 1: the input was good). The writers are atomic
+    (:func:`dcfpb.common.files.atomic_output`), so a file there before is left whole."""
+    try:
+        yield
+    except OSError as error:
+        raise RunFailure(f"{flag} {path}: the output could not be written "
+                         f"({error.strerror or error}); a file there before is left as it "
+                         "was.") from error

@@ -149,16 +149,19 @@ def _run_protocol(args: argparse.Namespace) -> int:
                     "dissipated_energy": result.dissipated_energy(),
                     "energy_per_cycle": [result.dissipated_energy(b) for b in blocks],
                     "cycles": {axis: _cycles(result, axis) for axis in ("x", "y")}}
+    from dcfpb.cli.outputs import writing
+
     if args.output:
         from dcfpb.common.files import atomic_output
 
-        with atomic_output(args.output) as temporary:
+        with writing("--output", args.output), atomic_output(args.output) as temporary:
             result.to_csv(temporary)
     if args.plot:
         from dcfpb.plotting import plot_bearing_test
 
-        plot_bearing_test(result, args.plot, title=f"{args.model} model"
-                          + (f", {args.orbit} orbit" if args.orbit else ""))
+        with writing("--plot", args.plot):
+            plot_bearing_test(result, args.plot, title=f"{args.model} model"
+                              + (f", {args.orbit} orbit" if args.orbit else ""))
     if args.json:
         print(json.dumps(summary, indent=2))
     else:

@@ -227,15 +227,19 @@ def _run_building(args: argparse.Namespace) -> int:
     results = with_floor_spectra_all({model: result, FIXED_BASE: fixed}, motion)
     result, fixed = results[model], results[FIXED_BASE]
     ratios = ratios_to_fixed_base(result, fixed)
+    from dcfpb.cli.outputs import writing
+
     if args.output:
         from structures.results import write_netcdf
 
-        write_netcdf(result, args.output)
+        with writing("--output", args.output):
+            write_netcdf(result, args.output)
     if args.plot:
         from dcfpb.plotting import plot_runs
 
-        plot_runs({model: result}, args.plot, title=f"{config.name}: {motion.name}",
-                  fixed_base=fixed)
+        with writing("--plot", args.plot):
+            plot_runs({model: result}, args.plot, title=f"{config.name}: {motion.name}",
+                      fixed_base=fixed)
     if args.json:
         print(json.dumps(summary | {"success": bool(result.attrs["success"]),
                                     "message": result.attrs["message"],

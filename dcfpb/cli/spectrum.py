@@ -84,7 +84,10 @@ def run(args: argparse.Namespace) -> int:
     periods = STANDARD_PERIODS if args.periods is None else args.periods
     summary = summarise(motion, periods, args.damping)
     if args.plot:
-        plot_spectra(motion, args.plot, damping=args.damping)
+        from dcfpb.cli.outputs import writing
+
+        with writing("--plot", args.plot):
+            plot_spectra(motion, args.plot, damping=args.damping)
     if args.json:
         print(json.dumps(summary, indent=2))
     else:

@@ -212,7 +212,10 @@ def _run(args: argparse.Namespace) -> int:
             print(f"interrupted: finished runs are kept in {args.out}; run the same command "
                   "again to finish the suite.")
             return 130
-        plots = [] if args.no_plots else _plots(result, suite, target, period_range)
+        from dcfpb.cli.outputs import writing
+
+        with writing("--out", args.out):
+            plots = [] if args.no_plots else _plots(result, suite, target, period_range)
         _report(result, plots, args.json)
     return 0 if not result.failures else 1
 
