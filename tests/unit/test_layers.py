@@ -28,7 +28,8 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("isolator",),
     ("groundmotions",),
     ("dcfpb.common.validation",),
-    ("dcfpb", "dcfpb.common.errors", "dcfpb.common.units", "dcfpb.common.lazy"),
+    ("dcfpb", "dcfpb.common.errors", "dcfpb.common.units", "dcfpb.common.lazy",
+     "dcfpb.common.files"),
 )
 """From the top down; names on one line are independent siblings (neither imports the other)."""
 
