@@ -42,7 +42,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--plot", metavar="DIR",
                    help="folder for the plots (default: ./dcfpb-demo, with --plan "
-                   "./dcfpb-demo-plan)")
+                   "./dcfpb-demo-plan; the demo's own default folder takes the new plots "
+                   "over its earlier ones, a folder you give needs --overwrite for that)")
     p.add_argument("--plan", action="store_true",
                    help="the same building in plan (six bearings, eccentric centre of mass) "
                    "under a synthetic pair of records: bearing orbits coloured by "
@@ -57,8 +58,9 @@ def run(args: argparse.Namespace) -> int:
     from dcfpb.cli.outputs import PLAN_FIGURES, RUN_FIGURES, check_outputs
     from structures.compiled.ahead import compile_ahead
 
+    own_folder = args.plot is None  # the demo's default folder holds only the demo's plots
     args.plot = args.plot or ("dcfpb-demo-plan" if args.plan else "dcfpb-demo")
-    check_outputs(folders={"--plot": args.plot}, overwrite=args.overwrite,
+    check_outputs(folders={"--plot": args.plot}, overwrite=args.overwrite or own_folder,
                   writes={"--plot": PLAN_FIGURES if args.plan else RUN_FIGURES})
     with compile_ahead() as ahead:
         ahead.help()  # on a cold cache: compile a share of the engine, then do the rest
