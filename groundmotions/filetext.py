@@ -28,6 +28,8 @@ from dcfpb.common.validation import check_real
 from groundmotions.records import RecordFormatError
 from groundmotions.units import (
     DEFAULT_UNITS,
+    DT_LIMITS_S,
+    MAX_DURATION_S,
     PGA_LIMITS_G,
     TO_M_PER_S2,
     TYPICAL_PGA_G,
@@ -39,8 +41,9 @@ from groundmotions.units import (
     quantity_of,
 )
 
-__all__ = ["RecordUnits", "check_finite", "check_plausible", "check_step", "first_non_number",
-           "line_of_value", "read_lines", "record_units"]
+__all__ = ["RecordUnits", "check_finite", "check_plausible", "check_record_plausible",
+           "check_step", "first_non_number", "line_of_value", "read_lines", "record_units",
+           "timing_problem"]
 
 _OTHER_QUANTITY = re.compile(r"\b(VELOCITY|DISPLACEMENT)\s+TIME\s+(HISTORY|SERIES)", re.IGNORECASE)
 _STATEMENT = re.compile(
@@ -146,15 +149,20 @@ def _mentions(header: Sequence[tuple[int, str]]) -> list[tuple[int, str, str]]:
     return found
 
 
+def _not_acceleration(quantity: str) -> str:
+    """The reason a velocity or displacement record is refused, and what to read instead."""
+    return (f"this is a {quantity} record, not an acceleration: the readers take acceleration "
+            "records only (PEER .AT2, not .VT2 or .DT2); read the acceleration record (.AT2) "
+            "of the same component")
+
+
 def _from_header(path: Path, header: Sequence[tuple[int, str]],
                  given: str | None) -> tuple[str, int, str] | None:
     """(canonical unit, line, as written) stated or mentioned by the header, or None."""
     for number, line in header:
         other = _OTHER_QUANTITY.search(line)
         if other:
-            raise RecordFormatError(
-                path, number, f"this is a {other.group(1).lower()} record, not an acceleration"
-            )
+            raise RecordFormatError(path, number, _not_acceleration(other.group(1).lower()))
     known: list[tuple[int, str, str]] = []
     for number, written in _statements(header):
         quantity = quantity_of(written)
@@ -169,7 +177,7 @@ def _from_header(path: Path, header: Sequence[tuple[int, str]],
         if quantity[0] != "acceleration":
             raise RecordFormatError(
                 path, number, f"the header states units {written!r}, a {quantity[0]} "
-                f"({quantity[1]}), not an acceleration: only acceleration records are read",
+                f"({quantity[1]}): {_not_acceleration(quantity[0])}",
             )  # fmt: skip
         known.append((number, written, quantity[1]))
     kind = "states"
@@ -246,3 +254,37 @@ def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
         f"PGA {pga:.3g} g (value {values[index]:.6g} read as {describe_units(units.name)}) is "
         f"outside the plausible range {low:g} to {high:g} g: {look}; {advice}",
     )
+
+
+def timing_problem(dt: float, npts: int) -> str | None:
+    """Why a record of ``npts`` samples at the step ``dt`` [s] is implausible, or None: a step
+    outside :data:`groundmotions.units.DT_LIMITS_S` or a duration ``(npts - 1) * dt`` beyond
+    :data:`groundmotions.units.MAX_DURATION_S`. The limits of every command that reads a record
+    (``run``, ``spectrum``, ``suite``, ``compare-opensees`` and the pair readers)."""
+    low, high = DT_LIMITS_S
+    if not low <= dt <= high:
+        reason = (f"a time step of {dt:.6g} s is outside the plausible range {low:g} to {high:g} s "
+                  "of a ground-motion record")
+        if low <= dt * 1e-3 <= high:
+            reason += f" (in milliseconds it would be {dt * 1e-3:.6g} s)"
+        return reason
+    duration = (npts - 1) * dt
+    if duration > MAX_DURATION_S:
+        return (f"{npts} samples at {dt:.6g} s last {duration:.6g} s, longer than the plausible "
+                f"{MAX_DURATION_S:g} s of a ground-motion record")
+    return None
+
+
+def check_record_plausible(path: Path, values: np.ndarray, units: RecordUnits,
+                           line_ends: Sequence[tuple[int, int]], dt: float, dt_line: int,
+                           dt_advice: str) -> None:
+    """The plausibility of a record read from a file, the one check of every reader: its PGA
+    (:func:`check_plausible`), then its time step ``dt`` [s] and duration
+    (:func:`timing_problem`); the `RecordFormatError` of the latter names ``dt_line`` (where
+    the step is written) and, for a step too long, ends with ``dt_advice`` (how to state the
+    step in milliseconds)."""
+    check_plausible(path, values, units, line_ends)
+    problem = timing_problem(dt, values.size)
+    if problem is not None:
+        advice = dt_advice if dt > DT_LIMITS_S[1] else "check the time step and the count"
+        raise RecordFormatError(path, dt_line, f"{problem}; {advice}")
