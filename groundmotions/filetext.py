@@ -34,6 +34,7 @@ from groundmotions.units import (
     TO_M_PER_S2,
     TYPICAL_PGA_G,
     UNIT_NAMES,
+    UNSTATED_MAX_PGA_G,
     check_units,
     describe_units,
     likely_units,
@@ -225,7 +226,8 @@ def record_units(path: Path, header: Sequence[tuple[int, str]], given: object,
 
 def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
                     line_ends: Sequence[tuple[int, int]]) -> None:
-    """Refuse a record whose PGA lies outside :data:`groundmotions.units.PGA_LIMITS_G`, for the
+    """Refuse a record whose PGA lies outside :data:`groundmotions.units.PGA_LIMITS_G` (above
+    :data:`groundmotions.units.UNSTATED_MAX_PGA_G` for units taken as g by default), for the
     ``values`` as written in the file in ``units``, and ``line_ends`` the ``(line number, values
     so far)`` pairs; the `RecordFormatError` names the line of the peak, the PGA, the range and
     the units that would bring it into :data:`groundmotions.units.TYPICAL_PGA_G`."""
@@ -233,7 +235,9 @@ def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
     peak = float(abs(values[index]))
     pga = peak * (units.factor / STANDARD_GRAVITY)  # never overflows: factor / g <= 1
     low, high = PGA_LIMITS_G
-    if low <= pga <= high:
+    # read as g with no unit statement: values in m/s^2 would read as 2 to 10 g
+    unstated = units.source == "default" and UNSTATED_MAX_PGA_G < pga <= high
+    if low <= pga <= (UNSTATED_MAX_PGA_G if unstated else high):
         return
     candidates = likely_units(peak, units.name)
     if candidates:
@@ -249,6 +253,14 @@ def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
         advice = f"check the units given (--units / units=): {describe_units(units.name)}"
     else:
         advice = "declare the units in the header (e.g. 'UNITS OF CM/S/S') or with --units"
+    if unstated:
+        raise RecordFormatError(
+            path, line_of_value(line_ends, index),
+            f"PGA {pga:.3g} g (value {values[index]:.6g} read as g, the default: the file "
+            f"states no units) is above {UNSTATED_MAX_PGA_G:g} g, the most a record whose units "
+            f"are not stated may have: {look}; {advice} ('UNITS OF G' or --units g if it is in "
+            "g indeed)",
+        )  # fmt: skip
     raise RecordFormatError(
         path, line_of_value(line_ends, index),
         f"PGA {pga:.3g} g (value {values[index]:.6g} read as {describe_units(units.name)}) is "

@@ -26,7 +26,8 @@ is the one reader of a unit as written in any header (records and bearing-test f
 the quantity (acceleration, velocity, displacement or time), the canonical name and the factor to
 SI (m/s^2, m/s, m, s).
 
-A record read from a file must also be plausible: PGA within :data:`PGA_LIMITS_G`, time step
+A record read from a file must also be plausible: PGA within :data:`PGA_LIMITS_G` (at most
+:data:`UNSTATED_MAX_PGA_G` when its units are not stated but taken as g), time step
 within :data:`DT_LIMITS_S` and duration at most :data:`MAX_DURATION_S`
 (:func:`groundmotions.filetext.check_record_plausible`).
 """
@@ -49,6 +50,7 @@ __all__ = [
     "TO_SECONDS",
     "TYPICAL_PGA_G",
     "UNIT_NAMES",
+    "UNSTATED_MAX_PGA_G",
     "Unit",
     "check_units",
     "describe_units",
@@ -81,6 +83,11 @@ PGA_LIMITS_G = (1e-4, 5.0)
 
 TYPICAL_PGA_G = (0.01, 2.0)
 """The range of PGA [g] a unit must bring a refused record into to be suggested for it."""
+
+UNSTATED_MAX_PGA_G = 2.0
+"""The most PGA [g] of a record whose units are neither stated in its header nor given (read
+as g by default): values of m/s^2 read as g land between 2 and 10 g for PGA of 0.2 to 1 g, so
+such a record must state its units (``UNITS OF G``, ``--units g``) to be read."""
 
 DT_LIMITS_S = (1e-5, 0.1)
 """A record whose time step [s] falls outside this range is refused as implausible: 0.1 s
