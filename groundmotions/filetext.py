@@ -242,6 +242,8 @@ def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
     candidates = likely_units(peak, units.name)
     if candidates:
         look = " or ".join(f"{describe_units(name)} (PGA {g:.3g} g)" for name, g in candidates)
+        if "cm/s^2" in dict(candidates) and units.name != "mg":  # mg is 2 % off gal
+            look += f" or mg (PGA {peak * TO_M_PER_S2['mg'] / STANDARD_GRAVITY:.3g} g)"
         look = f"the values look like {look}"
     else:
         look = f"no known unit brings it into {TYPICAL_PGA_G[0]:g}-{TYPICAL_PGA_G[1]:g} g"
