@@ -28,7 +28,7 @@ from groundmotions.units import TO_SECONDS, parse_time_unit
 __all__ = ["read_text_record"]
 
 _OWNER = "read_text_record"
-_TIME_UNIT = re.compile(r"\b(?:time|t)\s*(?:\[|\(|\bin\b|:|=)?\s*(?P<unit>[a-z][a-z-]*)\s*[\])]?",
+_TIME_UNIT = re.compile(r"\b(?:time|t)[\s_]*(?:\[|\(|\bin\b|:|=)?[\s_]*(?P<unit>[a-z][a-z-]*)",
                         re.IGNORECASE)
 
 

@@ -181,7 +181,8 @@ def test_dt_in_milliseconds_is_converted(tmp_path, npts_line):
 
 
 @pytest.mark.parametrize("header", ["# time [ms], acceleration [g]\n", "t(ms) a(g)\n",
-                                    "% Time in msec\n", "time (milliseconds); acc (g)\n"])
+                                    "% Time in msec\n", "time (milliseconds); acc (g)\n",
+                                    "time_ms,acc_g\n", "Time [ms] , Acceleration [g]\n"])
 def test_time_column_in_milliseconds_is_converted(tmp_path, header):
     path = tmp_path / "ms.txt"
     path.write_text(header + "0 0.01\n20 0.02\n40 -0.03\n60 0.01\n")
