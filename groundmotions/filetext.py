@@ -28,10 +28,13 @@ from dcfpb.common.validation import check_real
 from groundmotions.records import RecordFormatError
 from groundmotions.units import (
     DEFAULT_UNITS,
+    DT_LIMITS_S,
+    MAX_DURATION_S,
     PGA_LIMITS_G,
     TO_M_PER_S2,
     TYPICAL_PGA_G,
     UNIT_NAMES,
+    UNSTATED_MAX_PGA_G,
     check_units,
     describe_units,
     likely_units,
@@ -39,8 +42,9 @@ from groundmotions.units import (
     quantity_of,
 )
 
-__all__ = ["RecordUnits", "check_finite", "check_plausible", "check_step", "first_non_number",
-           "line_of_value", "read_lines", "record_units"]
+__all__ = ["RecordUnits", "check_finite", "check_plausible", "check_record_plausible",
+           "check_step", "first_non_number", "line_of_value", "read_lines", "record_units",
+           "timing_problem"]
 
 _OTHER_QUANTITY = re.compile(r"\b(VELOCITY|DISPLACEMENT)\s+TIME\s+(HISTORY|SERIES)", re.IGNORECASE)
 _STATEMENT = re.compile(
@@ -146,15 +150,20 @@ def _mentions(header: Sequence[tuple[int, str]]) -> list[tuple[int, str, str]]:
     return found
 
 
+def _not_acceleration(quantity: str) -> str:
+    """The reason a velocity or displacement record is refused, and what to read instead."""
+    return (f"this is a {quantity} record, not an acceleration: the readers take acceleration "
+            "records only (PEER .AT2, not .VT2 or .DT2); read the acceleration record (.AT2) "
+            "of the same component")
+
+
 def _from_header(path: Path, header: Sequence[tuple[int, str]],
                  given: str | None) -> tuple[str, int, str] | None:
     """(canonical unit, line, as written) stated or mentioned by the header, or None."""
     for number, line in header:
         other = _OTHER_QUANTITY.search(line)
         if other:
-            raise RecordFormatError(
-                path, number, f"this is a {other.group(1).lower()} record, not an acceleration"
-            )
+            raise RecordFormatError(path, number, _not_acceleration(other.group(1).lower()))
     known: list[tuple[int, str, str]] = []
     for number, written in _statements(header):
         quantity = quantity_of(written)
@@ -169,7 +178,7 @@ def _from_header(path: Path, header: Sequence[tuple[int, str]],
         if quantity[0] != "acceleration":
             raise RecordFormatError(
                 path, number, f"the header states units {written!r}, a {quantity[0]} "
-                f"({quantity[1]}), not an acceleration: only acceleration records are read",
+                f"({quantity[1]}): {_not_acceleration(quantity[0])}",
             )  # fmt: skip
         known.append((number, written, quantity[1]))
     kind = "states"
@@ -217,7 +226,8 @@ def record_units(path: Path, header: Sequence[tuple[int, str]], given: object,
 
 def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
                     line_ends: Sequence[tuple[int, int]]) -> None:
-    """Refuse a record whose PGA lies outside :data:`groundmotions.units.PGA_LIMITS_G`, for the
+    """Refuse a record whose PGA lies outside :data:`groundmotions.units.PGA_LIMITS_G` (above
+    :data:`groundmotions.units.UNSTATED_MAX_PGA_G` for units taken as g by default), for the
     ``values`` as written in the file in ``units``, and ``line_ends`` the ``(line number, values
     so far)`` pairs; the `RecordFormatError` names the line of the peak, the PGA, the range and
     the units that would bring it into :data:`groundmotions.units.TYPICAL_PGA_G`."""
@@ -225,11 +235,15 @@ def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
     peak = float(abs(values[index]))
     pga = peak * (units.factor / STANDARD_GRAVITY)  # never overflows: factor / g <= 1
     low, high = PGA_LIMITS_G
-    if low <= pga <= high:
+    # read as g with no unit statement: values in m/s^2 would read as 2 to 10 g
+    unstated = units.source == "default" and UNSTATED_MAX_PGA_G < pga <= high
+    if low <= pga <= (UNSTATED_MAX_PGA_G if unstated else high):
         return
     candidates = likely_units(peak, units.name)
     if candidates:
         look = " or ".join(f"{describe_units(name)} (PGA {g:.3g} g)" for name, g in candidates)
+        if "cm/s^2" in dict(candidates) and units.name != "mg":  # mg is 2 % off gal
+            look += f" or mg (PGA {peak * TO_M_PER_S2['mg'] / STANDARD_GRAVITY:.3g} g)"
         look = f"the values look like {look}"
     else:
         look = f"no known unit brings it into {TYPICAL_PGA_G[0]:g}-{TYPICAL_PGA_G[1]:g} g"
@@ -241,8 +255,50 @@ def check_plausible(path: Path, values: np.ndarray, units: RecordUnits,
         advice = f"check the units given (--units / units=): {describe_units(units.name)}"
     else:
         advice = "declare the units in the header (e.g. 'UNITS OF CM/S/S') or with --units"
+    if unstated:
+        raise RecordFormatError(
+            path, line_of_value(line_ends, index),
+            f"PGA {pga:.3g} g (value {values[index]:.6g} read as g, the default: the file "
+            f"states no units) is above {UNSTATED_MAX_PGA_G:g} g, the most a record whose units "
+            f"are not stated may have: {look}; {advice} ('UNITS OF G' or --units g if it is in "
+            "g indeed)",
+        )  # fmt: skip
     raise RecordFormatError(
         path, line_of_value(line_ends, index),
         f"PGA {pga:.3g} g (value {values[index]:.6g} read as {describe_units(units.name)}) is "
         f"outside the plausible range {low:g} to {high:g} g: {look}; {advice}",
     )
+
+
+def timing_problem(dt: float, npts: int) -> str | None:
+    """Why a record of ``npts`` samples at the step ``dt`` [s] is implausible, or None: a step
+    outside :data:`groundmotions.units.DT_LIMITS_S` or a duration ``(npts - 1) * dt`` beyond
+    :data:`groundmotions.units.MAX_DURATION_S`. The limits of every command that reads a record
+    (``run``, ``spectrum``, ``suite``, ``compare-opensees`` and the pair readers)."""
+    low, high = DT_LIMITS_S
+    if not low <= dt <= high:
+        reason = (f"a time step of {dt:.6g} s is outside the plausible range {low:g} to {high:g} s "
+                  "of a ground-motion record")
+        if low <= dt * 1e-3 <= high:
+            reason += f" (in milliseconds it would be {dt * 1e-3:.6g} s)"
+        return reason
+    duration = (npts - 1) * dt
+    if duration > MAX_DURATION_S:
+        return (f"{npts} samples at {dt:.6g} s last {duration:.6g} s, longer than the plausible "
+                f"{MAX_DURATION_S:g} s of a ground-motion record")
+    return None
+
+
+def check_record_plausible(path: Path, values: np.ndarray, units: RecordUnits,
+                           line_ends: Sequence[tuple[int, int]], dt: float, dt_line: int,
+                           dt_advice: str) -> None:
+    """The plausibility of a record read from a file, the one check of every reader: its PGA
+    (:func:`check_plausible`), then its time step ``dt`` [s] and duration
+    (:func:`timing_problem`); the `RecordFormatError` of the latter names ``dt_line`` (where
+    the step is written) and, for a step too long, ends with ``dt_advice`` (how to state the
+    step in milliseconds)."""
+    check_plausible(path, values, units, line_ends)
+    problem = timing_problem(dt, values.size)
+    if problem is not None:
+        advice = dt_advice if dt > DT_LIMITS_S[1] else "check the time step and the count"
+        raise RecordFormatError(path, dt_line, f"{problem}; {advice}")

@@ -1,8 +1,10 @@
 """Reader of PEER .AT2 acceleration records (`read_peer_at2`).
 
 The NPTS/DT line is found after a free-text header of any length, as ``NPTS=  7996, DT= .00500
-SEC`` (any case, with or without unit or trailing comma) or the NGA ``7997 0.0050 NPTS, DT``. A
-trailing ``*** End Data ***`` line is allowed.
+SEC`` (any case, with or without unit or trailing comma) or the NGA ``7997 0.0050 NPTS, DT``.
+DT is in seconds unless its unit says milliseconds (``DT= 20 MSEC``, ``DT=20ms``); another unit
+after DT (``MIN``, ``HZ`` ...) is refused. A trailing ``*** End Data ***`` line is allowed; numbers
+after the NPTS values (after such a line or not) are refused, never dropped.
 """
 
 from __future__ import annotations
@@ -18,19 +20,24 @@ import numpy as np
 from groundmotions.filetext import (
     RecordUnits,
     check_finite,
-    check_plausible,
+    check_record_plausible,
     first_non_number,
     read_lines,
     record_units,
 )
 from groundmotions.records import GroundMotion, PathLike, RecordFormatError
+from groundmotions.units import TO_SECONDS, parse_time_unit
 
 __all__ = ["read_peer_at2"]
 
 _NPTS_WORD = re.compile(r"\bNPTS\b", re.IGNORECASE)
 _VALUES_FIRST = re.compile(r"^\s*([^\s,]+)[\s,]+([^\s,]+)[\s,]+NPTS\s*,?\s*DT\b", re.IGNORECASE)
 _NPTS_KEY = re.compile(r"\bNPTS\s*=\s*([^\s,]*)", re.IGNORECASE)
-_DT_KEY = re.compile(r"\bDT\s*=\s*([^\s,]*)", re.IGNORECASE)
+_DT_KEY = re.compile(r"\bDT\s*=\s*([^\s,]*)(?:[\s,]*(?P<unit>[a-zA-Z][a-zA-Z-]*)\b)?",
+                     re.IGNORECASE)
+_ATTACHED_UNIT = re.compile(r"^([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)([a-zA-Z][a-zA-Z-]*)$")
+_NOT_A_STEP_UNIT = re.compile(r"^(?:min|mins|minutes?|h|hrs?|hours?|us|usec|microsec\w*|ns|"
+                              r"hz|khz|sps|samples?)$", re.IGNORECASE)
 _FILTER = re.compile(r"\b(HP|LP)\s*=\s*([0-9.]+)\s*HZ", re.IGNORECASE)
 _DATE = re.compile(r"(?<![\d/])(\d{1,2})/(\d{1,2})/(\d{4}|\d{2})(?![\d/])")
 _TIME_OF_DAY = re.compile(r"^[\s,]*(\d{1,2}:\d{2}|\d{4})\s*,")
@@ -48,8 +55,28 @@ def has_npts_line(lines: list[str]) -> bool:
     return False
 
 
-def _find_npts_dt(path: Path, lines: list[str]) -> tuple[int, int, float]:
-    """Return (index of the NPTS/DT line, npts, dt [s]), searching from the top."""
+def _step_unit(path: Path, number: int, dt_text: str, unit: str | None) -> tuple[str, str]:
+    """(DT's number as written, its canonical time unit) from the text after ``DT=`` and the
+    word after it: seconds unless the unit says milliseconds."""
+    attached = _ATTACHED_UNIT.match(dt_text)
+    if attached:
+        dt_text, unit = attached.groups()
+    if unit is None:
+        return dt_text, "s"
+    name = parse_time_unit(unit)
+    if name is not None:
+        return dt_text, name
+    if _NOT_A_STEP_UNIT.match(unit):
+        raise RecordFormatError(
+            path, number, f"DT is given in {unit!r}, not a time step unit the readers take: "
+            f"write DT in seconds (SEC) or milliseconds (MSEC); got DT= {dt_text} {unit}",
+        )  # fmt: skip
+    return dt_text, "s"  # another key follows (HP=, NPTS=): DT in seconds, the PEER default
+
+
+def _find_npts_dt(path: Path, lines: list[str]) -> tuple[int, int, float, str]:
+    """Return (index of the NPTS/DT line, npts, dt [s], DT's unit in the file), searching from
+    the top."""
     for index, line in enumerate(lines):
         tokens = line.split()
         if tokens and not first_non_number(tokens):
@@ -57,6 +84,7 @@ def _find_npts_dt(path: Path, lines: list[str]) -> tuple[int, int, float]:
         if not _NPTS_WORD.search(line):
             continue
         match = _VALUES_FIRST.match(line)
+        unit = "s"
         if match:
             npts_text, dt_text = match.groups()
         else:
@@ -65,7 +93,8 @@ def _find_npts_dt(path: Path, lines: list[str]) -> tuple[int, int, float]:
                 raise RecordFormatError(path, index + 1, f"cannot read NPTS from {line.strip()!r}")
             if dt_match is None:
                 raise RecordFormatError(path, index + 1, f"no DT on the NPTS line {line.strip()!r}")
-            npts_text, dt_text = npts_match.group(1), dt_match.group(1)
+            npts_text = npts_match.group(1)
+            dt_text, unit = _step_unit(path, index + 1, dt_match.group(1), dt_match["unit"])
         try:
             npts, dt = int(npts_text), float(dt_text)
         except ValueError:
@@ -76,8 +105,21 @@ def _find_npts_dt(path: Path, lines: list[str]) -> tuple[int, int, float]:
             raise RecordFormatError(
                 path, index + 1, f"NPTS must be >= 2 and DT > 0; got NPTS={npts}, DT={dt!r}"
             )
-        return index, npts, dt
+        return index, npts, dt * TO_SECONDS[unit], unit
     raise RecordFormatError(path, len(lines), "no NPTS/DT line found in the whole file")
+
+
+def _check_trailer(path: Path, lines: list[str], start: int, npts: int) -> None:
+    """Refuse numbers in the text after the ``npts`` values (from ``lines[start]``): they would
+    be values beyond NPTS, silently dropped."""
+    for index in range(start + 1, len(lines)):
+        tokens = lines[index].split()
+        if tokens and not first_non_number(tokens):
+            raise RecordFormatError(
+                path, index + 1, f"more values after the {npts} values of NPTS and the text "
+                f"{lines[start].strip()[:40]!r} on line {start + 1}: correct NPTS or remove "
+                "the extra values",
+            )  # fmt: skip
 
 
 def _read_values(
@@ -97,6 +139,7 @@ def _read_values(
         except ValueError:
             if len(values) == npts:
                 trailer = [line.strip() for line in lines[index:] if line.strip()]
+                _check_trailer(path, lines, index, npts)
                 break
             raise RecordFormatError(
                 path,
@@ -160,11 +203,13 @@ def _units_label(units: RecordUnits) -> str:
 def parse_peer(path: Path, lines: list[str], name: str | None = None,
                units: str | None = None) -> GroundMotion:
     """The record of a PEER file already split into lines (see `read_peer_at2`)."""
-    index, npts, dt = _find_npts_dt(path, lines)
+    index, npts, dt, dt_unit = _find_npts_dt(path, lines)
     header = [line.rstrip() for line in lines[: index + 1]]
     found = record_units(path, list(enumerate(header, start=1)), units, "read_peer_at2")
     values, line_ends, trailer = _read_values(path, lines, index + 1, npts)
-    check_plausible(path, values, found, line_ends)
+    advice = ("if DT is in milliseconds, say so on its line ('DT= 20 MSEC')" if dt_unit == "s"
+              else "check DT and NPTS")
+    check_record_plausible(path, values, found, line_ends, dt, index + 1, advice)
     label = _units_label(found)
     metadata: dict[str, Any] = {
         "event": None, "date": None, "time": None, "station": None, "component": None,
@@ -182,10 +227,13 @@ def parse_peer(path: Path, lines: list[str], name: str | None = None,
         header_lines=tuple(header),
         npts_dt_line=header[index].strip(),
         npts_dt_line_number=index + 1,
+        dt_unit_in_file=dt_unit,
         trailer_lines=tuple(trailer),
     )
-    step = f"read from {path.name} ({label.split()[0]} -> m/s^2)"
-    return GroundMotion(values * found.factor, dt, name or path.stem, metadata, (step,))
+    steps = [f"read from {path.name} ({label.split()[0]} -> m/s^2)"]
+    if dt_unit != "s":
+        steps.append(f"DT read in {dt_unit}: {dt:g} s")
+    return GroundMotion(values * found.factor, dt, name or path.stem, metadata, tuple(steps))
 
 
 def read_peer_at2(

@@ -1,8 +1,11 @@
 """Reader of text records (`read_text_record`): one column (acceleration) or two (time,
-acceleration)."""
+acceleration). The time column is in seconds unless the header says milliseconds (``time [ms]``,
+``t (msec)``, ``time in ms``); a time unit in the header that disagrees with itself is refused.
+"""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Any
 
@@ -12,16 +15,37 @@ from dcfpb.common.errors import InputError
 from groundmotions.filetext import (
     check_finite,
     check_plausible,
+    check_record_plausible,
     check_step,
     first_non_number,
     read_lines,
     record_units,
+    timing_problem,
 )
 from groundmotions.records import GroundMotion, PathLike, RecordFormatError
+from groundmotions.units import TO_SECONDS, parse_time_unit
 
 __all__ = ["read_text_record"]
 
 _OWNER = "read_text_record"
+_TIME_UNIT = re.compile(r"\b(?:time|t)[\s_]*(?:\[|\(|\bin\b|:|=)?[\s_]*(?P<unit>[a-z][a-z-]*)",
+                        re.IGNORECASE)
+
+
+def _time_unit(path: Path, header: list[tuple[int, str]]) -> tuple[str, int | None]:
+    """(canonical unit of the time column, line stating it) from the header: ``"s"`` and None
+    when it states none; statements that disagree are refused."""
+    found = [(number, match["unit"], name) for number, line in header
+             for match in _TIME_UNIT.finditer(line)
+             if (name := parse_time_unit(match["unit"])) is not None]
+    for number, written, name in found[1:]:
+        if name != found[0][2]:
+            raise RecordFormatError(
+                path, number, f"the header gives the time in {found[0][1]!r} on line "
+                f"{found[0][0]} and in {written!r} on this line: which is the time column in? "
+                "Correct the header",
+            )  # fmt: skip
+    return (found[0][2], found[0][0]) if found else ("s", None)
 
 
 def _read_columns(
@@ -142,6 +166,7 @@ def read_text_record(
     table, numbers, header = _read_columns(path, read_lines(path))
     found = record_units(path, header, units, _OWNER)
     start_time = 0.0
+    time_unit, time_line = ("s", None) if table.shape[1] == 1 else _time_unit(path, header)
     if table.shape[1] == 1:
         if dt is None:
             raise InputError(
@@ -149,15 +174,30 @@ def read_text_record(
                 f"file {path.name} (--record-dt on the command line). Got None instead."
             )
         step = check_step(dt, _OWNER)
+        problem = timing_problem(step, table.shape[0])
+        if problem is not None:
+            raise InputError(
+                f"The 'dt' parameter of {_OWNER} (--record-dt on the command line) for "
+                f"{path.name} must give a plausible record: {problem}. Got {dt!r} instead."
+            )
     else:
-        start_time = float(table[0, 0])
-        step = _time_step(path, table[:, 0], numbers, dt)
+        times = table[:, 0] * TO_SECONDS[time_unit] if time_unit != "s" else table[:, 0]
+        start_time = float(times[0])
+        step = _time_step(path, times, numbers, dt)
     values = table[:, -1]
-    check_plausible(path, values, found, [(n, i + 1) for i, n in enumerate(numbers)])
+    line_ends = [(n, i + 1) for i, n in enumerate(numbers)]
+    if table.shape[1] == 1:
+        check_plausible(path, values, found, line_ends)
+    else:
+        advice = ("if the time column is in milliseconds, say so in the header ('# time [ms]')"
+                  if time_unit == "s" else f"the header gives the time in ms on line {time_line}")
+        check_record_plausible(path, values, found, line_ends, step, numbers[1], advice)
     label = found.name if found.source != "given" else str(units)
     read = "g -> m/s^2" if found.name == "g" else (
         "m/s^2" if found.name == "m/s^2" else f"{found.name} -> m/s^2")
     processing = [f"read from {path.name} ({read})"]
+    if time_unit != "s":
+        processing.append(f"time column read in {time_unit} (header line {time_line})")
     if start_time != 0.0:
         processing.append(f"time re-based: the file starts at t = {start_time:g} s")
     metadata: dict[str, Any] = {
@@ -167,6 +207,7 @@ def read_text_record(
         "units_in_file": label,
         "header_lines": tuple(text for _, text in header),
         "start_time": start_time,
+        "time_unit_in_file": time_unit if table.shape[1] == 2 else None,
     }
     return GroundMotion(values * found.factor, step, name or path.stem, metadata,
                         tuple(processing))

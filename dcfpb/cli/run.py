@@ -47,7 +47,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(handler=_run_building)
 
 
-RECORD_UNITS = ("g", "gal", "cm/s^2", "m/s^2", "mm/s^2", "in/s^2", "ft/s^2")
+RECORD_UNITS = ("g", "mg", "gal", "cm/s^2", "m/s^2", "mm/s^2", "in/s^2", "ft/s^2")
 """The ``--units`` choices: `groundmotions.units.UNIT_NAMES` written out, so that parsing
 imports no numpy (a test holds the two equal)."""
 

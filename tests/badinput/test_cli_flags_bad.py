@@ -2,9 +2,11 @@
 
 ``dcfpb run --dt 0`` used to fall back to the file's step (``args.dt or config.dt``),
 ``dcfpb protocol --period 0`` ended in a ZeroDivisionError, ``--cycles 100000`` ran without
-bound and a record with DT = 100 s asked for 31 million steps and 20 GB. Each case runs through
-the CLI entry point and must exit with status 2, stderr naming the flag (or, for a run past its
-limit, the steps, the duration and dt they come from and ``--max-steps``) and what is allowed.
+bound and a record with DT = 100 s asked for 31 million steps and 20 GB (now refused by the
+record reader as implausible; the step and memory limits are checked with a tiny --dt). Each
+case runs through the CLI entry point and must exit with status 2, stderr naming the flag (or,
+for a run past its limit, the steps, the duration and dt they come from and ``--max-steps``)
+and what is allowed.
 """
 
 from __future__ import annotations
@@ -70,11 +72,19 @@ def _record_with_dt(tmp_path: Path, dt: str) -> Path:
     return path
 
 
-def test_record_with_dt_100s_is_refused_at_once_with_its_step_count(tmp_path, capsys):
+def test_record_with_dt_100s_is_refused_at_once_by_its_reader(tmp_path, capsys):
+    # since issue 22 the reader refuses DT = 100 s as implausible before the step count
     record = _record_with_dt(tmp_path, "100.0")
     start = time.perf_counter()
     err = _refused(["run", str(EXAMPLE), "--record", str(record)], capsys,
-                   "31,160,000 steps (155800 s at dt = 0.005 s)",
+                   "elcentro_dt.at2, line 4", "time step of 100 s", "1e-05 to 0.1 s")
+    assert time.perf_counter() - start < 5.0, err
+
+
+def test_run_past_max_steps_is_refused_at_once_with_its_step_count(capsys):
+    start = time.perf_counter()
+    err = _refused([*RUN, "--dt", "1e-5"], capsys,
+                   "3,116,000 steps (31.16 s at dt = 1e-05 s)",
                    "past the limit of 2,000,000 steps", "GB",
                    "DT in its header", "--max-steps")
     assert time.perf_counter() - start < 5.0, err
@@ -85,15 +95,14 @@ def test_record_with_dt_100s_is_refused_at_the_default_step_too(tmp_path, capsys
     building.write_text(EXAMPLE.read_text().replace("\ndt = 0.005", "\n"))
     record = _record_with_dt(tmp_path, "100.0")  # default step: 100 s in parts of 5 ms
     _refused(["run", str(building), "--record", str(record)], capsys,
-             "31,160,000 steps (155800 s at dt = 0.005 s)", "--max-steps")
+             "elcentro_dt.at2, line 4", "time step of 100 s")
 
 
 @pytest.mark.skipif(available_memory() is None, reason="no /proc/meminfo: no memory check")
-def test_run_past_the_memory_available_is_refused_even_with_the_limit_raised(tmp_path, capsys):
-    record = _record_with_dt(tmp_path, "100.0")
-    # 10^12 steps: no machine holds their ~620 TB, whatever --max-steps allows
-    _refused(["run", str(EXAMPLE), "--record", str(record), "--dt", "1.5e-7",
-              "--max-steps", str(10**13)], capsys, "more than the", "of memory available")
+def test_run_past_the_memory_available_is_refused_even_with_the_limit_raised(capsys):
+    # 3 x 10^10 steps: no machine holds their ~21 TB, whatever --max-steps allows
+    _refused([*RUN, "--dt", "1e-9", "--max-steps", str(10**13)], capsys, "more than the",
+             "of memory available")
 
 
 def test_compare_opensees_dt_0_is_refused(capsys):

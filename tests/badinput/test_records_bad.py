@@ -61,7 +61,7 @@ CASES: dict[str, tuple[str | bytes, list[str], list[str]]] = {
     "g_said_mm.at2": (_elcentro("UNITS OF MM/S/S"), [],
                       ["PGA 3.25e-05 g", "look like g (PGA 0.319 g)", "'MM/S/S' on line 3"]),
     "furlongs.at2": (_elcentro("ACCELERATION TIME HISTORY IN UNITS OF FURLONG/S/S"), [],
-                     ["line 3", "'FURLONG/S/S'", "known units: g, gal, cm/s^2, m/s^2, mm/s^2, "
+                     ["line 3", "'FURLONG/S/S'", "known units: g, mg, gal, cm/s^2, m/s^2, mm/s^2, "
                       "in/s^2, ft/s^2"]),
     "velocity_units.at2": (_elcentro("TIME HISTORY IN UNITS OF CM/S"), [],
                            ["line 3", "'CM/S'", "velocity"]),

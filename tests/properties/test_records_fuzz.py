@@ -4,8 +4,8 @@
 Four kinds of input: random bytes; random header lines around a valid PEER record; random
 numeric garbage (huge, tiny, non-finite, mis-counted values and NPTS/DT lines); random one- and
 two-column text records with random ``dt`` and ``units`` arguments. A loaded record is also
-checked to be what the reader promises: finite, at least 2 samples, dt > 0, PGA within the
-plausible range.
+checked to be what the reader promises: finite, at least 2 samples, PGA, dt and duration within
+the plausible ranges.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from dcfpb.common.errors import InputError
 from dcfpb.common.units import STANDARD_GRAVITY
 from groundmotions.readers import read_peer_at2, read_record, read_text_record
 from groundmotions.records import GroundMotion
-from groundmotions.units import PGA_LIMITS_G, UNIT_NAMES
+from groundmotions.units import DT_LIMITS_S, MAX_DURATION_S, PGA_LIMITS_G, UNIT_NAMES
 
 fuzz = settings(max_examples=250, deadline=None,
                 suppress_health_check=[HealthCheck.function_scoped_fixture])
@@ -66,6 +66,7 @@ def _loads_or_input_error(read, *args, **kwargs) -> GroundMotion | None:
     assert motion.npts >= 2 and motion.dt > 0 and np.all(np.isfinite(motion.acceleration))
     low, high = PGA_LIMITS_G
     assert low * (1 - 1e-12) <= motion.pga / STANDARD_GRAVITY <= high * (1 + 1e-12)
+    assert DT_LIMITS_S[0] <= motion.dt <= DT_LIMITS_S[1] and motion.duration <= MAX_DURATION_S
     return motion
 
 

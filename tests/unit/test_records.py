@@ -249,11 +249,11 @@ def test_read_record_dispatches_on_extension_and_content(tmp_path):
     peer_text = PEER_HEADER + "NPTS=  3, DT= .01 SEC\n 1. 2. 3.\n"
     (tmp_path / "a.AT2").write_text(peer_text)
     (tmp_path / "a_peer.txt").write_text(peer_text)
-    (tmp_path / "b.txt").write_text("0 1\n0.5 2\n1.0 3\n")
+    (tmp_path / "b.txt").write_text("0 1\n0.05 2\n0.1 3\n")
     assert read_record(tmp_path / "a.AT2").metadata["format"] == "PEER AT2"
     assert read_record(tmp_path / "a_peer.txt").metadata["format"] == "PEER AT2"
     motion = read_record(tmp_path / "b.txt", units="m/s2")
-    assert (motion.metadata["format"], motion.dt) == ("text, 2 column(s)", 0.5)
+    assert (motion.metadata["format"], motion.dt) == ("text, 2 column(s)", 0.05)
 
 
 # ---------------------------------------------------------------------------- GroundMotion

@@ -44,9 +44,9 @@ def _copy(tmp_path: Path, name: str, units_line: str | None, to_unit: float) -> 
 
 
 def test_the_unit_table():
-    assert TO_M_PER_S2 == {"g": 9.80665, "cm/s^2": 0.01, "m/s^2": 1.0, "mm/s^2": 0.001,
-                           "in/s^2": 0.0254, "ft/s^2": 0.3048}
-    assert UNIT_NAMES == ("g", "gal", "cm/s^2", "m/s^2", "mm/s^2", "in/s^2", "ft/s^2")
+    assert TO_M_PER_S2 == {"g": 9.80665, "mg": 0.00980665, "cm/s^2": 0.01, "m/s^2": 1.0,
+                           "mm/s^2": 0.001, "in/s^2": 0.0254, "ft/s^2": 0.3048}
+    assert UNIT_NAMES == ("g", "mg", "gal", "cm/s^2", "m/s^2", "mm/s^2", "in/s^2", "ft/s^2")
     from dcfpb.cli.run import RECORD_UNITS
 
     assert RECORD_UNITS == UNIT_NAMES  # the --units choices, written out in the CLI
@@ -129,7 +129,7 @@ def test_no_units_in_the_header_is_g_as_before(tmp_path):
     ("units_line", "words"),
     [
         ("ACCELERATION TIME HISTORY IN UNITS OF FURLONG/S/S", ["'FURLONG/S/S'", "known units: g, "
-                                                                "gal, cm/s^2, m/s^2, mm/s^2"]),
+                                                                "mg, gal, cm/s^2, m/s^2, mm/s^2"]),
         ("units: km/s/s", ["'km/s/s'", "do not know"]),
         ("VELOCITY IN UNITS OF CM/S", ["'CM/S'", "velocity"]),
         ("DISPLACEMENT IN UNITS OF CM", ["'CM'", "displacement"]),
