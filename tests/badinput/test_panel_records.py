@@ -75,12 +75,13 @@ class Case:
 
 
 def spectrum(name: str, *flags: str) -> Callable[[Path], list[str]]:
-    return lambda d: ["spectrum", str(d / name), "--plot", str(d / "earlier.png"), *flags]
+    return lambda d: ["spectrum", str(d / name), "--plot", str(d / "earlier.png"), "--overwrite",
+                      *flags]
 
 
 def run(name: str, *flags: str) -> Callable[[Path], list[str]]:
     return lambda d: ["run", str(BUILDING), "--record", str(d / name), "--output",
-                      str(d / "earlier.nc"), *flags]
+                      str(d / "earlier.nc"), "--overwrite", *flags]
 
 
 def opensees(name: str) -> Callable[[Path], list[str]]:
@@ -167,7 +168,7 @@ CASES: dict[str, Case] = {
     "run-pair-y-dt-1e-6-s": Case(
         {"x.at2": GOOD, "y.at2": DT_1E6},
         lambda d: ["run", str(PLAN), "--record", str(d / "x.at2"), "--record-y",
-                   str(d / "y.at2"), "--output", str(d / "earlier.nc")],
+                   str(d / "y.at2"), "--output", str(d / "earlier.nc"), "--overwrite"],
         2, ["y.at2, line 4", "1e-06 s"]),
     "opensees-dt-100-s": Case({"dt.at2": DT_100}, opensees("dt.at2"), 2,
                               ["dt.at2, line 4", "100 s"]),
