@@ -378,7 +378,7 @@ def _check_increasing(time: np.ndarray, where: str, *, first_row: int) -> None:
     if np.any(steps <= 0.0):
         i = int(np.argmax(steps <= 0.0)) + 1
         raise DataError(f"{where}: 'time' must be strictly increasing; row {i + first_row} has "
-                        f"{time[i]!r} s after {time[i - 1]!r} s.")
+                        f"{float(time[i])!r} s after {float(time[i - 1])!r} s.")
 
 
 def _check_values(columns: dict[str, np.ndarray], where: str, *, first_row: int) -> None:
@@ -386,7 +386,7 @@ def _check_values(columns: dict[str, np.ndarray], where: str, *, first_row: int)
     if axial is not None and np.any(axial <= 0.0):
         i = int(np.argmax(axial <= 0.0))
         raise DataError(f"{where}: 'axial_force' must be positive (compression) [N]; row "
-                        f"{i + first_row} has {axial[i]!r}.")
+                        f"{i + first_row} has {float(axial[i])!r}.")
     peak = float(np.max(np.abs(columns["displacement"])))
     if peak > MAX_DISPLACEMENT:
         raise DataError(f"{where}: 'displacement' reaches {peak:g}; it must be in metres "
@@ -400,7 +400,8 @@ def _check_values(columns: dict[str, np.ndarray], where: str, *, first_row: int)
         if bad.any():
             i = int(np.argmax(bad))
             raise DataError(f"{where}: column 'temperature' must be in degC within "
-                            f"[{low:g}, {high:g}]; row {i + first_row} has {temperature[i]!r}.")
+                            f"[{low:g}, {high:g}]; row {i + first_row} has "
+                            f"{float(temperature[i])!r}.")
     if columns.get("velocity") is not None:
         _check_velocity(columns, where)
 
@@ -574,22 +575,22 @@ def _check_velocity(columns: dict[str, np.ndarray], where: str) -> None:
     low, high = VELOCITY_RATIO
     if ratio is None or low <= ratio <= high:
         return
-    if ratio < 0.0 and low <= -ratio <= high:
+    size = abs(ratio)
+    sign = " and reversed in sign (multiply it by -1)" if ratio < 0.0 else ""
+    if ratio < 0.0 and low <= size <= high:
         cause = ("it looks sign-reversed: the velocity must be positive when the displacement "
                  "grows. Multiply it by -1")
-    elif ratio < 0.0:
-        cause = ("it has the wrong sign and the wrong scale: check its units (m/s) and its "
-                 "sign convention (positive when the displacement grows)")
-    elif 300.0 <= ratio <= 3000.0:
-        cause = ("it looks like mm/s: divide it by 1000, or state the unit in the header "
-                 "('velocity [mm/s]')")
-    elif 30.0 <= ratio <= 300.0:
-        cause = ("it looks like cm/s: divide it by 100, or state the unit in the header "
-                 "('velocity [cm/s]')")
+    elif 300.0 <= size <= 3000.0:
+        cause = (f"it looks like mm/s{sign}: divide it by 1000, or state the unit in the "
+                 "header ('velocity [mm/s]')")
+    elif 30.0 <= size <= 300.0:
+        cause = (f"it looks like cm/s{sign}: divide it by 100, or state the unit in the "
+                 "header ('velocity [cm/s]')")
     else:
-        cause = ("check its units (m/s, or state 'velocity [mm/s]' in the header) and that it "
-                 "is the velocity of this displacement; or leave the column out and the "
-                 "velocity is derived from the displacement")
+        cause = ("check its units (m/s, or state 'velocity [mm/s]' in the header), its sign "
+                 "convention (positive when the displacement grows) and that it is the "
+                 "velocity of this displacement; or leave the column out and the velocity is "
+                 "derived from the displacement")
     raise DataError(
-        f"{where}: column 'velocity' is {ratio:.4g} times d(displacement)/dt (a robust fit over "
+        f"{where}: column 'velocity' is {ratio:.3g} times d(displacement)/dt (a robust fit over "
         f"the moving samples; allowed {low:g}-{high:g}); {cause}.")
