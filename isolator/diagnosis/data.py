@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.validation import check_real
 from isolator.limits import DEFAULT_MAX_STEPS, available_memory
 
@@ -407,7 +407,10 @@ def _check_values(columns: dict[str, np.ndarray], where: str, *, first_row: int)
 
 
 def _check_max_rows(max_rows: int) -> None:
-    if isinstance(max_rows, bool) or not isinstance(max_rows, int) or max_rows < 1:
+    if isinstance(max_rows, bool) or not isinstance(max_rows, int):
+        raise InputTypeError(f"max_rows (--max-rows) must be an integer in [1, inf). Got "
+                             f"{max_rows!r} of type {type(max_rows).__name__}.")
+    if max_rows < 1:
         raise DataError(f"max_rows (--max-rows) must be an integer in [1, inf). Got "
                         f"{max_rows!r}.")
 

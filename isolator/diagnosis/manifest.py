@@ -178,8 +178,8 @@ def load_manifest(
                        "the manifest's axial_load" if row["axial_load"] is not None else
                        "the axial load given")
         if has_column and row["axial_load"] is not None:
-            record = read_record(file, initial_temperature=row["initial_temperature"],
-                                 rest_before=row["rest_before"], max_rows=max_rows)
+            record = _read(where, file, initial_temperature=row["initial_temperature"],
+                           rest_before=row["rest_before"], max_rows=max_rows)
             mean = float(np.mean(record.axial_force))
             if abs(mean - row["axial_load"]) > _AXIAL_TOLERANCE * abs(mean):
                 raise DataError(f"{where}: the manifest's axial_load {row['axial_load']:.6g} N "
@@ -189,9 +189,9 @@ def load_manifest(
             if not has_column and load is None:
                 raise DataError(f"{where}: no axial_force column and no axial_load in the "
                                 "manifest or on the command line.")
-            record = read_record(file, axial_load=None if has_column else load,
-                                 initial_temperature=row["initial_temperature"],
-                                 rest_before=row["rest_before"], max_rows=max_rows)
+            record = _read(where, file, axial_load=None if has_column else load,
+                           initial_temperature=row["initial_temperature"],
+                           rest_before=row["rest_before"], max_rows=max_rows)
         tests.append(record)
     if must_agree and axial_load is not None and not used_flag:
         warnings.warn(f"{names['axial_load']} {axial_load!r} N has no effect: every test of "
@@ -201,6 +201,14 @@ def load_manifest(
     campaign = Campaign(tuple(tests), float(radius), float(diameter))
     check_plausible(campaign, places, sources)
     return campaign
+
+
+def _read(where: str, file: Path, **options):
+    """:func:`read_record` of a manifest's test; its errors name the manifest and the test."""
+    try:
+        return read_record(file, **options)
+    except DataError as error:
+        raise DataError(f"{where}: {error}") from None
 
 
 def _same(manifest: float, given: float, where: str, source: str, unit: str) -> None:
