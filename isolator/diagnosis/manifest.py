@@ -37,6 +37,7 @@ from isolator.diagnosis.data import (
     MAX_ROWS,
     Campaign,
     DataError,
+    _column_name,
     check_consistent_units,
     check_plausible,
     check_size,
@@ -224,4 +225,4 @@ def _has_axial_column(file: Path) -> bool:
     opener = gzip.open if file.suffix == ".gz" else open
     with opener(file, "rt", encoding="utf-8", errors="replace") as handle:
         header = handle.readline()
-    return "axial_force" in [c.strip() for c in header.split(",")]
+    return "axial_force" in [_column_name(c)[0] for c in header.split(",")]

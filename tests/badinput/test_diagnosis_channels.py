@@ -347,3 +347,14 @@ def test_a_message_quotes_the_value_as_written(tmp_path, capsys, column, value, 
             "--slider-diameter", str(DIAMETER)]
     err = _refused(args, capsys, "q.csv", needle)
     assert "np.float64" not in err
+
+
+def test_a_manifest_finds_an_axial_force_column_with_its_unit_stated(tmp_path):
+    """``axial_force [N]`` is the axial_force column: the manifest needs no load for it."""
+    columns = _columns() | {"axial_force": np.full(500, N)}
+    _write(tmp_path / "a.csv", columns, "time [s],displacement [m],force [N],velocity [m/s],"
+           "axial_force [N]")
+    (tmp_path / "m.csv").write_text("file\na.csv\n")
+    campaign = load_manifest(tmp_path / "m.csv", effective_radius=R_EFF,
+                             slider_diameter=DIAMETER)
+    assert campaign.tests[0].axial_force[0] == N
