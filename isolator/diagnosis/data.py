@@ -219,6 +219,10 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
     except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as error:
         raise DataError(f"{path}: not a readable CSV file with a header line ({error}).") \
             from error
+    if not isinstance(frame.index, pd.RangeIndex):  # pandas took the first field for an index
+        raise DataError(f"{path}: the data rows have one field more than the header line's "
+                        f"{len(header)} column(s) ({', '.join(header)}); the columns would be "
+                        "read shifted. Name every column in the header.")
     if len(frame.columns) != len(header):
         raise DataError(f"{path}: the header line has {len(header)} column(s) but the CSV "
                         f"reader found {len(frame.columns)}; check the header line.")

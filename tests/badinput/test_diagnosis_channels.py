@@ -358,3 +358,11 @@ def test_a_manifest_finds_an_axial_force_column_with_its_unit_stated(tmp_path):
     campaign = load_manifest(tmp_path / "m.csv", effective_radius=R_EFF,
                              slider_diameter=DIAMETER)
     assert campaign.tests[0].axial_force[0] == N
+
+
+def test_rows_wider_than_the_header_are_refused(tmp_path, capsys):
+    """pandas would take the first field for an index and read every column shifted."""
+    columns = _columns()
+    path = _write(tmp_path / "wide.csv", columns, "time,displacement,force")
+    _refused(_args(path), capsys, "wide.csv", "one field more than the header line's 3 "
+             "column(s) (time, displacement, force)", "Name every column")

@@ -105,6 +105,11 @@ def _header(header: str, *names: str) -> Builder:
     return build
 
 
+def _wide(tmp):
+    return _cli(_write(tmp / "wide.csv", GOOD, "time,displacement,force")), \
+        ("wide.csv", "3 column(s)")
+
+
 def _velocity_noise(tmp):
     noise = np.random.default_rng(5).normal(0.0, 0.2, ROWS)
     return _cli(_write(tmp / "v.csv", _with(velocity=noise))), ("v.csv", "column 'velocity'")
@@ -247,6 +252,7 @@ CASES: list[tuple[str, Builder, int | type[BaseException]]] = [
                                             "'displacement'", "'mm'"), 2),
     ("header-unit-axial-force-kN",
      _header("time,displacement,force,velocity,axial_force [kN]", "'axial_force'"), 2),
+    ("header-rows-wider-than-the-header", _wide, 2),
     ("manifest-radius-disagrees-with-flag", _toml("--effective-radius", "effective_radius",
                                                   "3.5"), 2),
     ("manifest-diameter-disagrees-with-flag", _toml("--slider-diameter", "slider_diameter",
