@@ -8,7 +8,8 @@ A CSV manifest has a header line and one row per test, in the order the tests we
     Constant axial load of the test [N] for a file without an ``axial_force`` column (with
     the column, a value disagreeing with it by more than 2 % is an error).
 ``initial_temperature``
-    Temperature of the plates at the start of the test [degC].
+    Temperature of the plates at the start of the test [degC]; 250-400 is taken for kelvin
+    and refused.
 ``rest_before``
     Rest since the end of the previous test [s]; empty: long enough to cool down.
 
@@ -34,6 +35,7 @@ import numpy as np
 
 from dcfpb.common.errors import InputWarning
 from isolator.diagnosis.data import (
+    KELVIN_LOOK,
     MAX_ROWS,
     Campaign,
     DataError,
@@ -93,6 +95,11 @@ def read_manifest(path: str | Path) -> tuple[list[dict], dict]:
             raise DataError(f"{where}: 'file' is empty.")
         for key in COLUMNS[1:]:
             entry[key] = _number(row.get(key), key, where)
+        start = entry["initial_temperature"]
+        if start is not None and KELVIN_LOOK[0] <= start <= KELVIN_LOOK[1]:
+            raise DataError(f"{where}: 'initial_temperature' is {start!r}, which looks like "
+                            "kelvin (plates at 250 degC or more before a test are implausible); "
+                            "give it in degC (subtract 273.15).")
         out.append(entry)
     return out, top
 

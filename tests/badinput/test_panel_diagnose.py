@@ -110,6 +110,13 @@ def _wide(tmp):
         ("wide.csv", "3 column(s)")
 
 
+def _start_in_kelvin(tmp):
+    _write(tmp / "a.csv", GOOD)
+    manifest = _manifest(tmp, f"file,axial_load,initial_temperature\na.csv,{N},293.15\n")
+    return _cli(extra=("--manifest", manifest), load=False), \
+        ("m.csv: test 1", "'initial_temperature'", "293.15", "kelvin")
+
+
 def _velocity_noise(tmp):
     noise = np.random.default_rng(5).normal(0.0, 0.2, ROWS)
     return _cli(_write(tmp / "v.csv", _with(velocity=noise))), ("v.csv", "column 'velocity'")
@@ -236,6 +243,7 @@ CASES: list[tuple[str, Builder, int | type[BaseException]]] = [
     ("temperature-below-minus-60-degC", _t(COLD), 2),
     ("temperature-header-degF",
      _t(np.full(ROWS, 70.0), "time,displacement,force,velocity,temperature [degF]"), 2),
+    ("temperature-manifest-initial-in-kelvin", _start_in_kelvin, 2),
     ("temperature-in-memory-out-of-range", _temperature_in_memory, DataError),
     ("duplicate-column-force", _header("time,displacement,force,force", "'force'"), 2),
     ("duplicate-column-case-and-space",
