@@ -1,7 +1,8 @@
 """``dcfpb diagnose``: the sim-to-real gap of a friction model on measured bearing tests.
 
     dcfpb diagnose FILE [FILE ...] --model BASELINE --effective-radius R --slider-diameter D
-                   [--axial-load N] [--without EFFECT ...] [--json] [--report DIR]
+                   [--axial-load N] [--without EFFECT ...] [--max-rows N] [--json]
+                   [--report DIR]
     dcfpb diagnose --manifest CAMPAIGN.csv|.toml --model BASELINE [...]
 
 Each FILE is one test of a campaign, in the order run: a CSV with ``time``, ``displacement``,
@@ -18,6 +19,10 @@ from __future__ import annotations
 
 import argparse
 import json
+
+FLAG_NAMES = {"effective_radius": "--effective-radius", "slider_diameter": "--slider-diameter",
+              "axial_load": "--axial-load"}
+"""The command-line flag of each argument a manifest may also give."""
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -52,6 +57,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    choices=EFFECT_NAMES, help="candidate effects to withhold from the library")
     p.add_argument("--yield-displacement", type=float, metavar="UY",
                    help="yield displacement of the return map [m] (default: calibrated)")
+    p.add_argument("--max-rows", type=int, default=None, metavar="N",
+                   help="most data rows a test file may have, estimated from its size before "
+                   "it is read (default 2,000,000)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.add_argument("--report", metavar="DIR", help="write summary.md, JSON and plots here")
     p.add_argument("--overwrite", action="store_true",
@@ -67,7 +75,10 @@ def run(args: argparse.Namespace) -> int:
                   inputs={"the test file": list(args.files), "the manifest": args.manifest},
                   writes={"--report": REPORT_FILES})  # before the slow imports
     from isolator.diagnosis import BaselineSpec, DataError, diagnose, load_campaign
+    from isolator.diagnosis.data import MAX_ROWS
     from isolator.diagnosis.manifest import load_manifest
+
+    max_rows = MAX_ROWS if args.max_rows is None else args.max_rows
 
     spec = BaselineSpec(args.model, tuple(args.without), args.yield_displacement)
     if args.manifest and args.files:
@@ -75,7 +86,8 @@ def run(args: argparse.Namespace) -> int:
     if args.manifest:
         campaign = load_manifest(args.manifest, effective_radius=args.effective_radius,
                                  slider_diameter=args.slider_diameter,
-                                 axial_load=args.axial_load)
+                                 axial_load=args.axial_load, max_rows=max_rows,
+                                 must_agree=True, argument_names=FLAG_NAMES)
     else:
         if not args.files:
             raise DataError("give one or more test files, or --manifest.")
@@ -85,7 +97,7 @@ def run(args: argparse.Namespace) -> int:
                 raise DataError(f"{name} is required (or a TOML --manifest that gives it).")
         campaign = load_campaign(args.files, effective_radius=args.effective_radius,
                                  slider_diameter=args.slider_diameter,
-                                 axial_load=args.axial_load)
+                                 axial_load=args.axial_load, max_rows=max_rows)
     diagnosis = diagnose(campaign, spec, exclude=tuple(args.exclude))
     summary = diagnosis.to_json()
     if args.report:

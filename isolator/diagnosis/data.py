@@ -3,23 +3,33 @@
 A test is a CSV file (or ``.csv.gz``) with a header line and the columns ``time`` [s],
 ``displacement`` [m] (relative displacement of the plates), ``force`` [N] (horizontal) and
 optionally ``axial_force`` [N], ``velocity`` [m/s] and ``temperature`` [degC]; other columns
-are ignored. Every problem is reported before any fitting, naming the file, the column and
-the row (the first data row is row 2): a missing column, a non-numeric value or NaN, unequal
-lengths, time that does not increase, a non-positive axial force, a displacement in mm, and
-levels that betray a unit mistake or a wrong R_eff or axial load (:func:`check_plausible`).
+are ignored. A header may state a column's unit in brackets, ``force [N]``; it must then be the
+unit above, except ``velocity [mm/s]`` or ``[cm/s]`` (converted to m/s) and ``temperature [C]``
+or ``[°C]``. Every problem is reported before any fitting, naming the file, the column and
+the row (the first data row is row 2): a file too large to read (estimated from its size and
+first lines, :func:`estimate_rows`), a column named twice, a unit stated other than the
+above, a missing column, a non-numeric value or NaN, unequal lengths, time that does not
+increase, a non-positive axial force, a displacement in mm, a velocity column that is not the
+derivative of the displacement (:func:`velocity_ratio`), a temperature in kelvin or out of
+range, and levels that betray a unit mistake or a wrong R_eff or axial load
+(:func:`check_plausible`).
 """
 
 from __future__ import annotations
 
+import csv
+import gzip
 import math
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.validation import check_real
+from isolator.limits import DEFAULT_MAX_STEPS, available_memory
 
 REQUIRED_COLUMNS = ("time", "displacement", "force")
 OPTIONAL_COLUMNS = ("axial_force", "velocity", "temperature")
@@ -28,6 +38,19 @@ UNITS = {"time": "s", "displacement": "m", "force": "N", "axial_force": "N",
 MIN_SAMPLES = 20
 MAX_DISPLACEMENT = 5.0  # [m] a larger relative displacement is taken for a unit mistake
 _DERIVATIVE_WINDOW = 0.04  # [s] span of the smoothing derivative for a missing velocity
+MAX_ROWS = DEFAULT_MAX_STEPS
+"""Most data rows a test file may have unless the caller raises the limit (``max_rows``,
+``--max-rows``): 2,000,000 rows, over half an hour at 1 kHz."""
+VELOCITY_RATIO = (0.8, 1.25)
+"""Allowed range of the robust slope of a velocity column on d(displacement)/dt."""
+TEMPERATURE_RANGE = (-60.0, 400.0)  # [degC] a measured temperature outside is refused
+KELVIN_LOOK = (250.0, 400.0)  # [degC] a whole column in this range looks like kelvin
+VELOCITY_UNITS = {"m/s": 1.0, "mm/s": 1.0e-3, "cm/s": 1.0e-2}
+"""Units a header may state for ``velocity`` and their factor to m/s."""
+TEMPERATURE_UNITS = ("degc", "°c", "c", "deg c", "celsius")
+_BYTES_PER_CELL = 80  # [bytes] a cell read as text (a Python str and its pointer)
+_BYTES_PER_ROW = 120  # [bytes] the float histories a row becomes (kept and derived)
+_SAMPLE_BYTES = 1 << 16  # [bytes] of the file read to estimate its rows
 
 
 class DataError(InputError):
@@ -164,7 +187,7 @@ def derived_velocity(time: np.ndarray, displacement: np.ndarray) -> np.ndarray:
 
 def read_record(path: str | Path, *, axial_load: float | None = None,
                 initial_temperature: float | None = None,
-                rest_before: float | None = None) -> BearingRecord:
+                rest_before: float | None = None, max_rows: int = MAX_ROWS) -> BearingRecord:
     """Read one test from a CSV file (columns: see the module docstring).
 
     Parameters
@@ -175,6 +198,9 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
         Constant axial load [N] for a file without an ``axial_force`` column (only then).
     initial_temperature, rest_before : float, optional
         See :class:`BearingRecord` (a campaign manifest gives them).
+    max_rows : int, optional
+        Most data rows the file may have, estimated before it is read (:func:`estimate_rows`);
+        a file past it, or one that would not fit in the memory available, is refused.
 
     Raises
     ------
@@ -186,12 +212,21 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
     path = Path(path)
     if not path.is_file():
         raise DataError(f"{path}: no such file.")
+    header = check_size(path, max_rows=max_rows)
+    units = _header_units(header, path)
     try:
         frame = pd.read_csv(path, dtype=str, keep_default_na=False, skipinitialspace=True)
     except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as error:
         raise DataError(f"{path}: not a readable CSV file with a header line ({error}).") \
             from error
-    frame.columns = [str(c).strip() for c in frame.columns]
+    if not isinstance(frame.index, pd.RangeIndex):  # pandas took the first field for an index
+        raise DataError(f"{path}: the data rows have one field more than the header line's "
+                        f"{len(header)} column(s) ({', '.join(header)}); the columns would be "
+                        "read shifted. Name every column in the header.")
+    if len(frame.columns) != len(header):
+        raise DataError(f"{path}: the header line has {len(header)} column(s) but the CSV "
+                        f"reader found {len(frame.columns)}; check the header line.")
+    frame.columns = [_column_name(c)[0] for c in header]
     missing = [c for c in REQUIRED_COLUMNS if c not in frame.columns]
     if missing:
         raise DataError(
@@ -212,6 +247,8 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
     n = len(frame)
     for column, arr in columns.items():
         _check_finite(arr, column, str(path), first_row=2, total=n)
+    if "velocity" in columns and units.get("velocity"):
+        columns["velocity"] = columns["velocity"] * VELOCITY_UNITS[units["velocity"]]
     if n < MIN_SAMPLES:
         raise DataError(f"{path}: needs at least {MIN_SAMPLES} data rows. Got {n}.")
     _check_increasing(columns["time"], str(path), first_row=2)
@@ -219,6 +256,8 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
         check_real(axial_load, "axial_load", "read_record", low=0.0, low_open=True)
         columns["axial_force"] = np.full(n, float(axial_load))
     _check_values(columns, str(path), first_row=2)
+    if "temperature" in columns and not units.get("temperature"):
+        _check_kelvin(columns["temperature"], str(path))
     return BearingRecord(path.name.removesuffix(".gz").removesuffix(".csv"), **columns,
                          initial_temperature=initial_temperature, rest_before=rest_before)
 
@@ -229,13 +268,18 @@ def load_campaign(
     effective_radius: float,
     slider_diameter: float,
     axial_load: float | None = None,
+    max_rows: int = MAX_ROWS,
 ) -> Campaign:
-    """Read the tests of a campaign, in the order run (``axial_load``: see
+    """Read the tests of a campaign, in the order run (``axial_load``, ``max_rows``: see
     :func:`read_record`), and check them (:func:`check_consistent_units`,
     :func:`check_plausible`)."""
     if isinstance(paths, str | Path) or not paths:
         raise DataError("load_campaign needs a list of one or more CSV files.")
-    tests = tuple(read_record(p, axial_load=axial_load) for p in paths)
+    _check_max_rows(max_rows)
+    for p in paths:  # every file's size before the first is read
+        if Path(p).is_file():
+            check_size(Path(p), max_rows=max_rows)
+    tests = tuple(read_record(p, axial_load=axial_load, max_rows=max_rows) for p in paths)
     places = [str(p) for p in paths]
     check_consistent_units(tests, places)
     campaign = Campaign(tests, effective_radius, slider_diameter)
@@ -338,7 +382,7 @@ def _check_increasing(time: np.ndarray, where: str, *, first_row: int) -> None:
     if np.any(steps <= 0.0):
         i = int(np.argmax(steps <= 0.0)) + 1
         raise DataError(f"{where}: 'time' must be strictly increasing; row {i + first_row} has "
-                        f"{time[i]!r} s after {time[i - 1]!r} s.")
+                        f"{float(time[i])!r} s after {float(time[i - 1])!r} s.")
 
 
 def _check_values(columns: dict[str, np.ndarray], where: str, *, first_row: int) -> None:
@@ -346,10 +390,214 @@ def _check_values(columns: dict[str, np.ndarray], where: str, *, first_row: int)
     if axial is not None and np.any(axial <= 0.0):
         i = int(np.argmax(axial <= 0.0))
         raise DataError(f"{where}: 'axial_force' must be positive (compression) [N]; row "
-                        f"{i + first_row} has {axial[i]!r}.")
+                        f"{i + first_row} has {float(axial[i])!r}.")
     peak = float(np.max(np.abs(columns["displacement"])))
     if peak > MAX_DISPLACEMENT:
         raise DataError(f"{where}: 'displacement' reaches {peak:g}; it must be in metres "
                         f"(at most {MAX_DISPLACEMENT:g} m). Was it written in millimetres?")
     if np.ptp(columns["displacement"]) == 0.0:
         raise DataError(f"{where}: 'displacement' never changes; there is nothing to diagnose.")
+    temperature = columns.get("temperature")
+    if temperature is not None:
+        low, high = TEMPERATURE_RANGE
+        bad = (temperature < low) | (temperature > high)
+        if bad.any():
+            i = int(np.argmax(bad))
+            raise DataError(f"{where}: column 'temperature' must be in degC within "
+                            f"[{low:g}, {high:g}]; row {i + first_row} has "
+                            f"{float(temperature[i])!r}.")
+    if columns.get("velocity") is not None:
+        _check_velocity(columns, where)
+
+
+def _check_max_rows(max_rows: int) -> None:
+    if isinstance(max_rows, bool) or not isinstance(max_rows, int):
+        raise InputTypeError(f"max_rows (--max-rows) must be an integer in [1, inf). Got "
+                             f"{max_rows!r} of type {type(max_rows).__name__}.")
+    if max_rows < 1:
+        raise DataError(f"max_rows (--max-rows) must be an integer in [1, inf). Got "
+                        f"{max_rows!r}.")
+
+
+def _size(n_bytes: float) -> str:
+    for unit, scale in (("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if n_bytes >= scale:
+            return f"{n_bytes / scale:.3g} {unit}"
+    return f"{n_bytes:.0f} bytes"
+
+
+def estimate_rows(path: str | Path) -> tuple[int, list[str]]:
+    """The data rows of a CSV file (``.gz`` too) estimated from its size and its first
+    64 kB, without reading the rest, and its header's column names as written.
+
+    A file that fits in the sample is counted exactly; otherwise the rows are the (estimated
+    uncompressed) size over the mean length of the complete lines sampled.
+
+    Raises
+    ------
+    DataError
+        For a file that cannot be opened or decoded, naming it.
+    """
+    path = Path(path)
+    size = path.stat().st_size
+    try:
+        if path.suffix == ".gz":
+            with path.open("rb") as raw:
+                with gzip.GzipFile(fileobj=raw) as handle:
+                    sample = handle.read(_SAMPLE_BYTES)
+                    whole = not handle.read(1)
+                    consumed = max(raw.tell(), 1)
+                raw.seek(max(size - 4, 0))
+                trailer = int.from_bytes(raw.read(4), "little")  # size mod 2**32
+            total = len(sample) if whole else max(trailer, int(size * len(sample) / consumed))
+        else:
+            with path.open("rb") as handle:
+                sample = handle.read(_SAMPLE_BYTES)
+            whole, total = size <= len(sample), size
+    except (OSError, EOFError, gzip.BadGzipFile) as error:
+        raise DataError(f"{path}: cannot be read ({error}).") from error
+    lines = sample.split(b"\n")
+    try:
+        header = next(csv.reader([lines[0].decode("utf-8-sig").rstrip("\r")]), [])
+    except UnicodeDecodeError as error:
+        raise DataError(f"{path}: not a readable CSV file with a header line ({error}).") \
+            from error
+    if whole:
+        rows = sum(1 for line in lines[1:] if line.strip())
+        return rows, header
+    complete = lines[1:-1]  # the last line sampled may be cut
+    body = sum(len(line) + 1 for line in complete)
+    mean = body / len(complete) if complete else max(len(sample) - len(lines[0]), 1)
+    return math.ceil((total - len(lines[0]) - 1) / mean), header
+
+
+def check_size(path: str | Path, *, max_rows: int = MAX_ROWS) -> list[str]:
+    """Refuse a test file past ``max_rows`` data rows or past the memory available, from its
+    size and first lines (:func:`estimate_rows`), before it is read; return its header.
+
+    Raises
+    ------
+    DataError
+        Naming the file, its size, the rows estimated and the memory reading would take.
+    """
+    _check_max_rows(max_rows)
+    path = Path(path)
+    rows, header = estimate_rows(path)
+    need = rows * (_BYTES_PER_CELL * max(len(header), 1) + _BYTES_PER_ROW)
+    source = (f"{path}: about {rows:,} data rows (estimated from its size, "
+              f"{_size(path.stat().st_size)}, and its first lines)")
+    if rows > max_rows:
+        raise DataError(
+            f"{source}, past the limit of {max_rows:,} rows; reading it would take about "
+            f"{_size(need)} of memory. Is it one bearing test? To read it all the same, raise "
+            f"the limit (--max-rows, or max_rows= in Python) to at least {rows:,}.")
+    free = available_memory()
+    if free is not None and need > free:
+        raise DataError(f"{source}: reading it would take about {_size(need)} of memory, more "
+                        f"than the {_size(free)} available. Decimate the test or split it.")
+    return header
+
+
+_UNIT = re.compile(r"^(?P<name>[^\[\(]*?)\s*(?:[\[\(](?P<unit>[^\]\)]*)[\]\)])?\s*$")
+
+
+def _column_name(text: str) -> tuple[str, str | None]:
+    """A header cell's column name and the unit it states in brackets, if any."""
+    match = _UNIT.match(str(text).strip())
+    if match is None:
+        return str(text).strip(), None
+    unit = match["unit"]
+    return match["name"].strip(), unit.strip() if unit is not None else None
+
+
+def _header_units(header: Sequence[str], path: Path) -> dict[str, str | None]:
+    """Check a header: no column named twice (letter case and spaces aside), and a unit
+    stated for a known column must be one read here; return the units stated."""
+    seen: dict[str, str] = {}
+    for cell in header:
+        name, _ = _column_name(cell)
+        key = " ".join(name.lower().split())
+        if key and key in seen:
+            raise DataError(f"{path}: the column {name!r} appears twice in the header "
+                            f"({seen[key]!r} and {cell.strip()!r}); which one to read is "
+                            "unclear. Rename or remove one of them.")
+        seen[key] = cell.strip()
+    units: dict[str, str | None] = {}
+    for cell in header:
+        name, unit = _column_name(cell)
+        if name not in UNITS or unit is None:
+            continue
+        stated = unit.strip()
+        if name == "velocity" and stated in VELOCITY_UNITS:
+            units[name] = stated
+        elif name == "temperature" and stated.lower() in TEMPERATURE_UNITS:
+            units[name] = "degC"
+        elif name == "temperature" and stated.lower() in ("k", "kelvin"):
+            raise DataError(f"{path}: column 'temperature' is stated in kelvin ({cell.strip()!r}); "
+                            "give it in degC (subtract 273.15) and write 'temperature [degC]'.")
+        elif stated == UNITS[name]:
+            units[name] = None
+        else:
+            allowed = (", ".join(VELOCITY_UNITS) if name == "velocity" else
+                       "degC or °C" if name == "temperature" else UNITS[name])
+            raise DataError(f"{path}: column {name!r} is stated in {stated!r} "
+                            f"({cell.strip()!r}); it must be in {allowed}. Convert the column "
+                            "and its header.")
+    return units
+
+
+def _check_kelvin(temperature: np.ndarray, where: str) -> None:
+    low, high = KELVIN_LOOK
+    if np.all((temperature >= low) & (temperature <= high)):
+        raise DataError(
+            f"{where}: column 'temperature' lies between {float(temperature.min()):.6g} and "
+            f"{float(temperature.max()):.6g} throughout, which looks like kelvin (a test that "
+            f"starts at {low:g} degC or more is implausible); give it in degC (subtract 273.15). "
+            "If it really is in degC, say so in the header: 'temperature [degC]'.")
+
+
+def velocity_ratio(time: np.ndarray, displacement: np.ndarray,
+                   velocity: np.ndarray) -> float | None:
+    """Robust least-squares slope of a velocity column [m/s] on the derivative of the
+    displacement (:func:`derived_velocity`) over the moving samples (|du/dt| above 20 % of
+    its peak), refitted without the samples whose residual exceeds five times the median
+    one; None when fewer than 10 samples move. About 1 for a column in m/s with the
+    displacement's sign."""
+    derived = derived_velocity(time, displacement)
+    peak = float(np.max(np.abs(derived)))
+    moving = np.abs(derived) > 0.2 * peak
+    if peak == 0.0 or np.count_nonzero(moving) < 10:
+        return None
+    d, v = derived[moving], velocity[moving]
+    slope = float(np.dot(v, d) / np.dot(d, d))
+    residual = np.abs(v - slope * d)
+    keep = residual <= 5.0 * float(np.median(residual)) + 1e-300
+    if np.count_nonzero(keep) >= 10:
+        slope = float(np.dot(v[keep], d[keep]) / np.dot(d[keep], d[keep]))
+    return slope
+
+
+def _check_velocity(columns: dict[str, np.ndarray], where: str) -> None:
+    ratio = velocity_ratio(columns["time"], columns["displacement"], columns["velocity"])
+    low, high = VELOCITY_RATIO
+    if ratio is None or low <= ratio <= high:
+        return
+    size = abs(ratio)
+    sign = " and reversed in sign (multiply it by -1)" if ratio < 0.0 else ""
+    if ratio < 0.0 and low <= size <= high:
+        cause = ("it looks sign-reversed: the velocity must be positive when the displacement "
+                 "grows. Multiply it by -1")
+    elif 300.0 <= size <= 3000.0:
+        cause = (f"it looks like mm/s{sign}: divide it by 1000, or state the unit in the "
+                 "header ('velocity [mm/s]')")
+    elif 30.0 <= size <= 300.0:
+        cause = (f"it looks like cm/s{sign}: divide it by 100, or state the unit in the "
+                 "header ('velocity [cm/s]')")
+    else:
+        cause = ("check its units (m/s, or state 'velocity [mm/s]' in the header), its sign "
+                 "convention (positive when the displacement grows) and that it is the "
+                 "velocity of this displacement; or leave the column out and the velocity is "
+                 "derived from the displacement")
+    raise DataError(
+        f"{where}: column 'velocity' is {ratio:.3g} times d(displacement)/dt (a robust fit over "
+        f"the moving samples; allowed {low:g}-{high:g}); {cause}.")

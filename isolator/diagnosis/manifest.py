@@ -8,26 +8,41 @@ A CSV manifest has a header line and one row per test, in the order the tests we
     Constant axial load of the test [N] for a file without an ``axial_force`` column (with
     the column, a value disagreeing with it by more than 2 % is an error).
 ``initial_temperature``
-    Temperature of the plates at the start of the test [degC].
+    Temperature of the plates at the start of the test [degC]; 250-400 is taken for kelvin
+    and refused.
 ``rest_before``
     Rest since the end of the previous test [s]; empty: long enough to cool down.
 
 A TOML manifest has a ``[[test]]`` table per test (same keys) and may give the bearing's
 ``effective_radius`` [m] and ``slider_diameter`` [m] at the top.
+
+On the command line (``must_agree`` of :func:`load_manifest`), a value given both in the
+manifest and as a flag (``--effective-radius``, ``--slider-diameter``, ``--axial-load``) must be
+the same in both; a disagreement is refused naming both sources and values, and an
+``--axial-load`` that no test uses (every test has an ``axial_force`` column) is warned about
+(:class:`~dcfpb.common.errors.InputWarning`). In Python the arguments are defaults: the
+radius and diameter arguments replace the TOML values, ``axial_load`` serves the rows without
+one.
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
 
+from dcfpb.common.errors import InputWarning
 from isolator.diagnosis.data import (
+    KELVIN_LOOK,
+    MAX_ROWS,
     Campaign,
     DataError,
+    _column_name,
     check_consistent_units,
     check_plausible,
+    check_size,
     read_record,
 )
 
@@ -80,6 +95,11 @@ def read_manifest(path: str | Path) -> tuple[list[dict], dict]:
             raise DataError(f"{where}: 'file' is empty.")
         for key in COLUMNS[1:]:
             entry[key] = _number(row.get(key), key, where)
+        start = entry["initial_temperature"]
+        if start is not None and KELVIN_LOOK[0] <= start <= KELVIN_LOOK[1]:
+            raise DataError(f"{where}: 'initial_temperature' is {start!r}, which looks like "
+                            "kelvin (plates at 250 degC or more before a test are implausible); "
+                            "give it in degC (subtract 273.15).")
         out.append(entry)
     return out, top
 
@@ -104,22 +124,41 @@ def load_manifest(
     effective_radius: float | None = None,
     slider_diameter: float | None = None,
     axial_load: float | None = None,
+    max_rows: int = MAX_ROWS,
+    must_agree: bool = False,
+    argument_names: dict[str, str] | None = None,
 ) -> Campaign:
     """The campaign a manifest lists.
 
     ``effective_radius`` [m] and ``slider_diameter`` [m] come from the arguments, else from a
     TOML manifest; ``axial_load`` [N] applies to the tests whose row gives none and whose file
-    has no ``axial_force`` column.
+    has no ``axial_force`` column. With ``must_agree`` (the command line's rule), a value given
+    both in the manifest and as an argument must be the same in both, and an ``axial_load``
+    that no test uses is warned about. ``max_rows``: see
+    :func:`~isolator.diagnosis.data.read_record`; ``argument_names`` names each argument in
+    messages (default: the argument's name; the command line gives its flags).
 
     Raises
     ------
     DataError
-        Naming the manifest, the test and the problem: a missing file, a load disagreeing
-        with the file's column, mixed units, implausible levels
-        (:func:`~isolator.diagnosis.data.check_plausible`).
+        Naming the manifest, the test and the problem: a missing file, a value disagreeing
+        with an argument, a load disagreeing with the file's column, mixed units, implausible
+        levels (:func:`~isolator.diagnosis.data.check_plausible`).
     """
     path = Path(path)
+    names = {key: key for key in ("effective_radius", "slider_diameter", "axial_load")}
+    names.update(argument_names or {})
     rows, top = read_manifest(path)
+    for key, given in (("effective_radius", effective_radius),
+                       ("slider_diameter", slider_diameter)):
+        if must_agree and given is not None and key in top:
+            _same(top[key], given, f"{path}: '{key}'", names[key], "m")
+    if must_agree and axial_load is not None:
+        for number, row in enumerate(rows, start=1):
+            if row["axial_load"] is not None:
+                _same(row["axial_load"], axial_load,
+                      f"{path}: test {number} ({row['file']}): 'axial_load'",
+                      names["axial_load"], "N")
     radius = effective_radius if effective_radius is not None else top.get("effective_radius")
     diameter = slider_diameter if slider_diameter is not None else top.get("slider_diameter")
     if radius is None or diameter is None:
@@ -132,14 +171,23 @@ def load_manifest(
         places.append(where)
         if not file.is_file():
             raise DataError(f"{where}: the file does not exist ({file}).")
+        try:
+            check_size(file, max_rows=max_rows)
+        except DataError as error:
+            raise DataError(f"{where}: {error}") from None
+    used_flag = False
+    for number, row in enumerate(rows, start=1):
+        file = (path.parent / row["file"]).resolve()
+        where = places[number - 1]
         load = row["axial_load"] if row["axial_load"] is not None else axial_load
         has_column = _has_axial_column(file)
+        used_flag = used_flag or not has_column  # applied, or equal to the manifest's
         sources.append("column 'axial_force'" if has_column else
                        "the manifest's axial_load" if row["axial_load"] is not None else
                        "the axial load given")
         if has_column and row["axial_load"] is not None:
-            record = read_record(file, initial_temperature=row["initial_temperature"],
-                                 rest_before=row["rest_before"])
+            record = _read(where, file, initial_temperature=row["initial_temperature"],
+                           rest_before=row["rest_before"], max_rows=max_rows)
             mean = float(np.mean(record.axial_force))
             if abs(mean - row["axial_load"]) > _AXIAL_TOLERANCE * abs(mean):
                 raise DataError(f"{where}: the manifest's axial_load {row['axial_load']:.6g} N "
@@ -149,14 +197,33 @@ def load_manifest(
             if not has_column and load is None:
                 raise DataError(f"{where}: no axial_force column and no axial_load in the "
                                 "manifest or on the command line.")
-            record = read_record(file, axial_load=None if has_column else load,
-                                 initial_temperature=row["initial_temperature"],
-                                 rest_before=row["rest_before"])
+            record = _read(where, file, axial_load=None if has_column else load,
+                           initial_temperature=row["initial_temperature"],
+                           rest_before=row["rest_before"], max_rows=max_rows)
         tests.append(record)
+    if must_agree and axial_load is not None and not used_flag:
+        warnings.warn(f"{names['axial_load']} {axial_load!r} N has no effect: every test of "
+                      f"{path} has an axial_force column, which gives its axial load.",
+                      InputWarning, stacklevel=2)
     check_consistent_units(tests, places)
     campaign = Campaign(tuple(tests), float(radius), float(diameter))
     check_plausible(campaign, places, sources)
     return campaign
+
+
+def _read(where: str, file: Path, **options):
+    """:func:`read_record` of a manifest's test; its errors name the manifest and the test."""
+    try:
+        return read_record(file, **options)
+    except DataError as error:
+        raise DataError(f"{where}: {error}") from None
+
+
+def _same(manifest: float, given: float, where: str, source: str, unit: str) -> None:
+    """Refuse a manifest value that differs from the one given as an argument."""
+    if not math.isclose(float(manifest), float(given), rel_tol=1e-9, abs_tol=0.0):
+        raise DataError(f"{where} is {float(manifest)!r} {unit} but {source} gives "
+                        f"{float(given)!r} {unit}; give one value, or the same in both.")
 
 
 def _has_axial_column(file: Path) -> bool:
@@ -165,4 +232,4 @@ def _has_axial_column(file: Path) -> bool:
     opener = gzip.open if file.suffix == ".gz" else open
     with opener(file, "rt", encoding="utf-8", errors="replace") as handle:
         header = handle.readline()
-    return "axial_force" in [c.strip() for c in header.split(",")]
+    return "axial_force" in [_column_name(c)[0] for c in header.split(",")]

@@ -51,7 +51,9 @@ def test_a_good_file_reads_and_derives_the_velocity(good):
 
 
 def test_a_gzipped_file_with_all_columns_reads(tmp_path):
-    columns = _rows() | {"axial_force": np.full(60, N), "velocity": np.zeros(60),
+    rows = _rows()
+    velocity = 0.2 * np.pi * np.cos(2.0 * np.pi * rows["time"])  # d(displacement)/dt
+    columns = rows | {"axial_force": np.full(60, N), "velocity": velocity,
                          "temperature": np.full(60, 20.0)}
     plain = tmp_path / "plain.csv"
     _write(plain, columns)

@@ -22,7 +22,8 @@ def _write_test(path, amplitude=0.1, scale=1.0, axial=None, dt=0.01, time_scale=
     u = amplitude * np.sin(2.0 * np.pi * t / 2.5)
     v = amplitude * 2.0 * np.pi / 2.5 * np.cos(2.0 * np.pi * t / 2.5)
     f = N * u / 4.5 + 0.05 * N * np.tanh(v / 0.01)
-    columns = {"time": t * time_scale, "displacement": u * scale, "force": f, "velocity": v}
+    columns = {"time": t * time_scale, "displacement": u * scale, "force": f,
+               "velocity": v * scale / time_scale}  # the velocity channel in the same units
     if axial is not None:
         columns["axial_force"] = np.full(t.size, axial)
     np.savetxt(path, np.column_stack(list(columns.values())), delimiter=",",
