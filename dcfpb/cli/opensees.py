@@ -241,7 +241,7 @@ def run_bearing(args: argparse.Namespace) -> int:
     bearing = shaped_bearing(protocol_bearing(
         "constant" if args.model == "constant" else "simplified",
         slider_diameter=args.slider_diameter, effective_radius=args.effective_radius,
-        pressure=args.pressure, mu_t0=args.mu_t0,
+        pressure=args.pressure, mu_t0=None if args.model == "constant" else args.mu_t0,
         design_velocity=2.0 * math.pi * args.amplitude / args.period,
         displacement_capacity=max(0.6, 1.05 * args.amplitude)), args.model)
     history = sine(args.amplitude, args.period, args.cycles, args.dt, max_steps=args.max_steps)
