@@ -220,6 +220,7 @@ def _run_building(args: argparse.Namespace) -> int:
         result = run(config, motion, model=model, integrator=integrator,
                      dt=args.dt, max_steps=args.max_steps)
     summary = peaks(result)
+    warn_uplift(summary, result.sizes["bearing"])
     building = config.building if result.sizes["direction"] == 2 else dataclasses.replace(
         config.building, plan=None)
     fixed = run_fixed_base(building, motion, dt=result.attrs["dt"], max_steps=args.max_steps)
@@ -245,6 +246,25 @@ def _run_building(args: argparse.Namespace) -> int:
         print_ratios({model: ratios}, fixed, float(abs(fixed["ground_acceleration"]).max()))
         print_failure(summary, result.attrs["message"])
     return 0 if result.attrs["success"] else 1
+
+
+def warn_uplift(summary: dict, positions: int) -> None:
+    """Warn (:class:`structures.results.UpliftWarning`, one line) that bearings lifted off in
+    the run; nothing when none did. ``summary`` is :func:`structures.analysis.peaks` of the run,
+    ``positions`` its number of bearing positions."""
+    if not summary.get("uplift_bearings"):
+        return
+    import warnings
+
+    from structures.results import UpliftWarning
+
+    warnings.warn(
+        f"{summary['uplift_bearings']} of {positions} bearing positions lifted off (axial load "
+        f"<= 0: no friction and no restoring force there), first at t = "
+        f"{summary['uplift_first_time']:.6g} s, for up to {summary['uplift_steps']} steps, the "
+        f"longest {summary['uplift_longest']:.6g} s at a time; see uplift_steps, "
+        "uplift_first_time and uplift_longest in the peaks and the Dataset's attributes.",
+        UpliftWarning, stacklevel=2)
 
 
 def print_failure(summary: dict, message: str) -> None:
