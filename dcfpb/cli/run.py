@@ -142,6 +142,15 @@ def building_run_inputs(args: argparse.Namespace, command: str):
     integrator = integrator_from_args(config, args.integrator, args.alpha)
     if getattr(args, "record_y", None) is not None or getattr(args, "record_z", None) is not None:
         return config, integrator, pair_from_args(args, config, command)
+    for flag in ("resample", "truncate"):  # they act on the components of a pair only
+        if getattr(args, flag, False):
+            import warnings
+
+            from dcfpb.common.errors import InputWarning
+
+            warnings.warn(f"--{flag} has no effect without --record-y: it aligns the components "
+                          "of a pair, and one record is run on its own.", InputWarning,
+                          stacklevel=2)
     motion = read_record_from_args(args.record, args)
     if args.scale != 1.0:
         motion = motion.scaled(args.scale)

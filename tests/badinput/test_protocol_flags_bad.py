@@ -104,3 +104,12 @@ def test_the_library_warns_and_refuses_alike():
         protocol_bearing("precise", axial_load=4200.0)
     with pytest.raises(InputError, match="not both"):
         protocol_bearing("precise", axial_load=4.2e6, pressure=60e6)
+
+
+@pytest.mark.parametrize("flag", ["--resample", "--truncate"])
+def test_run_pair_flags_without_a_pair_are_a_warning(flag, tmp_path, capsys):
+    example = REPO / "examples" / "five_storey.toml"
+    missing = tmp_path / "none.at2"  # the run stops at the record, after the flags' check
+    with pytest.warns(InputWarning, match=f"{flag} has no effect without --record-y"):
+        assert main(["run", str(example), "--record", str(missing), flag]) == 2
+    assert "none.at2" in capsys.readouterr().err
