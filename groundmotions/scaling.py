@@ -361,18 +361,18 @@ def suite_spectra(motions: Sequence[Motion], periods: np.ndarray, damping: float
 
 
 def _check_factors(suite: Sequence[Motion], factors: np.ndarray, target: TargetSpectrum,
-                   owner: str) -> None:
-    """Refuse a factor above :data:`MAX_SCALE_FACTOR`, warn of one above
-    :data:`WARN_SCALE_FACTOR`, naming the record or pair and its factor."""
+                   owner: str, limit: float = MAX_SCALE_FACTOR) -> None:
+    """Refuse a factor above ``limit``, warn of one above :data:`WARN_SCALE_FACTOR`, naming the
+    record or pair and its factor."""
     order = np.argsort(factors)[::-1]
     worst = int(order[0])
     largest = float(factors[worst])
     hint = (f"the target {target.name!r} (peak Sa {target.sa.max() / STANDARD_GRAVITY:.3g} g) and "
             f"the records' spectra are likely in different units (a target in %g or cm/s^2, a "
             f"record in cm/s^2 read as m/s^2)")
-    if largest > MAX_SCALE_FACTOR:
+    if largest > limit:
         raise InputError(f"{owner}: the scale factor of {suite[worst].name!r} would be "
-                         f"{largest:.4g}, above the limit of {MAX_SCALE_FACTOR:g}: {hint}.")
+                         f"{largest:.4g}, above the limit of {limit:g} ('max_factor'): {hint}.")
     if largest > WARN_SCALE_FACTOR:
         many = int((factors > WARN_SCALE_FACTOR).sum())
         warnings.warn(f"{owner}: {many} scale factor(s) above {WARN_SCALE_FACTOR:g}, the largest "
@@ -401,6 +401,7 @@ def scale_suite(
     fraction: float = 1.0,
     n_periods: int = 60,
     angle_step: float = 1.0,
+    max_factor: float | None = MAX_SCALE_FACTOR,
 ) -> ScalingReport:
     """Amplitude-scale a suite so that its mean spectrum envelopes the target over a period range.
 
@@ -428,6 +429,10 @@ def scale_suite(
         Number of log-spaced grid periods over the range, in [2, 1000] (1 if T_min = T_max).
     angle_step : float
         Step of the directions of a pair's RotD spectra [deg] (`rotd_spectra`).
+    max_factor : float or None
+        The largest scale factor accepted [-] (default :data:`MAX_SCALE_FACTOR`; one above
+        :data:`WARN_SCALE_FACTOR` is given with a warning when it is at most that); None
+        accepts any, without a warning (e.g. to study the scaling itself).
 
     Returns
     -------
@@ -438,13 +443,13 @@ def scale_suite(
     ------
     InputError
         For a parameter out of range, a target above :data:`MAX_TARGET_SA`, or a scale factor
-        above :data:`MAX_SCALE_FACTOR` (the record or pair and its factor named): the target and
-        the records are then in different units.
+        above ``max_factor`` (the record or pair and its factor named): the target and the
+        records are then likely in different units.
 
     Warns
     -----
     InputWarning
-        For a scale factor above :data:`WARN_SCALE_FACTOR`.
+        For a scale factor above :data:`WARN_SCALE_FACTOR` (unless ``max_factor`` is None).
 
     Notes
     -----
@@ -469,7 +474,9 @@ def scale_suite(
                          f"{_LABELS[fitted]} over the range. Got {suite[empty[0]]!r} at index "
                          f"{empty[0]} instead.")
     individual, common, factors = suite_factors(spectra[fitted], target_sa, how)
-    _check_factors(suite, factors, target, owner)
+    if max_factor is not None:
+        limit = check_real(max_factor, "max_factor", owner, low=1.0)
+        _check_factors(suite, factors, target, owner, limit)
     scaled = {name: factors[:, None] * sa for name, sa in spectra.items()}
     ratio = scaled[fitted].mean(axis=0) / target_sa
     tight = int(np.argmin(ratio))

@@ -80,8 +80,15 @@ def _records(amplitude: float) -> list[GroundMotion]:
 def test_a_scale_factor_above_100_is_refused_naming_the_record():
     target = asce7_design_spectrum(1.0, 0.6, 8.0)
     with pytest.raises(InputError, match=r"scale_suite: the scale factor of 'reversed' would be "
-                                         r"\d+\.?\d*, above the limit of 100: the target"):
+                                         r"\d+\.?\d*, above the limit of 100 \('max_factor'\): "
+                                         r"the target"):
         scale_suite(_records(1e-3), target, (2.0, 5.0))
+    with pytest.raises(InputError, match="above the limit of 20"):
+        scale_suite(_records(0.02), target, (2.0, 5.0), max_factor=20.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        report = scale_suite(_records(1e-3), target, (2.0, 5.0), max_factor=None)
+    assert report.scale_factors.max() > 100
 
 
 def test_a_scale_factor_above_10_is_a_warning_and_below_none():
