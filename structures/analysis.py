@@ -252,7 +252,7 @@ def _uplift_peaks(result) -> dict[str, Any]:
     steps = np.asarray(record["uplift_steps"])
     first = np.asarray(record["uplift_first_time"])
     return {"uplift_bearings": int((steps > 0).sum()), "uplift_steps": int(steps.max()),
-            "uplift_first_time": float(np.nanmin(first)) if (steps > 0).any() else None,
+            "uplift_first_time": float(first[steps > 0].min()) if (steps > 0).any() else None,
             "uplift_longest": float(max(record["uplift_longest"]))}
 
 

@@ -52,7 +52,8 @@ def uplift_record(axial_load: np.ndarray, step: float) -> dict[str, list]:
     -------
     dict
         ``uplift_steps`` (int per position: the steps lifted), ``uplift_first_time`` (float per
-        position: the time of the first one [s], NaN for a bearing never lifted) and
+        position: the time of the first one [s], -1 for a bearing never lifted, so that the
+        attributes compare equal and write to netCDF as they are) and
         ``uplift_longest`` (float per position: the longest lift-off, its consecutive steps
         times ``step`` [s]), each a list over the positions.
     """
@@ -60,7 +61,7 @@ def uplift_record(axial_load: np.ndarray, step: float) -> dict[str, list]:
     if lifted.ndim == 1:
         lifted = lifted[:, None]
     steps = lifted.sum(axis=0)
-    first = np.where(steps > 0, step * np.argmax(lifted, axis=0), np.nan)
+    first = np.where(steps > 0, step * np.argmax(lifted, axis=0), -1.0)
     longest = np.zeros(lifted.shape[1])
     for b in np.flatnonzero(steps):
         edges = np.diff(np.concatenate(([0], lifted[:, b].astype(np.int8), [0])))

@@ -65,7 +65,7 @@ def test_uplift_record_counts_first_and_longest():
     load = np.array([[1.0, 1.0], [0.0, 1.0], [-2.0, 1.0], [1.0, 1.0], [-1.0, 1.0], [1.0, 1.0]])
     record = uplift_record(load, 0.5)
     assert record["uplift_steps"] == [3, 0]
-    assert record["uplift_first_time"][0] == 0.5 and math.isnan(record["uplift_first_time"][1])
+    assert record["uplift_first_time"] == [0.5, -1.0]  # -1: never lifted
     assert record["uplift_longest"] == [1.0, 0.0]
 
 
