@@ -113,3 +113,11 @@ def test_run_pair_flags_without_a_pair_are_a_warning(flag, tmp_path, capsys):
     with pytest.warns(InputWarning, match=f"{flag} has no effect without --record-y"):
         assert main(["run", str(example), "--record", str(missing), flag]) == 2
     assert "none.at2" in capsys.readouterr().err
+
+
+def test_compare_opensees_bearing_mu_t0_with_the_constant_model_is_a_warning(capsys):
+    with pytest.warns(InputWarning, match="--mu-t0 0.06 has no effect with --model constant"):
+        status = main(["compare-opensees-bearing", *SHORT[1:], "--model", "constant", "--mu-t0",
+                       "0.06", "--json"])
+    assert status in (0, 2)  # 2: openseespy missing, said so
+    capsys.readouterr()
