@@ -8,13 +8,14 @@ is ``fraction=0.9`` over its own range.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from dcfpb.common.errors import InputError, InputTypeError
+from dcfpb.common.errors import InputError, InputTypeError, InputWarning
 from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.common.validation import check_array, check_choice, check_int, check_real
 from groundmotions.pairs import GroundMotionPair
@@ -23,10 +24,13 @@ from groundmotions.records import GroundMotion
 from groundmotions.spectra import spectrum
 
 __all__ = [
+    "MAX_SCALE_FACTOR",
+    "MAX_TARGET_SA",
     "MEASURES",
     "ScalingReport",
     "TargetSpectrum",
     "asce7_design_spectrum",
+    "check_target_sa",
     "isolated_period_range",
     "scale_suite",
     "scaling_grid",
@@ -46,6 +50,49 @@ _LABELS = {"sa": "spectrum", "rotd100": "RotD100 spectrum", "rotd50": "RotD50 sp
 
 MCE_FACTOR = 1.5
 """MCE_R over design spectral ordinates, ASCE 7-16 Section 11.4.7 [-]."""
+
+MAX_TARGET_SA = 10.0
+"""Largest spectral acceleration a target may hold [g]: the strongest recorded spectra peak
+near 5 g; a table above 10 g is almost surely in %g or cm/s^2."""
+MAX_SPECTRAL_PARAMETER = 5.0
+"""Largest S_DS or S_D1 of `asce7_design_spectrum` [g] (the MCE_R spectrum is 1.5 times it, so
+it stays below :data:`MAX_TARGET_SA`); ASCE 7-16 maps reach about 3 g."""
+MAX_SCALE_FACTOR = 100.0
+"""Largest factor `scale_suite` gives a record or pair [-]: beyond it the target and the
+records are in different units (a target in %g gives factors near 100 times the right ones)."""
+WARN_SCALE_FACTOR = 10.0
+"""A factor above this [-] is given with an :class:`InputWarning`: ASCE 7-16 17.3.3 suites are
+usually scaled by 0.5 to 4, and a larger factor distorts the record's other intensities."""
+
+
+def check_target_sa(sa: Any, where: str, unit: str = "m/s^2") -> None:
+    """Refuse a target spectrum above :data:`MAX_TARGET_SA`.
+
+    Parameters
+    ----------
+    sa : array_like
+        Spectral accelerations of the target, in ``unit`` ("m/s^2" or "g").
+    where : str
+        The flag, file or parameter the values come from, for the message.
+    unit : {"m/s^2", "g"}
+        The unit of ``sa``.
+
+    Raises
+    ------
+    InputError
+        Naming ``where``, the first offending index and value, the limit and the likely unit.
+    """
+    to_g = 1.0 if unit == "g" else 1.0 / STANDARD_GRAVITY
+    values = np.atleast_1d(np.asarray(sa, dtype=float))
+    high = np.flatnonzero(values * to_g > MAX_TARGET_SA)
+    if high.size:
+        i = int(high[0])
+        limit = MAX_TARGET_SA / to_g
+        raise InputError(
+            f"{where}: a target spectral acceleration must be at most {limit:g} {unit} "
+            f"({MAX_TARGET_SA:g} g). Got {values[i]:g} {unit} ({values[i] * to_g:g} g) at index "
+            f"{i} instead: the values look like %g or cm/s^2; give Sa in {unit}"
+            + (" (1.5 for 1.5 g)." if unit == "g" else "."))
 
 
 @dataclass(frozen=True, eq=False)
@@ -84,6 +131,7 @@ class TargetSpectrum:
             raise ValueError(f"The 'periods' parameter of {owner} must be strictly increasing. "
                              f"Got {here!r} after {before!r} at index {i} instead.")
         damping = check_real(self.damping, "damping", owner, low=0.0, high=1.0, high_open=True)
+        check_target_sa(sa, f"The 'sa' parameter of {owner} ({self.name})")
         periods.flags.writeable = False
         sa.flags.writeable = False
         object.__setattr__(self, "periods", periods)
@@ -113,7 +161,8 @@ def asce7_design_spectrum(
     Parameters
     ----------
     S_DS, S_D1 : float
-        Design spectral acceleration parameters at short periods and at 1 s, > 0 [g].
+        Design spectral acceleration parameters at short periods and at 1 s, in (0, 5] [g]
+        (:data:`MAX_SPECTRAL_PARAMETER`).
     T_L : float
         Long-period transition period, > T_S = S_D1 / S_DS [s].
     periods : array_like, optional
@@ -127,8 +176,8 @@ def asce7_design_spectrum(
     Eq. 11.4-5 to 11.4-8, with ``T_0 = 0.2 S_D1 / S_DS`` and ``T_S = S_D1 / S_DS``.
     """
     owner = "asce7_design_spectrum"
-    s_ds = check_real(S_DS, "S_DS", owner, low=0.0, low_open=True)
-    s_d1 = check_real(S_D1, "S_D1", owner, low=0.0, low_open=True)
+    s_ds = check_real(S_DS, "S_DS", owner, low=0.0, low_open=True, high=MAX_SPECTRAL_PARAMETER)
+    s_d1 = check_real(S_D1, "S_D1", owner, low=0.0, low_open=True, high=MAX_SPECTRAL_PARAMETER)
     t_s = s_d1 / s_ds
     t_l = check_real(T_L, "T_L", owner, low=t_s, low_open=True)
     kind = check_choice(level, "level", owner, ("design", "mce"))
@@ -311,6 +360,26 @@ def suite_spectra(motions: Sequence[Motion], periods: np.ndarray, damping: float
     return {"sa": np.array([spectrum(m, periods, damping).sa for m in motions])}
 
 
+def _check_factors(suite: Sequence[Motion], factors: np.ndarray, target: TargetSpectrum,
+                   owner: str, limit: float = MAX_SCALE_FACTOR) -> None:
+    """Refuse a factor above ``limit``, warn of one above :data:`WARN_SCALE_FACTOR`, naming the
+    record or pair and its factor."""
+    order = np.argsort(factors)[::-1]
+    worst = int(order[0])
+    largest = float(factors[worst])
+    hint = (f"the target {target.name!r} (peak Sa {target.sa.max() / STANDARD_GRAVITY:.3g} g) and "
+            f"the records' spectra are likely in different units (a target in %g or cm/s^2, a "
+            f"record in cm/s^2 read as m/s^2)")
+    if largest > limit:
+        raise InputError(f"{owner}: the scale factor of {suite[worst].name!r} would be "
+                         f"{largest:.4g}, above the limit of {limit:g} ('max_factor'): {hint}.")
+    if largest > WARN_SCALE_FACTOR:
+        many = int((factors > WARN_SCALE_FACTOR).sum())
+        warnings.warn(f"{owner}: {many} scale factor(s) above {WARN_SCALE_FACTOR:g}, the largest "
+                      f"{largest:.4g} for {suite[worst].name!r}; check the units if that is "
+                      f"not meant ({hint}).", InputWarning, stacklevel=3)
+
+
 def _suite(motions: Any, owner: str) -> tuple[tuple[Motion, ...], type]:
     """The records or the pairs of a suite and their kind (a key of :data:`MEASURES`)."""
     suite = tuple(motions)
@@ -332,6 +401,7 @@ def scale_suite(
     fraction: float = 1.0,
     n_periods: int = 60,
     angle_step: float = 1.0,
+    max_factor: float | None = MAX_SCALE_FACTOR,
 ) -> ScalingReport:
     """Amplitude-scale a suite so that its mean spectrum envelopes the target over a period range.
 
@@ -359,11 +429,27 @@ def scale_suite(
         Number of log-spaced grid periods over the range, in [2, 1000] (1 if T_min = T_max).
     angle_step : float
         Step of the directions of a pair's RotD spectra [deg] (`rotd_spectra`).
+    max_factor : float or None
+        The largest scale factor accepted [-] (default :data:`MAX_SCALE_FACTOR`; one above
+        :data:`WARN_SCALE_FACTOR` is given with a warning when it is at most that); None
+        accepts any, without a warning (e.g. to study the scaling itself).
 
     Returns
     -------
     ScalingReport
         The factors, the scaled suite, its spectra and the mean-to-target ratio on the grid.
+
+    Raises
+    ------
+    InputError
+        For a parameter out of range, a target above :data:`MAX_TARGET_SA`, or a scale factor
+        above ``max_factor`` (the record or pair and its factor named): the target and the
+        records are then likely in different units.
+
+    Warns
+    -----
+    InputWarning
+        For a scale factor above :data:`WARN_SCALE_FACTOR` (unless ``max_factor`` is None).
 
     Notes
     -----
@@ -388,6 +474,9 @@ def scale_suite(
                          f"{_LABELS[fitted]} over the range. Got {suite[empty[0]]!r} at index "
                          f"{empty[0]} instead.")
     individual, common, factors = suite_factors(spectra[fitted], target_sa, how)
+    if max_factor is not None:
+        limit = check_real(max_factor, "max_factor", owner, low=1.0)
+        _check_factors(suite, factors, target, owner, limit)
     scaled = {name: factors[:, None] * sa for name, sa in spectra.items()}
     ratio = scaled[fitted].mean(axis=0) / target_sa
     tight = int(np.argmin(ratio))

@@ -30,6 +30,7 @@ from structures.results import (
     EngineHistory,
     response_dataset,
     temperature_fields,
+    uplift_record,
 )
 from structures.shear_building import ShearBuilding
 
@@ -245,6 +246,16 @@ def _resultant(values: np.ndarray) -> np.ndarray:
                                                                           values[..., 1])
 
 
+def _uplift_peaks(result) -> dict[str, Any]:
+    """The lift-off keys of :func:`peaks`, from the Dataset's ``axial_load`` (time, bearing)."""
+    record = uplift_record(result["axial_load"].values, float(result.attrs["dt"]))
+    steps = np.asarray(record["uplift_steps"])
+    first = np.asarray(record["uplift_first_time"])
+    return {"uplift_bearings": int((steps > 0).sum()), "uplift_steps": int(steps.max()),
+            "uplift_first_time": float(first[steps > 0].min()) if (steps > 0).any() else None,
+            "uplift_longest": float(max(record["uplift_longest"]))}
+
+
 def peaks(result) -> dict[str, Any]:
     """Peak responses of a run [SI units] and its bookkeeping, over the histories the Dataset
     holds (for a failed run, up to the failure).
@@ -260,7 +271,11 @@ def peaks(result) -> dict[str, Any]:
         ``corner_bearing`` (index of the bearing of largest displacement) and
         ``peak_base_rotation`` [rad]; then ``energy_balance_error``, ``steps``, ``wall_time``
         [s], ``peaks_up_to_failure`` (bool), ``failed_at`` [s] (None for a run that finished)
-        and ``failure`` (its kind, ``""`` for none).
+        and ``failure`` (its kind, ``""`` for none); last, the lift-off of the bearings (zero
+        or negative axial load: no contact, friction or restoring force): ``uplift_bearings``
+        (the positions lifted at least once), ``uplift_steps`` (the most steps lifted at one
+        position), ``uplift_first_time`` [s] (the first, None if none) and ``uplift_longest``
+        [s] (the longest lift-off).
     """
     reach = _resultant(result["bearing_displacement"].values).max(axis=0)
     roof = np.abs(result["absolute_acceleration"].isel(floor=-1).values).max(axis=0)
@@ -292,4 +307,4 @@ def peaks(result) -> dict[str, Any]:
         "peaks_up_to_failure": failed,
         "failed_at": float(failed_at) if failed and failed_at is not None else None,
         "failure": str(result.attrs.get("failure", "error" if failed else "")),
-    }
+    } | _uplift_peaks(result)

@@ -21,6 +21,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from dcfpb.common.errors import InputError, InputWarning
 
 MAX_STOREYS = 1000
@@ -380,6 +382,7 @@ def check_tables(raw: dict[str, Any], path: Path) -> dict[str, dict[str, Any]]:
     for key in ("effective_radius", "slider_diameter"):
         if key not in tables["bearing"]:
             raise ConfigError(f"{path}: [bearing] needs {key!r}.")
+    check_bearing_geometry(tables["bearing"], path)
     analysis = tables["analysis"]
     if "alpha" in analysis and analysis.get("integrator", "newmark") != "hht":
         Where(path, "analysis", "alpha").warn(
@@ -460,8 +463,10 @@ def check_plan(raw: dict[str, Any], n_storeys: int, bearing: dict[str, Any],
     Raises
     ------
     ConfigError
-        For an unknown or missing key, a value of the wrong kind or outside its range, or a
-        per-storey key of another length (module docstring).
+        For an unknown or missing key, a value of the wrong kind or outside its range, a
+        per-storey key of another length (module docstring), two bearings at one point (within
+        :data:`SAME_POINT` m), or, with ``dimensions``, bearings or centres of mass that no
+        a x b slab covers (:func:`_plan_geometry`).
     """
     if "plan" not in raw:
         return None
@@ -487,9 +492,119 @@ def check_plan(raw: dict[str, Any], n_storeys: int, bearing: dict[str, Any],
         raise ConfigError(f"{Where(path, 'plan', 'eccentricity')} must be one [e_x, e_y] pair "
                           f"or one per floor ({n_storeys}). Got {len(eccentricity)} pairs "
                           "instead.")
+    _plan_geometry(table, path)
     count = len(table["bearing_coordinates"])
     if "count" in bearing and bearing["count"] != count:
         raise ConfigError(f"{Where(path, 'bearing', 'count')} must be the number of "
                           f"[plan] 'bearing_coordinates' ({count}) or left out. Got "
                           f"{bearing['count']} instead.")
     return table
+
+
+SAME_POINT = 1e-3
+"""Two bearings closer than this [m] stand at one point (a bearing is some 0.3 to 1.5 m wide)."""
+
+
+def _plan_geometry(table: dict[str, Any], path: Path) -> None:
+    """The bearings of a checked ``[plan]`` table each at its own point and, when the plan's
+    ``dimensions`` (a, b) are given, the bearings and the centres of mass (floors and base slab)
+    within one a x b slab: their extent along x at most a, along y at most b, wherever the slab
+    lies about the centre of stiffness."""
+    xy = np.asarray(table["bearing_coordinates"], dtype=float)
+    where = Where(path, "plan", "bearing_coordinates")
+    close = _same_point(xy, SAME_POINT)
+    if close is not None:
+        i, j = close
+        gap = float(np.hypot(*(xy[i] - xy[j])))
+        raise ConfigError(f"{where} must give each bearing its own point (at least "
+                          f"{SAME_POINT * 1e3:g} mm apart). Got bearings {i} and {j} both at "
+                          f"{_xy(xy[i])} m ({gap * 1e3:.3g} mm apart) instead; a position "
+                          "carries one bearing.")
+    if "dimensions" not in table:
+        return
+    size = np.asarray(table["dimensions"], dtype=float)
+    slack = 1e-9 * (1.0 + size)
+    for axis, name in ((0, "x"), (1, "y")):
+        low, high = int(np.argmin(xy[:, axis])), int(np.argmax(xy[:, axis]))
+        span = xy[high, axis] - xy[low, axis]
+        if span > size[axis] + slack[axis]:
+            raise ConfigError(
+                f"{where} must lie within the slab of 'dimensions' {_xy(size)} m. Got bearings "
+                f"{low} at {_xy(xy[low])} m and {high} at {_xy(xy[high])} m, {span:g} m apart "
+                f"along {name}, more than the plan's {'ab'[axis]} = {size[axis]:g} m, instead.")
+    eccentricity = np.asarray(table.get("eccentricity", [0.0, 0.0]), dtype=float).reshape(-1, 2)
+    centres = [("eccentricity", f" of floor {k + 1}" if len(eccentricity) > 1 else "", e)
+               for k, e in enumerate(eccentricity)]
+    centres.append(("base_eccentricity", "",
+                    np.asarray(table.get("base_eccentricity", [0.0, 0.0]), dtype=float)))
+    for key, which, centre in centres:
+        for axis, name in ((0, "x"), (1, "y")):
+            low = min(float(xy[:, axis].min()), centre[axis])
+            high = max(float(xy[:, axis].max()), centre[axis])
+            if high - low > size[axis] + slack[axis]:
+                far = int(np.argmax(np.abs(xy[:, axis] - centre[axis])))
+                raise ConfigError(
+                    f"{Where(path, 'plan', key)} must put the centre of mass within the slab "
+                    f"of 'dimensions' {_xy(size)} m that covers the bearings. Got {_xy(centre)} "
+                    f"m{which}, {abs(xy[far, axis] - centre[axis]):g} m along {name} from "
+                    f"bearing {far} at {_xy(xy[far])} m, more than the plan's "
+                    f"{'ab'[axis]} = {size[axis]:g} m, instead.")
+
+
+def _same_point(xy: np.ndarray, tolerance: float) -> tuple[int, int] | None:
+    """The first two of the points ``xy`` (n, 2) [m] closer than ``tolerance`` [m] (lower index
+    first), or None: a sweep along x, each point against the next ones within ``tolerance``."""
+    order = np.argsort(xy[:, 0], kind="stable")
+    ranked = xy[order]
+    found = []
+    for k in range(1, len(xy)):
+        dx = ranked[k:, 0] - ranked[:-k, 0]
+        near = dx < tolerance
+        if not near.any():
+            break
+        hit = np.flatnonzero(near & (np.hypot(dx, ranked[k:, 1] - ranked[:-k, 1]) < tolerance))
+        found += [tuple(sorted((int(order[h]), int(order[h + k])))) for h in hit[:1]]
+    return min(found) if found else None
+
+
+def _xy(pair: Any) -> str:
+    """``(x, y)`` of a pair, short."""
+    return f"({float(pair[0]):g}, {float(pair[1]):g})"
+
+
+MAX_SLOPE = 0.5
+"""Largest displacement capacity of a bearing over its effective radius [-]: u / R_eff is the
+sine of the plates' slope at the capacity (30 degrees at 0.5; built bearings stay below about
+0.2), and the pendulum law F = N u / R_eff is a small-slope one; at 1 the geometry is
+impossible."""
+
+
+def check_bearing_geometry(bearing: dict[str, Any], path: Path) -> None:
+    """Check a checked ``[bearing]`` table's geometry: a finite ``effective_radius`` R_eff
+    [m] must exceed the ``slider_diameter`` [m] (the slider sits in plates of radius about
+    R_eff / 2) and bound the ``displacement_capacity`` [m] (given or the default 0.6 m) to
+    :data:`MAX_SLOPE` R_eff.
+
+    Raises
+    ------
+    ConfigError
+        Naming the file, ``[bearing]``, the key, the limit and the value given.
+    """
+    radius = float(bearing["effective_radius"])
+    if math.isinf(radius):
+        return
+    slider = float(bearing["slider_diameter"])
+    if slider >= radius:
+        raise ConfigError(f"{Where(path, 'bearing', 'slider_diameter')} must be below the "
+                          f"'effective_radius' {radius:g} m (the slider sits in concave plates "
+                          f"of radius about R_eff / 2). Got {slider:g} instead.")
+    capacity = float(bearing.get("displacement_capacity", 0.6))
+    limit = MAX_SLOPE * radius
+    if capacity > limit:
+        given = "" if "displacement_capacity" in bearing else " (the default)"
+        raise ConfigError(
+            f"{Where(path, 'bearing', 'displacement_capacity')} must be at most {MAX_SLOPE:g} "
+            f"x 'effective_radius' = {limit:g} m: at u / R_eff = {capacity / radius:.3g} the "
+            f"plates would slope {math.degrees(math.asin(min(capacity / radius, 1.0))):.0f} "
+            f"degrees (more than {math.degrees(math.asin(MAX_SLOPE)):.0f}; impossible at 1). "
+            f"Got {capacity:g}{given} instead.")

@@ -19,8 +19,8 @@ from structures.energy import energy_balance
 from structures.integrators import IntegrationResult
 from structures.isolated_building import IsolatedShearBuilding
 
-__all__ = ["BEARING_RECORD", "EngineHistory", "response_dataset", "temperature_fields",
-           "write_netcdf"]
+__all__ = ["BEARING_RECORD", "EngineHistory", "UpliftWarning", "response_dataset",
+           "temperature_fields", "uplift_record", "write_netcdf"]
 
 BEARING_RECORD: dict[str, int] = {
     "displacement": 2, "force": 2, "friction_force": 2, "mu": 0, "temperature": 0,
@@ -31,6 +31,47 @@ length of its (x, y) axis (0: a scalar): displacement [m], force and friction fo
 contact temperature [degC], heat flux into each sliding surface [W/m^2], axial load [N]."""
 
 _ENERGIES = ("input", "kinetic", "damping", "strain", "friction", "error")
+
+
+class UpliftWarning(RuntimeWarning):
+    """A run that finished with bearings lifted off for some steps (zero or negative axial
+    load: no contact, no friction, no restoring force there); the run's peaks hold how often,
+    from when and for how long (:func:`uplift_record`)."""
+
+
+def uplift_record(axial_load: np.ndarray, step: float) -> dict[str, list]:
+    """How the bearings at each position lifted off in a run: at every step where the axial
+    load is zero or negative the bearing has no contact (:class:`isolator.bearing.BearingElement`:
+    no force, no heat, the plates cool).
+
+    Parameters
+    ----------
+    axial_load : ndarray, shape (nt, n_positions)
+        The axial load of one bearing of each position at each committed step [N].
+    step : float
+        The analysis time step [s].
+
+    Returns
+    -------
+    dict
+        ``uplift_steps`` (int per position: the steps lifted), ``uplift_first_time`` (float per
+        position: the time of the first one [s], -1 for a bearing never lifted, so that the
+        attributes compare equal and write to netCDF as they are) and
+        ``uplift_longest`` (float per position: the longest lift-off, its consecutive steps
+        times ``step`` [s]), each a list over the positions.
+    """
+    lifted = np.asarray(axial_load, dtype=float) <= 0.0
+    if lifted.ndim == 1:
+        lifted = lifted[:, None]
+    steps = lifted.sum(axis=0)
+    first = np.where(steps > 0, step * np.argmax(lifted, axis=0), -1.0)
+    longest = np.zeros(lifted.shape[1])
+    for b in np.flatnonzero(steps):
+        edges = np.diff(np.concatenate(([0], lifted[:, b].astype(np.int8), [0])))
+        longest[b] = step * float(np.max(np.flatnonzero(edges < 0) - np.flatnonzero(edges > 0)))
+    return {"uplift_steps": [int(n) for n in steps],
+            "uplift_first_time": [float(t) for t in first],
+            "uplift_longest": [float(t) for t in longest]}
 
 
 class EngineHistory(NamedTuple):
@@ -158,6 +199,8 @@ def response_dataset(
         ``energy_kinetic``, ``energy_damping``, ``energy_strain``, ``energy_friction``,
         ``energy_error`` (time) [J]; with monitor points, ``plate_temperature`` (bearing,
         plate_point) [degC] at ``plate_point_x``, ``plate_point_y`` [m]. SI units throughout.
+        The attributes ``uplift_steps``, ``uplift_first_time`` [s] and ``uplift_longest`` [s]
+        hold, per bearing position, how the bearings lifted off (:func:`uplift_record`).
 
     Notes
     -----
@@ -283,6 +326,7 @@ def response_dataset(
         "total_mass": building.total_mass, "success": int(success), "message": message,
         "failure": failure, "peaks_up_to_failure": int(not success), "steps": int(nt - 1),
         "energy_balance_error": energies.relative_error,
+        **uplift_record(records["axial_load"], step),
     }
     if failed_at is not None:
         common["failed_at"] = float(failed_at)

@@ -76,7 +76,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     b.add_argument("--dt", type=float, default=0.005,
                    help="time step [s], at most 1/20 of the period (default 0.005)")
     add_max_steps(b, "the test")
-    b.add_argument("--mu-t0", type=float, default=0.075, help="mu_t0 (velocity, ptv)")
+    b.add_argument("--mu-t0", type=float, default=None,
+                   help="mu_t0 (velocity, ptv; default 0.075; with constant a warning: no "
+                   "effect)")
     b.add_argument("--json", action="store_true", help="print the comparison as JSON")
     b.set_defaults(handler=run_bearing)
 
@@ -243,10 +245,19 @@ def run_bearing(args: argparse.Namespace) -> int:
     )
 
     check_sine_flags(args, "dcfpb compare-opensees-bearing")
+    mu_t0 = None if args.model == "constant" else 0.075 if args.mu_t0 is None else args.mu_t0
+    if args.model == "constant" and args.mu_t0 is not None:
+        import warnings
+
+        from dcfpb.common.errors import InputWarning
+
+        warnings.warn(f"--mu-t0 {args.mu_t0:g} has no effect with --model constant: it applies "
+                      "to --model velocity and ptv only; it is ignored.", InputWarning,
+                      stacklevel=2)
     bearing = shaped_bearing(protocol_bearing(
         "constant" if args.model == "constant" else "simplified",
         slider_diameter=args.slider_diameter, effective_radius=args.effective_radius,
-        pressure=args.pressure, mu_t0=args.mu_t0,
+        pressure=args.pressure, mu_t0=mu_t0,
         design_velocity=2.0 * math.pi * args.amplitude / args.period,
         displacement_capacity=max(0.6, 1.05 * args.amplitude)), args.model)
     history = sine(args.amplitude, args.period, args.cycles, args.dt, max_steps=args.max_steps)

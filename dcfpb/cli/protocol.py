@@ -28,21 +28,27 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="friction model (default: precise)")
     p.add_argument("--slider-diameter", type=float, default=0.3, help="slider diameter [m]")
     load = p.add_mutually_exclusive_group()
-    load.add_argument("--pressure", type=float, help="contact pressure [Pa] (default 60e6)")
-    load.add_argument("--axial-load", type=float, help="axial load [N]")
+    load.add_argument("--pressure", type=float,
+                      help="contact pressure on the slider [Pa], in [1e6, 200e6], i.e. 1 to "
+                      "200 MPa (default 60e6: 60 MPa)")
+    load.add_argument("--axial-load", type=float,
+                      help="axial load [N], at least 1e4 (10 kN), e.g. 4.2e6 for 4200 kN")
     p.add_argument("--effective-radius", type=float, default=4.5, help="effective radius [m]")
     p.add_argument("--amplitude", type=float, default=0.3, help="displacement amplitude [m]")
     p.add_argument("--period", type=float, default=4.26, help="period of the sine [s]")
     p.add_argument("--cycles", type=int, default=3, help="number of cycles")
     p.add_argument("--dt", type=float, default=0.005,
                    help="time step [s], at most 1/20 of the period (default 0.005)")
-    p.add_argument("--refinement", type=float, default=0.5,
-                   help="refinement factor lambda of the simplified model (default 0.5)")
+    p.add_argument("--refinement", type=float, default=None,
+                   help="refinement factor lambda of the simplified model (default 0.5; "
+                   "with another model a warning: no effect)")
     p.add_argument("--mu0", type=float, default=None,
                    help="reference friction coefficient of the constant model "
-                   "(default 0.041 for a 300 mm slider, 0.038 for 400 mm)")
-    p.add_argument("--mu-t0", type=float, default=0.075,
-                   help="mu_t0 of the precise and simplified models (default 0.075)")
+                   "(default 0.041 for a 300 mm slider, 0.038 for 400 mm; with another model "
+                   "a warning: no effect)")
+    p.add_argument("--mu-t0", type=float, default=None,
+                   help="mu_t0 of the precise and simplified models (default 0.075; with the "
+                   "constant model a warning: no effect)")
     p.add_argument("--initial-temperature", type=float, default=20.0,
                    help="initial temperature [degC]")
     from dcfpb.cli.run import add_max_steps
@@ -70,9 +76,7 @@ ORBIT_CHOICES = ("circle", "figure8", "square", "line")
 
 
 _FLAGS = {  # flag: (low, high, low_open); None: unbounded; finite but for a flat slider's radius
-    "slider_diameter": (0.0, 10.0, True),
-    "pressure": (0.0, 1e9, True),
-    "axial_load": (0.0, None, True),
+    "slider_diameter": (0.0, 10.0, True),  # --pressure, --axial-load: check_test_load
     "effective_radius": (0.0, None, True),  # inf: a flat slider
     "amplitude": (0.0, 9.5, True),  # the bearing's capacity, 1.05 x amplitude, is at most 10 m
     "period": (0.0, None, True),
@@ -87,8 +91,11 @@ def check_sine_flags(args: argparse.Namespace, command: str) -> None:
     """Check the flags of a sine test (``dcfpb protocol``, ``dcfpb compare-opensees-bearing``)
     by name and range, and its length against ``--max-steps``, before any work."""
     from dcfpb.common.validation import check_int, check_real
+    from isolator.experiments import check_test_load
     from isolator.limits import DEFAULT_MAX_STEPS, history_steps
 
+    check_test_load(getattr(args, "pressure", None), getattr(args, "axial_load", None), command,
+                    names=("--pressure", "--axial-load"))
     for name, (low, high, low_open) in _FLAGS.items():
         if getattr(args, name, None) is not None:
             check_real(getattr(args, name), "--" + name.replace("_", "-"), command, low=low,
@@ -118,6 +125,7 @@ def _run_protocol(args: argparse.Namespace) -> int:
     if args.orbit is None and args.angle is not None:
         raise InputError(f"{command}: --angle turns an --orbit; give --orbit or leave it out.")
     angle = check_real(args.angle or 0.0, "--angle", command, low=-360.0, high=360.0)
+    friction = _friction_flags(args, command)
     if args.orbit is None:
         history = sine(args.amplitude, args.period, args.cycles, args.dt,
                        max_steps=args.max_steps)
@@ -130,8 +138,8 @@ def _run_protocol(args: argparse.Namespace) -> int:
     bearing = protocol_bearing(
         model=args.model, slider_diameter=args.slider_diameter,
         effective_radius=args.effective_radius, pressure=args.pressure,
-        axial_load=args.axial_load, design_velocity=speed, refinement=args.refinement,
-        mu0=args.mu0, mu_t0=args.mu_t0, initial_temperature=args.initial_temperature,
+        axial_load=args.axial_load, design_velocity=speed, **friction,
+        initial_temperature=args.initial_temperature,
         displacement_capacity=max(0.6, 1.05 * reach))
     if args.orbit is None:
         result = run_test(bearing, history.time, history.displacement, history.velocity,
@@ -167,6 +175,31 @@ def _run_protocol(args: argparse.Namespace) -> int:
     else:
         _print(summary)
     return 0
+
+
+def _friction_flags(args: argparse.Namespace, command: str) -> dict[str, float]:
+    """``--refinement``, ``--mu0`` and ``--mu-t0`` as given for ``--model``: one the model does
+    not use (checked already) is dropped with an :class:`~dcfpb.common.errors.InputWarning`
+    naming the flag, the model and that it has no effect."""
+    import warnings
+
+    from dcfpb.common.errors import InputWarning
+
+    uses = {"refinement": ("simplified",), "mu0": ("constant",),
+            "mu_t0": ("precise", "simplified")}
+    given = {}
+    for name, models in uses.items():
+        value = getattr(args, name)
+        if value is None:
+            continue
+        if args.model in models:
+            given[name] = value
+        else:
+            flag = "--" + name.replace("_", "-")
+            warnings.warn(f"{flag} {value:g} has no effect with --model {args.model}: it applies "
+                          f"to --model {' and '.join(models)} only; it is ignored.", InputWarning,
+                          stacklevel=2)
+    return given
 
 
 def _cycles(result, axis: str) -> list[dict]:

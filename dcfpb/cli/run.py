@@ -144,6 +144,15 @@ def building_run_inputs(args: argparse.Namespace, command: str):
     integrator = integrator_from_args(config, args.integrator, args.alpha)
     if getattr(args, "record_y", None) is not None or getattr(args, "record_z", None) is not None:
         return config, integrator, pair_from_args(args, config, command)
+    for flag in ("resample", "truncate"):  # they act on the components of a pair only
+        if getattr(args, flag, False):
+            import warnings
+
+            from dcfpb.common.errors import InputWarning
+
+            warnings.warn(f"--{flag} has no effect without --record-y: it aligns the components "
+                          "of a pair, and one record is run on its own.", InputWarning,
+                          stacklevel=2)
     motion = read_record_from_args(args.record, args)
     if args.scale != 1.0:
         motion = motion.scaled(args.scale)
@@ -221,6 +230,7 @@ def _run_building(args: argparse.Namespace) -> int:
         result = run(config, motion, model=model, integrator=integrator,
                      dt=args.dt, max_steps=args.max_steps)
     summary = peaks(result)
+    warn_uplift(summary, result.sizes["bearing"])
     building = config.building if result.sizes["direction"] == 2 else dataclasses.replace(
         config.building, plan=None)
     fixed = run_fixed_base(building, motion, dt=result.attrs["dt"], max_steps=args.max_steps)
@@ -277,6 +287,25 @@ def check_building_outputs(args: argparse.Namespace, *, files: dict | None = Non
     check_outputs(files=files, folders=folders, inputs=building_inputs(args),
                   overwrite=args.overwrite, formats={"--output": RUN_FORMATS},
                   writes={"--plot": PLAN_FIGURES if plan else RUN_FIGURES})
+
+
+def warn_uplift(summary: dict, positions: int) -> None:
+    """Warn (:class:`structures.results.UpliftWarning`, one line) that bearings lifted off in
+    the run; nothing when none did. ``summary`` is :func:`structures.analysis.peaks` of the run,
+    ``positions`` its number of bearing positions."""
+    if not summary.get("uplift_bearings"):
+        return
+    import warnings
+
+    from structures.results import UpliftWarning
+
+    warnings.warn(
+        f"{summary['uplift_bearings']} of {positions} bearing positions lifted off (axial load "
+        f"<= 0: no friction and no restoring force there), first at t = "
+        f"{summary['uplift_first_time']:.6g} s, for up to {summary['uplift_steps']} steps, the "
+        f"longest {summary['uplift_longest']:.6g} s at a time; see uplift_steps, "
+        "uplift_first_time and uplift_longest in the peaks and the Dataset's attributes.",
+        UpliftWarning, stacklevel=2)
 
 
 def print_failure(summary: dict, message: str) -> None:

@@ -107,15 +107,28 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
             raise ValueError(f"--target {text!r}: write asce7:S_DS,S_D1,T_L, e.g. "
                              "asce7:1.0,0.6,8 (S_DS and S_D1 in g, T_L in s).") from error
         level = "mce" if kind.lower() == "asce7-mce" else "design"
-        spectrum = asce7_design_spectrum(s_ds, s_d1, t_l, level=level)
+        try:
+            spectrum = asce7_design_spectrum(s_ds, s_d1, t_l, level=level)
+        except ValueError as error:
+            from dcfpb.common.errors import InputError
+
+            raise InputError(f"--target {text!r}: {error} S_DS and S_D1 are in g (1.0 for "
+                             "1 g, not 100), T_L in s.") from None
         periods = np.asarray(spectrum.periods, dtype=float)
         keep = periods > 0
         return periods[keep], np.asarray(spectrum.sa, dtype=float)[keep] / STANDARD_GRAVITY
-    rows = []
+    try:
+        from groundmotions.scaling import MAX_TARGET_SA
+    except ImportError:  # target_hook says what is missing
+        MAX_TARGET_SA = 10.0  # the same limit [g]
+
+    rows, lines = [], []
     with open(path, newline="", encoding="utf-8") as handle:
-        for row in csv.reader(handle):
+        reader = csv.reader(handle)
+        for row in reader:
             try:
                 rows.append((float(row[0]), float(row[1])))
+                lines.append(reader.line_num)
             except (ValueError, IndexError):
                 continue
     data = np.array(rows, dtype=float).reshape(-1, 2)
@@ -123,6 +136,14 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     if len(rows) < 2 or np.any(np.diff(periods) <= 0) or periods[0] < 0 or np.any(sa <= 0):
         raise ValueError(f"{path}: a target spectrum needs at least two rows 'period,sa' [s, g] "
                          "with increasing periods >= 0 and sa > 0.")
+    high = np.flatnonzero(~(sa <= MAX_TARGET_SA))
+    if high.size:
+        from dcfpb.common.errors import InputError
+
+        i = int(high[0])
+        raise InputError(f"--target {path}, line {lines[i]}: column 'sa' is in g and must be at "
+                         f"most {MAX_TARGET_SA:g} g. Got {sa[i]:g} instead: the values look like "
+                         f"%g or cm/s^2; write Sa in g (1.5 for 1.5 g).")
     return periods, sa
 
 
@@ -160,7 +181,7 @@ def _suite(args: argparse.Namespace, config, factors):
     """The suite of records, or of pairs (``--pairs``; refused before any work for a building
     file without ``[plan]``)."""
     from structures.suites.sources import motion_sources
-    from structures.suites.suite import Suite
+    from structures.suites.suite import Suite, check_modifiers
 
     if args.pairs is not None and config.plan is None:
         from dcfpb.common.errors import InputError
@@ -169,6 +190,8 @@ def _suite(args: argparse.Namespace, config, factors):
                          f"{args.building!r} has no [plan] table (bearing_coordinates, "
                          "eccentricity, ...; see README, 'A building in plan'). Give --records "
                          "to run it in one direction under single records.")
+    check_modifiers(config, args.models.split(","), _floats(args.modifiers, "--modifiers"),
+                    name="--modifiers", owner="dcfpb suite")
     motions = motion_sources(args.pairs or args.records, pairs=args.pairs is not None)
     return Suite(config, motions, models=args.models.split(","),
                  scales=_floats(args.scales, "--scales"),

@@ -28,10 +28,12 @@ PEAK_COLUMNS = {
              "peak_base_shear", "peak_roof_acceleration_x", "peak_roof_acceleration_y",
              "peak_storey_drift_x", "peak_storey_drift_y", "peak_base_rotation",
              "max_temperature", "energy_balance_error", "steps", "wall_time",
-             "peaks_up_to_failure"),
+             "peaks_up_to_failure", "uplift_bearings", "uplift_steps", "uplift_first_time",
+             "uplift_longest"),
 }
 """Columns of the peaks table from :func:`structures.analysis.peaks` (SI units, wall time [s]),
-by the kind of motion: a record's runs in one direction, a pair's in plan."""
+by the kind of motion: a record's runs in one direction, a pair's in plan (with the bearings'
+lift-off under a vertical component: ``uplift_*``)."""
 
 COLUMNS = {
     kind: ("run_id", *MOTION_COLUMNS[kind], "scale", "record_factor", "multiplier", "model",

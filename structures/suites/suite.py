@@ -38,7 +38,7 @@ from structures.suites.runs import COLUMNS, RunSpec, fingerprint
 from structures.suites.sources import MotionSource
 from structures.suites.store import RunStore
 
-__all__ = ["Suite", "SuiteResult", "run_suite"]
+__all__ = ["Suite", "SuiteResult", "check_modifiers", "run_suite"]
 
 Factors = Mapping[Any, float] | Callable[[Sequence[Any]], Any]
 
@@ -50,6 +50,51 @@ def _lookup(factors: Mapping[Any, float], source: MotionSource, name: str) -> fl
         if key in factors:
             return factors[key]
     return None
+
+
+def check_modifiers(config: BuildingConfig, models: Sequence[str], modifiers: Sequence[float],
+                    *, name: str = "property_modifiers", owner: str = "Suite") -> None:
+    """Check that each property modifier keeps the friction coefficient of each model of the
+    building file ``config`` in (0, 1].
+
+    Parameters
+    ----------
+    config : BuildingConfig
+        The building file.
+    models : sequence of str
+        Friction models of the suite.
+    modifiers : sequence of float
+        Factors on the reference friction coefficient [-], each > 0.
+    name, owner : str
+        How the modifiers and their owner are called, for the message (e.g. ``"--modifiers"``
+        and ``"dcfpb suite"``).
+
+    Raises
+    ------
+    InputError
+        Naming ``name``, the model, its reference coefficient, the allowed range of the
+        modifier and the value given.
+    """
+    for model in models:
+        if model not in MODELS:  # refused by name where the models are checked
+            continue
+        friction = config.bearing(model).friction
+        for modifier in modifiers:
+            check_real(modifier, name, owner, low=0.0, low_open=True)
+            try:
+                friction.scaled(modifier)
+            except InputError as error:
+                reference = next(((key, getattr(friction, key)) for key in ("mu0", "mu_t0")
+                                  if isinstance(getattr(friction, key, None), float)), None)
+                if reference is None:
+                    allowed, why = "a factor the friction model accepts", f" ({error})"
+                else:
+                    key, mu = reference
+                    allowed = f"in (0, {1.0 / mu:.4g}]"
+                    why = (f": it multiplies the {model} model's {key!r} = {mu:g}, which must stay "
+                           "in (0, 1]")
+                raise InputError(f"The {name!r} parameter of {owner} must be {allowed}{why}. "
+                                 f"Got {modifier!r} instead.") from None
 
 
 @dataclass(frozen=True)
@@ -134,9 +179,7 @@ class Suite:
         if not (self.models and self.scales and self.property_modifiers):
             raise InputError(f"{owner}: 'models', 'scales' and 'property_modifiers' must each "
                              "hold at least one value.")
-        for model in self.models:  # a modified coefficient outside (0, 1] fails here
-            for modifier in self.property_modifiers:
-                self.config.bearing(model).friction.scaled(modifier)
+        check_modifiers(self.config, self.models, self.property_modifiers)
         for name in ("duration", "dt"):
             if getattr(self, name) is not None:
                 check_real(getattr(self, name), name, owner, low=0.0, low_open=True)

@@ -121,7 +121,7 @@ PROTOCOL_CASES = {
     "dt 0": (["--dt", "0"], ("'--dt'", "(0, 0.213]", "Got 0.0")),
     "dt above period/20": (["--dt", "1"], ("'--dt'", "(0, 0.213]", "Got 1.0")),
     "slider diameter 0": (["--slider-diameter", "0"], ("'--slider-diameter'", "(0, 10]")),
-    "pressure negative": (["--pressure", "-1"], ("'--pressure'", "(0, 1e+09]")),
+    "pressure negative": (["--pressure", "-1"], ("'--pressure'", "[1e+06, 2e+08]", "Pa")),
     "mu_t0 0": (["--mu-t0", "0"], ("'--mu-t0'", "(0, 1]")),
     "temperature below absolute zero": (["--initial-temperature", "-300"],
                                         ("'--initial-temperature'", "[-273.15, 1000]")),

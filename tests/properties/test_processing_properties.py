@@ -100,14 +100,16 @@ SMALL = arrays(np.float64, st.integers(min_value=30, max_value=80),
 
 
 @settings(max_examples=15, deadline=None)
-@given(st.lists(SMALL, min_size=1, max_size=3), st.floats(0.01, 100.0), st.floats(0.01, 100.0))
+@given(st.lists(SMALL, min_size=1, max_size=3), st.floats(0.01, 100.0), st.floats(0.01, 10.0))
 def test_scaling_is_linear_in_records_and_target(records, k, c):
     """Scaling k times the records to c times the target gives factors c / k times as large,
-    and the same scaled records to round-off."""
+    and the same scaled records to round-off (targets up to 9.2 g, any factor: max_factor=None
+    turns the bounds on factors off)."""
     motions = [GroundMotion(a, 0.01, f"r{i}") for i, a in enumerate(records)]
-    base = scale_suite(motions, TARGET, (0.1, 1.5), n_periods=8)
+    base = scale_suite(motions, TARGET, (0.1, 1.5), n_periods=8, max_factor=None)
     target = TargetSpectrum(TARGET.periods, c * TARGET.sa)
-    other = scale_suite([m.scaled(k) for m in motions], target, (0.1, 1.5), n_periods=8)
+    other = scale_suite([m.scaled(k) for m in motions], target, (0.1, 1.5), n_periods=8,
+                        max_factor=None)
     np.testing.assert_allclose(other.scale_factors, base.scale_factors * c / k, rtol=1e-9)
     assert abs(base.min_ratio - 1.0) < 1e-12 and abs(other.min_ratio - 1.0) < 1e-12
     for a, b in zip(base.motions, other.motions, strict=True):

@@ -97,7 +97,9 @@ def test_the_peaks_in_plan_hold_to_the_histories(files):
 
     result = structures.run(files["plan"], read_pair(files["x"], files["y"], units="m/s^2"))
     p = peaks(result)
-    assert tuple(p) == PLAN_PEAK_KEYS
+    assert tuple(p) == (*PLAN_PEAK_KEYS, "uplift_bearings", "uplift_steps", "uplift_first_time",
+                        "uplift_longest")  # the lift-off keys last (no vertical: none)
+    assert p["uplift_bearings"] == 0
     reach = np.hypot(*np.moveaxis(result["bearing_displacement"].values, -1, 0))
     assert p["peak_isolator_displacement"] == reach.max()
     assert p["corner_bearing"] == int(np.argmax(reach.max(axis=0)))

@@ -43,7 +43,7 @@ CASES = [
      "'linear', 'spherical'", "'cubic'"),
     (lambda: friction_model("exact", slider_diameter=0.3, design_pressure=6e7,
                             design_velocity=0.4), "model", "'precise'", "'exact'"),
-    (lambda: protocol_bearing("precise", pressure=-5.0), "pressure", "(0, 1e+09]", "-5.0"),
+    (lambda: protocol_bearing("precise", pressure=-5.0), "pressure", "[1e+06, 2e+08]", "-5.0"),
     (lambda: sum_of_exponentials(1e-6, 1e4, 0.5), "tolerance", "[1e-13, 0.01]", "0.5"),
 ]
 
