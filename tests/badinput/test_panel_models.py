@@ -88,7 +88,7 @@ SHORT = ["--cycles", "1", "--period", "1.0", "--dt", "0.05", "--amplitude", "0.0
 
 
 def _protocol(*flags: str) -> Callable[[Inputs], list[str]]:
-    return lambda i: ["protocol", *SHORT, *flags, "--output", str(i.earlier)]
+    return lambda i: ["protocol", *SHORT, *flags, "--output", str(i.earlier), "--overwrite"]
 
 
 def _suite(*flags: str, plan_old: str | None = None) -> Callable[[Inputs], list[str]]:
