@@ -244,7 +244,22 @@ def _run_building(args: argparse.Namespace) -> int:
         print()
         print_ratios({model: ratios}, fixed, float(abs(fixed["ground_acceleration"]).max()))
         print_failure(summary, result.attrs["message"])
+    report_failure("run", summary, result.attrs["message"])
     return 0 if result.attrs["success"] else 1
+
+
+def report_failure(command: str, summary: dict, message: str) -> None:
+    """One line ``dcfpb <command>: run failed (<kind>) at t = <time> s: <message>`` on stderr
+    for a run that failed (the exit status 1 of the failure contract), also with ``--json``;
+    nothing for a run that finished. ``summary`` is :func:`structures.analysis.peaks`."""
+    if not summary.get("peaks_up_to_failure"):
+        return
+    import sys
+
+    failed_at = summary.get("failed_at")
+    when = f" at t = {failed_at:.6g} s" if failed_at is not None else ""
+    print(f"dcfpb {command}: run failed ({summary.get('failure') or 'error'}){when}: "
+          f"{message}", file=sys.stderr)
 
 
 def print_failure(summary: dict, message: str) -> None:
