@@ -75,13 +75,13 @@ class TargetSpectrum:
                               min_length=2).copy()
         sa = check_array(self.sa, "sa", owner, low=0.0, low_open=True).copy()
         if sa.shape != periods.shape:
-            raise ValueError(f"The 'sa' parameter of {owner} must have one value per period "
+            raise InputError(f"The 'sa' parameter of {owner} must have one value per period "
                              f"({periods.size}). Got {sa.size} instead.")
         steps = np.diff(periods)
         if (steps <= 0.0).any():
             i = int(np.argmax(steps <= 0.0)) + 1
             here, before = float(periods[i]), float(periods[i - 1])
-            raise ValueError(f"The 'periods' parameter of {owner} must be strictly increasing. "
+            raise InputError(f"The 'periods' parameter of {owner} must be strictly increasing. "
                              f"Got {here!r} after {before!r} at index {i} instead.")
         damping = check_real(self.damping, "damping", owner, low=0.0, high=1.0, high_open=True)
         periods.flags.writeable = False

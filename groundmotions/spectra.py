@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_array, check_real
 
 if TYPE_CHECKING:
@@ -74,7 +75,7 @@ def _check_damping(damping: object, owner: str, size: int | None = None) -> floa
         return check_real(damping, "damping", owner, low=0.0, high=1.0, high_open=True)
     ratios = check_array(damping, "damping", owner, low=0.0)
     if ratios.shape != (size,) or (ratios >= 1.0).any():
-        raise ValueError(
+        raise InputError(
             f"The 'damping' parameter of {owner} must be a float in [0, 1) or {size} such "
             f"floats, one per period. Got {damping!r} instead."
         )

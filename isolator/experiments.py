@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_choice, check_real
 from isolator.bearing import DCFPBearing
 from isolator.friction import ConstantFriction, PTVFriction
@@ -78,7 +79,7 @@ def protocol_bearing(
     check_real(slider_diameter, "slider_diameter", owner, low=0.0, low_open=True, high=10.0)
     area = math.pi * (0.5 * slider_diameter) ** 2
     if pressure is not None and axial_load is not None:
-        raise ValueError(f"{owner}: give either 'pressure' or 'axial_load', not both.")
+        raise InputError(f"{owner}: give either 'pressure' or 'axial_load', not both.")
     if axial_load is None:
         pressure = 60.0e6 if pressure is None else pressure
         check_real(pressure, "pressure", owner, low=0.0, low_open=True, high=1e9)

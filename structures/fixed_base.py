@@ -39,7 +39,7 @@ def _modal_damping_ratios(building: ShearBuilding, shapes: np.ndarray,
     diagonal = np.diag(modal)
     coupling = np.abs(modal - np.diag(diagonal)).max(initial=0.0)
     if coupling > 1e-8 * np.abs(diagonal).max(initial=0.0):
-        raise ValueError(
+        raise InputError(
             "The 'damping' parameter of ShearBuilding must be classical (diagonal in the "
             "fixed-base modes) for run_fixed_base. Got a damping matrix whose modal coupling is "
             f"{coupling:.3g} of its largest modal term instead."

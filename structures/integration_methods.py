@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dcfpb.common.errors import InputTypeError
 from dcfpb.common.validation import check_choice, check_real
 
 __all__ = ["HHT", "METHODS", "Newmark", "as_method"]
@@ -81,7 +82,7 @@ def as_method(method: object) -> Newmark | HHT:
         return method
     if isinstance(method, str):
         return METHODS[check_choice(method, "method", "integrate", tuple(METHODS))]()
-    raise TypeError(
+    raise InputTypeError(
         f"The 'method' parameter of integrate must be one of {tuple(METHODS)} or a Newmark or "
         f"HHT instance. Got {method!r} instead."
     )

@@ -10,6 +10,8 @@ import dataclasses
 import json
 from pathlib import Path
 
+from dcfpb.common.errors import InputError
+
 FIXED_BASE = "fixed base"
 """The label of the fixed-base building in tables and plots."""
 
@@ -114,7 +116,7 @@ def integrator_from_args(config, kind: str | None, alpha: float | None):
         return config.integrator
     if (kind or ("hht" if isinstance(config.integrator, HHT) else "newmark")) == "newmark":
         if alpha is not None:
-            raise ValueError("--alpha applies to --integrator hht only.")
+            raise InputError("--alpha applies to --integrator hht only.")
         return Newmark()
     if alpha is None:
         alpha = config.integrator.alpha if isinstance(config.integrator, HHT) else -0.05

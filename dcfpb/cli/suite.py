@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
 from dcfpb.common.units import STANDARD_GRAVITY
 
 
@@ -81,9 +82,9 @@ def _floats(text: str, option: str) -> tuple[float, ...]:
     try:
         values = tuple(float(x) for x in text.split(",") if x.strip())
     except ValueError:
-        raise ValueError(f"{option} must be numbers separated by commas. Got {text!r}.") from None
+        raise InputError(f"{option} must be numbers separated by commas. Got {text!r}.") from None
     if not values:
-        raise ValueError(f"{option} needs at least one value. Got {text!r}.")
+        raise InputError(f"{option} needs at least one value. Got {text!r}.")
     return values
 
 
@@ -100,7 +101,7 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         try:
             s_ds, s_d1, t_l = (float(v) for v in values.split(","))
         except ValueError as error:
-            raise ValueError(f"--target {text!r}: write asce7:S_DS,S_D1,T_L, e.g. "
+            raise InputError(f"--target {text!r}: write asce7:S_DS,S_D1,T_L, e.g. "
                              "asce7:1.0,0.6,8 (S_DS and S_D1 in g, T_L in s).") from error
         level = "mce" if kind.lower() == "asce7-mce" else "design"
         spectrum = asce7_design_spectrum(s_ds, s_d1, t_l, level=level)
@@ -117,7 +118,7 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     data = np.array(rows, dtype=float).reshape(-1, 2)
     periods, sa = data[:, 0], data[:, 1]
     if len(rows) < 2 or np.any(np.diff(periods) <= 0) or periods[0] < 0 or np.any(sa <= 0):
-        raise ValueError(f"{path}: a target spectrum needs at least two rows 'period,sa' [s, g] "
+        raise InputError(f"{path}: a target spectrum needs at least two rows 'period,sa' [s, g] "
                          "with increasing periods >= 0 and sa > 0.")
     return periods, sa
 
@@ -129,7 +130,7 @@ def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float
     try:
         from groundmotions.scaling import scale_suite
     except ImportError as error:
-        raise ValueError(f"--target needs groundmotions.scaling.scale_suite, which cannot be "
+        raise InputError(f"--target needs groundmotions.scaling.scale_suite, which cannot be "
                          f"imported here ({error}). Give the scale factors with --scales "
                          "instead.") from None
 
@@ -144,7 +145,7 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
     if text:
         low, high = _floats(text, "--period-range")[:2]
         if not 0 < low < high:
-            raise ValueError(f"--period-range must be TMIN,TMAX with 0 < TMIN < TMAX. "
+            raise InputError(f"--period-range must be TMIN,TMAX with 0 < TMIN < TMAX. "
                              f"Got {text!r}.")
         return low, high
     radius = config.bearing_geometry["effective_radius"]
@@ -185,9 +186,9 @@ def _run(args: argparse.Namespace) -> int:
     check_real(args.wait_lock, "--wait-lock", "dcfpb suite", low=0.0, allow_inf=True)
     check_int(args.max_steps, "--max-steps", "dcfpb suite", low=1)
     if args.period_range and not args.target:
-        raise ValueError("--period-range applies to --target only.")
+        raise InputError("--period-range applies to --target only.")
     if args.workers is not None and args.scheduler:
-        raise ValueError("give --workers (a local cluster) or --scheduler, not both.")
+        raise InputError("give --workers (a local cluster) or --scheduler, not both.")
     config = load_config(args.building)
     target, period_range = None, None
     if args.target:

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.validation import check_real
 
 REQUIRED_COLUMNS = ("time", "displacement", "force")
@@ -125,8 +125,8 @@ class Campaign:
         owner = type(self).__name__
         tests = tuple(self.tests)
         if not tests or not all(isinstance(t, BearingRecord) for t in tests):
-            raise TypeError(f"The 'tests' parameter of {owner} must be one or more "
-                            f"BearingRecord objects. Got {self.tests!r} instead.")
+            raise InputTypeError(f"The 'tests' parameter of {owner} must be one or more "
+                                 f"BearingRecord objects. Got {self.tests!r} instead.")
         object.__setattr__(self, "tests", tests)
         check_real(self.effective_radius, "effective_radius", owner, low=0.0, low_open=True,
                    allow_inf=True)

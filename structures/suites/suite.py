@@ -167,14 +167,14 @@ class Suite:
             if not isinstance(answer, Mapping):
                 values = list(answer)
                 if len(values) != len(readable):
-                    raise ValueError(f"The factor hook returned {len(values)} factors for "
+                    raise InputError(f"The factor hook returned {len(values)} factors for "
                                      f"{len(readable)} {self.kind}s.")
                 answer = dict(zip(readable, values, strict=True))
             given = answer
         factors = {s: _lookup(given, s, motions[s].name if read else s.name) for s in readable}
         missing = [s.name for s, v in factors.items() if v is None]
         if missing:
-            raise ValueError(f"No scale factor given for the {self.kind}(s) {missing}.")
+            raise InputError(f"No scale factor given for the {self.kind}(s) {missing}.")
         return {s: check_real(v, "factors", "Suite", low=0.0, low_open=True)
                 for s, v in factors.items()}
 
@@ -194,7 +194,7 @@ class Suite:
                  for modifier in self.property_modifiers]
         twice = sorted(i for i, n in Counter(s.run_id for s in specs).items() if n > 1)
         if twice:
-            raise ValueError(f"The suite holds the same run more than once (a {self.kind}, "
+            raise InputError(f"The suite holds the same run more than once (a {self.kind}, "
                              f"scale or modifier given twice): {twice[:3]}.")
         return specs, motions, unreadable
 
