@@ -303,6 +303,7 @@ def suite_spectra(motions: Sequence[Motion], periods: np.ndarray, damping: float
     (`groundmotions.rotd_spectra`, directions ``angle_step`` [deg] apart). ``periods`` [s] and
     ``damping`` [-] as those take them; ``motions`` are all records or all pairs (:data:`MEASURES`).
     """
+    motions, _ = _suite(motions, "suite_spectra")
     if isinstance(motions[0], GroundMotionPair):
         rotd = [rotd_spectra(p, periods, damping, (50, 100), angle_step=angle_step)
                 for p in motions]
@@ -313,6 +314,10 @@ def suite_spectra(motions: Sequence[Motion], periods: np.ndarray, damping: float
 
 def _suite(motions: Any, owner: str) -> tuple[tuple[Motion, ...], type]:
     """The records or the pairs of a suite and their kind (a key of :data:`MEASURES`)."""
+    if isinstance(motions, str | bytes) or not hasattr(motions, "__iter__"):
+        raise InputTypeError(f"The 'motions' parameter of {owner} must be a non-empty sequence "
+                             f"of GroundMotion or of GroundMotionPair. Got {motions!r:.80} "
+                             "instead.")
     suite = tuple(motions)
     for kind in MEASURES:
         if suite and all(isinstance(m, kind) for m in suite):

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.validation import check_array, check_real
 
 if TYPE_CHECKING:
@@ -65,7 +65,7 @@ def _check_record(acceleration: object, dt: object, owner: str) -> tuple[np.ndar
 
 
 def _check_periods(periods: object, owner: str, *, allow_zero: bool) -> np.ndarray:
-    values = np.atleast_1d(np.asarray(periods, dtype=float))
+    values = np.atleast_1d(periods) if np.ndim(periods) == 0 else periods
     return check_array(values, "periods", owner, low=0.0, low_open=not allow_zero)
 
 
@@ -240,6 +240,9 @@ def response_spectra(
 
 def spectrum(motion: GroundMotion, periods: np.ndarray, damping: float = 0.05) -> Spectrum:
     """`response_spectrum` of a `GroundMotion` (acceleration [m/s^2], dt [s])."""
+    if not (hasattr(motion, "acceleration") and hasattr(motion, "dt")):
+        raise InputTypeError(f"The 'motion' parameter of spectrum must be a GroundMotion. Got "
+                             f"{motion!r:.80} instead.")
     return response_spectrum(motion.acceleration, motion.dt, periods, damping)
 
 

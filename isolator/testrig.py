@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from dcfpb.common.errors import InputError
-from dcfpb.common.validation import check_array
+from dcfpb.common.validation import check_array, check_instance
 from isolator.bearing import DCFPBearing
 from isolator.orbits import Orbit
 
@@ -209,6 +209,7 @@ def run_test(
         motion.
     """
     owner = "run_test"
+    check_instance(bearing, "bearing", owner, DCFPBearing, "a DCFPBearing")
     t, u, v = imposed_history(time, displacement, velocity, owner)
     reach = np.abs(u) if u.ndim == 1 else np.hypot(u[:, 0], u[:, 1])
     capacity = bearing.displacement_capacity
@@ -239,5 +240,7 @@ def run_test(
 def run_orbit(bearing: DCFPBearing, orbit: Orbit, *,
               grid_orientation: float | None = None) -> BearingTestResult:
     """:func:`run_test` on an :class:`~isolator.orbits.Orbit` (its exact velocity)."""
+    check_instance(bearing, "bearing", "run_orbit", DCFPBearing, "a DCFPBearing")
+    check_instance(orbit, "orbit", "run_orbit", Orbit, "an Orbit (isolator.orbit)")
     return run_test(bearing, orbit.time, orbit.displacement, orbit.velocity, name=orbit.name,
                     grid_orientation=grid_orientation)

@@ -18,6 +18,7 @@ import time as _time
 import numpy as np
 
 from dcfpb.common.errors import InputError
+from dcfpb.common.validation import check_dataset, check_instance
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import sdof_response
@@ -82,6 +83,9 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion | GroundMotionP
     """
     import xarray as xr
 
+    check_instance(building, "building", "run_fixed_base", ShearBuilding, "a ShearBuilding")
+    check_instance(motion, "motion", "run_fixed_base", (GroundMotion, GroundMotionPair),
+                   "a GroundMotion or a GroundMotionPair")
     pair = isinstance(motion, GroundMotionPair)
     if pair != (building.plan is not None):
         raise InputError("The fixed base of a building in plan runs under a pair of records and "
@@ -195,5 +199,7 @@ def superstructure_peaks(result) -> dict[str, float]:
 
 def ratios_to_fixed_base(result, fixed_base) -> dict[str, float]:
     """Each of :func:`superstructure_peaks` of ``result`` over that of ``fixed_base`` [-]."""
+    check_dataset(result, "result", "ratios_to_fixed_base")
+    check_dataset(fixed_base, "fixed_base", "ratios_to_fixed_base")
     isolated, fixed = superstructure_peaks(result), superstructure_peaks(fixed_base)
     return {name: isolated[name] / fixed[name] for name in isolated}

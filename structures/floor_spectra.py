@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from dcfpb.common.validation import check_dataset
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import response_spectra, spectrum
@@ -78,6 +79,7 @@ def with_floor_spectra(result, motion: GroundMotion | GroundMotionPair | None = 
         (floor, direction, period) and ``ground_spectrum`` (direction, period) [m/s^2] and the
         attribute ``spectrum_damping``.
     """
+    check_dataset(result, "result", "with_floor_spectra")
     return with_floor_spectra_all({"run": result}, motion, periods=periods,
                                   damping=damping)["run"]
 

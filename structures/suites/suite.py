@@ -27,8 +27,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from dcfpb.common.errors import InputError, InputWarning
-from dcfpb.common.validation import check_choice, check_real
+from dcfpb.common.errors import InputError, InputTypeError, InputWarning
+from dcfpb.common.validation import check_choice, check_instance, check_real
 from isolator.experiments import MODELS
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
@@ -104,6 +104,13 @@ class Suite:
 
     def __post_init__(self) -> None:
         owner = "Suite"
+        check_instance(self.config, "config", owner, BuildingConfig,
+                       "a BuildingConfig (structures.load_config)")
+        for name in ("motions", "models", "scales", "property_modifiers"):
+            value = getattr(self, name)
+            if isinstance(value, str | bytes) or not hasattr(value, "__iter__"):
+                raise InputTypeError(f"The {name!r} parameter of {owner} must be a sequence. "
+                                     f"Got {value!r:.80} instead.")
         motions = tuple(m if isinstance(m, MotionSource) else MotionSource.record(m)
                         for m in self.motions)
         if not motions:
@@ -241,6 +248,7 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
     structures.suites.lock.SuiteLocked
         When another suite writes into ``out_dir``.
     """
+    check_instance(suite, "suite", "run_suite", Suite, "a Suite")
     check_run_options(write, run_timeout, max_steps, "run_suite")
     with SuiteLock(out_dir, wait=wait_lock) if lock else nullcontext():
         start = time.perf_counter()
