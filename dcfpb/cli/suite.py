@@ -57,9 +57,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--duration", type=float, help="keep the first DURATION s of each record")
     p.add_argument("--dt", type=float, help="analysis time step [s] (default: the file's; a "
                    "record with a finer step runs at its own)")
-    p.add_argument("--workers", type=int, help="local worker processes (default: CPUs)")
+    p.add_argument("--workers", type=int, help="local worker processes (default and at most: "
+                   "the CPU cores available; more warns and uses those)")
     p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="use a running Dask scheduler, e.g. tcp://10.0.0.5:8786")
+                   help="use a running Dask scheduler, e.g. tcp://10.0.0.5:8786 (refused, exit "
+                   "status 2, if it does not answer as one within 5 s)")
     p.add_argument("--out", default="dcfpb-suite", metavar="DIR",
                    help="result folder (default ./dcfpb-suite); one suite at a time: a "
                    "second one into it refuses (exit status 2) unless --wait-lock")
@@ -189,6 +191,15 @@ def _run(args: argparse.Namespace) -> int:
         raise InputError("--period-range applies to --target only.")
     if args.workers is not None and args.scheduler:
         raise InputError("give --workers (a local cluster) or --scheduler, not both.")
+    workers = args.workers
+    if args.scheduler:
+        from structures.suites.tasks import check_scheduler
+
+        check_scheduler(args.scheduler, "--scheduler")
+    elif workers is not None:
+        from structures.suites.tasks import capped_workers
+
+        workers = capped_workers(workers, "--workers", "dcfpb suite")
     config = load_config(args.building)
     target, period_range = None, None
     if args.target:
@@ -197,7 +208,7 @@ def _run(args: argparse.Namespace) -> int:
     suite = _suite(args, config, None if target is None else target_hook(*target, period_range))
     with SuiteLock(args.out, wait=args.wait_lock):  # the plots and tables too
         try:
-            result = run_suite(suite, args.out, n_workers=args.workers,
+            result = run_suite(suite, args.out, n_workers=workers,
                                scheduler_address=args.scheduler, progress=not args.no_progress,
                                run_timeout=args.run_timeout, lock=False,
                                max_steps=args.max_steps)
