@@ -42,7 +42,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from dcfpb import __version__
-from dcfpb.common.errors import InputError, RunFailure
+from dcfpb.common.errors import EXIT_INTERNAL_ERROR, InputError, RunFailure
 
 __all__ = ["build_parser", "console", "main"]
 
@@ -61,9 +61,6 @@ COMMAND_MODULES: tuple[str, ...] = (
     "dcfpb.cli.diagnose",
 )
 """Modules with a ``register(subparsers)`` function adding further sub-commands."""
-
-EXIT_INTERNAL_ERROR = 3
-"""Exit status of an internal error (a bug): anything but bad input or a run failure."""
 
 EXIT_STATUSES = """exit status:
   0  success

@@ -80,7 +80,7 @@ def client_for(n_workers: int | None, scheduler_address: str | None) -> Iterator
     if scheduler_address:
         address = check_scheduler(scheduler_address)
         try:
-            client = Client(address, timeout=SCHEDULER_TIMEOUT)
+            client = Client(address, timeout=max(SCHEDULER_TIMEOUT, 1.0))
         except Exception as error:  # answered the probe, but not as a scheduler does
             reason = f"the Dask client could not connect: {error}"
             raise InputError(_scheduler_refusal("scheduler_address", scheduler_address,
@@ -104,8 +104,9 @@ def _scheduler_refusal(name: str, address: str, reason: str) -> str:
 
 
 def check_scheduler(address: object, name: str = "scheduler_address",
-                    timeout: float = SCHEDULER_TIMEOUT) -> str:
-    """``address``, checked to be a Dask scheduler that answers within ``timeout`` [s].
+                    timeout: float | None = None) -> str:
+    """``address``, checked to be a Dask scheduler that answers within ``timeout`` [s]
+    (default :data:`SCHEDULER_TIMEOUT`).
 
     A ``tcp://host:port`` (or ``host:port``) address is probed before Dask connects: the
     connection must open and the first message must arrive within ``timeout`` and carry the
@@ -122,6 +123,7 @@ def check_scheduler(address: object, name: str = "scheduler_address",
     import socket
     import struct
 
+    timeout = SCHEDULER_TIMEOUT if timeout is None else timeout
     if not isinstance(address, str) or not address.strip():
         raise InputTypeError(_scheduler_refusal(name, str(address), "not an address"))
     address = address.strip()
