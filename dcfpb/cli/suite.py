@@ -189,10 +189,10 @@ def _run(args: argparse.Namespace) -> int:
     check_int(args.max_steps, "--max-steps", "dcfpb suite", low=1)
     if args.period_range and not args.target:
         raise InputError("--period-range applies to --target only.")
-    if args.workers is not None and args.scheduler:
+    if args.workers is not None and args.scheduler is not None:
         raise InputError("give --workers (a local cluster) or --scheduler, not both.")
     workers = args.workers
-    if args.scheduler:
+    if args.scheduler is not None:
         from structures.suites.tasks import check_scheduler
 
         check_scheduler(args.scheduler, "--scheduler")
