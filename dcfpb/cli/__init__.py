@@ -115,7 +115,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"dcfpb {args.command}: error: {error}", file=sys.stderr)
         return 2
     except USER_PATH_ERRORS as error:
-        message = user_path_message(error, argv)
+        message = user_path_message(error, argv, vars(args))
         if message is None:
             return _internal_error(args.command, argv)
         print(f"dcfpb {args.command}: error: {message}", file=sys.stderr)
@@ -126,13 +126,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         warnings.formatwarning = shown
 
 
-def user_path_message(error: OSError, argv: Sequence[str]) -> str | None:
+def user_path_message(error: OSError, argv: Sequence[str],
+                      values: dict | None = None) -> str | None:
     """The message of an operating-system error about a path given on the command line: the
     flag (or the positional argument) that gave it, the path and the reason; None when the
     error is about no path the user gave (an internal error then).
 
     A path counts as given when it is an argument of ``argv`` (or the value of a
     ``--flag=value``), or lies inside a folder given there (a record of a ``--records`` folder).
+    A positional argument is named by its destination in ``values`` (the parsed arguments).
     """
     if error.filename is None:
         return None
@@ -147,7 +149,9 @@ def user_path_message(error: OSError, argv: Sequence[str]) -> str | None:
             continue
         if not flag:
             before = argv[index - 1] if index else ""
-            flag = before if before.startswith("-") else "the argument"
+            flag = before if before.startswith("-") else next(
+                (name for name, held in (values or {}).items()
+                 if held == value or (isinstance(held, list) and value in held)), "argument")
         inside = "" if target == given else f" (inside {value})"
         return f"{flag} {value}: {reason}: {error.filename}{inside}"
     return None
