@@ -178,6 +178,25 @@ def test_a_record_past_the_capacity_in_one_step_exits_1(tmp_path, capsys):
     assert "displacement_capacity" in captured.err
 
 
+def test_compare_opensees_with_our_run_failing_at_its_first_step_exits_1(tmp_path, capsys):
+    from structures.opensees.runtime import import_opensees
+
+    try:
+        import_opensees()
+    except ImportError as error:
+        pytest.skip(f"openseespy cannot be imported: {error}")
+    building = _building(tmp_path, yield_displacement="yield_displacement = 1e-12 #")
+    record = _short_record(tmp_path, samples=20)
+    status = main(["compare-opensees", str(building), "--record", str(record), "--record-dt",
+                   "0.02", "--units", "g", "--json"])
+    captured = capsys.readouterr()
+    assert status == 1, captured.err  # was exit 2: "must share their time step ... 0.005 s and
+    summary = json.loads(captured.out)  # 0.005 s", the one sample kept read as another step
+    assert summary["ours"]["success"] is False and summary["ours"]["steps"] == 0
+    assert "dcfpb compare-opensees: run failed (convergence) at t = 0.005 s: ours: Step 1" in \
+        captured.err
+
+
 @pytest.mark.parametrize("plan", [False, True], ids=["one-direction", "plan"])
 def test_zero_committed_steps_flow_through_peaks_and_floor_spectra(plan, tmp_path):
     from groundmotions.bundled import load_bundled
