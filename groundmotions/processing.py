@@ -79,7 +79,13 @@ def velocity_and_displacement(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Ground velocity [m/s] and displacement [m] from rest of ``acceleration`` [m/s^2] sampled
     every ``dt`` [s], exact for an acceleration linear between samples."""
-    a = np.asarray(acceleration, dtype=float)
+    owner = "velocity_and_displacement"
+    try:
+        a = np.asarray(acceleration, dtype=float)
+    except (TypeError, ValueError):
+        raise InputTypeError(f"The 'acceleration' parameter of {owner} must be an array of "
+                             f"floats [m/s^2]. Got {acceleration!r:.80} instead.") from None
+    dt = check_real(dt, "dt", owner, low=0.0, low_open=True)
     velocity = np.concatenate(([0.0], np.cumsum(0.5 * dt * (a[1:] + a[:-1]))))
     increments = dt * velocity[:-1] + dt * dt * (a[:-1] / 3.0 + a[1:] / 6.0)
     return velocity, np.concatenate(([0.0], np.cumsum(increments)))

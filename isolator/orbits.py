@@ -215,5 +215,6 @@ def orbit(kind: str, amplitude: float, period: float, cycles: int, dt: float, *,
     """The orbit called ``kind`` (one of :data:`ORBITS`) of size ``amplitude`` [m]: the
     circle's radius, the figure-eight's and the line's amplitude, the square's half side."""
     kind = check_choice(kind, "kind", "orbit", ORBITS)
+    check_real(amplitude, "amplitude", "orbit", low=0.0, low_open=True)
     make = {"circle": circle, "figure8": figure_eight, "square": square, "line": line}[kind]
     return make(amplitude, period, cycles, dt, angle=angle, max_steps=max_steps)

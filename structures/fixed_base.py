@@ -18,7 +18,7 @@ import time as _time
 import numpy as np
 
 from dcfpb.common.errors import InputError
-from dcfpb.common.validation import check_dataset, check_instance
+from dcfpb.common.validation import check_dataset, check_instance, check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import sdof_response
@@ -86,6 +86,8 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion | GroundMotionP
     check_instance(building, "building", "run_fixed_base", ShearBuilding, "a ShearBuilding")
     check_instance(motion, "motion", "run_fixed_base", (GroundMotion, GroundMotionPair),
                    "a GroundMotion or a GroundMotionPair")
+    if dt is not None:
+        check_real(dt, "dt", "run_fixed_base", low=0.0, low_open=True)
     pair = isinstance(motion, GroundMotionPair)
     if pair != (building.plan is not None):
         raise InputError("The fixed base of a building in plan runs under a pair of records and "

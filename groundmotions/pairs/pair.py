@@ -342,5 +342,6 @@ def read_pair_manifest(path: PathLike) -> tuple[GroundMotionPair, ...]:
         A bad manifest (`manifest_rows`), a missing or unreadable file or a bad pair: the message
         starts with ``"<manifest>, line <n>"`` and names the column or the component.
     """
+    check_path(path, "path", "read_pair_manifest")
     return tuple(_read_pair(row.files, row.name, row.dt, row.units, None, False, row.where)
                  for row in manifest_rows(path))

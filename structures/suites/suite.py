@@ -28,7 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from dcfpb.common.errors import InputError, InputTypeError, InputWarning
-from dcfpb.common.validation import check_choice, check_instance, check_real
+from dcfpb.common.validation import check_choice, check_instance, check_path, check_real
 from isolator.experiments import MODELS
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
@@ -249,6 +249,7 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
         When another suite writes into ``out_dir``.
     """
     check_instance(suite, "suite", "run_suite", Suite, "a Suite")
+    check_path(out_dir, "out_dir", "run_suite")
     check_run_options(write, run_timeout, max_steps, "run_suite")
     with SuiteLock(out_dir, wait=wait_lock) if lock else nullcontext():
         start = time.perf_counter()
