@@ -223,6 +223,21 @@ def test_zero_committed_steps_flow_through_peaks_and_floor_spectra(plan, tmp_pat
     assert all(np.isfinite(v) for v in ratios.values())
 
 
+def test_a_time_limit_hit_at_the_first_step_keeps_one_step_and_its_spectra():
+    from groundmotions.bundled import load_bundled
+    from structures.analysis import peaks, run
+    from structures.config import load_config
+
+    config = load_config(EXAMPLE)
+    result = run(config.building, config.bearing("constant"), load_bundled("elcentro"),
+                 n_bearings=config.n_bearings, engine="reference", time_limit=1e-12,
+                 floor_spectra=True)
+    assert result.sizes["time"] == 2 and result.attrs["failure"] == "timeout"
+    summary = peaks(result)
+    assert summary["steps"] == 1 and summary["failed_at"] == pytest.approx(0.005)
+    assert np.isfinite(result["floor_spectrum"].values).all()
+
+
 def test_the_energy_of_no_step_is_zero():
     from structures.energy import trapezoid_work
 
