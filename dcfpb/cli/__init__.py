@@ -17,8 +17,10 @@ Exit status (:data:`EXIT_STATUSES`, also in ``dcfpb --help``):
 2
     bad input: an :class:`dcfpb.common.errors.InputError` (the message names the flag, key,
     column or file), an argparse error, or a file or folder given on the command line that is
-    missing, unreadable or of the wrong kind (``FileNotFoundError``, ``PermissionError``,
-    ``IsADirectoryError``, ``NotADirectoryError``): ``dcfpb <command>: error: <message>``.
+    missing, unreadable or of the wrong kind (:data:`USER_PATH_ERRORS`: ``FileNotFoundError``,
+    ``PermissionError``, ``IsADirectoryError``, ``NotADirectoryError``, ``FileExistsError``):
+    ``dcfpb <command>: error: <message>`` naming the flag. Such an error about a path the user
+    did not give is an internal error.
 3
     an internal error, anything else (a plain ``ValueError``, ``TypeError``, ``IndexError``, a
     numba error: a bug): ``dcfpb <command>: internal error: <one line>; please report it ...
