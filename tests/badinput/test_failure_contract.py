@@ -167,6 +167,19 @@ def test_a_run_failing_at_its_first_step_exits_1_naming_the_time(tmp_path, capsy
     assert output.is_file() and sorted(p.name for p in plots.iterdir())  # written, not crashed
 
 
+def test_a_building_in_plan_failing_at_its_first_step_plots_and_exits_1(tmp_path, capsys):
+    building = _building(tmp_path, EXAMPLE_PLAN,
+                         yield_displacement="yield_displacement = 1e-12 #")
+    record = _short_record(tmp_path, samples=20)
+    plots = tmp_path / "plots"
+    status = main(["run", str(building), "--record", str(record), "--record-y", str(record),
+                   "--record-dt", "0.02", "--units", "g", "--plot", str(plots)])
+    captured = capsys.readouterr()
+    assert status == 1, captured.err  # was exit 3: the plate's field of no monitor point
+    assert captured.err.startswith("dcfpb run: run failed (convergence) at t = 0.005 s: ")
+    assert "bearing_orbits.png" in {p.name for p in plots.iterdir()}
+
+
 def test_a_record_past_the_capacity_in_one_step_exits_1(tmp_path, capsys):
     record = _short_record(tmp_path, samples=20)
     status = main(["run", str(EXAMPLE), "--record", str(record), "--record-dt", "0.02",
