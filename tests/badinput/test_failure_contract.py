@@ -289,13 +289,25 @@ def test_workers_above_the_cores_warn_and_are_capped(tmp_path, capsys, monkeypat
 
 
 def _children() -> set[int]:
+    """This process's child processes but multiprocessing's own helpers (the resource tracker,
+    the fork server: started once with the first process of a kind, they live as long as the
+    parent and are no workers)."""
     import os
 
     try:
         text = Path(f"/proc/{os.getpid()}/task/{os.getpid()}/children").read_text()
     except OSError:
         pytest.skip("no /proc children list on this system")
-    return {int(p) for p in text.split()}
+    children = set()
+    for pid in map(int, text.split()):
+        try:
+            command = Path(f"/proc/{pid}/cmdline").read_bytes()
+        except OSError:
+            continue  # gone meanwhile
+        if b"multiprocessing.resource_tracker" not in command and \
+                b"multiprocessing.forkserver" not in command:
+            children.add(pid)
+    return children
 
 
 def test_the_local_cluster_is_closed_even_when_the_suite_fails():
@@ -309,8 +321,7 @@ def test_the_local_cluster_is_closed_even_when_the_suite_fails():
     deadline = time.monotonic() + 20  # a loaded machine takes its time to reap them
     while _children() - before and time.monotonic() < deadline:
         time.sleep(0.1)
-    left = {pid: Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ")[:200]
-            for pid in _children() - before}
+    left = _children() - before
     assert not left  # no worker process outlives the suite
 
 
