@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from dcfpb.common.validation import check_path
 from groundmotions.filetext import (
     RecordUnits,
     check_finite,
@@ -267,5 +268,5 @@ def read_peer_at2(
     InputError
         ``units`` is not an acceleration unit.
     """
-    path = Path(path)
+    path = Path(check_path(path, "path", "read_peer_at2"))
     return parse_peer(path, read_lines(path), name, units)

@@ -12,6 +12,7 @@ from typing import Protocol
 
 import numpy as np
 
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.common.validation import check_int, check_real
 
@@ -67,7 +68,7 @@ def _new(motion: GroundMotion, acceleration: np.ndarray, dt: float, step: str) -
 
 def _check_motion(motion: object, owner: str) -> GroundMotion:
     if not all(hasattr(motion, name) for name in _MOTION_FIELDS):
-        raise TypeError(
+        raise InputTypeError(
             f"The 'motion' parameter of {owner} must be a GroundMotion. Got {motion!r} instead."
         )
     return motion
@@ -78,7 +79,13 @@ def velocity_and_displacement(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Ground velocity [m/s] and displacement [m] from rest of ``acceleration`` [m/s^2] sampled
     every ``dt`` [s], exact for an acceleration linear between samples."""
-    a = np.asarray(acceleration, dtype=float)
+    owner = "velocity_and_displacement"
+    try:
+        a = np.asarray(acceleration, dtype=float)
+    except (TypeError, ValueError):
+        raise InputTypeError(f"The 'acceleration' parameter of {owner} must be an array of "
+                             f"floats [m/s^2]. Got {acceleration!r:.80} instead.") from None
+    dt = check_real(dt, "dt", owner, low=0.0, low_open=True)
     velocity = np.concatenate(([0.0], np.cumsum(0.5 * dt * (a[1:] + a[:-1]))))
     increments = dt * velocity[:-1] + dt * dt * (a[:-1] / 3.0 + a[1:] / 6.0)
     return velocity, np.concatenate(([0.0], np.cumsum(increments)))
@@ -142,7 +149,7 @@ def _butterworth_sos(
 
     nyquist = 0.5 / dt
     if low is None and high is None:
-        raise ValueError(f"The 'low' and 'high' parameters of {owner} cannot both be None: "
+        raise InputError(f"The 'low' and 'high' parameters of {owner} cannot both be None: "
                          "give a high-pass corner (low), a low-pass corner (high) or both.")
     f_low = None if low is None else check_real(
         low, "low", owner, low=0.0, high=nyquist, low_open=True, high_open=True)
@@ -164,7 +171,7 @@ def _sosfiltfilt(sos: np.ndarray, x: np.ndarray, owner: str) -> np.ndarray:
 
     padlen = 3 * (2 * len(sos) + 1 - min((sos[:, 2] == 0).sum(), (sos[:, 5] == 0).sum()))
     if x.size <= padlen:
-        raise ValueError(f"The 'motion' parameter of {owner} must have more than {padlen} "
+        raise InputError(f"The 'motion' parameter of {owner} must have more than {padlen} "
                          f"samples for this filter order. Got {x.size} instead.")
     return signal.sosfiltfilt(sos, x)
 
@@ -260,7 +267,7 @@ def significant_duration(motion: GroundMotion, start: float = 0.05, stop: float 
     times, cumulative = arias_intensity(motion)
     total = cumulative[-1]
     if not total > 0.0:
-        raise ValueError(f"The 'motion' parameter of {owner} must have a non-zero Arias "
+        raise InputError(f"The 'motion' parameter of {owner} must have a non-zero Arias "
                          f"intensity. Got {motion!r} (all zero) instead.")
     fraction = cumulative / total
     t_start, t_stop = _crossing(times, fraction, lo), _crossing(times, fraction, hi)

@@ -8,6 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from dcfpb.common.errors import InputError
+from dcfpb.common.validation import check_path
 from groundmotions.filetext import check_step, read_lines
 from groundmotions.peer import has_npts_line, parse_peer, read_peer_at2
 from groundmotions.records import GroundMotion, PathLike
@@ -52,7 +53,7 @@ def read_record(
     InputError
         ``dt`` or ``units`` bad, or ``dt`` disagreeing with the file.
     """
-    path = Path(path)
+    path = Path(check_path(path, "path", "read_record"))
     lines = read_lines(path)
     if path.suffix.lower() == ".at2" or has_npts_line(lines):
         motion = parse_peer(path, lines, name, units)

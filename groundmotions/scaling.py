@@ -122,13 +122,13 @@ class TargetSpectrum:
                               min_length=2).copy()
         sa = check_array(self.sa, "sa", owner, low=0.0, low_open=True).copy()
         if sa.shape != periods.shape:
-            raise ValueError(f"The 'sa' parameter of {owner} must have one value per period "
+            raise InputError(f"The 'sa' parameter of {owner} must have one value per period "
                              f"({periods.size}). Got {sa.size} instead.")
         steps = np.diff(periods)
         if (steps <= 0.0).any():
             i = int(np.argmax(steps <= 0.0)) + 1
             here, before = float(periods[i]), float(periods[i - 1])
-            raise ValueError(f"The 'periods' parameter of {owner} must be strictly increasing. "
+            raise InputError(f"The 'periods' parameter of {owner} must be strictly increasing. "
                              f"Got {here!r} after {before!r} at index {i} instead.")
         damping = check_real(self.damping, "damping", owner, low=0.0, high=1.0, high_open=True)
         check_target_sa(sa, f"The 'sa' parameter of {owner} ({self.name})")
@@ -352,6 +352,7 @@ def suite_spectra(motions: Sequence[Motion], periods: np.ndarray, damping: float
     (`groundmotions.rotd_spectra`, directions ``angle_step`` [deg] apart). ``periods`` [s] and
     ``damping`` [-] as those take them; ``motions`` are all records or all pairs (:data:`MEASURES`).
     """
+    motions, _ = _suite(motions, "suite_spectra")
     if isinstance(motions[0], GroundMotionPair):
         rotd = [rotd_spectra(p, periods, damping, (50, 100), angle_step=angle_step)
                 for p in motions]
@@ -382,6 +383,10 @@ def _check_factors(suite: Sequence[Motion], factors: np.ndarray, target: TargetS
 
 def _suite(motions: Any, owner: str) -> tuple[tuple[Motion, ...], type]:
     """The records or the pairs of a suite and their kind (a key of :data:`MEASURES`)."""
+    if isinstance(motions, str | bytes) or not hasattr(motions, "__iter__"):
+        raise InputTypeError(f"The 'motions' parameter of {owner} must be a non-empty sequence "
+                             f"of GroundMotion or of GroundMotionPair. Got {motions!r:.80} "
+                             "instead.")
     suite = tuple(motions)
     for kind in MEASURES:
         if suite and all(isinstance(m, kind) for m in suite):

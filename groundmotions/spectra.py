@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.validation import check_array, check_real
 
 if TYPE_CHECKING:
@@ -64,7 +65,7 @@ def _check_record(acceleration: object, dt: object, owner: str) -> tuple[np.ndar
 
 
 def _check_periods(periods: object, owner: str, *, allow_zero: bool) -> np.ndarray:
-    values = np.atleast_1d(np.asarray(periods, dtype=float))
+    values = np.atleast_1d(periods) if np.ndim(periods) == 0 else periods
     return check_array(values, "periods", owner, low=0.0, low_open=not allow_zero)
 
 
@@ -74,7 +75,7 @@ def _check_damping(damping: object, owner: str, size: int | None = None) -> floa
         return check_real(damping, "damping", owner, low=0.0, high=1.0, high_open=True)
     ratios = check_array(damping, "damping", owner, low=0.0)
     if ratios.shape != (size,) or (ratios >= 1.0).any():
-        raise ValueError(
+        raise InputError(
             f"The 'damping' parameter of {owner} must be a float in [0, 1) or {size} such "
             f"floats, one per period. Got {damping!r} instead."
         )
@@ -239,6 +240,9 @@ def response_spectra(
 
 def spectrum(motion: GroundMotion, periods: np.ndarray, damping: float = 0.05) -> Spectrum:
     """`response_spectrum` of a `GroundMotion` (acceleration [m/s^2], dt [s])."""
+    if not (hasattr(motion, "acceleration") and hasattr(motion, "dt")):
+        raise InputTypeError(f"The 'motion' parameter of spectrum must be a GroundMotion. Got "
+                             f"{motion!r:.80} instead.")
     return response_spectrum(motion.acceleration, motion.dt, periods, damping)
 
 

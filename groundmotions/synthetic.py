@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.common.errors import InputTypeError
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.validation import check_choice, check_int, check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
@@ -195,7 +195,7 @@ def _filtered_white_noise(
         else:
             params[key] = check_real(value, key, owner, low=0.0, low_open=True)
     if (intensity is None) == (target_pga is None):
-        raise ValueError(f"Exactly one of the 'intensity' and 'target_pga' parameters of "
+        raise InputError(f"Exactly one of the 'intensity' and 'target_pga' parameters of "
                          f"{owner} must be given. Got intensity={intensity!r}, "
                          f"target_pga={target_pga!r} instead.")
     s0 = 1.0 if intensity is None else check_real(intensity, "intensity", owner, low=0.0,

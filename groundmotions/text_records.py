@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from dcfpb.common.errors import InputError
+from dcfpb.common.validation import check_path
 from groundmotions.filetext import (
     check_finite,
     check_plausible,
@@ -162,7 +163,7 @@ def read_text_record(
         ``dt`` missing for one column or disagreeing with the time column; ``units`` not an
         acceleration unit.
     """
-    path = Path(path)
+    path = Path(check_path(path, "path", "read_text_record"))
     table, numbers, header = _read_columns(path, read_lines(path))
     found = record_units(path, header, units, _OWNER)
     start_time = 0.0

@@ -38,7 +38,7 @@ import math
 import re
 from typing import NamedTuple
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.units import M_PER_FOOT, M_PER_INCH, STANDARD_GRAVITY
 
 __all__ = [
@@ -204,6 +204,9 @@ def read_unit(text: str) -> Unit | None:
 def parse_units(text: str) -> str | None:
     """The canonical name (a key of :data:`TO_M_PER_S2`) of an acceleration unit as written,
     or None when ``text`` is not an acceleration unit the readers know."""
+    if not isinstance(text, str):
+        raise InputTypeError(f"The 'text' parameter of parse_units must be a str. Got "
+                             f"{text!r:.80} instead.")
     found = quantity_of(text)
     return found[1] if found and found[0] == "acceleration" else None
 

@@ -44,12 +44,12 @@ class AxialLoadHistory:
         time = check_array(self.time, "time", owner, min_length=1)
         load = check_array(self.load, "load", owner, min_length=1)
         if time.shape != load.shape:
-            raise ValueError(
+            raise InputError(
                 f"The 'load' parameter of {owner} must have the length of 'time' "
                 f"({time.size}). Got {load.size} instead."
             )
         if np.any(np.diff(time) <= 0.0):
-            raise ValueError(f"The 'time' parameter of {owner} must be strictly increasing.")
+            raise InputError(f"The 'time' parameter of {owner} must be strictly increasing.")
         object.__setattr__(self, "time", time)
         object.__setattr__(self, "load", load)
 
@@ -159,7 +159,7 @@ class DCFPBearing:
         if self.restoring == "spherical" and not (
             self.displacement_capacity < self.effective_radius
         ):
-            raise ValueError(
+            raise InputError(
                 f"The 'displacement_capacity' parameter of {owner} must be below the "
                 f"effective radius {self.effective_radius:g} m for the spherical law. "
                 f"Got {self.displacement_capacity!r} instead."
@@ -232,7 +232,7 @@ def trial_failure(bearing: DCFPBearing, displacement: float, time: float,
 def _pair(value: ArrayLike, name: str) -> tuple[float, float]:
     array = np.asarray(value, dtype=float)
     if array.shape != (2,) or not np.all(np.isfinite(array)):
-        raise ValueError(f"The {name!r} parameter of BearingElement.set_trial must be a finite "
+        raise InputError(f"The {name!r} parameter of BearingElement.set_trial must be a finite "
                          f"(x, y) pair for a bearing in two directions. Got {value!r} instead.")
     return float(array[0]), float(array[1])
 
@@ -343,7 +343,7 @@ class BearingElement:
         committed_time, cux, cuy, czx, czy = self._floats
         dt = time - committed_time
         if dt < 0.0:
-            raise ValueError(
+            raise InputError(
                 f"The trial time {time!r} s of BearingElement.set_trial is before the last "
                 f"committed time {committed_time!r} s."
             )

@@ -15,6 +15,7 @@ from itertools import pairwise
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_array, check_choice, check_real
 
 _AT_MID_LEVEL = 1e-9  # |u0 - mid| below this fraction of the largest excursion: "at" the level
@@ -185,7 +186,7 @@ def _branch_slope(
 ) -> float:
     inside = (u >= low) & (u <= high)
     if np.count_nonzero(inside) < 2 or np.ptp(u[inside]) == 0.0:
-        raise ValueError(
+        raise InputError(
             f"Cycle {cycle} has fewer than 2 distinct samples on its {branch} branch between "
             f"{low!r} and {high!r} m: sample the history more finely or lower "
             f"'transition_fraction'."
@@ -235,7 +236,7 @@ def cycle_characteristics(
     u = check_array(displacement, "displacement", owner, min_length=3)
     f = check_array(force, "force", owner, min_length=3)
     if f.shape != u.shape:
-        raise ValueError(
+        raise InputError(
             f"The 'force' parameter of {owner} must have the length of 'displacement' "
             f"({u.size}). Got {f.size} instead."
         )
@@ -243,7 +244,7 @@ def cycle_characteristics(
     if time is not None:
         t = check_array(time, "time", owner, min_length=3)
         if t.shape != u.shape or np.any(np.diff(t) <= 0.0):
-            raise ValueError(
+            raise InputError(
                 f"The 'time' parameter of {owner} must be strictly increasing with the length "
                 f"of 'displacement' ({u.size}). Got {t.size} values instead."
             )
@@ -257,7 +258,7 @@ def cycle_characteristics(
     at_level = _AT_MID_LEVEL * float(np.max(np.abs(e)))
     cycles = _find_cycles(e, band, ratio)
     if not cycles:
-        raise ValueError(
+        raise InputError(
             f"The 'displacement' parameter of {owner} must hold at least one complete cycle "
             f"(from an upward crossing of the mid-level {mid:g} m, beyond the band of "
             f"{band:g} of the largest excursion on both sides, back to the next upward "

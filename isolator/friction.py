@@ -21,6 +21,7 @@ from typing import NamedTuple, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
+from dcfpb.common.errors import InputTypeError
 from dcfpb.common.validation import check_choice, check_int, check_real
 from isolator.compiled.kernels import initial_friction
 from isolator.compiled.layout import pack_ptv
@@ -282,12 +283,12 @@ class PTVFriction:
         if isinstance(self.factors, str):
             object.__setattr__(self, "factors", factor_set(self.factors))
         if not isinstance(self.factors, PaperFactors | KumarFactors):
-            raise TypeError(
+            raise InputTypeError(
                 f"The 'factors' parameter of {owner} must be 'paper', 'kumar' or a factor set. "
                 f"Got {self.factors!r} instead."
             )
         if not isinstance(self.heating, MonitorLine | CentrePoint | None):
-            raise TypeError(
+            raise InputTypeError(
                 f"The 'heating' parameter of {owner} must be a MonitorLine, a CentrePoint or "
                 f"None. Got {self.heating!r} instead."
             )

@@ -23,7 +23,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from dcfpb.common.errors import CapacityExceeded
+from dcfpb.common.errors import CapacityExceeded, InputError
 from dcfpb.common.validation import check_real
 from isolator.compiled.kernels import (
     advance_states,
@@ -123,7 +123,7 @@ def sum_of_exponentials(
                 rates[keep].copy(), weights[keep].copy(), min_lag, max_lag, error
             )
         n_terms += 4
-    raise ValueError(
+    raise InputError(
         f"sum_of_exponentials could not reach a relative error of {tolerance:g} on "
         f"[{min_lag:g}, {max_lag:g}] s with 200 terms; widen the tolerance."
     )
@@ -241,7 +241,7 @@ class SurfaceHeating:
         entry = self._factor_cache.get(dt)
         if entry is None:
             if dt < self.kernel.min_lag:
-                raise ValueError(
+                raise InputError(
                     f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
                     f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag."
                 )

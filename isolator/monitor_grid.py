@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.common.errors import CapacityExceeded
+from dcfpb.common.errors import CapacityExceeded, InputError
 from dcfpb.common.validation import check_real
 from isolator.compiled.kernels import heated_window, ptv_friction
 from isolator.heating import MonitorLine, SumOfExponentials, ThermalProperties, step_factors
@@ -169,7 +169,7 @@ class GridHeating:
         entry = self._factors.get(dt)
         if entry is None:
             if dt < self.kernel.min_lag:
-                raise ValueError(
+                raise InputError(
                     f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
                     f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag.")
             size = self.kernel.rates.size

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_array, check_choice, check_int, check_real
 from isolator.limits import DEFAULT_MAX_STEPS, HISTORY_FIELDS, check_steps
 from isolator.protocols import sine
@@ -43,19 +44,19 @@ class Orbit:
         owner = "Orbit"
         time = check_array(self.time, "time", owner, min_length=2).copy()
         if np.any(np.diff(time) <= 0.0):
-            raise ValueError(f"The 'time' parameter of {owner} must be strictly increasing.")
+            raise InputError(f"The 'time' parameter of {owner} must be strictly increasing.")
         time.setflags(write=False)
         object.__setattr__(self, "time", time)
         for name in ("displacement", "velocity"):
             arr = check_array(getattr(self, name), name, owner, ndim=2, min_length=2).copy()
             if arr.shape != (time.size, 2):
-                raise ValueError(f"The {name!r} parameter of {owner} must have the shape "
+                raise InputError(f"The {name!r} parameter of {owner} must have the shape "
                                  f"({time.size}, 2). Got {arr.shape} instead.")
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
         for label, start, stop in self.segments:
             if not (isinstance(label, str) and 0 <= start < stop <= time.size):
-                raise ValueError(f"The 'segments' parameter of {owner} must hold (label, start, "
+                raise InputError(f"The 'segments' parameter of {owner} must hold (label, start, "
                                  f"stop) with 0 <= start < stop <= {time.size}. Got "
                                  f"{(label, start, stop)!r} instead.")
 
@@ -214,5 +215,6 @@ def orbit(kind: str, amplitude: float, period: float, cycles: int, dt: float, *,
     """The orbit called ``kind`` (one of :data:`ORBITS`) of size ``amplitude`` [m]: the
     circle's radius, the figure-eight's and the line's amplitude, the square's half side."""
     kind = check_choice(kind, "kind", "orbit", ORBITS)
+    check_real(amplitude, "amplitude", "orbit", low=0.0, low_open=True)
     make = {"circle": circle, "figure8": figure_eight, "square": square, "line": line}[kind]
     return make(amplitude, period, cycles, dt, angle=angle, max_steps=max_steps)

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.validation import check_array, check_choice, check_int, check_real
 from isolator.limits import DEFAULT_MAX_STEPS, history_steps
 
@@ -50,21 +51,22 @@ class ImposedHistory:
         time = check_array(self.time, "time", owner, min_length=2)
         if np.any(np.diff(time) <= 0.0):
             i = int(np.argmax(np.diff(time) <= 0.0)) + 1
-            raise ValueError(
+            raise InputError(
                 f"The 'time' parameter of {owner} must be strictly increasing. "
                 f"Got {time[i]!r} after {time[i - 1]!r} at index {i} instead."
             )
         for name in ("time", "displacement", "velocity"):
             arr = check_array(getattr(self, name), name, owner, min_length=2).copy()
             if arr.shape != time.shape:
-                raise ValueError(
+                raise InputError(
                     f"The {name!r} parameter of {owner} must have the length of 'time' "
                     f"({time.size}). Got {arr.size} instead."
                 )
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
         if not isinstance(self.name, str):
-            raise TypeError(f"The 'name' parameter of {owner} must be a str. Got {self.name!r}.")
+            raise InputTypeError(f"The 'name' parameter of {owner} must be a str. "
+                                 f"Got {self.name!r}.")
         segments = tuple(tuple(s) for s in self.segments)
         for seg in segments:
             label, *bounds = seg if len(seg) == 3 else (None, 0, 0)
@@ -73,7 +75,7 @@ class ImposedHistory:
                 and all(isinstance(i, int | np.integer) for i in bounds)
                 and 0 <= bounds[0] < bounds[1] <= time.size
             ):
-                raise ValueError(
+                raise InputError(
                     f"The 'segments' parameter of {owner} must hold (label, start, stop) with "
                     f"0 <= start < stop <= {time.size}. Got {seg!r} instead."
                 )
@@ -183,7 +185,7 @@ def concatenate(*histories: ImposedHistory, name: str | None = None) -> ImposedH
     owner = "concatenate"
     if not histories or not all(isinstance(h, ImposedHistory) for h in histories):
         kinds = [type(h).__name__ for h in histories]
-        raise TypeError(
+        raise InputTypeError(
             f"The 'histories' parameter of {owner} must be one or more ImposedHistory objects. "
             f"Got {kinds} instead."
         )
@@ -194,7 +196,7 @@ def concatenate(*histories: ImposedHistory, name: str | None = None) -> ImposedH
     for i, h in enumerate(histories[1:], start=1):
         t_end, u_end = time[-1][-1], disp[-1][-1]
         if abs(h.displacement[0] - u_end) > 1e-9 * scale:
-            raise ValueError(
+            raise InputError(
                 f"The 'histories' parameter of {owner} must be continuous in displacement. "
                 f"Got a jump from {u_end!r} to {h.displacement[0]!r} m at history {i} instead."
             )
@@ -222,7 +224,7 @@ def long_duration_cycles(
     if len(missing) == 3:
         return 10
     if missing:
-        raise ValueError(
+        raise InputError(
             f"The {missing[0]!r} parameter of {owner} must be a float when any of S_M1, S_MS, "
             f"B_M is given. Got None instead."
         )

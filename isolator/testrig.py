@@ -12,7 +12,8 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from dcfpb.common.validation import check_array
+from dcfpb.common.errors import InputError
+from dcfpb.common.validation import check_array, check_instance
 from isolator.bearing import DCFPBearing
 from isolator.orbits import Orbit
 
@@ -82,7 +83,7 @@ class BearingTestResult:
         index = AXES.index(axis) if isinstance(axis, str) and axis in AXES else axis
         if index not in range(self.dimension):
             allowed = "0 or 'x'" if self.dimension == 1 else "0, 1, 'x' or 'y'"
-            raise ValueError(f"The 'axis' parameter of BearingTestResult must be {allowed}. "
+            raise InputError(f"The 'axis' parameter of BearingTestResult must be {allowed}. "
                              f"Got {axis!r} instead.")
         return values if self.dimension == 1 else values[:, index]
 
@@ -161,18 +162,18 @@ def imposed_history(time: ArrayLike, displacement: ArrayLike, velocity: ArrayLik
     shape or None (then ``numpy.gradient`` of the displacement). Errors name ``owner``."""
     t = check_array(time, "time", owner, min_length=2)
     if np.any(np.diff(t) <= 0.0):
-        raise ValueError(f"The 'time' parameter of {owner} must be strictly increasing.")
+        raise InputError(f"The 'time' parameter of {owner} must be strictly increasing.")
     ndim = 2 if np.ndim(displacement) == 2 else 1  # two directions or one
     u = check_array(displacement, "displacement", owner, ndim=ndim, min_length=2)
     shape = (t.size, 2) if ndim == 2 else t.shape
     if u.shape != shape:
-        raise ValueError(f"The 'displacement' parameter of {owner} must have the shape "
+        raise InputError(f"The 'displacement' parameter of {owner} must have the shape "
                          f"{shape} (one row per time). Got {u.shape} instead.")
     if velocity is None:
         return t, u, np.gradient(u, t, axis=0)
     v = check_array(velocity, "velocity", owner, ndim=u.ndim, min_length=2)
     if v.shape != u.shape:
-        raise ValueError(f"The 'velocity' parameter of {owner} must have the shape {u.shape} "
+        raise InputError(f"The 'velocity' parameter of {owner} must have the shape {u.shape} "
                          f"of 'displacement'. Got {v.shape} instead.")
     return t, u, v
 
@@ -208,11 +209,12 @@ def run_test(
         motion.
     """
     owner = "run_test"
+    check_instance(bearing, "bearing", owner, DCFPBearing, "a DCFPBearing")
     t, u, v = imposed_history(time, displacement, velocity, owner)
     reach = np.abs(u) if u.ndim == 1 else np.hypot(u[:, 0], u[:, 1])
     capacity = bearing.displacement_capacity
     if np.max(reach) > capacity:
-        raise ValueError(
+        raise InputError(
             f"The 'displacement' parameter of {owner} must stay within the bearing's "
             f"displacement_capacity {capacity:g} m{' (a radius)' if u.ndim == 2 else ''}. Got "
             f"a peak of {np.max(reach):g} m instead."
@@ -238,5 +240,7 @@ def run_test(
 def run_orbit(bearing: DCFPBearing, orbit: Orbit, *,
               grid_orientation: float | None = None) -> BearingTestResult:
     """:func:`run_test` on an :class:`~isolator.orbits.Orbit` (its exact velocity)."""
+    check_instance(bearing, "bearing", "run_orbit", DCFPBearing, "a DCFPBearing")
+    check_instance(orbit, "orbit", "run_orbit", Orbit, "an Orbit (isolator.orbit)")
     return run_test(bearing, orbit.time, orbit.displacement, orbit.velocity, name=orbit.name,
                     grid_orientation=grid_orientation)

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from dcfpb.common.errors import InputError, InputTypeError
-from dcfpb.common.validation import check_real
+from dcfpb.common.validation import check_dataset, check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
@@ -42,6 +42,7 @@ DEFAULT_MAX_STEP = 0.005
 def default_step(record_dt: float) -> float:
     """The default analysis step: the record's, divided into the fewest equal parts of at most
     :data:`DEFAULT_MAX_STEP` (0.02 s -> 0.005 s; 0.005 s and finer records keep theirs) [s]."""
+    record_dt = check_real(record_dt, "record_dt", "default_step", low=0.0, low_open=True)
     return record_dt / math.ceil(record_dt / DEFAULT_MAX_STEP - 1e-6)
 
 
@@ -208,6 +209,8 @@ def run(
             f"in one direction under one record: the building {has} plan and the motion is "
             f"{'a pair' if pair else 'one record'}.")
     first = motion.x if pair else motion
+    if dt is not None:
+        check_real(dt, "dt", "run", low=0.0, low_open=True)
     fields = building_fields(building.n_storeys, building.level_dofs,
                              len(building.bearing_positions))
     check_run(first, default_step(first.dt) if dt is None else dt, fields, max_steps=max_steps)
@@ -215,7 +218,7 @@ def run(
                                   vertical=motion.z if pair else None,
                                   grid_orientation=grid_orientation)
     acceleration, step = ground_record(motion, dt)
-    method = as_method(integrator)
+    method = as_method(integrator, "integrator", "run")
     options = {"tolerance": tolerance, "max_subdivisions": max_subdivisions,
                "time_limit": time_limit}
     if select_engine(engine, model, method) == "compiled":
@@ -277,6 +280,7 @@ def peaks(result) -> dict[str, Any]:
         position), ``uplift_first_time`` [s] (the first, None if none) and ``uplift_longest``
         [s] (the longest lift-off).
     """
+    check_dataset(result, "result", "peaks")
     reach = _resultant(result["bearing_displacement"].values).max(axis=0)
     roof = np.abs(result["absolute_acceleration"].isel(floor=-1).values).max(axis=0)
     drift = np.abs(result["storey_drift"].values).max(axis=(0, 1))

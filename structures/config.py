@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.common.validation import check_choice
+from dcfpb.common.validation import check_choice, check_path
 from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS, friction_model
 from structures.config_schema import ConfigError, ConfigWarning, check_plan, check_tables
@@ -149,7 +149,7 @@ def load_config(path: str | Path) -> BuildingConfig:
     ConfigWarning
         For a setting without effect (:func:`structures.config_schema.check_tables`).
     """
-    path = Path(path)
+    path = Path(check_path(path, "path", "load_config"))
     raw = read_toml(path)
     tables = check_tables(raw, path)
     tables["plan"] = check_plan(raw, len(tables["building"]["floor_masses"]),

@@ -42,7 +42,7 @@ def trapezoid_work(force: np.ndarray, displacement: np.ndarray) -> np.ndarray:
     (nt,) or (nt, ...) (the dot product over every axis but the first)."""
     du = np.diff(displacement, axis=0)
     mean = 0.5 * (force[1:] + force[:-1])
-    step = (du * mean).reshape(du.shape[0], -1).sum(axis=1)
+    step = (du * mean).reshape(du.shape[0], int(np.prod(du.shape[1:]))).sum(axis=1)
     return np.concatenate([[0.0], np.cumsum(step)])
 
 

@@ -18,6 +18,7 @@ import time as _time
 import numpy as np
 
 from dcfpb.common.errors import InputError
+from dcfpb.common.validation import check_dataset, check_instance, check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import sdof_response
@@ -39,7 +40,7 @@ def _modal_damping_ratios(building: ShearBuilding, shapes: np.ndarray,
     diagonal = np.diag(modal)
     coupling = np.abs(modal - np.diag(diagonal)).max(initial=0.0)
     if coupling > 1e-8 * np.abs(diagonal).max(initial=0.0):
-        raise ValueError(
+        raise InputError(
             "The 'damping' parameter of ShearBuilding must be classical (diagonal in the "
             "fixed-base modes) for run_fixed_base. Got a damping matrix whose modal coupling is "
             f"{coupling:.3g} of its largest modal term instead."
@@ -82,6 +83,11 @@ def run_fixed_base(building: ShearBuilding, motion: GroundMotion | GroundMotionP
     """
     import xarray as xr
 
+    check_instance(building, "building", "run_fixed_base", ShearBuilding, "a ShearBuilding")
+    check_instance(motion, "motion", "run_fixed_base", (GroundMotion, GroundMotionPair),
+                   "a GroundMotion or a GroundMotionPair")
+    if dt is not None:
+        check_real(dt, "dt", "run_fixed_base", low=0.0, low_open=True)
     pair = isinstance(motion, GroundMotionPair)
     if pair != (building.plan is not None):
         raise InputError("The fixed base of a building in plan runs under a pair of records and "
@@ -195,5 +201,7 @@ def superstructure_peaks(result) -> dict[str, float]:
 
 def ratios_to_fixed_base(result, fixed_base) -> dict[str, float]:
     """Each of :func:`superstructure_peaks` of ``result`` over that of ``fixed_base`` [-]."""
+    check_dataset(result, "result", "ratios_to_fixed_base")
+    check_dataset(fixed_base, "fixed_base", "ratios_to_fixed_base")
     isolated, fixed = superstructure_peaks(result), superstructure_peaks(fixed_base)
     return {name: isolated[name] / fixed[name] for name in isolated}

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from dcfpb.common.validation import check_dataset
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from groundmotions.spectra import response_spectra, spectrum
@@ -33,13 +34,25 @@ def _histories(result) -> np.ndarray:
     return acceleration.reshape(acceleration.shape[0], -1)
 
 
+def _spectra(histories: np.ndarray, step: float, periods: np.ndarray,
+             damping: float) -> np.ndarray:
+    """Sa [m/s^2] of the columns of ``histories`` (time, column), shape (columns, periods); NaN
+    for a history of fewer than two samples (a run that failed at its first step), which has no
+    spectrum."""
+    histories = np.asarray(histories, dtype=float)
+    if histories.shape[0] < 2:
+        columns = histories.shape[1] if histories.ndim > 1 else 1
+        return np.full((columns, np.size(periods)), np.nan)
+    return response_spectra(histories, step, periods, damping).sa
+
+
 def floor_spectra(result, periods: np.ndarray = FLOOR_SPECTRUM_PERIODS,
                   damping: float = FLOOR_SPECTRUM_DAMPING) -> np.ndarray:
     """Pseudo-acceleration spectra Sa [m/s^2] of every floor's absolute acceleration in each
     direction, shape (floors, directions, len(periods)), floor 0 first, of a run with
     ``absolute_acceleration`` (time, floor, direction) and the attribute ``dt`` [s], at
     ``periods`` >= 0 [s] and the damping ratio ``damping`` in [0, 1) [-]."""
-    sa = response_spectra(_histories(result), float(result.attrs["dt"]), periods, damping).sa
+    sa = _spectra(_histories(result), float(result.attrs["dt"]), periods, damping)
     return sa.reshape(result.sizes["floor"], result.sizes["direction"], -1)
 
 
@@ -66,6 +79,7 @@ def with_floor_spectra(result, motion: GroundMotion | GroundMotionPair | None = 
         (floor, direction, period) and ``ground_spectrum`` (direction, period) [m/s^2] and the
         attribute ``spectrum_damping``.
     """
+    check_dataset(result, "result", "with_floor_spectra")
     return with_floor_spectra_all({"run": result}, motion, periods=periods,
                                   damping=damping)["run"]
 
@@ -82,7 +96,7 @@ def with_floor_spectra_all(results: dict, motion: GroundMotion | GroundMotionPai
     floors = {}
     for (step, _), keys in groups.items():
         stacked = np.hstack([_histories(results[k]) for k in keys])
-        sa = response_spectra(stacked, step, periods, damping).sa
+        sa = _spectra(stacked, step, periods, damping)
         starts = np.cumsum([0] + [results[k].sizes["floor"] * results[k].sizes["direction"]
                                   for k in keys])
         floors.update({k: sa[starts[i]:starts[i + 1]].reshape(
@@ -105,8 +119,8 @@ def _with(result, floors: np.ndarray, motion: GroundMotion | GroundMotionPair | 
         ground = ground_cache["record"]
         source = f"the record {motion.name} as read (dt = {motion.dt:g} s)"
     else:
-        ground = response_spectra(np.asarray(result["ground_acceleration"]),
-                                  float(result.attrs["dt"]), periods, damping).sa
+        ground = _spectra(np.asarray(result["ground_acceleration"]),
+                          float(result.attrs["dt"]), periods, damping)
         source = "the run's ground acceleration"
     percent = f"{100 * damping:g} %"
     added = result.assign_coords(period=("period", periods, {"units": "s"})).assign(

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dcfpb.common.errors import InputTypeError
 from dcfpb.common.validation import check_choice, check_real
 
 __all__ = ["HHT", "METHODS", "Newmark", "as_method"]
@@ -74,14 +75,14 @@ METHODS: dict[str, type[Newmark] | type[HHT]] = {"newmark": Newmark, "hht": HHT}
 """Method names of :func:`structures.integrators.integrate`, mapped to their classes."""
 
 
-def as_method(method: object) -> Newmark | HHT:
-    """The method for a name from :data:`METHODS` (default parameters) or an instance; a
-    ``TypeError`` for anything else."""
+def as_method(method: object, name: str = "method", owner: str = "integrate") -> Newmark | HHT:
+    """The method for a name from :data:`METHODS` (default parameters) or an instance; an
+    ``InputTypeError`` naming the parameter ``name`` of ``owner`` for anything else."""
     if isinstance(method, Newmark | HHT):
         return method
     if isinstance(method, str):
-        return METHODS[check_choice(method, "method", "integrate", tuple(METHODS))]()
-    raise TypeError(
-        f"The 'method' parameter of integrate must be one of {tuple(METHODS)} or a Newmark or "
+        return METHODS[check_choice(method, name, owner, tuple(METHODS))]()
+    raise InputTypeError(
+        f"The {name!r} parameter of {owner} must be one of {tuple(METHODS)} or a Newmark or "
         f"HHT instance. Got {method!r} instead."
     )

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dcfpb.common.errors import RunFailure
+from dcfpb.common.errors import InputError, RunFailure
 from dcfpb.common.validation import check_array, check_int, check_real
 from structures.integration_methods import HHT, METHODS, Newmark, as_method
 from structures.model import DynamicModel
@@ -68,7 +68,7 @@ class IntegrationResult:
 def _matrix(value: object, name: str, shape: tuple[int, ...]) -> np.ndarray:
     arr = np.asarray(value, dtype=float)
     if arr.shape != shape or not np.all(np.isfinite(arr)):
-        raise ValueError(
+        raise InputError(
             f"The model's {name!r} must be a finite array of shape {shape}. "
             f"Got shape {arr.shape} instead."
         )
@@ -215,7 +215,7 @@ def _initial_state(value: object, name: str, n: int) -> np.ndarray:
         return np.zeros(n)
     state = check_array(value, name, "integrate")
     if state.shape != (n,):
-        raise ValueError(
+        raise InputError(
             f"The {name!r} parameter of integrate must have shape ({n},). "
             f"Got {state.shape} instead."
         )
@@ -271,7 +271,7 @@ def integrate(
     record = check_array(ground_acceleration, "ground_acceleration", owner, min_length=2,
                          ndim=max(influence.ndim, 1))
     if influence.ndim == 2 and record.shape[1] != influence.shape[1]:
-        raise ValueError(
+        raise InputError(
             f"The 'ground_acceleration' parameter of integrate must have one column per column "
             f"of the model's influence ({influence.shape[1]}). Got shape {record.shape} instead."
         )

@@ -13,6 +13,8 @@ from typing import NamedTuple, Protocol, runtime_checkable
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
+
 __all__ = ["DynamicModel", "LinearModel", "RestoringForce"]
 
 
@@ -65,12 +67,12 @@ def _square(matrix: object, name: str, n: int | None) -> np.ndarray:
     arr = np.array(matrix, dtype=float)
     if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or (n is not None and arr.shape[0] != n):
         size = "n" if n is None else str(n)
-        raise ValueError(
+        raise InputError(
             f"The {name!r} parameter of LinearModel must be a ({size}, {size}) array of floats. "
             f"Got shape {arr.shape} instead."
         )
     if not np.all(np.isfinite(arr)):
-        raise ValueError(
+        raise InputError(
             f"The {name!r} parameter of LinearModel must hold finite floats. Got {arr!r} instead."
         )
     arr.setflags(write=False)
@@ -100,7 +102,7 @@ class LinearModel:
         self._mass = _square(mass, "mass", None)
         n = self._mass.shape[0]
         if not np.allclose(self._mass, self._mass.T) or np.any(np.linalg.eigvalsh(self._mass) <= 0):
-            raise ValueError(
+            raise InputError(
                 "The 'mass' parameter of LinearModel must be a symmetric positive definite "
                 f"matrix. Got {self._mass!r} instead."
             )
@@ -108,7 +110,7 @@ class LinearModel:
         self._stiffness = _square(stiffness, "stiffness", n)
         r = np.array(influence, dtype=float)
         if r.shape[:1] != (n,) or r.ndim > 2 or not np.all(np.isfinite(r)):
-            raise ValueError(
+            raise InputError(
                 f"The 'influence' parameter of LinearModel must be a finite ({n},) array (or "
                 f"({n}, k) for k ground-motion components). Got {r!r} instead."
             )

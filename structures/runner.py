@@ -11,11 +11,12 @@ Example
 
 from __future__ import annotations
 
+import os
 import warnings
 from pathlib import Path
 from typing import Any
 
-from dcfpb.common.errors import InputError, InputWarning
+from dcfpb.common.errors import InputError, InputTypeError, InputWarning
 from dcfpb.common.validation import check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
@@ -72,12 +73,22 @@ def run(
 
     from structures.analysis import run as run_building
 
+    owner = "structures.run"
     if not isinstance(config, BuildingConfig):
+        if not isinstance(config, str | os.PathLike):
+            raise InputTypeError(f"The 'config' parameter of {owner} must be a BuildingConfig or "
+                                 f"the path of a building file. Got {config!r:.80} instead.")
         config = load_config(config)
     if not isinstance(motion, GroundMotion | GroundMotionPair):
+        if not isinstance(motion, str | os.PathLike):
+            raise InputTypeError(f"The 'motion' parameter of {owner} must be a GroundMotion, a "
+                                 "GroundMotionPair or the path of a record file. Got "
+                                 f"{motion!r:.80} instead.")
         from groundmotions.readers import read_record
 
         motion = read_record(motion)
+    if dt is not None:
+        check_real(dt, "dt", owner, low=0.0, low_open=True)
     check_real(scale, "scale", "structures.run", low=0.0, low_open=True)
     if scale != 1.0:
         motion = motion.scaled(scale)

@@ -91,7 +91,7 @@ class RayleighDamping:
         owner = type(self).__name__
         pairs = (self.ratios, self.modes)
         if any(not isinstance(x, tuple | list) or len(x) != 2 for x in pairs):
-            raise ValueError(
+            raise InputError(
                 f"The 'ratios' and 'modes' parameters of {owner} must hold two values each. "
                 f"Got {self.ratios!r} and {self.modes!r} instead."
             )
@@ -100,7 +100,7 @@ class RayleighDamping:
         )
         modes = tuple(check_int(m, "modes", owner, low=1) for m in self.modes)
         if modes[0] == modes[1]:
-            raise ValueError(
+            raise InputError(
                 f"The 'modes' parameter of {owner} must hold two distinct mode numbers. "
                 f"Got {self.modes!r} instead."
             )
@@ -110,7 +110,7 @@ class RayleighDamping:
     def check(self, n_modes: int) -> None:
         """Raise if the building has fewer than ``max(modes)`` modes."""
         if max(self.modes) > n_modes:
-            raise ValueError(
+            raise InputError(
                 f"The 'modes' parameter of RayleighDamping must be mode numbers in [1, {n_modes}] "
                 f"for a {n_modes}-storey building (use ModalDamping for a single storey). "
                 f"Got {self.modes!r} instead."
@@ -160,7 +160,7 @@ class ModalDamping:
     def check(self, n_modes: int) -> None:
         """Raise if per-mode ratios do not number ``n_modes``."""
         if isinstance(self.ratio, tuple) and len(self.ratio) != n_modes:
-            raise ValueError(
+            raise InputError(
                 f"The 'ratio' parameter of ModalDamping must hold {n_modes} per-mode ratios for "
                 f"a {n_modes}-storey building. Got {len(self.ratio)} instead."
             )
@@ -230,7 +230,7 @@ class ShearBuilding:
             self.storey_stiffnesses, "storey_stiffnesses", owner, low=0.0, low_open=True
         )
         if stiffnesses.shape != masses.shape:
-            raise ValueError(
+            raise InputError(
                 f"The 'storey_stiffnesses' parameter of {owner} must have one value per floor "
                 f"({masses.shape[0]}). Got {stiffnesses.shape[0]} instead."
             )
@@ -283,7 +283,7 @@ class ShearBuilding:
         else:
             shape = check_array(profile, "profile", owner, low=0.0, low_open=True)
             if shape.shape != (n,):
-                raise ValueError(
+                raise InputError(
                     f"The 'profile' parameter of {owner} must have one value per floor ({n}). "
                     f"Got {shape.shape[0]} instead."
                 )

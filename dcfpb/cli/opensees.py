@@ -143,7 +143,7 @@ def _inputs(args: argparse.Namespace, command: str):
 
 def run_building(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb compare-opensees``; returns the exit status."""
-    from dcfpb.cli.run import print_failure
+    from dcfpb.cli.run import print_failure, report_failure
     from structures.opensees.comparison import comparison_bearing, run_comparison
 
     config, integrator, motion, dt = _inputs(args, "dcfpb compare-opensees")
@@ -176,6 +176,8 @@ def run_building(args: argparse.Namespace) -> int:
         print_differences(summary)
         for side in ("ours", "opensees"):
             print_failure(summary[side], f"{side}: {summary[side]['message']}")
+    for side in ("ours", "opensees"):
+        report_failure("compare-opensees", summary[side], f"{side}: {summary[side]['message']}")
     ok = summary["ours"]["success"] and summary["opensees"]["success"]
     return 0 if ok else 1
 

@@ -10,6 +10,8 @@ import dataclasses
 import json
 from pathlib import Path
 
+from dcfpb.common.errors import InputError
+
 FIXED_BASE = "fixed base"
 """The label of the fixed-base building in tables and plots."""
 
@@ -116,7 +118,7 @@ def integrator_from_args(config, kind: str | None, alpha: float | None):
         return config.integrator
     if (kind or ("hht" if isinstance(config.integrator, HHT) else "newmark")) == "newmark":
         if alpha is not None:
-            raise ValueError("--alpha applies to --integrator hht only.")
+            raise InputError("--alpha applies to --integrator hht only.")
         return Newmark()
     if alpha is None:
         alpha = config.integrator.alpha if isinstance(config.integrator, HHT) else -0.05
@@ -261,6 +263,7 @@ def _run_building(args: argparse.Namespace) -> int:
         print()
         print_ratios({model: ratios}, fixed, float(abs(fixed["ground_acceleration"]).max()))
         print_failure(summary, result.attrs["message"])
+    report_failure("run", summary, result.attrs["message"])
     return 0 if result.attrs["success"] else 1
 
 
@@ -306,6 +309,20 @@ def warn_uplift(summary: dict, positions: int) -> None:
         f"longest {summary['uplift_longest']:.6g} s at a time; see uplift_steps, "
         "uplift_first_time and uplift_longest in the peaks and the Dataset's attributes.",
         UpliftWarning, stacklevel=2)
+
+
+def report_failure(command: str, summary: dict, message: str) -> None:
+    """One line ``dcfpb <command>: run failed (<kind>) at t = <time> s: <message>`` on stderr
+    for a run that failed (the exit status 1 of the failure contract), also with ``--json``;
+    nothing for a run that finished. ``summary`` is :func:`structures.analysis.peaks`."""
+    if not summary.get("peaks_up_to_failure"):
+        return
+    import sys
+
+    failed_at = summary.get("failed_at")
+    when = f" at t = {failed_at:.6g} s" if failed_at is not None else ""
+    print(f"dcfpb {command}: run failed ({summary.get('failure') or 'error'}){when}: "
+          f"{message}", file=sys.stderr)
 
 
 def print_failure(summary: dict, message: str) -> None:

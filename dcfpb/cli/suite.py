@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
 from dcfpb.common.units import STANDARD_GRAVITY
 
 
@@ -56,9 +57,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--duration", type=float, help="keep the first DURATION s of each record")
     p.add_argument("--dt", type=float, help="analysis time step [s] (default: the file's; a "
                    "record with a finer step runs at its own)")
-    p.add_argument("--workers", type=int, help="local worker processes (default: CPUs)")
+    p.add_argument("--workers", type=int, help="local worker processes (default and at most: "
+                   "the CPU cores available; more warns and uses those)")
     p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="use a running Dask scheduler, e.g. tcp://10.0.0.5:8786")
+                   help="use a running Dask scheduler, e.g. tcp://10.0.0.5:8786 (refused, exit "
+                   "status 2, if it does not answer as one within 5 s)")
     p.add_argument("--out", default="dcfpb-suite", metavar="DIR",
                    help="result folder (default ./dcfpb-suite); one suite at a time: a "
                    "second one into it refuses (exit status 2) unless --wait-lock")
@@ -85,9 +88,9 @@ def _floats(text: str, option: str) -> tuple[float, ...]:
     try:
         values = tuple(float(x) for x in text.split(",") if x.strip())
     except ValueError:
-        raise ValueError(f"{option} must be numbers separated by commas. Got {text!r}.") from None
+        raise InputError(f"{option} must be numbers separated by commas. Got {text!r}.") from None
     if not values:
-        raise ValueError(f"{option} needs at least one value. Got {text!r}.")
+        raise InputError(f"{option} needs at least one value. Got {text!r}.")
     return values
 
 
@@ -104,14 +107,12 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         try:
             s_ds, s_d1, t_l = (float(v) for v in values.split(","))
         except ValueError as error:
-            raise ValueError(f"--target {text!r}: write asce7:S_DS,S_D1,T_L, e.g. "
+            raise InputError(f"--target {text!r}: write asce7:S_DS,S_D1,T_L, e.g. "
                              "asce7:1.0,0.6,8 (S_DS and S_D1 in g, T_L in s).") from error
         level = "mce" if kind.lower() == "asce7-mce" else "design"
         try:
             spectrum = asce7_design_spectrum(s_ds, s_d1, t_l, level=level)
         except ValueError as error:
-            from dcfpb.common.errors import InputError
-
             raise InputError(f"--target {text!r}: {error} S_DS and S_D1 are in g (1.0 for "
                              "1 g, not 100), T_L in s.") from None
         periods = np.asarray(spectrum.periods, dtype=float)
@@ -134,12 +135,10 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     data = np.array(rows, dtype=float).reshape(-1, 2)
     periods, sa = data[:, 0], data[:, 1]
     if len(rows) < 2 or np.any(np.diff(periods) <= 0) or periods[0] < 0 or np.any(sa <= 0):
-        raise ValueError(f"{path}: a target spectrum needs at least two rows 'period,sa' [s, g] "
+        raise InputError(f"{path}: a target spectrum needs at least two rows 'period,sa' [s, g] "
                          "with increasing periods >= 0 and sa > 0.")
     high = np.flatnonzero(~(sa <= MAX_TARGET_SA))
     if high.size:
-        from dcfpb.common.errors import InputError
-
         i = int(high[0])
         raise InputError(f"--target {path}, line {lines[i]}: column 'sa' is in g and must be at "
                          f"most {MAX_TARGET_SA:g} g. Got {sa[i]:g} instead: the values look like "
@@ -154,7 +153,7 @@ def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float
     try:
         from groundmotions.scaling import scale_suite
     except ImportError as error:
-        raise ValueError(f"--target needs groundmotions.scaling.scale_suite, which cannot be "
+        raise InputError(f"--target needs groundmotions.scaling.scale_suite, which cannot be "
                          f"imported here ({error}). Give the scale factors with --scales "
                          "instead.") from None
 
@@ -169,7 +168,7 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
     if text:
         low, high = _floats(text, "--period-range")[:2]
         if not 0 < low < high:
-            raise ValueError(f"--period-range must be TMIN,TMAX with 0 < TMIN < TMAX. "
+            raise InputError(f"--period-range must be TMIN,TMAX with 0 < TMIN < TMAX. "
                              f"Got {text!r}.")
         return low, high
     radius = config.bearing_geometry["effective_radius"]
@@ -184,8 +183,6 @@ def _suite(args: argparse.Namespace, config, factors):
     from structures.suites.suite import Suite, check_modifiers
 
     if args.pairs is not None and config.plan is None:
-        from dcfpb.common.errors import InputError
-
         raise InputError(f"--pairs runs a building in plan, but the building file "
                          f"{args.building!r} has no [plan] table (bearing_coordinates, "
                          "eccentricity, ...; see README, 'A building in plan'). Give --records "
@@ -216,9 +213,18 @@ def _run(args: argparse.Namespace) -> int:
     check_real(args.wait_lock, "--wait-lock", "dcfpb suite", low=0.0, allow_inf=True)
     check_int(args.max_steps, "--max-steps", "dcfpb suite", low=1)
     if args.period_range and not args.target:
-        raise ValueError("--period-range applies to --target only.")
-    if args.workers is not None and args.scheduler:
-        raise ValueError("give --workers (a local cluster) or --scheduler, not both.")
+        raise InputError("--period-range applies to --target only.")
+    if args.workers is not None and args.scheduler is not None:
+        raise InputError("give --workers (a local cluster) or --scheduler, not both.")
+    workers = args.workers
+    if args.scheduler is not None:
+        from structures.suites.tasks import check_scheduler
+
+        check_scheduler(args.scheduler, "--scheduler")
+    elif workers is not None:
+        from structures.suites.tasks import capped_workers
+
+        workers = capped_workers(workers, "--workers", "dcfpb suite")
     config = load_config(args.building)
     target, period_range = None, None
     if args.target:
@@ -227,7 +233,7 @@ def _run(args: argparse.Namespace) -> int:
     suite = _suite(args, config, None if target is None else target_hook(*target, period_range))
     with SuiteLock(args.out, wait=args.wait_lock):  # the plots and tables too
         try:
-            result = run_suite(suite, args.out, n_workers=args.workers,
+            result = run_suite(suite, args.out, n_workers=workers,
                                scheduler_address=args.scheduler, progress=not args.no_progress,
                                run_timeout=args.run_timeout, lock=False,
                                max_steps=args.max_steps)

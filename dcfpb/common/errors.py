@@ -18,6 +18,9 @@ EXIT_RUN_FAILED = 1
 """Exit status of a run that failed on its own terms (:class:`RunFailure`)."""
 EXIT_BAD_INPUT = 2
 """Exit status of bad input: a file, a flag or a value outside its allowed range."""
+EXIT_INTERNAL_ERROR = 3
+"""Exit status of an internal error: anything but bad input or a run failure (a bug); the
+command line writes its traceback to a log file (:mod:`dcfpb.cli`)."""
 
 
 class InputError(ValueError):

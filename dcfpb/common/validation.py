@@ -10,6 +10,7 @@ message naming the parameter, its owner, the allowed range and the value given:
 from __future__ import annotations
 
 import math
+import os
 from numbers import Integral, Real
 
 import numpy as np
@@ -85,10 +86,12 @@ def check_int(
 
 
 def check_choice(value: object, name: str, owner: str, choices: tuple[str, ...]) -> str:
-    """``value``, checked to be one of ``choices`` (a ``ValueError`` names them)."""
+    """``value``, checked to be one of ``choices`` (an ``InputError`` names them; an
+    ``InputTypeError`` when ``value`` is not even a str)."""
     if value not in choices:
         allowed = ", ".join(repr(c) for c in choices)
-        raise InputError(
+        kind = InputError if isinstance(value, str) else InputTypeError
+        raise kind(
             f"The {name!r} parameter of {owner} must be one of {{{allowed}}}. "
             f"Got {value!r} instead."
         )
@@ -108,7 +111,13 @@ def check_array(
 ) -> np.ndarray:
     """``values`` as a float array, checked for ``ndim``, ``min_length``, finiteness and bounds;
     a ``ValueError`` names the array, the first offending index and its value."""
-    arr = np.asarray(values, dtype=float)
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError) as error:
+        raise InputTypeError(
+            f"The {name!r} parameter of {owner} must be a {ndim}-d array of floats. "
+            f"Got {_shown(values)} instead ({error})."
+        ) from None
     if arr.ndim != ndim:
         raise InputError(
             f"The {name!r} parameter of {owner} must be a {ndim}-d array. "
@@ -133,3 +142,44 @@ def check_array(
             f"Got {arr[index]!r} at index {where} instead."
         )
     return arr
+
+
+def _shown(value: object, limit: int = 80) -> str:
+    """``repr(value)``, cut to ``limit`` characters."""
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def check_path(value: object, name: str, owner: str) -> str | os.PathLike:
+    """``value``, checked to be a path: a ``str`` or an ``os.PathLike`` (not bytes, a number or
+    a list); an :class:`~dcfpb.common.errors.InputTypeError` names the parameter otherwise."""
+    if isinstance(value, str) or (isinstance(value, os.PathLike)
+                                  and isinstance(os.fspath(value), str)):
+        return value
+    raise InputTypeError(
+        f"The {name!r} parameter of {owner} must be a path (a str or pathlib.Path). "
+        f"Got {_shown(value)} instead."
+    )
+
+
+def check_instance(value: object, name: str, owner: str, kinds: type | tuple[type, ...],
+                   what: str) -> object:
+    """``value``, checked to be an instance of ``kinds``; an
+    :class:`~dcfpb.common.errors.InputTypeError` names the parameter and ``what`` it must be
+    (e.g. ``"a GroundMotion"``) otherwise."""
+    if isinstance(value, kinds):
+        return value
+    raise InputTypeError(
+        f"The {name!r} parameter of {owner} must be {what}. Got {_shown(value)} instead."
+    )
+
+
+def check_dataset(value: object, name: str, owner: str) -> object:
+    """``value``, checked to be a run's result (an ``xarray.Dataset``; checked by its
+    attributes, so that xarray is not imported here)."""
+    if all(hasattr(value, attribute) for attribute in ("data_vars", "attrs", "sizes")):
+        return value
+    raise InputTypeError(
+        f"The {name!r} parameter of {owner} must be a run's result (an xarray.Dataset). "
+        f"Got {_shown(value)} instead."
+    )

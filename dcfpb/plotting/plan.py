@@ -110,10 +110,12 @@ def plot_plate_temperature(results: dict[str, Any], directory: Path,
     """``plate_temperature.png``: the temperature field left on the corner bearing's plate at
     the end of each run that holds one (the precise model's ``plate_temperature`` at the monitor
     points ``plate_point_x``, ``plate_point_y``), with the bearing's orbit on the plate (the
-    slider's centre moves by half the bearing displacement). None when no run holds a field."""
+    slider's centre moves by half the bearing displacement). None when no run holds a field
+    (a run that failed at its first step has no monitor point yet: it is left out)."""
     import numpy as np
 
-    runs = [(label, r) for label, r in results.items() if "plate_temperature" in r]
+    runs = [(label, r) for label, r in results.items() if "plate_temperature" in r
+            and np.isfinite(r["plate_temperature"].values).any()]
     if not runs:
         return None
     plt = pyplot()

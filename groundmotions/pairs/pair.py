@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 from dcfpb.common.errors import InputError, InputTypeError
-from dcfpb.common.validation import check_real
+from dcfpb.common.validation import check_path, check_real
 from groundmotions.readers import read_record
 from groundmotions.records import GroundMotion, PathLike
 
@@ -231,9 +231,10 @@ def read_pair(
         A missing file or a component that cannot be read (naming the component and the file), or
         components of different steps or lengths.
     """
-    paths = {"x": Path(x_path), "y": Path(y_path)}
+    paths = {"x": Path(check_path(x_path, "x_path", "read_pair")),
+             "y": Path(check_path(y_path, "y_path", "read_pair"))}
     if z_path is not None:
-        paths["z"] = Path(z_path)
+        paths["z"] = Path(check_path(z_path, "z_path", "read_pair"))
     label = name if name is not None else _pair_name(paths["x"], paths["y"])
     return _read_pair(paths, label, dt, units, resample_to, truncate, "")
 
@@ -341,5 +342,6 @@ def read_pair_manifest(path: PathLike) -> tuple[GroundMotionPair, ...]:
         A bad manifest (`manifest_rows`), a missing or unreadable file or a bad pair: the message
         starts with ``"<manifest>, line <n>"`` and names the column or the component.
     """
+    check_path(path, "path", "read_pair_manifest")
     return tuple(_read_pair(row.files, row.name, row.dt, row.units, None, False, row.where)
                  for row in manifest_rows(path))

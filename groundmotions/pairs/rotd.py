@@ -146,7 +146,7 @@ def rotd_spectra(
     if not isinstance(pair, GroundMotionPair):
         raise InputTypeError(f"The 'pair' parameter of {owner} must be a GroundMotionPair. "
                          f"Got {pair!r} instead.")
-    t = check_array(np.atleast_1d(np.asarray(periods, dtype=float)), "periods", owner,
+    t = check_array(np.atleast_1d(periods) if np.ndim(periods) == 0 else periods, "periods", owner,
                     low=0.0)
     zeta = check_real(damping, "damping", owner, low=0.0, high=1.0, high_open=True)
     levels = tuple(float(p) for p in check_array(np.atleast_1d(np.asarray(percentiles,

@@ -21,6 +21,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_choice, check_real
 from isolator.bearing import AxialLoadHistory, DCFPBearing
 from isolator.diagnosis.data import Campaign, check_plausible
@@ -74,7 +75,7 @@ class BaselineSpec:
         for name in without:
             check_choice(name, "without", owner, REMOVABLE_EFFECTS)
         if self.model == "constant" and without:
-            raise ValueError(f"The 'without' parameter of {owner} must be empty for the "
+            raise InputError(f"The 'without' parameter of {owner} must be empty for the "
                              f"constant model, which has no effects to remove. Got {without!r}.")
         object.__setattr__(self, "without", without)
         if self.yield_displacement is not None:
@@ -255,7 +256,7 @@ def _fit_yield_and_scale(
             u_y = float(grid[i])
     scale, cost = _scale_fit(target, regressor * return_map(features, u_y))
     if not scale > 0.0:
-        raise ValueError("The baseline's friction coefficient came out non-positive: the "
+        raise InputError("The baseline's friction coefficient came out non-positive: the "
                          "force does not oppose the motion. Check the sign convention of "
                          "'force' (it must resist the imposed displacement).")
     return u_y, scale, cost

@@ -148,8 +148,8 @@ class Campaign:
         owner = type(self).__name__
         tests = tuple(self.tests)
         if not tests or not all(isinstance(t, BearingRecord) for t in tests):
-            raise TypeError(f"The 'tests' parameter of {owner} must be one or more "
-                            f"BearingRecord objects. Got {self.tests!r} instead.")
+            raise InputTypeError(f"The 'tests' parameter of {owner} must be one or more "
+                                 f"BearingRecord objects. Got {self.tests!r} instead.")
         object.__setattr__(self, "tests", tests)
         check_real(self.effective_radius, "effective_radius", owner, low=0.0, low_open=True,
                    allow_inf=True)

@@ -18,6 +18,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
 from isolator.diagnosis.effects import Context, Effect
 from isolator.diagnosis.features import Features
 from isolator.diagnosis.kinematics import hysteretic_variable, play_return_map, shifted
@@ -291,7 +292,7 @@ class HoldOut:
             scheme = "alternate cycles"
             masks = [features.cycle % 2 == parity for parity in (1, 0)]
         if any(not m.any() or m.all() for m in masks):
-            raise ValueError("The campaign needs at least two cycles (or three tests) so that "
+            raise InputError("The campaign needs at least two cycles (or three tests) so that "
                              "part of it can be held out.")
         folds = tuple((np.flatnonzero(~m), np.flatnonzero(m)) for m in masks)
         return cls(scheme, folds, tuple(features.take(tr) for tr, _ in folds),

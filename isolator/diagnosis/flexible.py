@@ -18,6 +18,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
 from isolator.diagnosis.effects import Context, Effect, Parameter
 
 KNOTS = 6  # knot positions (quantiles of the variable): five ramps
@@ -44,7 +45,7 @@ def flexible(effect: Effect, features, context: Context, increasing: bool) -> Ef
     """``effect`` (on mu, with a ``variable``) in its flexible monotone form, rising with its
     variable if ``increasing``, with knots at quantiles of the variable over ``features``."""
     if effect.acts_on != "mu" or effect.variable is None:
-        raise ValueError(f"Effect {effect.name!r} has no flexible form (it must act on mu "
+        raise InputError(f"Effect {effect.name!r} has no flexible form (it must act on mu "
                          "and name its variable).")
     x = effect.variable(features, context)
     extra = None

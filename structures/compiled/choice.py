@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_choice
 from isolator.compiled import kernels
 from isolator.compiled.packing import unsupported_reason
@@ -31,7 +32,7 @@ def choose_engine(engine: str, reason: str | None, owner: str) -> str:
     Raises ``ValueError`` for an unknown ``engine``, or ``"compiled"`` with a ``reason``."""
     check_choice(engine, "engine", owner, ENGINES)
     if engine == "compiled" and reason is not None:
-        raise ValueError(f"The 'engine' parameter of {owner} is 'compiled' but {reason}; use "
+        raise InputError(f"The 'engine' parameter of {owner} is 'compiled' but {reason}; use "
                          "engine='reference' or 'auto'.")
     if engine == "auto":
         return "compiled" if reason is None and kernels.COMPILED else "reference"

@@ -54,13 +54,13 @@ def bearing_campaign(results: Sequence[xr.Dataset], **kwargs: object) -> Campaig
     their geometries differ."""
     results = list(results)
     if not results:
-        raise ValueError("bearing_campaign needs at least one building response.")
+        raise InputError("bearing_campaign needs at least one building response.")
     radius = float(results[0].attrs["effective_radius"])
     diameter = float(results[0].attrs["slider_diameter"])
     for r in results[1:]:
         if (float(r.attrs["effective_radius"]), float(r.attrs["slider_diameter"])) != (
                 radius, diameter):
-            raise ValueError("The building responses of one campaign must have the same "
+            raise InputError("The building responses of one campaign must have the same "
                              "bearing geometry (effective radius and slider diameter).")
     records = [rec for r in results for rec in bearing_records(r, **kwargs)]
     return Campaign(tuple(records), radius, diameter)

@@ -11,6 +11,7 @@ import time as _time
 
 import numpy as np
 
+from dcfpb.common.errors import InputError, RunFailure
 from dcfpb.common.validation import check_choice
 from isolator.bearing import DCFPBearing
 from isolator.orbits import Orbit
@@ -71,7 +72,7 @@ def run_opensees_test(
     t, u, v = imposed_history(time, displacement, velocity, owner)
     if np.any(u[0] != 0.0):
         start = "0" if u.ndim == 1 else "(0, 0)"
-        raise ValueError(f"The 'displacement' parameter of {owner} must start at {start} (the "
+        raise InputError(f"The 'displacement' parameter of {owner} must start at {start} (the "
                          f"element starts at rest). Got {u[0]!r} instead.")
     weight = constant_axial_load(bearing, owner)
     warn_if_steps_vary(element, t, owner)
@@ -166,8 +167,8 @@ def _record(ops, t: np.ndarray, read, element: str, owner: str) -> dict[str, np.
         out[key][0] = 0.0
     for k, dt in enumerate(np.diff(t), start=1):
         if ops.analyze(1, float(dt)) != 0:
-            raise RuntimeError(f"OpenSees failed at step {k} (t = {t[k] - t[0]:g} s) of "
-                               f"{owner} with element {element!r}.")
+            raise RunFailure(f"OpenSees failed at step {k} (t = {t[k] - t[0]:g} s) of "
+                             f"{owner} with element {element!r}.")
         force, friction_force, normal, mu, temperature, heat_flux = read(ops)
         out["displacement"][k] = ops.nodeDisp(_TOP, 1), ops.nodeDisp(_TOP, 2)
         out["velocity"][k] = ops.nodeVel(_TOP, 1), ops.nodeVel(_TOP, 2)

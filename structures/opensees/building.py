@@ -11,7 +11,7 @@ import time as _time
 
 import numpy as np
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.common.validation import check_int, check_real
 from groundmotions.pairs import GroundMotionPair
@@ -40,8 +40,8 @@ def opensees_integrator(method: str | Newmark | HHT) -> tuple:
         return ("HHT", 1.0 + method.alpha)
     if isinstance(method, Newmark):
         return ("Newmark", method.gamma, method.beta)
-    raise TypeError(f"The 'integrator' parameter of run_opensees must be one of {tuple(METHODS)} "
-                    f"or a Newmark or HHT instance. Got {method!r} instead.")
+    raise InputTypeError(f"The 'integrator' parameter of run_opensees must be one of "
+                         f"{tuple(METHODS)} or a Newmark or HHT instance. Got {method!r} instead.")
 
 
 def halving_step(ops, dt: float, depth: int, limit: int, counts: list[int]) -> bool:
@@ -105,7 +105,7 @@ def run_opensees(
     native = IsolatedShearBuilding(building, bearing, n_bearings, overturning=overturning,
                                    vertical=motion.z if pair else None)
     if arguments[0] == "HHT" and element_kind(native.bearing) == "ptv":
-        raise ValueError(
+        raise InputError(
             f"The 'integrator' parameter of {owner} must be Newmark for FPBearingPTV: the "
             "element appends to its heat history whenever the domain time advances, and "
             "OpenSees's HHT moves it to t + alpha dt within each step, so the history gets "

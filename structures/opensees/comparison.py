@@ -14,6 +14,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_choice
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
@@ -55,7 +56,7 @@ def shaped_bearing(bearing: DCFPBearing, model: str) -> DCFPBearing:
     friction = bearing.friction
     if (friction.name == "constant") != (model == "constant"):
         wanted = "ConstantFriction" if model == "constant" else "PTVFriction"
-        raise ValueError(f"The 'bearing' parameter of {owner} must have a {wanted} for model "
+        raise InputError(f"The 'bearing' parameter of {owner} must have a {wanted} for model "
                          f"{model!r}. Got {friction!r} instead.")
     if model == "constant":
         return bearing
@@ -79,7 +80,7 @@ def nrmse(reference: np.ndarray, other: np.ndarray) -> float:
     if the reference is zero). Raises ValueError if the histories differ in length."""
     reference, other = np.asarray(reference, dtype=float), np.asarray(other, dtype=float)
     if reference.shape != other.shape:
-        raise ValueError(f"The histories compared by nrmse must have one length. Got "
+        raise InputError(f"The histories compared by nrmse must have one length. Got "
                          f"{reference.shape} and {other.shape} instead.")
     scale = float(np.max(np.abs(reference)))
     rms = float(np.sqrt(np.mean((other - reference) ** 2)))
@@ -156,12 +157,12 @@ def compare(ours, opensees) -> dict[str, Any]:
     ``axial_load`` and the differences of :func:`axial_load_summary`. Raises ValueError if the runs
     do not share their time step or their bearings.
     """
-    if not np.allclose(ours["time"].values[:2], opensees["time"].values[:2]):
-        raise ValueError("The runs compared must share their time step. Got "
+    if not np.isclose(float(ours.attrs["dt"]), float(opensees.attrs["dt"])):
+        raise InputError("The runs compared must share their time step. Got "
                          f"{ours.attrs['dt']!r} s and {opensees.attrs['dt']!r} s instead.")
     if not all(np.array_equal(ours[name].values, opensees[name].values)
                for name in ("bearing_x", "bearing_y", "bearing_count")):
-        raise ValueError("The runs compared must have the same bearings.")
+        raise InputError("The runs compared must have the same bearings.")
     n = min(ours.sizes["time"], opensees.sizes["time"])
     a, b = ours.isel(time=slice(0, n)), opensees.isel(time=slice(0, n))
     plan = ours.sizes["direction"] == 2
@@ -288,7 +289,7 @@ def compare_tests(ours: BearingTestResult, opensees: BearingTestResult,
     """
     if ours.time.shape != opensees.time.shape or not np.allclose(ours.time, opensees.time,
                                                                  rtol=0.0, atol=1e-12):
-        raise ValueError("The tests compared by compare_tests must share their samples. Got "
+        raise InputError("The tests compared by compare_tests must share their samples. Got "
                          f"{ours.time.size} and {opensees.time.size} samples instead.")
     cycles = [slice(None)] if cycles is None else cycles
     size = ours.time.size
@@ -359,7 +360,7 @@ def run_bearing_comparison(
     t, u, v = history.time, history.displacement, history.velocity
     if match_normal_force:
         if element == "ptv":
-            raise ValueError(f"The 'match_normal_force' parameter of {owner} applies to "
+            raise InputError(f"The 'match_normal_force' parameter of {owner} applies to "
                              "singleFPBearing only (FPBearingPTV keeps N = W). Got element "
                              f"{element!r} instead.")
         ours_bearing = replace(ours_bearing,

@@ -22,6 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.validation import check_choice
 from isolator.bearing import AxialLoadHistory, DCFPBearing
 from isolator.heating import CentrePoint
@@ -90,11 +91,11 @@ def velocity_dependent_parameters(friction, pressure: float) -> VelDependentPara
     ValueError if mu varies with a heated temperature or the velocity factor is not exponential."""
     owner = "velocity_dependent_parameters"
     if friction.name == "constant":
-        raise TypeError(f"The 'friction' parameter of {owner} must be a PTVFriction (Eq. 7). "
-                        f"Got {friction!r} instead.")
+        raise InputTypeError(f"The 'friction' parameter of {owner} must be a PTVFriction "
+                             f"(Eq. 7). Got {friction!r} instead.")
     dependencies, factors = friction.dependencies, friction.factors
     if friction.heats and "temperature" in dependencies:
-        raise ValueError(
+        raise InputError(
             f"The 'friction' parameter of {owner} must not depend on a heated temperature "
             "(VelDependent has velocity dependence only). Got heating "
             f"{friction.heating!r} with dependencies {dependencies!r} instead.")
@@ -112,7 +113,7 @@ def velocity_dependent_parameters(friction, pressure: float) -> VelDependentPara
     probe = 1.0 / rate
     if abs(fast - 1.0) > 1e-12 or abs(
             factors.velocity(probe)[0] - (fast - drop * math.exp(-rate * probe))) > 1e-12:
-        raise ValueError(f"The velocity factor of {factors!r} is not of the form "
+        raise InputError(f"The velocity factor of {factors!r} is not of the form "
                          f"1 - c exp(-a |v|) that {owner} maps to VelDependent.")
     return VelDependentParameters(scale * at_rest, scale * fast, rate)
 
@@ -120,10 +121,10 @@ def velocity_dependent_parameters(friction, pressure: float) -> VelDependentPara
 def check_ptv_friction(friction, owner: str):
     """``friction`` if Eq. 7 with Kumar's factors at 20 degC (FPBearingPTV's), else ValueError."""
     if friction.name == "constant" or friction.factors.name != "kumar":
-        raise ValueError(f"The bearing of {owner} must have a PTVFriction with KumarFactors "
+        raise InputError(f"The bearing of {owner} must have a PTVFriction with KumarFactors "
                          f"(the factors FPBearingPTV implements). Got {friction!r} instead.")
     if friction.initial_temperature != FPBEARINGPTV_AMBIENT:
-        raise ValueError(f"The initial temperature of the bearing of {owner} must be "
+        raise InputError(f"The initial temperature of the bearing of {owner} must be "
                          f"{FPBEARINGPTV_AMBIENT:g} degC (hard-coded in FPBearingPTV). Got "
                          f"{friction.initial_temperature!r} instead.")
     return friction
@@ -160,7 +161,7 @@ def fpbearingptv_restoring(normal, displacement, radius: float) -> np.ndarray:
 def constant_axial_load(bearing: DCFPBearing, owner: str) -> float:
     """The bearing's axial load [N] if it is constant, else an error naming ``owner``."""
     if isinstance(bearing.axial_load, AxialLoadHistory) or bearing.axial_load is None:
-        raise ValueError(f"The 'bearing' parameter of {owner} must have a constant axial load. "
+        raise InputError(f"The 'bearing' parameter of {owner} must have a constant axial load. "
                          f"Got {bearing.axial_load!r} instead.")
     return float(bearing.axial_load)
 
@@ -226,12 +227,12 @@ def add_bearing(ops, tag: Callable[[], int], bottom: int, top: int, bearing: DCF
         return _fpbearingptv(ops, tag, bottom, top, bearing, group, count, kinit, owner,
                              (axial, torsion, rocking))
     if bearing.restoring != "linear":
-        raise ValueError(f"Element {kind!r} of {owner} has the linear restoring law N u / R. "
+        raise InputError(f"Element {kind!r} of {owner} has the linear restoring law N u / R. "
                          f"Got a bearing with {bearing.restoring!r} instead.")
     model = tag()
     if kind == "coulomb":
         if friction.name != "constant":
-            raise ValueError(f"Element 'coulomb' of {owner} needs a ConstantFriction. "
+            raise InputError(f"Element 'coulomb' of {owner} needs a ConstantFriction. "
                              f"Got {friction!r} instead.")
         ops.frictionModel("Coulomb", model, friction.mu)
         mu = friction.mu
@@ -279,11 +280,11 @@ def _fpbearingptv(ops, tag, bottom: int, top: int, bearing: DCFPBearing, load: f
     friction = check_ptv_friction(bearing.friction, owner)
     radius = bearing.effective_radius
     if bearing.restoring != "spherical" or math.isinf(radius):
-        raise ValueError(f"Element 'ptv' of {owner} has the spherical restoring law "
+        raise InputError(f"Element 'ptv' of {owner} has the spherical restoring law "
                          "N u / sqrt(R^2 - u^2) with a finite R. Got a bearing with "
                          f"{bearing.restoring!r} and R = {radius!r} instead.")
     if friction.heating is None and "temperature" in friction.dependencies:
-        raise ValueError(f"Element 'ptv' of {owner} always heats its surface; a temperature "
+        raise InputError(f"Element 'ptv' of {owner} always heats its surface; a temperature "
                          "dependent PTVFriction without heating has no OpenSees twin.")
     axial, torsion, rocking = materials
     mu = (_mu_at_rest(friction, load / bearing.contact_area) if kinit == "rest"

@@ -21,7 +21,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.common.errors import InputWarning
+from dcfpb.common.errors import InputError, InputWarning
 from dcfpb.common.validation import check_choice
 from structures.isolated_building import IsolatedShearBuilding
 from structures.opensees.elements import (
@@ -153,7 +153,7 @@ def build_model(ops, model: IsolatedShearBuilding, pendulum: str = "singlefp") -
     bearing, building = model.bearing, model.building
     kind = element_kind(bearing)
     if kind == "ptv" and fpbearingptv_equivalent(bearing) != bearing:
-        raise ValueError(f"The bearing of {owner} must be shaped as FPBearingPTV models it "
+        raise InputError(f"The bearing of {owner} must be shaped as FPBearingPTV models it "
                          "(structures.opensees.elements.fpbearingptv_equivalent: one centre-"
                          "heated surface, refinement sqrt(pi)/2, spherical law). Got "
                          f"{bearing!r} instead.")

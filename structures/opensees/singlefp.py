@@ -12,6 +12,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from isolator.bearing import AxialLoadHistory, DCFPBearing
@@ -93,7 +94,7 @@ class SingleFPNormalForce(IsolatedShearBuilding):
                  n_bearings: int | None = None, *, overturning: bool = False,
                  vertical: GroundMotion | None = None) -> None:
         if bearing.friction.name != "constant" or not np.isfinite(bearing.effective_radius):
-            raise ValueError("The bearing of SingleFPNormalForce must have a ConstantFriction "
+            raise InputError("The bearing of SingleFPNormalForce must have a ConstantFriction "
                              f"and a finite radius. Got {bearing!r} instead.")
         super().__init__(building, bearing, n_bearings, overturning=overturning,
                          vertical=vertical)

@@ -27,8 +27,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from dcfpb.common.errors import InputError, InputWarning
-from dcfpb.common.validation import check_choice, check_real
+from dcfpb.common.errors import InputError, InputTypeError, InputWarning
+from dcfpb.common.validation import check_choice, check_instance, check_path, check_real
 from isolator.experiments import MODELS
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
@@ -149,6 +149,13 @@ class Suite:
 
     def __post_init__(self) -> None:
         owner = "Suite"
+        check_instance(self.config, "config", owner, BuildingConfig,
+                       "a BuildingConfig (structures.load_config)")
+        for name in ("motions", "models", "scales", "property_modifiers"):
+            value = getattr(self, name)
+            if isinstance(value, str | bytes) or not hasattr(value, "__iter__"):
+                raise InputTypeError(f"The {name!r} parameter of {owner} must be a sequence. "
+                                     f"Got {value!r:.80} instead.")
         motions = tuple(m if isinstance(m, MotionSource) else MotionSource.record(m)
                         for m in self.motions)
         if not motions:
@@ -210,14 +217,14 @@ class Suite:
             if not isinstance(answer, Mapping):
                 values = list(answer)
                 if len(values) != len(readable):
-                    raise ValueError(f"The factor hook returned {len(values)} factors for "
+                    raise InputError(f"The factor hook returned {len(values)} factors for "
                                      f"{len(readable)} {self.kind}s.")
                 answer = dict(zip(readable, values, strict=True))
             given = answer
         factors = {s: _lookup(given, s, motions[s].name if read else s.name) for s in readable}
         missing = [s.name for s, v in factors.items() if v is None]
         if missing:
-            raise ValueError(f"No scale factor given for the {self.kind}(s) {missing}.")
+            raise InputError(f"No scale factor given for the {self.kind}(s) {missing}.")
         return {s: check_real(v, "factors", "Suite", low=0.0, low_open=True)
                 for s, v in factors.items()}
 
@@ -237,7 +244,7 @@ class Suite:
                  for modifier in self.property_modifiers]
         twice = sorted(i for i, n in Counter(s.run_id for s in specs).items() if n > 1)
         if twice:
-            raise ValueError(f"The suite holds the same run more than once (a {self.kind}, "
+            raise InputError(f"The suite holds the same run more than once (a {self.kind}, "
                              f"scale or modifier given twice): {twice[:3]}.")
         return specs, motions, unreadable
 
@@ -284,6 +291,8 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
     structures.suites.lock.SuiteLocked
         When another suite writes into ``out_dir``.
     """
+    check_instance(suite, "suite", "run_suite", Suite, "a Suite")
+    check_path(out_dir, "out_dir", "run_suite")
     check_run_options(write, run_timeout, max_steps, "run_suite")
     with SuiteLock(out_dir, wait=wait_lock) if lock else nullcontext():
         start = time.perf_counter()

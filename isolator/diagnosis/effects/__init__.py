@@ -10,6 +10,7 @@ import importlib
 import pkgutil
 from collections.abc import Sequence
 
+from dcfpb.common.errors import InputError
 from isolator.diagnosis.effects.base import ACTS_ON, Context, Effect, Parameter
 
 
@@ -37,7 +38,7 @@ def effects_named(names: Sequence[str]) -> tuple[Effect, ...]:
     table = {e.name: e for e in LIBRARY}
     unknown = [n for n in names if n not in table]
     if unknown:
-        raise ValueError(f"Unknown effect(s) {unknown}; the library has {list(EFFECT_NAMES)}.")
+        raise InputError(f"Unknown effect(s) {unknown}; the library has {list(EFFECT_NAMES)}.")
     return tuple(table[n] for n in names)
 
 

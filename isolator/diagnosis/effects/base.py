@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from dcfpb.common.errors import InputError
+
 ACTS_ON = ("kinematics", "mu", "force")
 
 
@@ -155,12 +157,12 @@ class Effect:
 
     def __post_init__(self) -> None:
         if self.acts_on not in ACTS_ON:
-            raise ValueError(f"The 'acts_on' parameter of Effect {self.name!r} must be one of "
+            raise InputError(f"The 'acts_on' parameter of Effect {self.name!r} must be one of "
                              f"{ACTS_ON}. Got {self.acts_on!r} instead.")
         hooks = {"kinematics": (self.kinematic,), "mu": (self.factor,),
                  "force": (self.extra, self.transform)}[self.acts_on]
         if all(h is None for h in hooks):
-            raise ValueError(f"Effect {self.name!r} acts on {self.acts_on} but defines none of "
+            raise InputError(f"Effect {self.name!r} acts on {self.acts_on} but defines none of "
                              "the hooks that act there.")
 
     def untestable(self, context: Context) -> str | None:
