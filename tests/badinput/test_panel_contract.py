@@ -59,6 +59,13 @@ def inputs(tmp_path, tmp_path_factory, monkeypatch) -> Inputs:
     return Inputs(tmp_path, building, record, records, out, earlier)
 
 
+def _suite(i: Inputs) -> list[str]:
+    """A suite into the folder of an earlier output, allowed to replace it: each case reaches
+    the check it is about, and the earlier output must stay whole all the same."""
+    return ["suite", str(i.building), "--records", str(i.records), "--out", str(i.out),
+            "--overwrite"]
+
+
 def _closed_port(_: Inputs) -> str:
     probe = socket.socket()
     probe.bind(("127.0.0.1", 0))
@@ -219,27 +226,21 @@ CASES: dict[str, Case] = {
         "'n_workers'", InputError),
     # the command line: bad input exits 2 naming the flag or file, before any work
     "cli-scheduler-closed-port": _cli(
-        lambda i: ["suite", str(i.building), "--records", str(i.records), "--out", str(i.out),
-                   "--scheduler", _closed_port(i)], 2, "--scheduler", "cannot connect"),
+        lambda i: [*_suite(i), "--scheduler", _closed_port(i)], 2, "--scheduler", "cannot connect"),
     "cli-scheduler-garbage-server": _cli(
-        lambda i: ["suite", str(i.building), "--records", str(i.records), "--out", str(i.out),
-                   "--scheduler", _garbage_server(i)], 2, "--scheduler", "not a Dask scheduler"),
+        lambda i: [*_suite(i), "--scheduler", _garbage_server(i)], 2, "--scheduler",
+        "not a Dask scheduler"),
     "cli-scheduler-no-port": _cli(
-        lambda i: ["suite", str(i.building), "--records", str(i.records), "--out", str(i.out),
-                   "--scheduler", "tcp://127.0.0.1"], 2, "--scheduler", "tcp://127.0.0.1"),
+        lambda i: [*_suite(i), "--scheduler", "tcp://127.0.0.1"], 2, "--scheduler", "tcp://127.0.0.1"),
     "cli-scheduler-unknown-scheme": _cli(
-        lambda i: ["suite", str(i.building), "--records", str(i.records), "--out", str(i.out),
-                   "--scheduler", "http://127.0.0.1:8786"], 2, "--scheduler", "http"),
+        lambda i: [*_suite(i), "--scheduler", "http://127.0.0.1:8786"], 2, "--scheduler", "http"),
     "cli-scheduler-empty": _cli(
-        lambda i: ["suite", str(i.building), "--records", str(i.records), "--out", str(i.out),
-                   "--scheduler", ""], 2, "--scheduler"),
+        lambda i: [*_suite(i), "--scheduler", ""], 2, "--scheduler"),
     "cli-workers-zero": _cli(
-        lambda i: ["suite", str(i.building), "--records", str(i.records), "--out", str(i.out),
-                   "--workers", "0"], 2, "'--workers'", "[1, inf)"),
+        lambda i: [*_suite(i), "--workers", "0"], 2, "'--workers'", "[1, inf)"),
     "cli-workers-and-scheduler": _cli(
-        lambda i: ["suite", str(i.building), "--records", str(i.records), "--out", str(i.out),
-                   "--workers", "1", "--scheduler", "tcp://127.0.0.1:1"], 2, "--workers",
-        "--scheduler"),
+        lambda i: [*_suite(i), "--workers", "1", "--scheduler", "tcp://127.0.0.1:1"], 2,
+        "--workers", "--scheduler"),
     "cli-path-record-is-a-folder": _cli(
         lambda i: ["run", str(i.building), "--record", str(i.records)], 2, "--record",
         "records"),
@@ -252,7 +253,7 @@ CASES: dict[str, Case] = {
         lambda i: ["run", str(i.records), "--record", str(i.record)], 2, "records"),
     "cli-path-suite-records-missing": _cli(
         lambda i: ["suite", str(i.building), "--records", str(i.folder / "none"), "--out",
-                   str(i.out)], 2, "none"),
+                   str(i.out), "--overwrite"], 2, "none"),
     # a run with good input that fails at its first step: exit 1 with its time and cause
     "cli-run-fails-at-first-step": _cli(
         lambda i: ["run", str(_first_step_building(i)), "--record", str(_short_record(i)),
