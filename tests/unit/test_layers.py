@@ -22,7 +22,7 @@ PACKAGES = ("dcfpb", "groundmotions", "isolator", "structures")
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("dcfpb.cli",),
     ("dcfpb.plotting",),
-    ("structures.suites", "structures.diagnosis"),
+    ("structures.suites", "structures.diagnosis", "structures.design"),
     ("structures.opensees",),
     ("structures",),
     ("isolator",),
