@@ -3,7 +3,7 @@ workflow like :mod:`structures.suites`). Property modification (17.2.8.4,
 :mod:`~structures.design.properties`), the equivalent lateral force procedure (17.5,
 :mod:`~structures.design.elf`), the virtual prototype test (17.8,
 :mod:`~structures.design.prototype`) and the standard's numeric limits in one table
-(:mod:`~structures.design.limits`). The names in ``__all__`` are imported on first use::
+(:mod:`~structures.design.limits`)::
 
     config = structures.load_config("examples/five_storey_plan.toml")
     lam = PropertyModification.overall(1.8, 0.6)
@@ -13,23 +13,20 @@ workflow like :mod:`structures.suites`). Property modification (17.2.8.4,
 
 from __future__ import annotations
 
-from dcfpb.common.lazy import lazy_exports
+# Imported at once, not lazily as the other packages' names: the function ``elf`` shares its
+# name with the module ``structures.design.elf``, and a lazy name would lose to the submodule
+# once anything imports it (Python sets the package attribute to the module).
+from structures.design.elf import ELFResult, Site, elf, nominal_mu, response_modification
+from structures.design.limits import (
+    B_M_TABLE,
+    LIMITS,
+    Limit,
+    damping_coefficient,
+    limits_table,
+)
+from structures.design.properties import PropertyModification
+from structures.design.prototype import PrototypeResult, prototype_test
 
-_EXPORTS = {
-    "LIMITS": "structures.design.limits",
-    "Limit": "structures.design.limits",
-    "B_M_TABLE": "structures.design.limits",
-    "damping_coefficient": "structures.design.limits",
-    "limits_table": "structures.design.limits",
-    "PropertyModification": "structures.design.properties",
-    "Site": "structures.design.elf",
-    "ELFResult": "structures.design.elf",
-    "elf": "structures.design.elf",
-    "nominal_mu": "structures.design.elf",
-    "response_modification": "structures.design.elf",
-    "PrototypeResult": "structures.design.prototype",
-    "prototype_test": "structures.design.prototype",
-}
 __all__ = [
     "B_M_TABLE",
     "LIMITS",
@@ -45,4 +42,3 @@ __all__ = [
     "prototype_test",
     "response_modification",
 ]
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, globals())
