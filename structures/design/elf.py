@@ -12,7 +12,8 @@ characteristic strength mu W)::
 
 iterated from D_M of the pendulum period with B_M = 1 to the fixed point. Then D_TM (Eq. 17.5-3
 with P_T of Eq. 17.5-4, not less than 1.15 D_M), V_b = K_M D_M (Eq. 17.5-5), V_st =
-V_b (W_s / W)^(1 - 2.5 beta_M), V_s = V_st / R_I with the limits of 17.5.4.3 the building gives
+V_b (W_s / W)^(1 - 3.5 beta_M) (the abrupt transition of a friction pendulum; 2.5 for a smooth
+one), V_s = V_st / R_I with the limits of 17.5.4.3 the building gives
 (the fixed-base force of Chapter 12 at T_M, 1.5 times the activation force of the sliding
 system, an optional wind base shear), the vertical distribution of 17.5.5 (F_1 at the base level,
 F_x = C_vx V_s with k = 14 beta_M T_fb) and the storey drifts of 17.5.6 (C_d = R_I, limit
@@ -538,7 +539,7 @@ def _direction(config: BuildingConfig, direction: str, D_M: float, beta_M: float
 def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: PropertyModification,
         *, R: float, I_e: float = 1.0, model: str | None = None, mu: float | None = None,
         storey_heights: float | list[float] | None = None, wind_base_shear: float | None = None,
-        tolerance: float = 1e-12) -> ELFResult:
+        abrupt_transition: bool = True, tolerance: float = 1e-12) -> ELFResult:
     """The equivalent lateral force procedure (Sec. 17.5) at the upper and lower bound.
 
     Parameters
@@ -563,6 +564,10 @@ def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: Propert
         Storey heights [m] (default the plan's ``storey_heights``).
     wind_base_shear : float or None
         Wind base shear above the isolation interface [N] (17.5.4.3 item 2), if known.
+    abrupt_transition : bool
+        The isolation system passes abruptly from pre-slip to sliding (a friction pendulum):
+        V_st with the exponent (1 - 3.5 beta_M) of 17.5.4.2 instead of (1 - 2.5 beta_M)
+        (``LIMITS["V_st_exponent_factor_abrupt"]``).
     tolerance : float
         Relative tolerance of the fixed point of D_M [-].
 
@@ -602,6 +607,11 @@ def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: Propert
     wind = (float("nan") if wind_base_shear is None
             else check_real(wind_base_shear, "wind_base_shear", _OWNER, low=0.0))
     heights = _storey_heights(config, storey_heights)
+    if not isinstance(abrupt_transition, bool):
+        raise InputError(f"The 'abrupt_transition' parameter of {_OWNER} must be True or False. "
+                         f"Got {abrupt_transition!r} instead.")
+    exponent_key = ("V_st_exponent_factor_abrupt" if abrupt_transition
+                    else "V_st_exponent_factor")
     notes = lambda_.limit_notes()
     for note in notes:
         warnings.warn(InputWarning(note), stacklevel=2)
@@ -620,7 +630,7 @@ def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: Propert
         D_M, K_M, beta_M, B_M, T_M, iterations = fixed_point(W, radius, mu_b, site.S_M1,
                                                              tolerance=tolerance)
         V_b = K_M * D_M
-        exponent = 1.0 - limit("V_st_exponent_factor") * beta_M
+        exponent = 1.0 - limit(exponent_key) * beta_M
         V_st = V_b * (W_s / W) ** exponent
         candidates = {
             "formula": V_st / R_I,
@@ -641,7 +651,9 @@ def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: Propert
              "bearings rigid-plastic (yield displacement neglected) in K_M and beta_M",
              "fixed-base limit of 17.5.4.3 item 1 with R_I in place of R (to be checked); "
              f"activation limit ({LIMITS['activation_factor'].clause}) as 1.5 mu W, undivided",
-             "wind base shear not given" if wind_base_shear is None else "wind base shear given"]
+             "wind base shear not given" if wind_base_shear is None else "wind base shear given",
+             f"V_st with the exponent (1 - {limit(exponent_key):g} beta_M) "
+             f"({'abrupt' if abrupt_transition else 'smooth'} transition to sliding, 17.5.4.2)"]
     if config.plan is None:
         notes.append("no plan: D_TM is the floor 1.15 D_M of 17.5.3.3 (torsion not computed)")
     return ELFResult(config.name, site, float(R), R_I, I_e, W, W_s, model, mu_nominal, lambda_,

@@ -10,6 +10,14 @@ ASCE 7-16 Chapter 17 as the author knows it, and each entry's ``verified`` says 
 all): a value on which that knowledge is firm has a plain note, one in doubt says what is in doubt
 (a percentage, an equation number, whether a bound is a floor or a check). Check them against the
 text before relying on a design; change them here, in one place.
+
+One public, non-authoritative cross-check was found (corpus ``code``): an MIT-licensed ASCE 7-16
+equivalent-static script for isolated structures by Amin Moghaddasi on GitHub. It agrees with
+this table on Table 17.5-1's points, R_I = 3/8 R in [1, 2], F_1 = (V_b - V_st) / R_I,
+k = 14 beta_M T_fb and Eq. 17.5-4 for P_T, and it has the exponent (1 - 3.5 beta_M) for systems
+with an abrupt transition (``V_st_exponent_factor_abrupt``). It divides the activation limit of
+17.5.4.3 by R_I, where this module does not (``activation_factor``): one of the two readings is
+wrong, and which was not settled.
 """
 
 from __future__ import annotations
@@ -91,6 +99,13 @@ LIMITS: dict[str, Limit] = {entry.key: entry for entry in (
     _L("V_st_exponent_factor", 2.5, "-", "17.5.4.2, Eq. 17.5-7",
        "V_st = V_b (W_s / W)^(1 - 2.5 beta_M)",
        note="firm from the literature; the equation number may be 17.5-7 or 17.5-6"),
+    _L("V_st_exponent_factor_abrupt", 3.5, "-", "17.5.4.2 (after Eq. 17.5-7)",
+       "(1 - 3.5 beta_M) in place of (1 - 2.5 beta_M) for isolation systems with an abrupt "
+       "transition from pre-slip to post-slip (or pre-yield to post-yield) behaviour",
+       note="from the literature and a third-party ASCE 7-16 isolation script (Amin-Moghaddasi "
+            "on GitHub, 'abrupt_transition'), not the text; a friction pendulum slides after "
+            "a pre-slip of about 2 u_y (1 mm here), so elf() takes it by default "
+            "(abrupt_transition=True)"),
     _L("activation_factor", 1.5, "-", "17.5.4.3 item 3",
        "V_s not less than V_st with V_b set to 1.5 times the break-away friction of a sliding "
        "system",

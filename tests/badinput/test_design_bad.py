@@ -52,6 +52,7 @@ def test_site_names_the_bad_value(args, name):
     ({"R": 2.0, "storey_heights": -3.0}, "storey_heights"),
     ({"R": 2.0, "model": "magic"}, "model"),
     ({"R": 2.0, "wind_base_shear": -1.0}, "wind_base_shear"),
+    ({"R": 2.0, "abrupt_transition": "yes"}, "abrupt_transition"),
 ])
 def test_elf_names_the_bad_argument(planar, kwargs, name):
     kwargs = {"storey_heights": 3.5, **kwargs}

@@ -85,9 +85,10 @@ def test_fixed_point_is_the_root_and_closed_forms_hold():
 
 def test_planar_building_against_the_hand_calculation(planar):
     """five_storey.toml, mu = 0.05 nominal, lambda 1.8 / 0.6, S_MS 1.5 g, S_M1 0.6 g, T_L 8 s,
-    R = 4 (R_I = 1.5), storeys 3.5 m."""
+    R = 4 (R_I = 1.5), storeys 3.5 m, the smooth transition's exponent (1 - 2.5 beta_M)."""
     lam = PropertyModification.overall(1.8, 0.6)
-    result = elf(planar, Site(1.5, 0.6, 8.0), lam, R=4.0, mu=0.05, storey_heights=3.5)
+    result = elf(planar, Site(1.5, 0.6, 8.0), lam, R=4.0, mu=0.05, storey_heights=3.5,
+                 abrupt_transition=False)
     W = (500e3 + 5 * 400e3) * g  # 24 516 625 N
     W_s = 5 * 400e3 * g
     R, R_I = 4.5, 1.5
@@ -139,7 +140,8 @@ def test_planar_building_against_the_hand_calculation(planar):
 
 
 def test_plan_building_against_the_hand_calculation(plan):
-    """five_storey_plan.toml, the constant model's mu, lambda from its parts."""
+    """five_storey_plan.toml, the constant model's mu, lambda from its parts, S_MS 1.2 g,
+    S_M1 0.5 g, R = 3 (R_I = 1.125), the abrupt transition's exponent (1 - 3.5 beta_M)."""
     lam = PropertyModification(ae_max=1.2, test_max=1.4, spec_max=1.15,
                                ae_min=1.0, test_min=0.7, spec_min=0.85)
     lam_max = (1 + 0.75 * (1.2 - 1)) * 1.4 * 1.15  # 1.8515
@@ -161,6 +163,13 @@ def test_plan_building_against_the_hand_calculation(plan):
         r = result.bounds[bound]
         D = hand_D_M(r.mu, 4.5, 0.5)
         assert pytest.approx(D, rel=1e-10) == r.D_M
+        W, W_s = 2.5e6 * 9.80665, 2.0e6 * 9.80665
+        beta = 2 * r.mu / (math.pi * (r.mu + D / 4.5))
+        V_b = (W / 4.5 + r.mu * W / D) * D
+        V_st = V_b * (W_s / W) ** (1 - 3.5 * beta)
+        v_b, v_st = r.V_b, r.V_st
+        assert v_b == pytest.approx(V_b, rel=1e-9)
+        assert v_st == pytest.approx(V_st, rel=1e-9)
         x, y = r.directions["x"], r.directions["y"]
         assert x.P_T == 1.0 and x.e == pytest.approx(1.08) and x.y == 5.0
         assert x.torsion_ratio == pytest.approx(ratio_x, rel=1e-12)
