@@ -36,7 +36,13 @@ import numpy as np
 
 from dcfpb.common.errors import InputError, InputWarning, RunFailure
 from dcfpb.common.units import STANDARD_GRAVITY
-from dcfpb.common.validation import check_array, check_instance, check_int, check_real
+from dcfpb.common.validation import (
+    check_array,
+    check_choice,
+    check_instance,
+    check_int,
+    check_real,
+)
 from isolator.experiments import MODELS
 from isolator.friction import ConstantFriction, PTVFriction, eq7
 from structures.config import BuildingConfig
@@ -447,10 +453,11 @@ class ELFResult:
         return "\n".join(rows)
 
 
-def _fixed_base_shear(site: Site, T_M: float, W_s: float, R_I: float, I_e: float) -> float:
+def _fixed_base_shear(site: Site, T_M: float, W_s: float, r: float, I_e: float) -> float:
     """The Chapter 12 base shear C_s W_s of the fixed-base superstructure at T_M (12.8.1.1),
-    with R_I in place of R (to be checked: 17.5.4.3 item 1)."""
-    ratio = R_I / I_e
+    divided by ``r`` (R_I or R: 17.5.4.3 item 1, not verified). The minimum 0.5 S_1 / (R / I_e)
+    of Eq. 12.8-6 for S_1 >= 0.6 g is left out (S_1 is not an input)."""
+    ratio = r / I_e
     if site.T_L is None or T_M <= site.T_L:
         cs = site.S_D1 / (T_M * ratio)
     else:
@@ -539,7 +546,8 @@ def _direction(config: BuildingConfig, direction: str, D_M: float, beta_M: float
 def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: PropertyModification,
         *, R: float, I_e: float = 1.0, model: str | None = None, mu: float | None = None,
         storey_heights: float | list[float] | None = None, wind_base_shear: float | None = None,
-        abrupt_transition: bool = True, tolerance: float = 1e-12) -> ELFResult:
+        abrupt_transition: bool = True, fixed_base_r: str = "R_I",
+        tolerance: float = 1e-12) -> ELFResult:
     """The equivalent lateral force procedure (Sec. 17.5) at the upper and lower bound.
 
     Parameters
@@ -568,6 +576,9 @@ def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: Propert
         The isolation system passes abruptly from pre-slip to sliding (a friction pendulum):
         V_st with the exponent (1 - 3.5 beta_M) of 17.5.4.2 instead of (1 - 2.5 beta_M)
         (``LIMITS["V_st_exponent_factor_abrupt"]``).
+    fixed_base_r : {"R_I", "R"}
+        The coefficient that divides the Chapter 12 force of the fixed-base limit of 17.5.4.3
+        item 1 (which the text means was not verified; ``"R"`` is the larger, less binding).
     tolerance : float
         Relative tolerance of the fixed point of D_M [-].
 
@@ -610,6 +621,7 @@ def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: Propert
     if not isinstance(abrupt_transition, bool):
         raise InputError(f"The 'abrupt_transition' parameter of {_OWNER} must be True or False. "
                          f"Got {abrupt_transition!r} instead.")
+    fixed_base_r = check_choice(fixed_base_r, "fixed_base_r", _OWNER, ("R_I", "R"))
     exponent_key = ("V_st_exponent_factor_abrupt" if abrupt_transition
                     else "V_st_exponent_factor")
     notes = lambda_.limit_notes()
@@ -634,7 +646,8 @@ def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: Propert
         V_st = V_b * (W_s / W) ** exponent
         candidates = {
             "formula": V_st / R_I,
-            "fixed_base": _fixed_base_shear(site, T_M, W_s, R_I, I_e),
+            "fixed_base": _fixed_base_shear(site, T_M, W_s,
+                                            R_I if fixed_base_r == "R_I" else float(R), I_e),
             "activation": limit("activation_factor") * mu_b * W * (W_s / W) ** exponent,
             "wind": wind,
         }
@@ -649,7 +662,8 @@ def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: Propert
                                  (V_b - V_st) / R_I, per_direction)
     notes = [*notes,
              "bearings rigid-plastic (yield displacement neglected) in K_M and beta_M",
-             "fixed-base limit of 17.5.4.3 item 1 with R_I in place of R (to be checked); "
+             f"fixed-base limit of 17.5.4.3 item 1 divided by {fixed_base_r} (which one was not "
+             "verified); "
              f"activation limit ({LIMITS['activation_factor'].clause}) as 1.5 mu W, undivided",
              "wind base shear not given" if wind_base_shear is None else "wind base shear given",
              f"V_st with the exponent (1 - {limit(exponent_key):g} beta_M) "

@@ -189,3 +189,19 @@ def test_result_converts_to_json_with_units(plan):
     assert data["site"]["T_L"]["value"] is None
     text = result.table()
     assert "D_TM (y)" in text and "Table 17.5-1" in text
+
+
+@pytest.mark.parametrize("fixed_base_r, T_L", [("R", None), ("R_I", 2.0), ("R", 2.0)])
+def test_fixed_base_limit_of_17_5_4_3(planar, fixed_base_r, T_L):
+    """C_s of 12.8.1.1 at T_M: S_D1 / (T R'), T_L S_D1 / (T^2 R') past T_L, at most S_DS / R',
+    at least 0.044 S_DS and 0.01, with R' = R = 4 or R_I = 1.5."""
+    result = elf(planar, Site(1.5, 0.6, T_L), PropertyModification.overall(1.8, 0.6), R=4.0,
+                 mu=0.05, storey_heights=3.5, fixed_base_r=fixed_base_r)
+    r_prime = 4.0 if fixed_base_r == "R" else 1.5
+    W_s = 2.0e6 * g
+    for bound in ("upper", "lower"):
+        T = result.bounds[bound].T_M
+        cs = 0.4 / (T * r_prime) if T_L is None or T <= T_L else 0.4 * T_L / (T**2 * r_prime)
+        cs = max(min(cs, 1.0 / r_prime), 0.044 * 1.0, 0.01)
+        v_fixed = result.bounds[bound].V_s_fixed_base
+        assert v_fixed == pytest.approx(cs * W_s, rel=1e-12)
