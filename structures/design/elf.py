@@ -668,6 +668,13 @@ def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: Propert
              "wind base shear not given" if wind_base_shear is None else "wind base shear given",
              f"V_st with the exponent (1 - {limit(exponent_key):g} beta_M) "
              f"({'abrupt' if abrupt_transition else 'smooth'} transition to sliding, 17.5.4.2)"]
+    for result in bounds.values():
+        if result.beta_M > limit("elf_beta_M_max") or result.T_M > limit("elf_T_M_max"):
+            notes.append(
+                f"{LIMITS['elf_beta_M_max'].clause}: the ELF procedure is permitted with beta_M "
+                f"<= {limit('elf_beta_M_max'):.0%} and T_M <= {limit('elf_T_M_max'):g} s (as "
+                f"read); the {result.bound} bound has beta_M = {result.beta_M:.1%}, T_M = "
+                f"{result.T_M:.3g} s: a response history analysis is required")
     if config.plan is None:
         notes.append("no plan: D_TM is the floor 1.15 D_M of 17.5.3.3 (torsion not computed)")
     return ELFResult(config.name, site, float(R), R_I, I_e, W, W_s, model, mu_nominal, lambda_,

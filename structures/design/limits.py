@@ -80,6 +80,14 @@ LIMITS: dict[str, Limit] = {entry.key: entry for entry in (
     _L("lambda_min_ceiling", 0.60, "-", "17.2.8.4, Eq. 17.2-2 (to be checked)",
        "lambda_min as assembled is at most this",
        note="in doubt as lambda_max_floor; the code warns when lambda_min is above it"),
+    _L("elf_beta_M_max", 0.30, "-", "17.4.1 (to be checked)",
+       "the ELF procedure is permitted only where beta_M at D_M is at most 30 % (among other "
+       "conditions: site, period, regularity, S_1)",
+       note="from the literature on the 2016 edition; the other conditions of 17.4.1 are not "
+            "checked by the code"),
+    _L("elf_T_M_max", 5.0, "s", "17.4.1 (to be checked)",
+       "the ELF procedure is permitted only where T_M is at most 5.0 s",
+       note="from the literature"),
     _L("D_TM_over_D_M_min", 1.15, "-", "17.5.3.3, Eq. 17.5-3",
        "total maximum displacement D_TM not less than 1.15 D_M",
        note="firm from the literature"),

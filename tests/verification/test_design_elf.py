@@ -205,3 +205,11 @@ def test_fixed_base_limit_of_17_5_4_3(planar, fixed_base_r, T_L):
         cs = max(min(cs, 1.0 / r_prime), 0.044 * 1.0, 0.01)
         v_fixed = result.bounds[bound].V_s_fixed_base
         assert v_fixed == pytest.approx(cs * W_s, rel=1e-12)
+
+
+def test_elf_says_where_17_4_1_does_not_permit_it(planar):
+    result = elf(planar, Site(1.5, 0.6), PropertyModification.overall(1.8, 0.6), R=4.0,
+                 mu=0.05, storey_heights=3.5)
+    assert result.upper.beta_M > 0.30 > result.lower.beta_M
+    notes = [n for n in result.notes if n.startswith("17.4.1")]
+    assert len(notes) == 1 and "upper bound" in notes[0]
