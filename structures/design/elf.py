@@ -669,7 +669,8 @@ def elf(config: BuildingConfig, site: Site | tuple[float, ...], lambda_: Propert
              f"V_st with the exponent (1 - {limit(exponent_key):g} beta_M) "
              f"({'abrupt' if abrupt_transition else 'smooth'} transition to sliding, 17.5.4.2)"]
     for result in bounds.values():
-        if result.beta_M > limit("elf_beta_M_max") or result.T_M > limit("elf_T_M_max"):
+        beta_m, t_m = result.beta_M, result.T_M
+        if beta_m > limit("elf_beta_M_max") or t_m > limit("elf_T_M_max"):
             notes.append(
                 f"{LIMITS['elf_beta_M_max'].clause}: the ELF procedure is permitted with beta_M "
                 f"<= {limit('elf_beta_M_max'):.0%} and T_M <= {limit('elf_T_M_max'):g} s (as "
