@@ -290,7 +290,9 @@ class ELFBound:
     V_s_governs : str
         Which governs: ``"formula"``, ``"fixed_base"``, ``"activation"`` or ``"wind"``.
     F_1 : float
-        Force at the base level, (V_b - V_st) / R_I [N].
+        Force at the base level, (V_b - V_st) / R_I [N]; negative where V_st > V_b, i.e. where
+        the exponent of V_st is negative (beta_M above 1/3.5 or 1/2.5), which is outside the
+        ELF's conditions of 17.4.1 (the result's notes say so).
     directions : dict of str to DirectionELF
         Per direction of loading.
     """
