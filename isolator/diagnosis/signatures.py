@@ -62,7 +62,8 @@ def signature(features: Features, prediction: np.ndarray, campaign: Campaign,
         ratio = 100 * abs(bias) / float(np.max(np.abs(f.force)))
         found.append((share, f"a constant force offset of {bias:.4g} N ({ratio:.1f} % of the "
                              f"peak force; {100 * share:.0f} % of the residual energy), like a "
-                             "load-cell zero error"))
+                             "load-cell zero error (or friction that differs with the sliding "
+                             "direction, which over whole cycles leaves the same offset)"))
     found.extend(_oscillation(f, residual, campaign, energy))
     found.extend(_drift(f, residual, energy, length))
     found.extend(_position(f, residual, energy, length))
