@@ -11,7 +11,8 @@ its own test against residuals of pure noise (:mod:`.hint_tests`, false-alarm ra
 ``ALPHA`` per hint): a spectral peak above the noise floor, above the loading frequencies and
 away from their harmonics; a mean, a trend over the cycles or a dependence on position
 against the residual's block-robust standard error; an energy share near the reversals above
-the share of samples there, likewise. A pattern that fails its test is not printed.
+what the residual's blocks shuffled within each test put there. A pattern that fails its test
+is not printed.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from isolator.diagnosis.features import Features
 from isolator.diagnosis.hint_tests import (
     ALPHA,
     block_length,
+    block_permutation_test,
     block_test,
     loading_frequency,
     spectral_peak,
@@ -83,9 +85,10 @@ def _reversals(f: Features, prediction: np.ndarray, residual: np.ndarray, energy
     Compares the medians, over half cycles with a clear swing and at least half the typical
     stroke, of the travel over which the measured and the predicted friction force dwell
     near zero (within 20 % of the new level) and of the travel to half the swing. The share of
-    the residual energy near the reversals must pass a one-sided block-robust test against
-    the share of samples there; a dead band, softer or stiffer swing is read into it only when
-    a sign test over the half cycles says so at ``_DESCRIPTION_ALPHA``.
+    the residual energy near the reversals must pass a block permutation test against the
+    share the same residual blocks shuffled within each test put there; a dead band, softer
+    or stiffer swing is read into it only when a sign test over the half cycles says so at
+    ``_DESCRIPTION_ALPHA``.
     """
     data = f.force - f.pendulum
     model = prediction - f.pendulum
@@ -113,8 +116,7 @@ def _reversals(f: Features, prediction: np.ndarray, residual: np.ndarray, energy
                  and _most(dwell_arr[:, 0] - dwell_arr[:, 1] > _DEAD_BAND_MIN))
     if share < _MIN_SHARE or (share < 1.5 * zone.mean() and not dead_band):
         return []
-    design = np.column_stack([np.ones(zone.size), zone.astype(float)])
-    if block_test(residual**2, design, [1], length, one_sided=True)[1] >= ALPHA:
+    if block_permutation_test(residual**2, zone, f.test, length) >= ALPHA:
         return []
     text = (f"{100 * share:.0f} % of the residual energy lies within {1e3 * reach:.3g} mm of "
             f"a reversal ({100 * zone.mean():.0f} % of the samples)")
