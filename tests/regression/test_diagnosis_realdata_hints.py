@@ -9,7 +9,8 @@ constant force offset of -1204 N (23 % of the residual energy; block-jackknife p
 "oscillation well above the loading frequency" the notes used to name (near 0.49 Hz, below
 the 2 Hz of the fastest test) fails its test: the strongest peak above the loading and off
 its harmonics (53 Hz) stands 11 times over its spectral floor against the 19 times that noise
-alone exceeds once in a thousand, and holds 0.3 % of the residual energy. About 45 s.
+alone exceeds once in a thousand, and holds 0.3 % of the residual energy. About 45 s
+(70 s on a loaded machine).
 """
 
 from __future__ import annotations

@@ -184,3 +184,14 @@ def test_a_concentration_at_the_reversals_is_hinted(cases):
             scale = np.sqrt(0.5 * np.sum(noise**2) / np.sum(bump**2))
             hints = case.hints(noise + scale * bump)
             assert any("of a reversal" in h for h in hints), hints
+
+
+def test_a_peak_below_the_fastest_loading_is_no_oscillation_well_above_it(cases):
+    """The multi-sine (0.3 Hz) beside a 1 Hz sine: a strong 1.5 Hz line is 5 times the slow
+    test's loading but within twice the campaign's highest, so it is not named."""
+    case = cases[list(DESIGNS).index("multi-sine")]
+    rng = np.random.default_rng(10)
+    noise = NOISE * rng.standard_normal(len(case.features))
+    line = 2.0 * NOISE * np.sin(2.0 * np.pi * 1.5 * case.features.time)
+    hints = case.hints(noise + line)
+    assert not any(h.startswith("an oscillation") for h in hints), hints
