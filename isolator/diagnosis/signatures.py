@@ -32,7 +32,8 @@ from isolator.diagnosis.hint_tests import (
 )
 
 _MIN_SHARE = 0.1  # a pattern must carry 10 % of the residual energy to be mentioned
-_DESCRIPTION_ALPHA = 0.01  # a sign test over the half cycles for how a reversal hint reads
+_DESCRIPTION_ALPHA = 0.05  # a sign test over the half cycles for how a reversal hint reads
+# (a reading of a concentration that has passed its own test: 5 of 5 half cycles suffice)
 _DEAD_BAND_MIN = 5.0e-4  # [m] a dwell near zero force this much longer than the model's
 
 

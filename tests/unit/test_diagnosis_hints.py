@@ -195,3 +195,32 @@ def test_a_peak_below_the_fastest_loading_is_no_oscillation_well_above_it(cases)
     line = 2.0 * NOISE * np.sin(2.0 * np.pi * 1.5 * case.features.time)
     hints = case.hints(noise + line)
     assert not any(h.startswith("an oscillation") for h in hints), hints
+
+
+def _with_play(u: np.ndarray, gap: float) -> tuple[np.ndarray, np.ndarray]:
+    """The bearing's displacement behind a play of ``gap`` [m], and whether the load train is
+    in contact (no force while the gap is crossed)."""
+    behind, contact = np.empty(u.size), np.zeros(u.size, dtype=bool)
+    behind[0] = u[0]
+    for i in range(1, u.size):
+        ahead = u[i] - behind[i - 1]
+        if abs(ahead) >= 0.5 * gap:
+            behind[i] = u[i] - np.sign(ahead) * 0.5 * gap
+            contact[i] = True
+        else:
+            behind[i] = behind[i - 1]
+    return behind, contact
+
+
+def test_a_play_is_read_as_a_dead_band(cases):
+    rng = np.random.default_rng(11)
+    for case in cases:
+        f = case.features
+        force = np.empty(len(f))
+        for k, rec in enumerate(case.campaign.tests):
+            idx = f.test == k
+            behind, contact = _with_play(np.asarray(rec.displacement), 4.0e-3)
+            friction = np.where(contact, MU * AXIAL * hysteretic_variable(behind, U_Y), 0.0)
+            force[idx] = AXIAL * rec.displacement / RADIUS + friction
+        hints = case.hints(force - case.clean + NOISE * rng.standard_normal(len(f)))
+        assert any("a dead band" in h for h in hints), hints
