@@ -5,53 +5,91 @@ engineer recognises: a dead band or lag after the reversals (backlash, slack in 
 constant force offset (a load-cell zero), an oscillation well above the loading frequency
 (dynamics of the rig or the specimen), a drift from cycle to cycle, a dependence on position.
 Each sentence carries its share of the residual energy, so the strongest comes first.
+
+A pattern is named only when it carries at least a tenth of the residual energy *and* passes
+its own test against residuals of pure noise (:mod:`.hint_tests`, false-alarm rate at most
+``ALPHA`` per hint): a spectral peak above the noise floor, above the loading frequencies and
+away from their harmonics; a mean, a trend over the cycles or a dependence on position
+against the residual's block-robust standard error; an energy share near the reversals above
+what the residual's blocks shuffled within each test put there. A pattern that fails its test
+is not printed.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy import stats
 
 from isolator.diagnosis.data import Campaign
 from isolator.diagnosis.features import Features
+from isolator.diagnosis.hint_tests import (
+    ALPHA,
+    block_length,
+    block_permutation_test,
+    block_test,
+    loading_frequency,
+    spectral_peak,
+)
 
 _MIN_SHARE = 0.1  # a pattern must carry 10 % of the residual energy to be mentioned
-_HIGH_FREQUENCY_MULTIPLE = 10.0  # "oscillation": above 10 times the loading frequency
+_DESCRIPTION_ALPHA = 0.05  # a sign test over the half cycles for how a reversal hint reads
+# (a reading of a concentration that has passed its own test: 5 of 5 half cycles suffice)
 _DEAD_BAND_MIN = 5.0e-4  # [m] a dwell near zero force this much longer than the model's
 
 
 def signature(features: Features, prediction: np.ndarray, campaign: Campaign,
               near: float) -> list[str]:
-    """Sentences on what the residual looks like, strongest first."""
+    """Sentences on what the residual looks like, strongest first, each one passing its test.
+
+    Parameters
+    ----------
+    features : Features
+        The campaign's features, all samples in time order.
+    prediction : ndarray
+        The model's force at every sample [N].
+    campaign : Campaign
+        The measured tests (their loading frequencies).
+    near : float
+        Distance from a reversal counted as "near" [m].
+    """
     f = features
     residual = f.force - prediction
     energy = float(np.sum(residual**2)) or 1.0
+    length = block_length(residual)
     found: list[tuple[float, str]] = []
-    found.extend(_reversals(f, prediction, residual, energy, near))
+    found.extend(_reversals(f, prediction, residual, energy, near, length))
     bias = float(residual.mean())
     share = bias**2 * residual.size / energy
-    if share >= _MIN_SHARE:
+    if share >= _MIN_SHARE and block_test(residual, np.ones(residual.size), [0],
+                                          length)[1] < ALPHA:
         ratio = 100 * abs(bias) / float(np.max(np.abs(f.force)))
         found.append((share, f"a constant force offset of {bias:.4g} N ({ratio:.1f} % of the "
                              f"peak force; {100 * share:.0f} % of the residual energy), like a "
-                             "load-cell zero error"))
+                             "load-cell zero error (or friction that differs with the sliding "
+                             "direction, which over whole cycles leaves the same offset)"))
     found.extend(_oscillation(f, residual, campaign, energy))
-    found.extend(_drift(f, residual, energy))
-    found.extend(_position(f, residual, energy))
+    found.extend(_drift(f, residual, energy, length))
+    found.extend(_position(f, residual, energy, length))
     found.sort(reverse=True)
     sentences = [text for _, text in found]
     if not sentences:
-        sentences = ["no simple pattern (not concentrated at reversals, no offset, oscillation, "
-                     "drift or position dependence); see the residual plots"]
+        sentences = ["no simple pattern (no concentration at reversals, offset, oscillation, "
+                     "drift or position dependence passes its test against noise); see the "
+                     "residual plots"]
     return sentences
 
 
 def _reversals(f: Features, prediction: np.ndarray, residual: np.ndarray, energy: float,
-               near: float) -> list[tuple[float, str]]:
+               near: float, length: int) -> list[tuple[float, str]]:
     """Whether the force swings over to the new sliding level differently after a reversal.
 
     Compares the medians, over half cycles with a clear swing and at least half the typical
     stroke, of the travel over which the measured and the predicted friction force dwell
-    near zero (within 20 % of the new level) and of the travel to half the swing.
+    near zero (within 20 % of the new level) and of the travel to half the swing. The share of
+    the residual energy near the reversals must pass a block permutation test against the
+    share the same residual blocks shuffled within each test put there; a dead band, softer
+    or stiffer swing is read into it only when a sign test over the half cycles says so at
+    ``_DESCRIPTION_ALPHA``.
     """
     data = f.force - f.pendulum
     model = prediction - f.pendulum
@@ -69,13 +107,17 @@ def _reversals(f: Features, prediction: np.ndarray, residual: np.ndarray, energy
             half.append((d[1], m[1]))
     if len(dwell) < 2:
         return []
-    dwell_data, dwell_model = np.median(np.array(dwell), axis=0)
-    half_data, half_model = np.median(np.array(half), axis=0)
+    dwell_arr, half_arr = np.array(dwell), np.array(half)
+    dwell_data, dwell_model = np.median(dwell_arr, axis=0)
+    half_data, half_model = np.median(half_arr, axis=0)
     reach = max(2.0 * half_data, 2.0 * half_model, near)
     zone = f.since_reversal < reach
     share = float(np.sum(residual[zone] ** 2)) / energy
-    dead_band = dwell_data > 1.5 * dwell_model and dwell_data - dwell_model > _DEAD_BAND_MIN
+    dead_band = (dwell_data > 1.5 * dwell_model and dwell_data - dwell_model > _DEAD_BAND_MIN
+                 and _most(dwell_arr[:, 0] - dwell_arr[:, 1] > _DEAD_BAND_MIN))
     if share < _MIN_SHARE or (share < 1.5 * zone.mean() and not dead_band):
+        return []
+    if block_permutation_test(residual**2, zone, f.test, length) >= ALPHA:
         return []
     text = (f"{100 * share:.0f} % of the residual energy lies within {1e3 * reach:.3g} mm of "
             f"a reversal ({100 * zone.mean():.0f} % of the samples)")
@@ -84,15 +126,20 @@ def _reversals(f: Features, prediction: np.ndarray, residual: np.ndarray, energy
                  f"{1e3 * dwell_data:.3g} mm of travel (the model: {1e3 * dwell_model:.3g} mm)"
                  " before it rises to the new sliding level, a dead band (backlash, slack in "
                  "the load path) that the return map does not have")
-    elif half_data > 1.3 * half_model:
+    elif half_data > 1.3 * half_model and _most(half_arr[:, 0] > half_arr[:, 1]):
         text += (f": the measured force swings over more slowly than the model (half way "
                  f"after {1e3 * half_data:.3g} mm against {1e3 * half_model:.3g} mm), a softer "
                  "transition")
-    elif half_data < half_model / 1.3:
+    elif half_data < half_model / 1.3 and _most(half_arr[:, 0] < half_arr[:, 1]):
         text += (f": the measured force swings over sooner than the model (half way after "
                  f"{1e3 * half_data:.3g} mm against {1e3 * half_model:.3g} mm), a stiffer "
                  "transition or a breakaway peak")
     return [(share, text)]
+
+
+def _most(wins: np.ndarray) -> bool:
+    """Whether ``wins`` is true in more half cycles than chance (one-sided sign test)."""
+    return bool(stats.binom.sf(int(np.sum(wins)) - 1, wins.size, 0.5) < _DESCRIPTION_ALPHA)
 
 
 def _swing(travel: np.ndarray, friction: np.ndarray) -> tuple[float, float] | None:
@@ -113,31 +160,24 @@ def _swing(travel: np.ndarray, friction: np.ndarray) -> tuple[float, float] | No
 
 def _oscillation(f: Features, residual: np.ndarray, campaign: Campaign,
                  energy: float) -> list[tuple[float, str]]:
-    high, total, peak_power, peak_freq = 0.0, 0.0, 0.0, 0.0
+    """A narrow spectral peak well above every loading frequency and off their harmonics."""
+    residuals, steps, loading = [], [], []
     for k, rec in enumerate(campaign.tests):
-        r = residual[f.test == k]
-        dt = float(np.median(np.diff(rec.time)))
-        if r.size < 64:
-            continue
-        spectrum = np.abs(np.fft.rfft(r - r.mean())) ** 2
-        freq = np.fft.rfftfreq(r.size, dt)
-        motion = np.abs(np.fft.rfft(rec.displacement - rec.displacement.mean())) ** 2
-        loading = float(freq[1:][np.argmax(motion[1:])])
-        above = freq > _HIGH_FREQUENCY_MULTIPLE * loading
-        high += float(spectrum[above].sum())
-        total += float(spectrum.sum())
-        if above.any() and spectrum[above].max() > peak_power:
-            peak_power = float(spectrum[above].max())
-            peak_freq = float(freq[above][np.argmax(spectrum[above])])
-    share = high / total if total else 0.0
-    if share < _MIN_SHARE:
+        idx = f.test == k
+        residuals.append(residual[idx])
+        steps.append(float(np.median(np.diff(rec.time))))
+        loading.append(loading_frequency(f.time[idx], f.displacement[idx]))
+    peak = spectral_peak(residuals, steps, loading, energy)
+    if peak is None or not peak.passes or peak.share < _MIN_SHARE:
         return []
-    return [(share, f"an oscillation well above the loading frequency (strongest near "
-                    f"{peak_freq:.3g} Hz; {100 * share:.0f} % of the residual energy): dynamics "
-                    "of the rig or the specimen, not friction")]
+    return [(peak.share, f"an oscillation well above the loading frequencies (near "
+                         f"{peak.frequency:.3g} Hz, {peak.ratio:.0f} times the residual's "
+                         f"spectral floor there; {100 * peak.share:.0f} % of the residual "
+                         "energy): dynamics of the rig or the specimen, not friction")]
 
 
-def _drift(f: Features, residual: np.ndarray, energy: float) -> list[tuple[float, str]]:
+def _drift(f: Features, residual: np.ndarray, energy: float,
+           length: int) -> list[tuple[float, str]]:
     blocks = np.unique(f.block)
     if blocks.size < 4:
         return []
@@ -150,17 +190,21 @@ def _drift(f: Features, residual: np.ndarray, energy: float) -> list[tuple[float
     explained = np.sum(count * (slope * order + intercept - mean.mean()) ** 2) / energy
     if explained < _MIN_SHARE:
         return []
+    design = np.column_stack([np.ones(residual.size), f.cycle.astype(float)])
+    if block_test(residual, design, [1], length)[1] >= ALPHA:
+        return []
     return [(float(explained), f"a drift of the force from cycle to cycle ({slope:+.4g} N per "
                                f"cycle; {100 * explained:.0f} % of the residual energy)")]
 
 
-def _position(f: Features, residual: np.ndarray, energy: float) -> list[tuple[float, str]]:
+def _position(f: Features, residual: np.ndarray, energy: float,
+              length: int) -> list[tuple[float, str]]:
     u = f.displacement
     design = np.column_stack([np.ones_like(u), u, np.abs(u)])
     coef, *_ = np.linalg.lstsq(design, residual, rcond=None)
     fitted = design @ coef - residual.mean()
     share = float(np.sum(fitted**2)) / energy
-    if share < _MIN_SHARE:
+    if share < _MIN_SHARE or block_test(residual, design, [1, 2], length)[1] >= ALPHA:
         return []
     kind = "with |u| (friction changes across the plate)" if abs(coef[2]) * np.ptp(
         np.abs(u)) > abs(coef[1]) * np.ptp(u) else "with u (a stiffness)"
