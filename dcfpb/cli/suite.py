@@ -176,6 +176,22 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
     return 0.75 * period, 1.25 * period
 
 
+def _check_period_range(period_range: tuple[float, float], periods: np.ndarray,
+                        args: argparse.Namespace) -> None:
+    """The scaling's period range within the target spectrum's periods, refused naming
+    --period-range (given, or its default from the building file) and --target."""
+    low, high = period_range
+    first, last = float(periods[0]), float(periods[-1])
+    if first <= low and high <= last:
+        return
+    given = (f"--period-range {args.period_range}" if args.period_range else
+             f"the default --period-range {low:.4g},{high:.4g} s (0.75 and 1.25 times the "
+             f"isolated period of the building file {args.building})")
+    raise InputError(f"{given} is not within the periods of --target {args.target}, "
+                     f"{first:g} to {last:g} s: extend the target spectrum to cover it, or "
+                     "give a --period-range inside it.")
+
+
 def _suite(args: argparse.Namespace, config, factors):
     """The suite of records, or of pairs (``--pairs``; refused before any work for a building
     file without ``[plan]``)."""
@@ -230,6 +246,7 @@ def _run(args: argparse.Namespace) -> int:
     if args.target:
         target = read_target(args.target)
         period_range = _period_range(args.period_range, config)
+        _check_period_range(period_range, target[0], args)
     suite = _suite(args, config, None if target is None else target_hook(*target, period_range))
     with SuiteLock(args.out, wait=args.wait_lock):  # the plots and tables too
         try:
