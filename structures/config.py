@@ -134,6 +134,20 @@ def _build(tables: dict[str, dict], path: Path) -> BuildingConfig:
     return config
 
 
+KELVIN_LOOK = (250.0, 400.0)
+"""An initial temperature [degC] in this range looks like kelvin (plates at 250 degC or more
+before a run are implausible), as ``dcfpb diagnose`` takes it."""
+
+
+def _check_not_kelvin(tables: dict, path: Path) -> None:
+    value = tables.get("friction", {}).get("initial_temperature")
+    if value is not None and KELVIN_LOOK[0] <= value <= KELVIN_LOOK[1]:
+        raise ConfigError(f"{path}: [friction] 'initial_temperature' is {value:g}, which looks "
+                          f"like kelvin (plates at {KELVIN_LOOK[0]:g} degC or more before a run "
+                          f"are implausible); give it in degC ({value - 273.15:.4g} degC if "
+                          "it is in kelvin).")
+
+
 def load_config(path: str | Path) -> BuildingConfig:
     """Read a building file (TOML, UTF-8) into a :class:`BuildingConfig`.
 
@@ -152,6 +166,7 @@ def load_config(path: str | Path) -> BuildingConfig:
     path = Path(check_path(path, "path", "load_config"))
     raw = read_toml(path)
     tables = check_tables(raw, path)
+    _check_not_kelvin(tables, path)
     tables["plan"] = check_plan(raw, len(tables["building"]["floor_masses"]),
                                 tables["bearing"], path)
     try:

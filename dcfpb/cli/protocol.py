@@ -100,6 +100,13 @@ def check_sine_flags(args: argparse.Namespace, command: str) -> None:
         if getattr(args, name, None) is not None:
             check_real(getattr(args, name), "--" + name.replace("_", "-"), command, low=low,
                        high=high, low_open=low_open, allow_inf=name == "effective_radius")
+    temperature = getattr(args, "initial_temperature", None)
+    if temperature is not None and 250.0 <= temperature <= 400.0:
+        from dcfpb.common.errors import InputError
+
+        raise InputError(f"--initial-temperature {temperature:g} looks like kelvin (plates at "
+                         "250 degC or more before a test are implausible); give it in degC "
+                         f"({temperature - 273.15:.4g} if it is in kelvin).")
     cycles = check_int(args.cycles, "--cycles", command, low=1)
     check_real(args.dt, "--dt", command, low=0.0, low_open=True, high=args.period / 20)
     max_steps = getattr(args, "max_steps", DEFAULT_MAX_STEPS)
@@ -123,7 +130,7 @@ def _run_protocol(args: argparse.Namespace) -> int:
                   overwrite=args.overwrite, formats={"--output": {".csv": "CSV"}})
     check_sine_flags(args, command)
     if args.orbit is None and args.angle is not None:
-        raise InputError(f"{command}: --angle turns an --orbit; give --orbit or leave it out.")
+        raise InputError("--angle turns an --orbit; give --orbit or leave it out.")
     angle = check_real(args.angle or 0.0, "--angle", command, low=-360.0, high=360.0)
     friction = _friction_flags(args, command)
     if args.orbit is None:

@@ -166,8 +166,12 @@ def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float
 
 def _period_range(text: str | None, config) -> tuple[float, float]:
     if text:
-        low, high = _floats(text, "--period-range")[:2]
-        if not 0 < low < high:
+        values = _floats(text, "--period-range")
+        if len(values) != 2:
+            raise InputError(f"--period-range must be two periods TMIN,TMAX [s] with "
+                             f"0 < TMIN < TMAX. Got {text!r}.")
+        low, high = values
+        if not 0 < low < high < np.inf:
             raise InputError(f"--period-range must be TMIN,TMAX with 0 < TMIN < TMAX. "
                              f"Got {text!r}.")
         return low, high
@@ -228,6 +232,11 @@ def _run(args: argparse.Namespace) -> int:
         check_real(args.run_timeout, "--run-timeout", "dcfpb suite", low=0.0, low_open=True)
     check_real(args.wait_lock, "--wait-lock", "dcfpb suite", low=0.0, allow_inf=True)
     check_int(args.max_steps, "--max-steps", "dcfpb suite", low=1)
+    for flag, value in (("--duration", args.duration), ("--dt", args.dt)):
+        if value is not None:
+            check_real(value, flag, "dcfpb suite", low=0.0, low_open=True)
+    for scale in _floats(args.scales, "--scales"):
+        check_real(scale, "--scales", "dcfpb suite", low=0.0, low_open=True)
     if args.period_range and not args.target:
         raise InputError("--period-range applies to --target only.")
     if args.workers is not None and args.scheduler is not None:
