@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import codecs
 import math
+import re
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -174,4 +175,5 @@ def load_config(path: str | Path) -> BuildingConfig:
     except ConfigError:
         raise
     except (ValueError, TypeError, ArithmeticError) as error:  # a combination of good values
-        raise ConfigError(f"{path}: {error}") from error
+        text = re.sub(r"The '(\w+)' parameter of Plan", r"[plan] '\1'", str(error))
+        raise ConfigError(f"{path}: {text}") from error
