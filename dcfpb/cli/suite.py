@@ -235,6 +235,12 @@ def _run(args: argparse.Namespace) -> int:
     for flag, value in (("--duration", args.duration), ("--dt", args.dt)):
         if value is not None:
             check_real(value, flag, "dcfpb suite", low=0.0, low_open=True)
+    from isolator.experiments import MODELS as SUITE_MODELS
+
+    for model in args.models.split(","):
+        if model not in SUITE_MODELS:
+            raise InputError(f"--models must be a comma-separated list of "
+                             f"{', '.join(SUITE_MODELS)}. Got {model!r} in {args.models!r}.")
     for scale in _floats(args.scales, "--scales"):
         check_real(scale, "--scales", "dcfpb suite", low=0.0, low_open=True)
     if args.period_range and not args.target:

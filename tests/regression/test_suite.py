@@ -303,7 +303,7 @@ def test_cli_suite_json_summary_and_plots(monkeypatch, capsys, scheduler, tmp_pa
 @pytest.mark.parametrize(("args", "message"), [
     (["--period-range", "1,2"], "--target only"),
     (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "not both"),
-    (["--models", "exact"], "'models'"),
+    (["--models", "exact"], "--models"),
     (["--scales", "1,x"], "--scales"),
 ])
 def test_cli_suite_errors_are_clear(args, message, monkeypatch, capsys, tmp_path):
