@@ -271,6 +271,20 @@ CASES: dict[str, Case] = {
         lambda i: ["diagnose", str(i.records), *DIAGNOSE, "--axial-load", repr(N)], 2,
         "records",
         "is a folder", absent=("no such file",)),
+    # diagnose: a manifest's value out of its range named with the manifest and its test
+    "channels-manifest-rest-before-negative": _case(
+        lambda i: ["diagnose", "--manifest", i.text(
+            "m.csv", "file,axial_load,rest_before\ntest1.csv,4.24e6,-5\n"), *DIAGNOSE], 2,
+        "m.csv: test 1", "'rest_before'", "-5", absent=("parameter of test",)),
+    "channels-manifest-axial-load-zero": _case(
+        lambda i: ["diagnose", "--manifest", i.text(
+            "m.csv", "file,axial_load\ntest1.csv,0\n"), *DIAGNOSE], 2,
+        "m.csv: test 1", "'axial_load'", absent=("parameter of",)),
+    "channels-manifest-temperature-below-range": _case(
+        lambda i: ["diagnose", "--manifest", i.text(
+            "m.csv", "file,axial_load,initial_temperature\ntest1.csv,4.24e6,-300\n"),
+            *DIAGNOSE], 2, "m.csv: test 1", "'initial_temperature'", "-300",
+        absent=("parameter of test",)),
     # plans: the plan's own checks named by [plan] and key, not by the class Plan
     "plans-bearings-on-one-line": _case(
         lambda i: ["run", _line_plan(i), "--record", str(i.record), "--record-y",
