@@ -290,6 +290,15 @@ CASES: dict[str, Case] = {
         lambda i: ["run", _line_plan(i), "--record", str(i.record), "--record-y",
                    str(i.record), "--model", "constant"], 2, "line.toml",
         "[plan] 'bearing_coordinates'", "one line", absent=("of Plan",)),
+    "plans-protocol-amplitude-past-half-the-radius": _case(
+        lambda i: _protocol("--amplitude", "5"), 2, "--amplitude 5 m",
+        "0.5 x --effective-radius = 2.25 m"),
+    "plans-protocol-square-orbit-corner-past-half-the-radius": _case(
+        lambda i: _protocol("--amplitude", "2.2", "--orbit", "square"), 2, "--amplitude",
+        "3.111 m", "--effective-radius"),
+    "plans-protocol-slider-as-wide-as-the-radius": _case(
+        lambda i: [*_protocol(), "--effective-radius", "0.3", "--amplitude", "0.1"], 2,
+        "--slider-diameter 0.3 m", "--effective-radius 0.3 m"),
     "plans-no-dimensions-no-torsional-stiffness": _case(
         lambda i: ["run", i.edited(i.plan, "nodim.toml", "dimensions", ""), "--record",
                    str(i.record), "--record-y", str(i.record), "--model", "constant"], 2,
