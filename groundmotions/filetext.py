@@ -97,8 +97,12 @@ def _available_memory() -> int | None:
 
 
 def check_record_file(path: Path) -> None:
-    """Refuse, before reading it, a record file past :data:`MAX_RECORD_BYTES` or the memory
-    available, or one that is gzip-compressed (its bytes are no text)."""
+    """Refuse, before reading it, a device or pipe (which may never end), a record
+    file past :data:`MAX_RECORD_BYTES` or the memory available, or one that is gzip-compressed
+    (its bytes are no text)."""
+    if path.exists() and not path.is_file() and not path.is_dir():  # a folder: OSError
+        raise InputError(f"{path}: not a regular file (a device or a pipe, which may never "
+                         "end); give the record file itself.")
     size = path.stat().st_size
     limit = MAX_RECORD_BYTES
     memory = _available_memory()

@@ -76,6 +76,9 @@ def read_toml(path: Path) -> dict[str, Any]:
         are not UTF-8 (the first offending byte and its offset named) or text that is not TOML.
     """
     try:
+        if path.exists() and not path.is_file() and not path.is_dir():
+            raise ConfigError(f"{path}: not a regular file (a device or a pipe); give the "
+                              "building file itself.")
         if path.stat().st_size > MAX_FILE_BYTES:
             raise ConfigError(f"{path}: {path.stat().st_size} bytes is not a building file "
                               f"(at most {MAX_FILE_BYTES} bytes).")

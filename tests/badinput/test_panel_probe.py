@@ -206,6 +206,11 @@ CASES: dict[str, Case] = {
     "resources-run-record-of-8-gb-sparse": _case(
         lambda i: ["run", str(i.building), "--record", _sparse_record(i)], 2, "huge.at2",
         "MB"),
+    "resources-record-is-a-device-that-never-ends": _case(
+        lambda i: ["spectrum", "/dev/zero"], 2, "/dev/zero", "not a regular file"),
+    "resources-building-is-a-device-that-never-ends": _case(
+        lambda i: ["run", "/dev/zero", "--record", str(i.record)], 2, "/dev/zero",
+        "not a regular file"),
     # the failure contract: flags named as flags, exit 2 (never 3) on a bad value
     "contract-run-scale-negative": _case(
         lambda i: _run(i, "--scale", "-1"), 2, "'--scale'", "(0, inf)"),
