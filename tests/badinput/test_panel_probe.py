@@ -340,6 +340,8 @@ def _run_hardlink(i: Inputs) -> list[str]:
 def test_panel_probe(case, inputs, capsys):
     spec = CASES[case]
     argv = spec.argv(inputs)
+    if "/dev/zero" in argv and not Path("/dev/zero").exists():
+        pytest.skip("no /dev/zero on this platform")
     before = inputs.snapshot()  # the case's own inputs written
     status = main(argv)
     err = capsys.readouterr().err
