@@ -94,6 +94,10 @@ def _floats(text: str, option: str) -> tuple[float, ...]:
     return values
 
 
+MAX_TARGET_BYTES = 10 * 2**20
+"""Largest target spectrum file read [bytes] (a few hundred rows are usual)."""
+
+
 def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     """A target spectrum as periods [s] and Sa [g]: from a CSV of ``period,sa`` rows (rows that are
     not two numbers, such as a header or comments, are skipped; periods must increase), or from
@@ -123,15 +127,27 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     except ImportError:  # target_hook says what is missing
         MAX_TARGET_SA = 10.0  # the same limit [g]
 
+    file = Path(path)
+    if not file.is_file():
+        what = ("not a regular file (a folder, a device or a pipe)" if file.exists()
+                else "no such file")
+        raise InputError(f"--target {path}: {what}; give a CSV of 'period,sa' rows [s, g] or "
+                         "asce7:S_DS,S_D1,T_L.")
+    if file.stat().st_size > MAX_TARGET_BYTES:
+        raise InputError(f"--target {path}: {file.stat().st_size:,} bytes, more than the "
+                         f"{MAX_TARGET_BYTES:,} of a target spectrum; is it one?")
     rows, lines = [], []
-    with open(path, newline="", encoding="utf-8") as handle:
-        reader = csv.reader(handle)
-        for row in reader:
-            try:
-                rows.append((float(row[0]), float(row[1])))
-                lines.append(reader.line_num)
-            except (ValueError, IndexError):
-                continue
+    try:
+        with open(file, newline="", encoding="utf-8") as handle:
+            reader = csv.reader(handle)
+            for row in reader:
+                try:
+                    rows.append((float(row[0]), float(row[1])))
+                    lines.append(reader.line_num)
+                except (ValueError, IndexError):
+                    continue
+    except (UnicodeDecodeError, csv.Error) as error:
+        raise InputError(f"--target {path}: not a UTF-8 CSV file ({error}).") from None
     data = np.array(rows, dtype=float).reshape(-1, 2)
     periods, sa = data[:, 0], data[:, 1]
     if len(rows) < 2 or np.any(np.diff(periods) <= 0) or periods[0] < 0 or np.any(sa <= 0):

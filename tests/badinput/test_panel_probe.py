@@ -211,6 +211,18 @@ CASES: dict[str, Case] = {
     "resources-building-is-a-device-that-never-ends": _case(
         lambda i: ["run", "/dev/zero", "--record", str(i.record)], 2, "/dev/zero",
         "not a regular file"),
+    "resources-suite-target-is-a-device-that-never-ends": _case(
+        lambda i: _suite(i, "--target", "/dev/zero"), 2, "--target /dev/zero",
+        "not a regular file"),
+    "resources-suite-target-of-8-gb-sparse": _case(
+        lambda i: _suite(i, "--target", _sparse_record(i)), 2, "--target", "huge.at2",
+        "8,000,000,000 bytes"),
+    "contract-suite-target-missing": _case(
+        lambda i: _suite(i, "--target", str(i.folder / "none.csv")), 2, "--target",
+        "none.csv", "no such file"),
+    "contract-suite-target-gzip": _case(
+        lambda i: _suite(i, "--target", _gzip_record(i)), 2, "--target", "elcentro.at2.gz",
+        "not a UTF-8 CSV"),
     # the failure contract: flags named as flags, exit 2 (never 3) on a bad value
     "contract-run-scale-negative": _case(
         lambda i: _run(i, "--scale", "-1"), 2, "'--scale'", "(0, inf)"),
