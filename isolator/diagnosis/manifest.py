@@ -51,11 +51,19 @@ COLUMNS = ("file", "axial_load", "initial_temperature", "rest_before")
 _AXIAL_TOLERANCE = 0.02
 
 
+MAX_MANIFEST_BYTES = 10 * 2**20
+"""Largest campaign manifest read [bytes] (some hundred thousand tests)."""
+
+
 def read_manifest(path: str | Path) -> tuple[list[dict], dict]:
     """The rows of a manifest (one dict per test) and its top-level bearing values."""
     path = Path(path)
     if not path.is_file():
-        raise DataError(f"{path}: no such manifest file.")
+        raise DataError(f"{path}: not a regular file (a folder, a device or a pipe); give the "
+                        "manifest file." if path.exists() else f"{path}: no such manifest file.")
+    if path.stat().st_size > MAX_MANIFEST_BYTES:
+        raise DataError(f"{path}: {path.stat().st_size:,} bytes, more than the "
+                        f"{MAX_MANIFEST_BYTES:,} of a campaign manifest; is it one?")
     if path.suffix.lower() == ".toml":
         import tomllib
 

@@ -116,6 +116,12 @@ def _sparse_record(i: Inputs) -> str:
     return str(path)
 
 
+def _binary(i: Inputs) -> str:
+    path = i.folder / "list.csv"
+    path.write_bytes(b"\xff\xfe\x00binary\x00")
+    return str(path)
+
+
 def _gzip_record(i: Inputs) -> str:
     path = i.folder / "elcentro.at2.gz"
     path.write_bytes(gzip.compress(RECORD.read_bytes()))
@@ -223,6 +229,26 @@ CASES: dict[str, Case] = {
     "contract-suite-target-gzip": _case(
         lambda i: _suite(i, "--target", _gzip_record(i)), 2, "--target", "elcentro.at2.gz",
         "not a UTF-8 CSV"),
+    "resources-suite-records-list-of-8-gb-sparse": _case(
+        lambda i: ["suite", str(i.building), "--records", _sparse_record(i), "--out",
+                   str(i.earlier.parent), "--overwrite"], 2, "huge.at2", "a list of records"),
+    "resources-suite-pair-manifest-of-8-gb-sparse": _case(
+        lambda i: ["suite", str(i.plan), "--pairs", _sparse_record(i), "--out",
+                   str(i.earlier.parent), "--overwrite"], 2, "huge.at2", "a pair manifest"),
+    "resources-diagnose-manifest-of-8-gb-sparse": _case(
+        lambda i: ["diagnose", "--manifest", _sparse_record(i), *DIAGNOSE], 2, "huge.at2",
+        "a campaign manifest"),
+    "resources-diagnose-manifest-is-a-device": _case(
+        lambda i: ["diagnose", "--manifest", "/dev/zero", *DIAGNOSE], 2, "/dev/zero",
+        "not a regular file"),
+    "contract-suite-records-list-not-utf8": _case(
+        lambda i: ["suite", str(i.building), "--records", _binary(i), "--out",
+                   str(i.earlier.parent), "--overwrite"], 2, "list.csv", "not a UTF-8",
+        absent=("internal error",)),
+    "contract-suite-pair-manifest-not-utf8": _case(
+        lambda i: ["suite", str(i.plan), "--pairs", _binary(i), "--out",
+                   str(i.earlier.parent), "--overwrite"], 2, "list.csv", "not a UTF-8",
+        absent=("internal error",)),
     # the failure contract: flags named as flags, exit 2 (never 3) on a bad value
     "contract-run-scale-negative": _case(
         lambda i: _run(i, "--scale", "-1"), 2, "'--scale'", "(0, inf)"),
