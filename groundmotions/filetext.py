@@ -76,9 +76,55 @@ class RecordUnits(NamedTuple):
     """The units as written in the header (or as given)."""
 
 
+MAX_RECORD_BYTES = 256 * 2**20
+"""Largest record file read [bytes]: some 16 million values, far past the longest records and
+the 2,000,000 steps a run takes unless told otherwise; a larger file is refused before it is
+read (a file that is not a record, or one gone wrong)."""
+
+READ_MEMORY_FACTOR = 12
+"""Memory the reading of a text file takes per byte of it (bytes, text, lines, numbers)."""
+
+
+def _available_memory() -> int | None:
+    """``MemAvailable`` of ``/proc/meminfo`` [bytes], or None where there is none."""
+    try:
+        for line in Path("/proc/meminfo").read_text().splitlines():
+            if line.startswith("MemAvailable:"):
+                return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
+
+
+def check_record_file(path: Path) -> None:
+    """Refuse, before reading it, a device or pipe (which may never end), a record
+    file past :data:`MAX_RECORD_BYTES` or the memory available, or one that is gzip-compressed
+    (its bytes are no text)."""
+    if path.exists() and not path.is_file() and not path.is_dir():  # a folder: OSError
+        raise InputError(f"{path}: not a regular file (a device or a pipe, which may never "
+                         "end); give the record file itself.")
+    size = path.stat().st_size
+    limit = MAX_RECORD_BYTES
+    memory = _available_memory()
+    if memory is not None:
+        limit = min(limit, memory // READ_MEMORY_FACTOR)
+    if size > limit:
+        raise InputError(
+            f"{path}: {size / 1e6:,.1f} MB, more than the {limit / 1e6:,.0f} MB a ground-motion "
+            f"record file may have here (at most {MAX_RECORD_BYTES / 1e6:,.0f} MB, some 16 "
+            "million values, and what the memory available can read); is it a record? Cut it "
+            "to the part to analyse.")
+    with path.open("rb") as handle:
+        if handle.read(2) == b"\x1f\x8b":
+            raise InputError(f"{path}: is gzip-compressed, not a text record; decompress it "
+                             "first (gunzip) and give the text file.")
+
+
 def read_lines(path: Path) -> list[str]:
     """Lines of a text file (UTF-8, else Latin-1) without their ends; LF, CR LF, CR CR LF
-    and CR each count once."""
+    and CR each count once. A file too large to be a record, or gzip-compressed, is refused
+    first (:func:`check_record_file`)."""
+    check_record_file(path)
     raw = path.read_bytes()
     try:
         text = raw.decode("utf-8")

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import codecs
 import math
+import re
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -75,6 +76,9 @@ def read_toml(path: Path) -> dict[str, Any]:
         are not UTF-8 (the first offending byte and its offset named) or text that is not TOML.
     """
     try:
+        if path.exists() and not path.is_file() and not path.is_dir():
+            raise ConfigError(f"{path}: not a regular file (a device or a pipe); give the "
+                              "building file itself.")
         if path.stat().st_size > MAX_FILE_BYTES:
             raise ConfigError(f"{path}: {path.stat().st_size} bytes is not a building file "
                               f"(at most {MAX_FILE_BYTES} bytes).")
@@ -134,6 +138,20 @@ def _build(tables: dict[str, dict], path: Path) -> BuildingConfig:
     return config
 
 
+KELVIN_LOOK = (250.0, 400.0)
+"""An initial temperature [degC] in this range looks like kelvin (plates at 250 degC or more
+before a run are implausible), as ``dcfpb diagnose`` takes it."""
+
+
+def _check_not_kelvin(tables: dict, path: Path) -> None:
+    value = tables.get("friction", {}).get("initial_temperature")
+    if value is not None and KELVIN_LOOK[0] <= value <= KELVIN_LOOK[1]:
+        raise ConfigError(f"{path}: [friction] 'initial_temperature' is {value:g}, which looks "
+                          f"like kelvin (plates at {KELVIN_LOOK[0]:g} degC or more before a run "
+                          f"are implausible); give it in degC ({value - 273.15:.4g} degC if "
+                          "it is in kelvin).")
+
+
 def load_config(path: str | Path) -> BuildingConfig:
     """Read a building file (TOML, UTF-8) into a :class:`BuildingConfig`.
 
@@ -152,6 +170,7 @@ def load_config(path: str | Path) -> BuildingConfig:
     path = Path(check_path(path, "path", "load_config"))
     raw = read_toml(path)
     tables = check_tables(raw, path)
+    _check_not_kelvin(tables, path)
     tables["plan"] = check_plan(raw, len(tables["building"]["floor_masses"]),
                                 tables["bearing"], path)
     try:
@@ -159,4 +178,5 @@ def load_config(path: str | Path) -> BuildingConfig:
     except ConfigError:
         raise
     except (ValueError, TypeError, ArithmeticError) as error:  # a combination of good values
-        raise ConfigError(f"{path}: {error}") from error
+        text = re.sub(r"The '(\w+)' parameter of Plan", r"[plan] '\1'", str(error))
+        raise ConfigError(f"{path}: {text}") from error

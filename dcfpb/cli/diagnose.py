@@ -79,6 +79,7 @@ def run(args: argparse.Namespace) -> int:
     from isolator.diagnosis.manifest import load_manifest
 
     max_rows = MAX_ROWS if args.max_rows is None else args.max_rows
+    _check_flags(args)
 
     spec = BaselineSpec(args.model, tuple(args.without), args.yield_displacement)
     if args.manifest and args.files:
@@ -112,6 +113,25 @@ def run(args: argparse.Namespace) -> int:
     else:
         _print(summary)
     return 0
+
+
+def _check_flags(args: argparse.Namespace) -> None:
+    """The numeric flags given, checked by their names and with the ranges the diagnosis takes
+    (before the classes it builds would name their own parameters)."""
+    from dcfpb.common.validation import check_real
+
+    owner = "dcfpb diagnose"
+    if args.effective_radius is not None:
+        check_real(args.effective_radius, "--effective-radius", owner, low=0.0, low_open=True,
+                   allow_inf=True)
+    if args.slider_diameter is not None:
+        check_real(args.slider_diameter, "--slider-diameter", owner, low=0.0, low_open=True,
+                   high=10.0)
+    if args.axial_load is not None:
+        check_real(args.axial_load, "--axial-load", owner, low=0.0, low_open=True)
+    if args.yield_displacement is not None:
+        check_real(args.yield_displacement, "--yield-displacement", owner, low=0.0,
+                   low_open=True, high=0.1)
 
 
 def _print(summary: dict) -> None:

@@ -87,6 +87,32 @@ _FLAGS = {  # flag: (low, high, low_open); None: unbounded; finite but for a fla
 }
 
 
+MAX_SLOPE = 0.5
+"""Largest displacement over the effective radius of a test [-], as a building file's
+``displacement_capacity`` (``structures.config_schema.MAX_SLOPE``: the plates at 30 degrees)."""
+
+
+def check_geometry(args: argparse.Namespace, reach: float, command: str) -> None:
+    """Refuse a test whose bearing cannot exist: a slider as wide as the finite
+    ``--effective-radius``, or a displacement ``reach`` [m] past :data:`MAX_SLOPE` of it."""
+    from dcfpb.common.errors import InputError
+
+    radius = args.effective_radius
+    if radius is None or not math.isfinite(radius):
+        return
+    if args.slider_diameter is not None and args.slider_diameter >= radius:
+        raise InputError(f"--slider-diameter {args.slider_diameter:g} m must be below "
+                         f"--effective-radius {radius:g} m (the slider sits in concave plates "
+                         "of radius about R_eff / 2).")
+    if reach > MAX_SLOPE * radius:
+        raise InputError(
+            f"--amplitude {args.amplitude:g} m takes the bearing to {reach:.4g} m, past "
+            f"{MAX_SLOPE:g} x --effective-radius = {MAX_SLOPE * radius:.4g} m: the plates would "
+            f"slope {math.degrees(math.asin(min(reach / radius, 1.0))):.0f} degrees (more "
+            f"than {math.degrees(math.asin(MAX_SLOPE)):.0f}). Give a smaller --amplitude or a "
+            "larger --effective-radius.")
+
+
 def check_sine_flags(args: argparse.Namespace, command: str) -> None:
     """Check the flags of a sine test (``dcfpb protocol``, ``dcfpb compare-opensees-bearing``)
     by name and range, and its length against ``--max-steps``, before any work."""
@@ -100,6 +126,14 @@ def check_sine_flags(args: argparse.Namespace, command: str) -> None:
         if getattr(args, name, None) is not None:
             check_real(getattr(args, name), "--" + name.replace("_", "-"), command, low=low,
                        high=high, low_open=low_open, allow_inf=name == "effective_radius")
+    temperature = getattr(args, "initial_temperature", None)
+    if temperature is not None and 250.0 <= temperature <= 400.0:
+        from dcfpb.common.errors import InputError
+
+        raise InputError(f"--initial-temperature {temperature:g} looks like kelvin (plates at "
+                         "250 degC or more before a test are implausible); give it in degC "
+                         f"({temperature - 273.15:.4g} if it is in kelvin).")
+    check_geometry(args, args.amplitude, command)
     cycles = check_int(args.cycles, "--cycles", command, low=1)
     check_real(args.dt, "--dt", command, low=0.0, low_open=True, high=args.period / 20)
     max_steps = getattr(args, "max_steps", DEFAULT_MAX_STEPS)
@@ -123,7 +157,7 @@ def _run_protocol(args: argparse.Namespace) -> int:
                   overwrite=args.overwrite, formats={"--output": {".csv": "CSV"}})
     check_sine_flags(args, command)
     if args.orbit is None and args.angle is not None:
-        raise InputError(f"{command}: --angle turns an --orbit; give --orbit or leave it out.")
+        raise InputError("--angle turns an --orbit; give --orbit or leave it out.")
     angle = check_real(args.angle or 0.0, "--angle", command, low=-360.0, high=360.0)
     friction = _friction_flags(args, command)
     if args.orbit is None:
@@ -135,6 +169,7 @@ def _run_protocol(args: argparse.Namespace) -> int:
                         angle=angle, max_steps=args.max_steps)
         speed = float(max(math.hypot(*v) for v in history.velocity))
         reach = float(max(math.hypot(*u) for u in history.displacement))
+        check_geometry(args, reach, command)
     bearing = protocol_bearing(
         model=args.model, slider_diameter=args.slider_diameter,
         effective_radius=args.effective_radius, pressure=args.pressure,

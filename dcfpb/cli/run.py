@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import re
 from pathlib import Path
 
 from dcfpb.common.errors import InputError
@@ -71,8 +72,35 @@ def read_record_from_args(path: str, args: argparse.Namespace):
     has them): a `groundmotions.records.GroundMotion` [m/s^2]."""
     from groundmotions.readers import read_record
 
-    return read_record(path, units=getattr(args, "units", None),
-                       dt=getattr(args, "record_dt", None))
+    try:
+        return read_record(path, units=getattr(args, "units", None),
+                           dt=getattr(args, "record_dt", None))
+    except InputError as error:
+        raise record_dt_named(error, path, getattr(args, "record_dt", None)) from None
+
+
+_RECORD_DT = re.compile(r"The 'dt' parameter of read_\w+(?: \(--record-dt on the command "
+                        r"line\))?")
+
+
+_API_HINT = re.compile(r" ?\(give the step of one-column records with "
+                       r"read_pair\(\.\.\., dt=\.\.\.\) or a 'dt' column in a pair manifest\)")
+
+
+def record_dt_named(error: Exception, path: str, record_dt: float | None) -> Exception:
+    """``error`` of a record reader about its ``dt`` argument, reworded to name ``--record-dt``
+    (the flag that gave it) instead of the reader's parameter; any other error as it is."""
+    text = str(error)
+    if not _RECORD_DT.search(text):
+        return error
+    text = _API_HINT.sub("", text)
+    if record_dt is None and "one-column" in text:
+        head = text[:_RECORD_DT.search(text).start()]  # a pair's "Pair 'x': the x component..."
+        file = re.search(r"one-column file (.+?) ", text)
+        return InputError(f"{head}{file.group(1) if file else path}: a one-column record has no "
+                          "time step of its own: give it with --record-dt [s] (e.g. "
+                          "--record-dt 0.01).")
+    return InputError(_RECORD_DT.sub("--record-dt", text, count=1))
 
 
 def add_max_steps(p: argparse.ArgumentParser, what: str = "the run") -> None:
@@ -137,7 +165,7 @@ def building_run_inputs(args: argparse.Namespace, command: str):
     from dcfpb.common.validation import check_int, check_real
     from structures.config import load_config
 
-    check_real(args.scale, "scale", command, low=0.0, low_open=True)
+    check_real(args.scale, "--scale", command, low=0.0, low_open=True)
     if getattr(args, "dt", None) is not None:
         check_real(args.dt, "--dt", command, low=0.0, low_open=True, high=1.0)
     if hasattr(args, "max_steps"):
@@ -192,23 +220,25 @@ def pair_from_args(args: argparse.Namespace, config, command: str):
             "see README, 'A building in plan'). Drop --record-y to run it in one direction.")
     step = None
     if args.resample:
-        from groundmotions.readers import read_record
-
-        step = read_record(args.record, units=getattr(args, "units", None),
-                           dt=getattr(args, "record_dt", None)).dt
+        step = read_record_from_args(args.record, args).dt
     try:
         pair = read_pair(args.record, args.record_y, args.record_z,
                          dt=getattr(args, "record_dt", None),
                          units=getattr(args, "units", None), resample_to=step,
                          truncate=args.truncate)
     except InputError as error:
+        named = record_dt_named(error, args.record, getattr(args, "record_dt", None))
         hint = ""
-        if "time step" in str(error) and not args.resample:
+        if named is not error:  # the step given or missing, not a mismatch of the components
+            pass
+        elif "time step" in str(error) and not args.resample:
             hint = "--resample resamples the y (and z) component to the x component's step."
         elif "samples" in str(error) and not args.truncate:
             hint = "--truncate cuts the components to the shortest."
         if hint:
             raise InputError(f"{error} On the command line: {hint}") from None
+        if named is not error:
+            raise named from None
         raise
     return pair.scaled(args.scale) if args.scale != 1.0 else pair
 

@@ -77,9 +77,13 @@ def summarise(motion: Any, periods: Any, damping: float) -> dict[str, Any]:
 def run(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb spectrum``; returns the exit status."""
     from dcfpb.cli.outputs import check_outputs
+    from dcfpb.common.validation import check_real
 
     check_outputs(figures={"--plot": args.plot}, overwrite=args.overwrite,
                   inputs={"the record": args.record})
+    check_real(args.damping, "--damping", "dcfpb spectrum", low=0.0, high=1.0, high_open=True)
+    for period in args.periods or ():
+        check_real(period, "--periods", "dcfpb spectrum", low=0.0)
     motion = read_record_from_args(args.record, args)
     periods = STANDARD_PERIODS if args.periods is None else args.periods
     summary = summarise(motion, periods, args.damping)

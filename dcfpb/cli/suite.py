@@ -94,6 +94,10 @@ def _floats(text: str, option: str) -> tuple[float, ...]:
     return values
 
 
+MAX_TARGET_BYTES = 10 * 2**20
+"""Largest target spectrum file read [bytes] (a few hundred rows are usual)."""
+
+
 def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     """A target spectrum as periods [s] and Sa [g]: from a CSV of ``period,sa`` rows (rows that are
     not two numbers, such as a header or comments, are skipped; periods must increase), or from
@@ -123,15 +127,27 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     except ImportError:  # target_hook says what is missing
         MAX_TARGET_SA = 10.0  # the same limit [g]
 
+    file = Path(path)
+    if not file.is_file():
+        what = ("not a regular file (a folder, a device or a pipe)" if file.exists()
+                else "no such file")
+        raise InputError(f"--target {path}: {what}; give a CSV of 'period,sa' rows [s, g] or "
+                         "asce7:S_DS,S_D1,T_L.")
+    if file.stat().st_size > MAX_TARGET_BYTES:
+        raise InputError(f"--target {path}: {file.stat().st_size:,} bytes, more than the "
+                         f"{MAX_TARGET_BYTES:,} of a target spectrum; is it one?")
     rows, lines = [], []
-    with open(path, newline="", encoding="utf-8") as handle:
-        reader = csv.reader(handle)
-        for row in reader:
-            try:
-                rows.append((float(row[0]), float(row[1])))
-                lines.append(reader.line_num)
-            except (ValueError, IndexError):
-                continue
+    try:
+        with open(file, newline="", encoding="utf-8") as handle:
+            reader = csv.reader(handle)
+            for row in reader:
+                try:
+                    rows.append((float(row[0]), float(row[1])))
+                    lines.append(reader.line_num)
+                except (ValueError, IndexError):
+                    continue
+    except (UnicodeDecodeError, csv.Error) as error:
+        raise InputError(f"--target {path}: not a UTF-8 CSV file ({error}).") from None
     data = np.array(rows, dtype=float).reshape(-1, 2)
     periods, sa = data[:, 0], data[:, 1]
     if len(rows) < 2 or np.any(np.diff(periods) <= 0) or periods[0] < 0 or np.any(sa <= 0):
@@ -166,14 +182,34 @@ def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float
 
 def _period_range(text: str | None, config) -> tuple[float, float]:
     if text:
-        low, high = _floats(text, "--period-range")[:2]
-        if not 0 < low < high:
+        values = _floats(text, "--period-range")
+        if len(values) != 2:
+            raise InputError(f"--period-range must be two periods TMIN,TMAX [s] with "
+                             f"0 < TMIN < TMAX. Got {text!r}.")
+        low, high = values
+        if not 0 < low < high < np.inf:
             raise InputError(f"--period-range must be TMIN,TMAX with 0 < TMIN < TMAX. "
                              f"Got {text!r}.")
         return low, high
     radius = config.bearing_geometry["effective_radius"]
     period = 2.0 * np.pi * np.sqrt(radius / STANDARD_GRAVITY)
     return 0.75 * period, 1.25 * period
+
+
+def _check_period_range(period_range: tuple[float, float], periods: np.ndarray,
+                        args: argparse.Namespace) -> None:
+    """The scaling's period range within the target spectrum's periods, refused naming
+    --period-range (given, or its default from the building file) and --target."""
+    low, high = period_range
+    first, last = float(periods[0]), float(periods[-1])
+    if first <= low and high <= last:
+        return
+    given = (f"--period-range {args.period_range}" if args.period_range else
+             f"the default --period-range {low:.4g},{high:.4g} s (0.75 and 1.25 times the "
+             f"isolated period of the building file {args.building})")
+    raise InputError(f"{given} is not within the periods of --target {args.target}, "
+                     f"{first:g} to {last:g} s: extend the target spectrum to cover it, or "
+                     "give a --period-range inside it.")
 
 
 def _suite(args: argparse.Namespace, config, factors):
@@ -212,6 +248,17 @@ def _run(args: argparse.Namespace) -> int:
         check_real(args.run_timeout, "--run-timeout", "dcfpb suite", low=0.0, low_open=True)
     check_real(args.wait_lock, "--wait-lock", "dcfpb suite", low=0.0, allow_inf=True)
     check_int(args.max_steps, "--max-steps", "dcfpb suite", low=1)
+    for flag, value in (("--duration", args.duration), ("--dt", args.dt)):
+        if value is not None:
+            check_real(value, flag, "dcfpb suite", low=0.0, low_open=True)
+    from isolator.experiments import MODELS as SUITE_MODELS
+
+    for model in args.models.split(","):
+        if model not in SUITE_MODELS:
+            raise InputError(f"--models must be a comma-separated list of "
+                             f"{', '.join(SUITE_MODELS)}. Got {model!r} in {args.models!r}.")
+    for scale in _floats(args.scales, "--scales"):
+        check_real(scale, "--scales", "dcfpb suite", low=0.0, low_open=True)
     if args.period_range and not args.target:
         raise InputError("--period-range applies to --target only.")
     if args.workers is not None and args.scheduler is not None:
@@ -230,6 +277,7 @@ def _run(args: argparse.Namespace) -> int:
     if args.target:
         target = read_target(args.target)
         period_range = _period_range(args.period_range, config)
+        _check_period_range(period_range, target[0], args)
     suite = _suite(args, config, None if target is None else target_hook(*target, period_range))
     with SuiteLock(args.out, wait=args.wait_lock):  # the plots and tables too
         try:

@@ -271,16 +271,28 @@ class ManifestRow(NamedTuple):
     where: str
 
 
+MAX_MANIFEST_BYTES = 10 * 2**20
+"""Largest pair manifest read [bytes] (some hundred thousand pairs)."""
+
+
 def manifest_rows(path: PathLike) -> tuple[ManifestRow, ...]:
     """The rows of a pair manifest (`read_pair_manifest`), checked without reading a component;
     a bad manifest raises `InputError` starting with ``"<manifest>, line <n>"`` and naming the
     column."""
     path = Path(path)
     if not path.is_file():
-        raise InputError(f"The pair manifest {str(path)!r} does not exist.")
-    with open(path, newline="", encoding="utf-8-sig") as handle:
-        lines = [(n, line) for n, line in enumerate(handle.read().splitlines(), start=1)
-                 if line.strip() and not line.lstrip().startswith("#")]
+        what = ("is not a regular file (a folder, a device or a pipe)" if path.exists()
+                else "does not exist")
+        raise InputError(f"The pair manifest {str(path)!r} {what}.")
+    if path.stat().st_size > MAX_MANIFEST_BYTES:
+        raise InputError(f"{path.name}: {path.stat().st_size:,} bytes, more than the "
+                         f"{MAX_MANIFEST_BYTES:,} of a pair manifest; is it one?")
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as handle:
+            lines = [(n, line) for n, line in enumerate(handle.read().splitlines(), start=1)
+                     if line.strip() and not line.lstrip().startswith("#")]
+    except UnicodeDecodeError as error:
+        raise InputError(f"{path.name}: not a UTF-8 CSV pair manifest ({error}).") from None
     if not lines:
         raise InputError(f"{path.name}: the pair manifest is empty; it needs a header row "
                          f"naming the columns name, x, y (and optionally z, dt, units).")

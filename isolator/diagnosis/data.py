@@ -210,6 +210,10 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
     import pandas as pd
 
     path = Path(path)
+    if path.is_dir():
+        raise DataError(f"{path}: is a folder, not a test file; give the CSV file.")
+    if path.exists() and not path.is_file():
+        raise DataError(f"{path}: not a regular file (a device or a pipe); give the CSV file.")
     if not path.is_file():
         raise DataError(f"{path}: no such file.")
     header = check_size(path, max_rows=max_rows)

@@ -28,12 +28,13 @@ one.
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from pathlib import Path
 
 import numpy as np
 
-from dcfpb.common.errors import InputWarning
+from dcfpb.common.errors import InputError, InputWarning
 from isolator.diagnosis.data import (
     KELVIN_LOOK,
     MAX_ROWS,
@@ -50,11 +51,19 @@ COLUMNS = ("file", "axial_load", "initial_temperature", "rest_before")
 _AXIAL_TOLERANCE = 0.02
 
 
+MAX_MANIFEST_BYTES = 10 * 2**20
+"""Largest campaign manifest read [bytes] (some hundred thousand tests)."""
+
+
 def read_manifest(path: str | Path) -> tuple[list[dict], dict]:
     """The rows of a manifest (one dict per test) and its top-level bearing values."""
     path = Path(path)
     if not path.is_file():
-        raise DataError(f"{path}: no such manifest file.")
+        raise DataError(f"{path}: not a regular file (a folder, a device or a pipe); give the "
+                        "manifest file." if path.exists() else f"{path}: no such manifest file.")
+    if path.stat().st_size > MAX_MANIFEST_BYTES:
+        raise DataError(f"{path}: {path.stat().st_size:,} bytes, more than the "
+                        f"{MAX_MANIFEST_BYTES:,} of a campaign manifest; is it one?")
     if path.suffix.lower() == ".toml":
         import tomllib
 
@@ -95,6 +104,11 @@ def read_manifest(path: str | Path) -> tuple[list[dict], dict]:
             raise DataError(f"{where}: 'file' is empty.")
         for key in COLUMNS[1:]:
             entry[key] = _number(row.get(key), key, where)
+        for key, low, unit in (("axial_load", 0.0, "N"), ("rest_before", None, "s")):
+            value = entry[key]
+            if value is not None and (value < 0.0 or value == low):
+                bound = "above 0" if low is not None else "at least 0"
+                raise DataError(f"{where}: '{key}' must be {bound} {unit}. Got {value!r}.")
         start = entry["initial_temperature"]
         if start is not None and KELVIN_LOOK[0] <= start <= KELVIN_LOOK[1]:
             raise DataError(f"{where}: 'initial_temperature' is {start!r}, which looks like "
@@ -215,8 +229,9 @@ def _read(where: str, file: Path, **options):
     """:func:`read_record` of a manifest's test; its errors name the manifest and the test."""
     try:
         return read_record(file, **options)
-    except DataError as error:
-        raise DataError(f"{where}: {error}") from None
+    except InputError as error:  # DataError, or a value of the manifest out of its range
+        text = re.sub(r"The '(\w+)' parameter of test '[^']*'", r"'\1'", str(error))
+        raise DataError(f"{where}: {text}") from None
 
 
 def _same(manifest: float, given: float, where: str, source: str, unit: str) -> None:

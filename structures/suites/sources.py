@@ -89,6 +89,10 @@ class MotionSource:
                          units=self.units)
 
 
+MAX_LIST_BYTES = 10 * 2**20
+"""Largest CSV list of records read [bytes] (some hundred thousand rows)."""
+
+
 def motion_sources(path: str | Path, *, pairs: bool = False) -> tuple[MotionSource, ...]:
     """The motions of a record list or, with ``pairs``, of a pair manifest, without reading them.
 
@@ -113,8 +117,14 @@ def motion_sources(path: str | Path, *, pairs: bool = False) -> tuple[MotionSour
     if path.is_dir():
         files = sorted(p for p in path.iterdir() if p.is_file() and p.suffix.lower() == ".at2")
     elif path.is_file():
-        with open(path, newline="", encoding="utf-8") as handle:
-            rows = [row for row in csv.reader(handle) if row and row[0].strip()]
+        if path.stat().st_size > MAX_LIST_BYTES:
+            raise InputError(f"{path}: {path.stat().st_size:,} bytes, more than the "
+                             f"{MAX_LIST_BYTES:,} of a list of records; is it one?")
+        try:
+            with open(path, newline="", encoding="utf-8") as handle:
+                rows = [row for row in csv.reader(handle) if row and row[0].strip()]
+        except (UnicodeDecodeError, csv.Error) as error:
+            raise InputError(f"{path}: not a UTF-8 CSV list of records ({error}).") from None
         if rows and rows[0][0].strip().lower() in _LIST_HEADERS:
             rows = rows[1:]
         files = [path.parent / row[0].strip() for row in rows

@@ -52,7 +52,7 @@ RUN_CASES = {
                                 ("6,232 steps (31.16 s at dt = 0.005 s)",
                                  "past the limit of 1,000 steps",
                                  "raise the limit with --max-steps (at least 6,232)")),
-    "scale 0": (["--scale", "0"], ("'scale'", "(0, inf)", "Got 0.0")),
+    "scale 0": (["--scale", "0"], ("'--scale'", "(0, inf)", "Got 0.0")),
 }
 
 

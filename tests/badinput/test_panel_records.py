@@ -146,7 +146,7 @@ CASES: dict[str, Case] = {
         {"one.txt": "0.01\n0.02\n-0.03\n"}, spectrum("one.txt", "--dt", "1e-6"), 2,
         ["one.txt", "--record-dt", "time step of 1e-06 s"]),
     "records-dt-flag-against-peer-dt": Case(
-        {"p.at2": GOOD}, spectrum("p.at2", "--dt", "0.02"), 2, ["p.at2", "'dt'", "0.02"]),
+        {"p.at2": GOOD}, spectrum("p.at2", "--dt", "0.02"), 2, ["p.at2", "--record-dt", "0.02"]),
     # the count
     "records-numbers-after-the-end-line": Case(
         {"tr.at2": TRAILING}, spectrum("tr.at2"), 2,

@@ -75,7 +75,7 @@ BAD = {
                                 ("[plan] 'storey_heights'", "one value per storey (5,")),
     "zero height": ({"storey_heights": "0.0"}, ("'storey_heights'", "(0, 1000]")),
     "no dimensions for the inertia": ({"dimensions": None},
-                                      ("parameter of Plan is needed", "'dimensions'")),
+                                      ("[plan] 'torsional_stiffnesses' is needed", "'dimensions'")),
     "unknown key": ({"eccentricty": "[0.0, 0.0]"}, ("unknown key(s) 'eccentricty'", "[plan]")),
     "no coordinates": ({"bearing_coordinates": None}, ("[plan] needs 'bearing_coordinates'",)),
     "two bearings at one point": (

@@ -86,13 +86,13 @@ CASES: dict[str, tuple[str | bytes, list[str], list[str]]] = {
     "no_dt.at2": (PEER_HEADER + "NPTS= 8\n" + SMALL, [], ["line 4", "no DT"]),
     "binary.at2": (bytes(range(256)) * 4, [], ["no NPTS/DT line"]),
     "peer_dt_flag.at2": (PEER_HEADER + "NPTS= 8, DT= .02\n" + SMALL, ["--dt", "0.01"],
-                         ["'dt'", "DT = 0.02 s", "0.01"]),
+                         ["--record-dt", "DT = 0.02 s", "0.01"]),
     # text records
-    "one_column.txt": (_text(WAVE), [], ["one-column file", "'dt'", "--record-dt"]),
+    "one_column.txt": (_text(WAVE), [], ["one_column.txt", "one-column record", "--record-dt"]),
     "uneven.txt": (_text(WAVE, [0.0, 0.01, 0.02, 0.04, 0.05, 0.06]), [],
                    ["line 4", "not uniformly sampled", "0.04"]),
     "dt_disagrees.txt": (_text(WAVE, TIMES), ["--dt", "0.05"],
-                         ["'dt'", "must agree with the time column", "0.05"]),
+                         ["--record-dt", "must agree with the time column", "0.05"]),
     "bananas.txt": (_text(WAVE, TIMES, "# units: bananas\n"), [], ["line 1", "'bananas'"]),
     "text_gal_unstated.csv": (_text([312.0, -150.0, 20.0], header="acc\n"), ["--dt", "0.02"],
                               ["line 2", "PGA 312 g", "cm/s^2 (gal) (PGA 0.318 g)"]),
@@ -152,4 +152,4 @@ def test_bad_record_dt_value_exits_2(tmp_path, capsys, dt):
     path.write_text(_text(WAVE))
     assert main(["spectrum", str(path), "--dt", dt]) == EXIT_BAD_INPUT
     err = capsys.readouterr().err
-    assert "'dt' parameter of read_text_record" in err and dt in err
+    assert "--record-dt" in err and dt in err

@@ -303,7 +303,7 @@ def test_cli_suite_json_summary_and_plots(monkeypatch, capsys, scheduler, tmp_pa
 @pytest.mark.parametrize(("args", "message"), [
     (["--period-range", "1,2"], "--target only"),
     (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "not both"),
-    (["--models", "exact"], "'models'"),
+    (["--models", "exact"], "--models"),
     (["--scales", "1,x"], "--scales"),
 ])
 def test_cli_suite_errors_are_clear(args, message, monkeypatch, capsys, tmp_path):
@@ -315,7 +315,7 @@ def test_cli_suite_errors_are_clear(args, message, monkeypatch, capsys, tmp_path
 
 def test_cli_target_needs_the_scaling_module(monkeypatch, capsys, tmp_path):
     target = tmp_path / "target.csv"
-    target.write_text("period,sa\n0.1,1.0\n4.0,0.2\n")
+    target.write_text("period,sa\n0.1,1.0\n6.0,0.2\n")
     monkeypatch.setitem(sys.modules, "groundmotions.scaling", None)  # import fails
     assert _suite_command(monkeypatch, "--records", str(ELCENTRO.parent), "--target",
                           str(target), "--out", str(tmp_path / "out")) == 2
@@ -332,7 +332,7 @@ def test_cli_target_scales_through_the_hook(monkeypatch, capsys, scheduler, tmp_
 
     monkeypatch.setattr(scaling, "scale_suite", scale_suite)  # the plots use the rest
     target = tmp_path / "target.csv"
-    target.write_text("period,sa\n0.1,1.0\n4.0,0.2\n")
+    target.write_text("period,sa\n0.1,1.0\n6.0,0.2\n")
     out = tmp_path / "out"
     assert _suite_command(monkeypatch, "--records", str(_bad_set(tmp_path)), "--target",
                           str(target), "--period-range", "2,5", "--scales", "2",

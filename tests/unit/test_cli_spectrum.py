@@ -84,8 +84,8 @@ def test_a_two_column_text_record_in_g(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("extra", "words"),
     [
-        (["--damping", "1.5"], ["'damping'", "[0, 1)", "1.5"]),
-        (["--periods", "-1"], ["'periods'", "-1"]),
+        (["--damping", "1.5"], ["'--damping'", "[0, 1)", "1.5"]),
+        (["--periods", "-1"], ["'--periods'", "-1"]),
     ],
 )
 def test_bad_values_are_clear_errors_with_exit_status_2(capsys, extra, words):
