@@ -1,0 +1,116 @@
+"""A small campaign of bearing tests in two directions for ``dcfpb diagnose``.
+
+Drives the package's bidirectional element (:func:`isolator.testrig.run_orbit` /
+:func:`~isolator.testrig.run_test`) through a circle and a figure-eight, switches one effect
+on through the friction model's parameters or the load train, adds sensor noise and writes
+the tests in the two-direction format (``time``, ``displacement_x``, ``displacement_y``,
+``force_x``, ``force_y``, ``axial_force``) with a TOML manifest::
+
+    python examples/diagnose_2d_campaign.py OUT_DIR [--effect heating] [--seed 1]
+    dcfpb diagnose --manifest OUT_DIR/campaign.toml --model constant
+
+Effects: ``none`` (constant friction), ``heating`` (the precise model's heating only),
+``velocity`` (the speed dependence only), ``backlash`` (a play of 4 mm along x and 2 mm
+along y in the load train), ``lag`` (the force channel 4 samples late).
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+import numpy as np
+
+EFFECTS = ("none", "heating", "velocity", "backlash", "lag")
+RADIUS = 2.0  # [m] effective radius
+SLIDER = 0.25  # [m] slider diameter
+LOAD = 1.0e6  # [N] axial load
+MU = 0.06
+ORBITS = (("circle", 0.08, 4.0, 2), ("figure8", 0.10, 2.0, 3))  # kind, size [m], period [s]
+PLAY = (4.0e-3, 2.0e-3)  # [m] play along x and y
+LAG_SAMPLES = 4
+
+
+def _play(u: np.ndarray, width: float) -> np.ndarray:
+    out, half, y = np.empty_like(u), 0.5 * width, u[0]
+    for i, x in enumerate(u):
+        y = x - half if x - y > half else x + half if y - x > half else y
+        out[i] = y
+    return out
+
+
+def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
+               orbits=ORBITS, force_noise: float = 0.004,
+               displacement_noise: float = 1.0e-5) -> list[dict[str, np.ndarray]]:
+    """The tests of one campaign as column dicts (two-direction format, SI units).
+
+    ``effect`` is one of :data:`EFFECTS`; ``force_noise`` is the force sensors' white noise
+    over the peak |F| [-], ``displacement_noise`` the displacement sensors' [m].
+    """
+    from isolator.bearing import DCFPBearing
+    from isolator.friction import ConstantFriction, PTVFriction
+    from isolator.heating import MonitorLine
+    from isolator.orbits import orbit
+    from isolator.testrig import run_test
+
+    if effect not in EFFECTS:
+        raise ValueError(f"effect must be one of {EFFECTS}. Got {effect!r}.")
+    friction = {
+        "heating": PTVFriction(MU, heating=MonitorLine(), dependencies=("temperature",)),
+        "velocity": PTVFriction(MU, heating=None, dependencies=("velocity",)),
+    }.get(effect, ConstantFriction(MU))
+    bearing = DCFPBearing(RADIUS, SLIDER, axial_load=LOAD, friction=friction,
+                          yield_displacement=2.0e-4, displacement_capacity=0.3)
+    rng = np.random.default_rng(seed)
+    tests = []
+    for kind, size, period, cycles in orbits:
+        o = orbit(kind, size, period, cycles, dt)
+        u = np.array(o.displacement)
+        driven = u
+        if effect == "backlash":
+            driven = np.column_stack([_play(u[:, j], PLAY[j]) for j in range(2)])
+        result = run_test(bearing, o.time, driven, None if effect == "backlash" else o.velocity,
+                          name=kind)
+        force = np.array(result.force)
+        if effect == "lag":
+            late = o.time - LAG_SAMPLES * dt
+            force = np.column_stack([np.interp(late, o.time, force[:, j]) for j in range(2)])
+        peak = float(np.max(np.hypot(*force.T)))
+        force = force + rng.normal(0.0, force_noise * peak, force.shape)
+        measured = u + rng.normal(0.0, displacement_noise, u.shape)
+        tests.append({"name": kind, "time": np.array(o.time),
+                      "displacement_x": measured[:, 0], "displacement_y": measured[:, 1],
+                      "force_x": force[:, 0], "force_y": force[:, 1],
+                      "axial_force": np.full(o.time.size, LOAD)})
+    return tests
+
+
+def write(tests: list[dict[str, np.ndarray]], folder: str | Path) -> Path:
+    """Write the tests as CSV files and a TOML manifest ``campaign.toml`` in ``folder``."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    lines = [f"effective_radius = {RADIUS}", f"slider_diameter = {SLIDER}", ""]
+    for k, test in enumerate(tests, start=1):
+        name = f"{k:02d}_{test['name']}.csv"
+        columns = [c for c in test if c != "name"]
+        np.savetxt(folder / name, np.column_stack([test[c] for c in columns]), delimiter=",",
+                   header=",".join(columns), comments="", fmt="%.9g")
+        lines += ["[[test]]", f'file = "{name}"', ""]
+    manifest = folder / "campaign.toml"
+    manifest.write_text("\n".join(lines))
+    return manifest
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Write a campaign (see the module docstring)."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("folder")
+    parser.add_argument("--effect", choices=EFFECTS, default="heating")
+    parser.add_argument("--seed", type=int, default=1)
+    args = parser.parse_args(argv)
+    print(f"wrote {write(synthesise(args.effect, seed=args.seed), args.folder)}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
