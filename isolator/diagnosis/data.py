@@ -228,6 +228,11 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
                         f"reader found {len(frame.columns)}; check the header line.")
     frame.columns = [_column_name(c)[0] for c in header]
     missing = [c for c in REQUIRED_COLUMNS if c not in frame.columns]
+    if missing and {"displacement_x", "force_x"} <= set(frame.columns):
+        raise DataError(f"{path}: a test in two directions (columns displacement_x, "
+                        "displacement_y, force_x, force_y); read it with "
+                        "isolator.diagnosis.data2d.read_record_2d (load_campaign and "
+                        "dcfpb diagnose read such tests themselves).")
     if missing:
         raise DataError(
             f"{path}: missing column(s) {missing}; found {list(frame.columns)}. A test needs "
@@ -272,13 +277,22 @@ def load_campaign(
 ) -> Campaign:
     """Read the tests of a campaign, in the order run (``axial_load``, ``max_rows``: see
     :func:`read_record`), and check them (:func:`check_consistent_units`,
-    :func:`check_plausible`)."""
+    :func:`check_plausible`). Tests in two directions give a
+    :class:`~isolator.diagnosis.data2d.Campaign2D` (:func:`~isolator.diagnosis.data2d.
+    load_campaign_2d`); a campaign mixing the two kinds is refused."""
     if isinstance(paths, str | Path) or not paths:
         raise DataError("load_campaign needs a list of one or more CSV files.")
     _check_max_rows(max_rows)
     for p in paths:  # every file's size before the first is read
         if Path(p).is_file():
             check_size(Path(p), max_rows=max_rows)
+    if all(Path(p).is_file() for p in paths):
+        from isolator.diagnosis.data2d import check_one_kind, load_campaign_2d
+
+        if check_one_kind(paths, max_rows=max_rows) == 2:  # tests in two directions
+            return load_campaign_2d(paths, effective_radius=effective_radius,
+                                    slider_diameter=slider_diameter, axial_load=axial_load,
+                                    max_rows=max_rows)
     tests = tuple(read_record(p, axial_load=axial_load, max_rows=max_rows) for p in paths)
     places = [str(p) for p in paths]
     check_consistent_units(tests, places)

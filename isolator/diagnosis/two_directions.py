@@ -291,6 +291,12 @@ class Model2D:
     friction: tuple[str, ...] = ()
     kinematic: tuple[str, ...] = ()
     fixed_state: tuple | None = None  # (u_b, z) frozen
+    free: bool = False  # u_y and the channel lag refitted even without a kinematic effect
+
+    @property
+    def refits_kinematics(self) -> bool:
+        """Whether u_y and the lag (or the kinematic effects) are parameters."""
+        return self.fixed_state is None and (bool(self.kinematic) or self.free)
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -299,14 +305,14 @@ class Model2D:
     @property
     def kinematic_size(self) -> int:
         """Index of the first friction-law parameter (mu and the kinematics before it)."""
-        if self.fixed_state is not None or not self.kinematic:
+        if not self.refits_kinematics:
             return 1
         return (2 + ("lag" not in self.kinematic)
                 + sum(len(LIBRARY_2D[k].params) for k in self.kinematic))
 
     def layout(self, d: Data2D, nominal_uy: float) -> list[Param]:
         out = [Param("mu", 0.05, 1e-4, 1.0, "-")]
-        if self.fixed_state is None and self.kinematic:
+        if self.refits_kinematics:
             out.append(Param("log10_yield_displacement", math.log10(nominal_uy),
                              math.log10(RIGID_PLASTIC_LIMIT),
                              math.log10(YIELD_DISPLACEMENT_MAX), "log10 m", edge_ok=True))
@@ -326,7 +332,7 @@ class Model2D:
     def state(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> tuple:
         if self.fixed_state is not None:
             return self.fixed_state
-        if not self.kinematic:
+        if not self.refits_kinematics:
             return base.ub, base.z
         i = 2
         lag, widths = base.lag, (0.0, 0.0)
@@ -830,7 +836,7 @@ def _own_params(j: Judged, name: str) -> dict[str, tuple[float, float, str]]:
     model = j.model
     out: dict[str, tuple[float, float, str]] = {}
     i = 1
-    if model.fixed_state is None and model.kinematic:
+    if model.refits_kinematics:
         i = 2 + ("lag" not in model.kinematic)
     for other in (*(model.kinematic if model.fixed_state is None else ()), *model.friction):
         size = len(LIBRARY_2D[other].params)
@@ -1009,9 +1015,9 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         named_kin.append(best)
         current = trials[best]
 
-    # stage 2: the friction law outside the direction-change windows, kinematics frozen
-    frozen = current.model.state(current.theta, d, base) if named_kin else None
-    law_base = problem.judge(Model2D(kinematic=tuple(named_kin), fixed_state=frozen), sliding)
+    # stage 2: the friction law outside the direction-change windows (u_y, lag refitted)
+    kin_model = Model2D(kinematic=tuple(named_kin), free=True)
+    law_base = problem.judge(kin_model, sliding, start=_start(kin_model, current, base, d))
     cur = law_base
     law: list[str] = []
     d.temperature_rise = np.zeros(d.n)
@@ -1030,7 +1036,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                                    cur.full, untestable=why)
                 roles[k] = f"untestable: {why}"
                 continue
-            model = Model2D(friction=(*law, k), kinematic=tuple(named_kin), fixed_state=frozen)
+            model = Model2D(friction=(*law, k), kinematic=tuple(named_kin), free=True)
             start = np.concatenate([cur.theta, [p.start for p in LIBRARY_2D[k].params]])
             starts = [np.concatenate([cur.theta, s]) for s in _friction_starts(k)]
             j = problem.judge(model, sliding, start=start, starts=starts)
@@ -1055,9 +1061,9 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         for k in kin:
             if k in named_kin:
                 continue
-            model = Model2D(friction=tuple(law), kinematic=(*named_kin, k))
-            reference = problem.judge(Model2D(friction=tuple(law),
-                                              kinematic=tuple(named_kin)), every)
+            model = Model2D(friction=tuple(law), kinematic=(*named_kin, k), free=True)
+            reference = problem.judge(Model2D(friction=tuple(law), kinematic=tuple(named_kin),
+                                              free=True), every, start=cur.theta)
             j = problem.judge(model, every, start=_start(model, reference, base, d),
                               starts=_kin_starts(model, reference, base, d))
             j = problem.compare(reference, j, every, z_min=th.kinematic_z,
@@ -1073,17 +1079,11 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
     named = [*named_kin, *law]
     chosen = None
     if named:
-        model = Model2D(friction=tuple(law), kinematic=tuple(named_kin))
-        start = None
-        size = len(model.layout(d, base.yield_displacement))
-        if named_kin:
-            ref = judged[named_kin[-1]]
-            start = (ref.theta if ref.model.names == model.names
-                     else np.concatenate([ref.theta, cur.theta[1:]]))
-        elif law:
-            start = cur.theta
-        if start is not None and start.size != size:
-            start = None
+        model = Model2D(friction=tuple(law), kinematic=tuple(named_kin), free=True)
+        source = cur if law else judged[named_kin[-1]]
+        if named_kin and judged[named_kin[-1]].model.friction:  # found beside the law
+            source = judged[named_kin[-1]]
+        start = _start(model, source, base, d)
         chosen = problem.judge(model, every, start=start)
         problem.compare(base_all, chosen, every, z_min=0.0, explained_min=0.0,
                         practical_min=0.0)
