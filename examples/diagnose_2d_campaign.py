@@ -51,7 +51,7 @@ def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
     from isolator.friction import ConstantFriction, PTVFriction
     from isolator.heating import MonitorLine
     from isolator.orbits import orbit
-    from isolator.testrig import run_test
+    from isolator.testrig import run_orbit, run_test
 
     if effect not in EFFECTS:
         raise ValueError(f"effect must be one of {EFFECTS}. Got {effect!r}.")
@@ -69,8 +69,10 @@ def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
         driven = u
         if effect == "backlash":
             driven = np.column_stack([_play(u[:, j], PLAY[j]) for j in range(2)])
-        result = run_test(bearing, o.time, driven, None if effect == "backlash" else o.velocity,
-                          name=kind)
+        if effect == "backlash":  # the bearing moves behind the play
+            result = run_test(bearing, o.time, driven, name=kind)
+        else:
+            result = run_orbit(bearing, o)
         force = np.array(result.force)
         if effect == "lag":
             late = o.time - LAG_SAMPLES * dt

@@ -114,6 +114,41 @@ def play(u, width):
     return out
 
 
+@jit
+def shift_uniform(values, shift):
+    """``values`` at sample index i - ``shift`` (a fractional number of samples) by cubic
+    (Catmull-Rom) interpolation on uniform samples, held at the ends."""
+    n = values.size
+    out = np.empty(n)
+    for i in range(n):
+        p = i - shift
+        if p <= 0.0:
+            out[i] = values[0]
+            continue
+        if p >= n - 1:
+            out[i] = values[n - 1]
+            continue
+        k = int(p)
+        t = p - k
+        a = values[max(k - 1, 0)]
+        b = values[k]
+        c = values[min(k + 1, n - 1)]
+        e = values[min(k + 2, n - 1)]
+        out[i] = b + 0.5 * t * (c - a + t * (2.0 * a - 5.0 * b + 4.0 * c - e
+                                             + t * (3.0 * (b - c) + e - a)))
+    return out
+
+
+def lagged(time: np.ndarray, values: np.ndarray, lag: float) -> np.ndarray:
+    """``values`` at ``time - lag`` [s]: :func:`shift_uniform` on uniform samples, else
+    :func:`~isolator.diagnosis.kinematics.shifted`."""
+    steps = np.diff(time)
+    if np.ptp(steps) <= 1e-6 * steps.mean():
+        return shift_uniform(np.ascontiguousarray(values, dtype=float),
+                             float(lag / steps.mean()))
+    return shifted(time, values, lag)
+
+
 # --- parameters and effects -----------------------------------------------------------------
 
 @dataclass(frozen=True)
@@ -270,7 +305,7 @@ def kinematic_state(d: Data2D, yield_displacement: float, lag: float = 0.0,
     for t, u in zip(d.time, d.displacement, strict=True):
         cols = []
         for j in range(2):
-            x = shifted(t, u[:, j], lag) if lag else u[:, j]
+            x = lagged(t, u[:, j], lag) if lag else u[:, j]
             if widths[j] > 0.0:
                 x = play(np.ascontiguousarray(x), float(widths[j]))
             cols.append(np.ascontiguousarray(x))
@@ -629,7 +664,7 @@ def noise_variance(d: Data2D, base: Baseline2D, seed: int = 0) -> np.ndarray:
                 for j in range(2):
                     noisy = rec.displacement[:, j] + rng.normal(0.0, un, n)
                     x = _smooth(rec.time, noisy, d.smoothed)
-                    cols.append(np.ascontiguousarray(shifted(rec.time, x, base.lag)
+                    cols.append(np.ascontiguousarray(lagged(rec.time, x, base.lag)
                                                      if base.lag else x))
                 zx, zy = return_map_2d(cols[0], cols[1], base.yield_displacement)
                 ub = np.column_stack(cols)
