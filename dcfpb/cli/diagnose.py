@@ -74,8 +74,9 @@ def run(args: argparse.Namespace) -> int:
     check_outputs(folders={"--report": args.report}, overwrite=args.overwrite,
                   inputs={"the test file": list(args.files), "the manifest": args.manifest},
                   writes={"--report": REPORT_FILES})  # before the slow imports
-    from isolator.diagnosis import BaselineSpec, DataError, diagnose, load_campaign
+    from isolator.diagnosis import BaselineSpec, DataError, diagnose
     from isolator.diagnosis.data import MAX_ROWS
+    from isolator.diagnosis.data2d import load_any_campaign
     from isolator.diagnosis.manifest import load_manifest
 
     max_rows = MAX_ROWS if args.max_rows is None else args.max_rows
@@ -95,9 +96,9 @@ def run(args: argparse.Namespace) -> int:
                             ("--slider-diameter", args.slider_diameter)):
             if value is None:
                 raise DataError(f"{name} is required (or a TOML --manifest that gives it).")
-        campaign = load_campaign(args.files, effective_radius=args.effective_radius,
-                                 slider_diameter=args.slider_diameter,
-                                 axial_load=args.axial_load, max_rows=max_rows)
+        campaign = load_any_campaign(args.files, effective_radius=args.effective_radius,
+                                     slider_diameter=args.slider_diameter,
+                                     axial_load=args.axial_load, max_rows=max_rows)
     diagnosis = diagnose(campaign, spec, exclude=tuple(args.exclude))
     summary = diagnosis.to_json()
     if summary.get("dimension") == 2:  # tests in two directions

@@ -277,22 +277,14 @@ def load_campaign(
 ) -> Campaign:
     """Read the tests of a campaign, in the order run (``axial_load``, ``max_rows``: see
     :func:`read_record`), and check them (:func:`check_consistent_units`,
-    :func:`check_plausible`). Tests in two directions give a
-    :class:`~isolator.diagnosis.data2d.Campaign2D` (:func:`~isolator.diagnosis.data2d.
-    load_campaign_2d`); a campaign mixing the two kinds is refused."""
+    :func:`check_plausible`). Tests in two directions:
+    :func:`isolator.diagnosis.data2d.load_campaign_2d` (or ``load_any_campaign`` there)."""
     if isinstance(paths, str | Path) or not paths:
         raise DataError("load_campaign needs a list of one or more CSV files.")
     _check_max_rows(max_rows)
     for p in paths:  # every file's size before the first is read
         if Path(p).is_file():
             check_size(Path(p), max_rows=max_rows)
-    if all(Path(p).is_file() for p in paths):
-        from isolator.diagnosis.data2d import check_one_kind, load_campaign_2d
-
-        if check_one_kind(paths, max_rows=max_rows) == 2:  # tests in two directions
-            return load_campaign_2d(paths, effective_radius=effective_radius,
-                                    slider_diameter=slider_diameter, axial_load=axial_load,
-                                    max_rows=max_rows)
     tests = tuple(read_record(p, axial_load=axial_load, max_rows=max_rows) for p in paths)
     places = [str(p) for p in paths]
     check_consistent_units(tests, places)

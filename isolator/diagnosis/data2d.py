@@ -285,6 +285,28 @@ def load_campaign_2d(
     return Campaign2D(tests, effective_radius, slider_diameter)
 
 
+def load_any_campaign(
+    paths: Sequence[str | Path],
+    *,
+    effective_radius: float,
+    slider_diameter: float,
+    axial_load: float | None = None,
+    max_rows: int = MAX_ROWS,
+):
+    """The campaign of ``paths``, tests in one direction
+    (:func:`~isolator.diagnosis.data.load_campaign`) or in two (:func:`load_campaign_2d`),
+    told apart by their headers; a campaign mixing the two kinds is refused."""
+    from isolator.diagnosis.data import load_campaign
+
+    if isinstance(paths, str | Path) or not paths:
+        raise DataError("load_any_campaign needs a list of one or more CSV files.")
+    options = {"effective_radius": effective_radius, "slider_diameter": slider_diameter,
+               "axial_load": axial_load, "max_rows": max_rows}
+    if all(Path(p).is_file() for p in paths) and check_one_kind(paths, max_rows=max_rows) == 2:
+        return load_campaign_2d(paths, **options)
+    return load_campaign(paths, **options)
+
+
 def check_one_kind(paths: Sequence[str | Path], *, max_rows: int = MAX_ROWS,
                    where: Sequence[str] | None = None) -> int:
     """The dimension shared by every test file of ``paths`` (1 or 2); a campaign mixing tests
