@@ -26,7 +26,10 @@ RADIUS = 2.0  # [m] effective radius
 SLIDER = 0.25  # [m] slider diameter
 LOAD = 1.0e6  # [N] axial load
 MU = 0.06
-ORBITS = (("circle", 0.08, 4.0, 2), ("figure8", 0.10, 2.0, 3))  # kind, size [m], period [s]
+ORBITS = (("circle", 0.08, 4.0, 2), ("figure8", 0.10, 2.0, 3))
+"""The default tests: (kind, size [m], period [s], cycles); for ``"earthquake"`` (
+:func:`earthquake_orbit`) the size is the peak radius, the period the duration and the cycles
+the seed of the path."""
 PLAY = (4.0e-3, 2.0e-3)  # [m] play along x and y
 LAG_SAMPLES = 4
 
@@ -37,6 +40,29 @@ def _play(u: np.ndarray, width: float) -> np.ndarray:
         y = x - half if x - y > half else x + half if y - x > half else y
         out[i] = y
     return out
+
+
+def earthquake_orbit(peak: float, duration: float, dt: float, seed: int = 0):
+    """An earthquake-like orbit: band-limited random motion (0.2-1.5 Hz, a sum of 24 sines
+    per axis with random phases) under a sine-squared envelope, scaled to a peak radius
+    ``peak`` [m], ``duration`` [s] long in steps of ``dt`` [s]; an
+    :class:`~isolator.orbits.Orbit` with its exact velocity."""
+    from isolator.orbits import Orbit
+
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, duration + 0.5 * dt, dt)
+    frequencies = rng.uniform(0.2, 1.5, (2, 24))
+    phases = rng.uniform(0.0, 2 * np.pi, (2, 24))
+    envelope = np.sin(np.pi * t / duration) ** 2
+    d_envelope = np.pi / duration * np.sin(2 * np.pi * t / duration)
+    u, v = np.empty((t.size, 2)), np.empty((t.size, 2))
+    for j in range(2):
+        w = 2 * np.pi * frequencies[j][:, None]
+        waves = np.sin(w * t + phases[j][:, None]).sum(axis=0)
+        rates = (w * np.cos(w * t + phases[j][:, None])).sum(axis=0)
+        u[:, j], v[:, j] = envelope * waves, d_envelope * waves + envelope * rates
+    scale = peak / float(np.max(np.hypot(*u.T)))
+    return Orbit(t, scale * u, scale * v, "earthquake")
 
 
 def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
@@ -64,7 +90,8 @@ def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
     rng = np.random.default_rng(seed)
     tests = []
     for kind, size, period, cycles in orbits:
-        o = orbit(kind, size, period, cycles, dt)
+        o = (earthquake_orbit(size, period, dt, seed=cycles) if kind == "earthquake"
+             else orbit(kind, size, period, cycles, dt))
         u = np.array(o.displacement)
         driven = u
         if effect == "backlash":

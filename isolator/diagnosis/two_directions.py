@@ -30,7 +30,11 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    whole test (every sample, the direction-change windows included).
 6. **Uncertainty**: confidence by block bootstrap, 5-95 % intervals of the parameters.
 
-A block is a stretch of path of pi times the test's peak radius (half a circle's turn).
+A block is a stretch of path of a quarter of a turn of a circle of the test's peak radius. The
+held-out statistic z is the larger of two t-statistics over the blocks: of the differences of
+the weighted squared residual (as in one direction) and of their log-ratios (scale-free: an
+effect that acts at a few direction changes of a large orbit improves every block it touches
+by a large factor, which the plain differences' spread hides).
 """
 
 from __future__ import annotations
@@ -67,6 +71,7 @@ ALIGNED_SIZE = 0.95  # |z| below this: still in the pre-sliding transition
 SLOW_SHARE = 0.05  # of the peak speed: a stop
 MAX_FRICTION_EFFECTS = 3
 BOOTSTRAP = 200
+BLOCK_TURN = 0.25  # a block: this share of a turn of a circle of the peak radius, as path
 SMOOTH_NOISE = 0.1  # displacement noise over u_y beyond which the displacement is smoothed
 _YIELD_GRID = np.geomspace(RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_MAX, 14)
 _LAG_GRID = np.arange(-NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES + 0.25, 0.5)
@@ -273,7 +278,7 @@ def _prepare(campaign: Campaign2D, smooth: bool = True) -> Data2D:
         disps.append(u)
         step = np.concatenate([[0.0], np.hypot(*np.diff(rec.displacement, axis=0).T)])
         path = np.cumsum(step)
-        length = math.pi * max(float(np.max(rec.radius)), 1e-6)
+        length = BLOCK_TURN * 2.0 * math.pi * max(float(np.max(rec.radius)), 1e-6)
         b = np.floor(path / length).astype(int)
         block.append(b + offset_block)
         offset_block += int(b.max()) + 1
@@ -533,12 +538,12 @@ class Problem2D:
     def compare(self, current: Judged, new: Judged, mask: np.ndarray, *, z_min: float,
                 explained_min: float, practical_min: float) -> Judged:
         """Whether ``new`` earns its keep over ``current`` on the samples of ``mask``."""
-        d_blocks = self.block_sse(current.prediction, mask) - self.block_sse(new.prediction,
-                                                                            mask)
-        used = np.bincount(self.d.block[mask], minlength=d_blocks.size) > 0
-        d_blocks = d_blocks[used]
-        spread = float(np.std(d_blocks, ddof=1)) if d_blocks.size > 1 else 0.0
-        z = float(np.sum(d_blocks) / (spread * math.sqrt(d_blocks.size))) if spread > 0 else 0.0
+        before = self.block_sse(current.prediction, mask)
+        after = self.block_sse(new.prediction, mask)
+        used = (np.bincount(self.d.block[mask], minlength=before.size) > 0) & (before > 0) \
+            & (after > 0)
+        z = max(_block_z(before[used] - after[used]),
+                _block_z(np.log(before[used] / after[used])))
         noise = self.weighted_noise(mask)
         room = current.weighted - noise
         explained = (current.weighted - new.weighted) / room if room > 0 else 0.0
@@ -566,6 +571,15 @@ class Problem2D:
             if room > 0 and (ref[pick].sum() - got[pick].sum()) / room >= share:
                 hits += 1
         return hits / BOOTSTRAP
+
+
+def _block_z(differences: np.ndarray) -> float:
+    """The sum of block differences over its standard error [-] (0 for fewer than 3)."""
+    if differences.size < 3:
+        return 0.0
+    spread = float(np.std(differences, ddof=1))
+    return float(np.sum(differences) / (spread * math.sqrt(differences.size))) if spread > 0 \
+        else 0.0
 
 
 # --- the steps --------------------------------------------------------------------------------
@@ -1055,6 +1069,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
     law_base = problem.judge(kin_model, sliding, start=_start(kin_model, current, base, d))
     cur = law_base
     law: list[str] = []
+    beside: dict[str, tuple[str, ...]] = {}  # the law each candidate was last tried beside
     d.temperature_rise = np.zeros(d.n)
     friction = [k for k in names if not LIBRARY_2D[k].kinematic]
     if "heating" in friction:
@@ -1083,6 +1098,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             trials[k] = j
             if k not in law:
                 judged[k] = j
+                beside[k] = tuple(law)
         passing = [k for k, j in trials.items() if j.earns]
         if not passing:
             break
@@ -1143,6 +1159,8 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         elif k not in roles:
             roles[k] = ("at a bound of its range: " + ", ".join(j.at_bound) if j.at_bound
                         else "does not earn its keep")
+            if beside.get(k):
+                roles[k] += " beside " + " + ".join(beside[k])
     confidence: dict[str, float] = {}
     for k in named:
         j = judged[k]
