@@ -67,11 +67,13 @@ def earthquake_orbit(peak: float, duration: float, dt: float, seed: int = 0):
 
 def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
                orbits=ORBITS, force_noise: float = 0.004,
-               displacement_noise: float = 1.0e-5) -> list[dict[str, np.ndarray]]:
+               displacement_noise: float = 1.0e-5,
+               colour: float = 0.0) -> list[dict[str, np.ndarray]]:
     """The tests of one campaign as column dicts (two-direction format, SI units).
 
     ``effect`` is one of :data:`EFFECTS`; ``force_noise`` is the force sensors' white noise
-    over the peak |F| [-], ``displacement_noise`` the displacement sensors' [m].
+    over the peak |F| [-], ``displacement_noise`` the displacement sensors' [m]; ``colour``
+    is the AR(1) coefficient of the force noise (0: white), its variance kept.
     """
     from isolator.bearing import DCFPBearing
     from isolator.friction import ConstantFriction, PTVFriction
@@ -105,7 +107,10 @@ def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
             late = o.time - LAG_SAMPLES * dt
             force = np.column_stack([np.interp(late, o.time, force[:, j]) for j in range(2)])
         peak = float(np.max(np.hypot(*force.T)))
-        force = force + rng.normal(0.0, force_noise * peak, force.shape)
+        noise = rng.normal(0.0, force_noise * peak * np.sqrt(1.0 - colour**2), force.shape)
+        for i in range(1, noise.shape[0]):
+            noise[i] += colour * noise[i - 1]
+        force = force + noise
         measured = u + rng.normal(0.0, displacement_noise, u.shape)
         tests.append({"name": kind, "time": np.array(o.time),
                       "displacement_x": measured[:, 0], "displacement_y": measured[:, 1],
