@@ -614,7 +614,7 @@ def _calibrate(d: Data2D, spec: BaselineSpec) -> Baseline2D:
             d.mu_shape = _element_mu_shape(d, spec, mu_t0, best[2])
             runs += 1
             best = _grid_fit(d, grid_uy)
-            mu_t0 = float(np.clip(mu_t0 * best[1], 1e-3, 0.5))
+            mu_t0 = float(np.clip(best[1], 1e-3, 0.5))  # the scale on mu / mu_t0
     _, mu, uy, lag, ub, z, force = best
     edges = []
     if spec.yield_displacement is None and len(grid_uy) > 1 and uy >= grid_uy[-1]:

@@ -8,7 +8,8 @@ the peak |F|, displacement 10 um): the precise model's heating against a constan
 the speed dependence, a play of 4 mm along x and 2 mm along y, a force channel 4 samples
 late. Checked: ``none`` on clean data with noise, each single effect named alone (no other
 effect beside it), its parameters recovered, the shrink of the held-out gap reported, and the
-command line's printed where / which / how far. About 40 s on a free machine.
+command line's printed where / which / how far; and the element as baseline (the precise
+model without speed and pressure factors) leaves no gap on its own data. About 40 s.
 """
 
 from __future__ import annotations
@@ -118,3 +119,15 @@ def test_lag_named_through_the_command_line(example, tmp_path, capsys):
     assert shrink > 60.0
     lag = float(re.search(r"lag: lag = ([0-9.e+-]+)", text).group(1))
     assert math.isclose(lag, 0.04, rel_tol=0.1)  # 4 samples of 10 ms
+
+
+def test_the_element_as_baseline_leaves_no_gap_on_its_own_data(example):
+    """The precise model's heating on the 2D field, told to a precise baseline without the
+    speed and pressure factors (the element run through the measured orbits): ``none``."""
+    from isolator.diagnosis.baseline import BaselineSpec
+
+    campaign = _campaign(example, "heating", seed=41)
+    summary = diagnose_2d(campaign, BaselineSpec("precise", ("velocity", "pressure"))).to_json()
+    _check_report(summary)
+    assert summary["verdict"] == ["none"]
+    assert math.isclose(summary["baseline"]["parameters"]["mu"], example.MU, rel_tol=0.03)
