@@ -231,8 +231,9 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
     if missing and {"displacement_x", "force_x"} <= set(frame.columns):
         raise DataError(f"{path}: a test in two directions (columns displacement_x, "
                         "displacement_y, force_x, force_y); read it with "
-                        "isolator.diagnosis.data2d.read_record_2d (load_campaign and "
-                        "dcfpb diagnose read such tests themselves).")
+                        "isolator.diagnosis.data2d.read_record_2d (isolator.diagnosis."
+                        "load_campaign, load_manifest and dcfpb diagnose read such tests "
+                        "themselves).")
     if missing:
         raise DataError(
             f"{path}: missing column(s) {missing}; found {list(frame.columns)}. A test needs "

@@ -105,6 +105,12 @@ def reselect(diagnosis: Diagnosis, exclude: Sequence[str] = (),
              thresholds: Thresholds | None = None, *, uncertainty: bool = False) -> Diagnosis:
     """The same diagnosis with ``exclude`` withheld (a leave-one-effect-out check) or under
     other ``thresholds``, without refitting (confidence and intervals: only ``uncertainty``)."""
+    from isolator.diagnosis.two_directions import Diagnosis2D, diagnose_2d
+
+    if isinstance(diagnosis, Diagnosis2D):  # tests in two directions: diagnosed again
+        return diagnose_2d(diagnosis.campaign, diagnosis.baseline.spec,
+                           exclude=tuple(dict.fromkeys((*diagnosis.excluded, *exclude))),
+                           thresholds=thresholds or diagnosis.problem.th)
     start = _time.perf_counter()
     excluded = tuple(dict.fromkeys((*diagnosis.excluded, *exclude)))
     selection = diagnosis.problem.select(excluded, thresholds or diagnosis.selection.thresholds)

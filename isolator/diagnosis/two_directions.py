@@ -772,6 +772,22 @@ class Diagnosis2D:
     excluded: tuple[str, ...]
     wall_time: float = 0.0
 
+    @property
+    def gap_before(self) -> float:
+        """Held-out force NRMSE of the baseline, every sample [-]."""
+        return self.problem.nrmse(self.base_all.prediction)
+
+    @property
+    def gap_after(self) -> float:
+        """Held-out force NRMSE with the named effects (the baseline's without) [-]."""
+        final = self.chosen.prediction if self.chosen is not None else self.base_all.prediction
+        return self.problem.nrmse(final)
+
+    @property
+    def noise_nrmse(self) -> float:
+        """The NRMSE measurement noise alone leaves [-]."""
+        return self.problem.noise_nrmse()
+
     def where(self, prediction: np.ndarray) -> dict:
         """Where the residual of ``prediction`` lies: tests, part of the orbit, axes."""
         return locate_2d(self.data, prediction, self.window)
