@@ -11,7 +11,8 @@ the tests in the two-direction format (``time``, ``displacement_x``, ``displacem
 
 Effects: ``none`` (constant friction), ``heating`` (the precise model's heating only),
 ``velocity`` (the speed dependence only), ``backlash`` (a play of 4 mm along x and 2 mm
-along y in the load train), ``lag`` (the force channel 4 samples late).
+along y in the load train), ``lag`` (the force channel 4 samples late), or several joined by
+``+`` (``heating+backlash``).
 """
 
 from __future__ import annotations
@@ -71,7 +72,8 @@ def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
                colour: float = 0.0) -> list[dict[str, np.ndarray]]:
     """The tests of one campaign as column dicts (two-direction format, SI units).
 
-    ``effect`` is one of :data:`EFFECTS`; ``force_noise`` is the force sensors' white noise
+    ``effect`` is one of :data:`EFFECTS`, or several joined by ``+`` (``"heating+backlash"``);
+    ``force_noise`` is the force sensors' white noise
     over the peak |F| [-], ``displacement_noise`` the displacement sensors' [m]; ``colour``
     is the AR(1) coefficient of the force noise (0: white), its variance kept.
     """
@@ -81,12 +83,15 @@ def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
     from isolator.orbits import orbit
     from isolator.testrig import run_orbit, run_test
 
-    if effect not in EFFECTS:
-        raise ValueError(f"effect must be one of {EFFECTS}. Got {effect!r}.")
-    friction = {
-        "heating": PTVFriction(MU, heating=MonitorLine(), dependencies=("temperature",)),
-        "velocity": PTVFriction(MU, heating=None, dependencies=("velocity",)),
-    }.get(effect, ConstantFriction(MU))
+    chosen = set(effect.split("+"))
+    if not chosen <= set(EFFECTS):
+        raise ValueError(f"effect must be one of {EFFECTS} or several joined by '+'. Got "
+                         f"{effect!r}.")
+    dependencies = tuple(d for e, d in (("heating", "temperature"), ("velocity", "velocity"))
+                         if e in chosen)
+    friction = (PTVFriction(MU, heating=MonitorLine() if "heating" in chosen else None,
+                            dependencies=dependencies) if dependencies
+                else ConstantFriction(MU))
     bearing = DCFPBearing(RADIUS, SLIDER, axial_load=LOAD, friction=friction,
                           yield_displacement=2.0e-4, displacement_capacity=0.3)
     rng = np.random.default_rng(seed)
@@ -96,14 +101,14 @@ def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
              else orbit(kind, size, period, cycles, dt))
         u = np.array(o.displacement)
         driven = u
-        if effect == "backlash":
+        if "backlash" in chosen:
             driven = np.column_stack([_play(u[:, j], PLAY[j]) for j in range(2)])
-        if effect == "backlash":  # the bearing moves behind the play
+        if "backlash" in chosen:  # the bearing moves behind the play
             result = run_test(bearing, o.time, driven, name=kind)
         else:
             result = run_orbit(bearing, o)
         force = np.array(result.force)
-        if effect == "lag":
+        if "lag" in chosen:
             late = o.time - LAG_SAMPLES * dt
             force = np.column_stack([np.interp(late, o.time, force[:, j]) for j in range(2)])
         peak = float(np.max(np.hypot(*force.T)))
@@ -139,7 +144,8 @@ def main(argv: list[str] | None = None) -> int:
     """Write a campaign (see the module docstring)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("folder")
-    parser.add_argument("--effect", choices=EFFECTS, default="heating")
+    parser.add_argument("--effect", default="heating",
+                        help=f"one of {', '.join(EFFECTS)}, or several joined by '+'")
     parser.add_argument("--seed", type=int, default=1)
     args = parser.parse_args(argv)
     print(f"wrote {write(synthesise(args.effect, seed=args.seed), args.folder)}")
