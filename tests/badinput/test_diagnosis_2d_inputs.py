@@ -134,3 +134,17 @@ def test_a_manifest_of_orbits_gives_a_two_direction_campaign(tmp_path):
     assert isinstance(campaign, Campaign2D)
     assert campaign.tests[1].rest_before == 60.0
     assert campaign.tests[0].axial_force[0] == N
+
+
+def test_the_command_line_refuses_a_mixed_campaign_naming_both(tmp_path, capsys):
+    from dcfpb.cli import main
+
+    two = _write(tmp_path / "orbit.csv", _columns())
+    c = _columns()
+    one = _write(tmp_path / "line.csv", {"time": c["time"], "displacement": c["displacement_x"],
+                                         "force": c["force_x"], "axial_force": c["axial_force"]})
+    status = main(["diagnose", str(two), str(one), "--model", "constant",
+                   "--effective-radius", "2", "--slider-diameter", "0.25"])
+    assert status == 2
+    err = capsys.readouterr().err
+    assert "orbit.csv" in err and "line.csv" in err and "one kind" in err
