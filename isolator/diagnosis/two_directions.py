@@ -10,22 +10,29 @@ on the measured orbit and its mu history is the baseline's).
 The steps are those of one direction (``docs/diagnosis.md``), with the thresholds of
 :mod:`isolator.diagnosis.thresholds` (the same ``thresholds.json``):
 
-1. **Baseline.** mu (or a scale on the element's mu), u_y on a grid from 10 um to 2.5 mm
-   and a channel lag of up to two samples, on all samples; a u_y or lag at the edge of its
-   range is reported as a finding.
+1. **Baseline.** mu (or mu_t0 of the element's friction model), u_y on a grid from 10 um to
+   2.5 mm and a channel lag of up to two samples, on all samples; a u_y or lag at the edge of
+   its range is reported as a finding. The displacement is used as measured, or smoothed as
+   in one direction when the sensors' noise exceeds a tenth of u_y (smoothing bends the
+   corners and stops of an orbit).
 2. **Direction-change windows** (the reversal windows of one direction, generalised): the
    samples where the baseline's friction force is not yet aligned with the sliding direction
    (|z| < 0.95 or an angle between z and v above 15 deg), plus three samples after each
    entry, and the samples at under 5 % of the peak speed.
 3. **Stage 1, kinematics, on every sample:** ``backlash`` (a play per axis: a dead band of
-   width g_x, g_y in the load train) and ``lag`` (one force-channel lag for the campaign).
+   width g_x, g_y in the load train) and ``lag`` (one force-channel lag for the campaign),
+   each with u_y and the channel lag refitted. The lag is judged against the baseline with
+   no lag (the nuisance judged as an effect), named from ``lag_min_samples`` on, only when
+   the lag fitted test by test agrees (a spread over 1.5 samples and 25 % is a speed effect)
+   and within ``PLAUSIBLE_LAG``; a play from ``backlash_min`` on either axis.
 4. **Stage 2, the friction law, outside the direction-change windows:** ``heating``
    (exp(-a dT / 100 degC), dT from the measured friction power on the 2D heating field
    :class:`isolator.monitor_grid.GridHeating`), ``velocity`` (1 - d exp(-|v| / v_t) on the
    speed |v|), ``pressure`` ((p / p_mean)^-n), ``wear`` (1 + c (1 - exp(-s / L)), s the path
    travelled over the campaign) join by forward selection on held-out data
-   (leave-one-test-out, or alternate blocks of one test), then the kinematic candidates are
-   tried again beside the friction law named.
+   (leave-one-test-out, or alternate blocks of one test), u_y and the lag refitted with each
+   model, a second effect under the stricter ``second_*`` thresholds; then the kinematic
+   candidates are tried again beside the friction law named.
 5. **Verdict**: ``none``, the named effects, ``unexplained``; the materiality rule covers the
    whole test (every sample, the direction-change windows included).
 6. **Uncertainty**: confidence by block bootstrap, 5-95 % intervals of the parameters.
