@@ -637,10 +637,11 @@ def _element_mu_shape(d: Data2D, spec: BaselineSpec, mu_t0: float,
                       yield_displacement: float) -> np.ndarray:
     """mu(t) / mu_t0 of the package's bidirectional element (the ``simplified`` or ``precise``
     friction model without the effects of ``spec.without``) driven through the measured
-    orbits, tests in run order on fresh plates."""
+    orbits, tests in run order on fresh plates at the test's initial temperature (the
+    manifest's, else the measured temperature's first value, else 20 degC)."""
     from isolator.bearing import AxialLoadHistory, DCFPBearing
     from isolator.friction import PTVFriction
-    from isolator.heating import CentrePoint, MonitorLine
+    from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
     from isolator.testrig import run_test
 
     names = {"heating": "temperature", "velocity": "velocity", "pressure": "pressure"}
@@ -651,7 +652,10 @@ def _element_mu_shape(d: Data2D, spec: BaselineSpec, mu_t0: float,
     mu_t0 = float(np.clip(mu_t0, 1e-3, 0.5))
     shapes = []
     for k, rec in enumerate(d.campaign.tests):
-        friction = PTVFriction(mu_t0, heating=heating, dependencies=dependencies)
+        start = (rec.initial_temperature if rec.initial_temperature is not None
+                 else float(rec.temperature[0]) if rec.temperature is not None else 20.0)
+        friction = PTVFriction(mu_t0, heating=heating, dependencies=dependencies,
+                               thermal=ThermalProperties(initial_temperature=start))
         load = (float(rec.axial_force[0]) if np.ptp(rec.axial_force) == 0.0 else
                 AxialLoadHistory(rec.time, rec.axial_force))
         reach = float(np.max(rec.radius))
