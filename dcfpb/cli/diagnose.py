@@ -74,8 +74,9 @@ def run(args: argparse.Namespace) -> int:
     check_outputs(folders={"--report": args.report}, overwrite=args.overwrite,
                   inputs={"the test file": list(args.files), "the manifest": args.manifest},
                   writes={"--report": REPORT_FILES})  # before the slow imports
-    from isolator.diagnosis import BaselineSpec, DataError, diagnose, load_campaign
+    from isolator.diagnosis import BaselineSpec, DataError, diagnose
     from isolator.diagnosis.data import MAX_ROWS
+    from isolator.diagnosis.data2d import load_any_campaign
     from isolator.diagnosis.manifest import load_manifest
 
     max_rows = MAX_ROWS if args.max_rows is None else args.max_rows
@@ -96,11 +97,23 @@ def run(args: argparse.Namespace) -> int:
                             ("--slider-diameter", args.slider_diameter)):
             if value is None:
                 raise DataError(f"{name} is required (or a TOML --manifest that gives it).")
-        campaign = load_campaign(args.files, effective_radius=args.effective_radius,
-                                 slider_diameter=args.slider_diameter,
-                                 axial_load=args.axial_load, max_rows=max_rows)
+        campaign = load_any_campaign(args.files, effective_radius=args.effective_radius,
+                                     slider_diameter=args.slider_diameter,
+                                     axial_load=args.axial_load, max_rows=max_rows)
     diagnosis = diagnose(campaign, spec, exclude=tuple(args.exclude))
     summary = diagnosis.to_json()
+    if summary.get("dimension") == 2:  # tests in two directions
+        text = "\n".join(_lines(summary))
+        if args.report:
+            from dcfpb.cli.outputs import writing
+            from isolator.diagnosis.report2d import write_report_2d
+
+            with writing("--report", args.report):
+                written = write_report_2d(diagnosis, args.report, text)
+            summary["report"] = [str(p) for p in written]
+            text += "".join(f"\nwrote {p}" for p in summary["report"])
+        print(json.dumps(summary, indent=2) if args.json else text)
+        return 0
     if args.report:
         from dcfpb.cli.outputs import writing
         from isolator.diagnosis.report import write_report
@@ -135,36 +148,65 @@ def _check_flags(args: argparse.Namespace) -> None:
 
 
 def _print(summary: dict) -> None:
+    print("\n".join(_lines(summary)))
+
+
+def _lines(summary: dict) -> list[str]:
+    """The printed summary, line by line (one direction or two)."""
+    out: list[str] = []
+    emit = out.append
     gap = summary["gap"]
-    print(f"baseline: {summary['baseline']['model']}  ("
+    two = summary.get("dimension") == 2
+    if two:
+        emit("tests in two directions: " + "; ".join(
+            f"{o['test']} (peak |u| {1e3 * o['peak_radius']:.0f} mm, "
+            f"{o['heading_turns']:+.1f} turns of the heading)" for o in summary["orbits"]))
+    emit(f"baseline: {summary['baseline']['model']}  ("
           + ", ".join(f"{k} = {v:.4g}" for k, v in summary["baseline"]["parameters"].items())
           + ")")
-    print(f"held-out force NRMSE: {gap['value']:.4f}   noise: {gap['noise']:.4f}   "
+    emit(f"held-out force NRMSE: {gap['value']:.4f}   noise: {gap['noise']:.4f}   "
           f"({gap['holdout']})")
-    print(f"where: {summary['where']['statement']}")
+    emit(f"where: {summary['where']['statement']}")
     if summary.get("transition"):
-        print(f"transition: {summary['transition']['statement']}")
+        label = "direction changes" if two else "transition"
+        emit(f"{label}: {summary['transition']['statement']}")
+    for note in summary.get("baseline_notes", []):
+        emit(f"baseline: {note}")
     lag = summary.get("lag")
     if lag:
-        print(f"channel lag: {1e3 * lag['seconds']:.3g} ms ({lag['samples']:.2f} samples)"
+        emit(f"channel lag: {1e3 * lag['seconds']:.3g} ms ({lag['samples']:.2f} samples)"
               + (" - named" if lag["named"] else " - calibrated in the baseline"))
-    print(f"{'effect':11s} {'NRMSE':>8s} {'shrink':>7s} {'z':>6s}  role")
+    emit(f"{'effect':11s} {'NRMSE':>8s} {'shrink':>7s} {'z':>6s}  role")
     for e in summary["effects"]:
         if e.get("gap_after") is not None:
-            print(f"{e['name']:11s} {e['gap_after']:8.4f} {100 * e['shrink']:6.0f}% "
+            emit(f"{e['name']:11s} {e['gap_after']:8.4f} {100 * e['shrink']:6.0f}% "
                   f"{e['held_out_z']:6.1f}  {e['role']}")
         else:
-            print(f"{e['name']:11s} {'-':>8s} {'-':>7s} {'-':>6s}  {e['role']}")
-    print(f"verdict: {', '.join(summary['verdict'])}")
+            emit(f"{e['name']:11s} {'-':>8s} {'-':>7s} {'-':>6s}  {e['role']}")
+    emit(f"verdict: {', '.join(summary['verdict'])}")
     chosen = summary["chosen"]
     if chosen is not None and summary["verdict"] != ["unexplained"]:
-        print(f"gap with {' + '.join(chosen['names'])}: {chosen['gap_before']:.4f} -> "
+        emit(f"gap with {' + '.join(chosen['names'])}: {chosen['gap_before']:.4f} -> "
               f"{chosen['gap_after']:.4f} (shrink {100 * chosen['shrink']:.0f} %)")
         for name, value in chosen.get("confidence", {}).items():
             if value is not None:
-                print(f"confidence in {name}: {100 * value:.0f} % of block resamples")
+                emit(f"confidence in {name}: {100 * value:.0f} % of block resamples")
+    if two and chosen is not None:
+        for name, values in chosen["parameters"].items():
+            emit(f"  {name}: " + ", ".join(f"{k} = {v:.4g}" for k, v in values.items()))
+    if two:
+        axes = summary["axes"]
+        emit("force error RMS by axis: " + ", ".join(
+            f"{a} {1e-3 * v['error_rms_before']:.3g} -> {1e-3 * v['error_rms_after']:.3g} kN"
+            for a, v in axes.items()))
+        for note in summary.get("notes", []):
+            if note not in summary.get("baseline_notes", []):
+                emit(f"note: {note}")
     if summary["unexplained"]:
+        if two:
+            emit(f"unexplained: {summary['unexplained']['statement']}")
         for text in summary["unexplained"]["looks_like"]:
-            print(f"unexplained: looks like {text}")
+            emit(f"unexplained: looks like {text}")
     for path in summary.get("report", []):
-        print(f"wrote {path}")
+        emit(f"wrote {path}")
+    return out

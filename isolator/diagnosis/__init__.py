@@ -1,8 +1,10 @@
 """The sim-to-real gap of a bearing model: where it lies, which effect explains it, how far
 it shrinks.
 
-:func:`diagnose` takes measured tests (:mod:`.data`) and a baseline (:mod:`.baseline`); its
-steps are in :mod:`.pipeline`, the method for users in ``docs/diagnosis.md``.
+:func:`diagnose` takes measured tests (:mod:`.data`; tests in two directions :mod:`.data2d`,
+diagnosed by :mod:`.two_directions`) and a baseline (:mod:`.baseline`); its steps are in
+:mod:`.pipeline`, the method for users in ``docs/diagnosis.md``. :func:`load_campaign` here
+reads tests in one direction or in two, told apart by their headers.
 """
 
 from isolator.diagnosis.baseline import BASELINE_MODELS, REMOVABLE_EFFECTS, BaselineSpec
@@ -10,9 +12,10 @@ from isolator.diagnosis.data import (
     BearingRecord,
     Campaign,
     DataError,
-    load_campaign,
     read_record,
 )
+from isolator.diagnosis.data2d import BearingRecord2D, Campaign2D
+from isolator.diagnosis.data2d import load_any_campaign as load_campaign
 from isolator.diagnosis.effects import EFFECT_NAMES, LIBRARY
 from isolator.diagnosis.pipeline import Diagnosis, diagnose, reselect
 
@@ -23,7 +26,9 @@ __all__ = [
     "REMOVABLE_EFFECTS",
     "BaselineSpec",
     "BearingRecord",
+    "BearingRecord2D",
     "Campaign",
+    "Campaign2D",
     "DataError",
     "Diagnosis",
     "diagnose",

@@ -232,6 +232,12 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
                         f"reader found {len(frame.columns)}; check the header line.")
     frame.columns = [_column_name(c)[0] for c in header]
     missing = [c for c in REQUIRED_COLUMNS if c not in frame.columns]
+    if missing and {"displacement_x", "force_x"} <= set(frame.columns):
+        raise DataError(f"{path}: a test in two directions (columns displacement_x, "
+                        "displacement_y, force_x, force_y); read it with "
+                        "isolator.diagnosis.data2d.read_record_2d (isolator.diagnosis."
+                        "load_campaign, load_manifest and dcfpb diagnose read such tests "
+                        "themselves).")
     if missing:
         raise DataError(
             f"{path}: missing column(s) {missing}; found {list(frame.columns)}. A test needs "
@@ -276,7 +282,8 @@ def load_campaign(
 ) -> Campaign:
     """Read the tests of a campaign, in the order run (``axial_load``, ``max_rows``: see
     :func:`read_record`), and check them (:func:`check_consistent_units`,
-    :func:`check_plausible`)."""
+    :func:`check_plausible`). Tests in two directions:
+    :func:`isolator.diagnosis.data2d.load_campaign_2d` (or ``load_any_campaign`` there)."""
     if isinstance(paths, str | Path) or not paths:
         raise DataError("load_campaign needs a list of one or more CSV files.")
     _check_max_rows(max_rows)

@@ -189,6 +189,10 @@ def load_manifest(
             check_size(file, max_rows=max_rows)
         except DataError as error:
             raise DataError(f"{where}: {error}") from None
+    from isolator.diagnosis.data2d import check_one_kind
+
+    files = [(path.parent / row["file"]).resolve() for row in rows]
+    two = check_one_kind(files, max_rows=max_rows, where=places) == 2
     used_flag = False
     for number, row in enumerate(rows, start=1):
         file = (path.parent / row["file"]).resolve()
@@ -219,6 +223,11 @@ def load_manifest(
         warnings.warn(f"{names['axial_load']} {axial_load!r} N has no effect: every test of "
                       f"{path} has an axial_force column, which gives its axial load.",
                       InputWarning, stacklevel=2)
+    if two:  # tests in two directions
+        from isolator.diagnosis.data2d import Campaign2D, check_consistent_units_2d
+
+        check_consistent_units_2d(tests, places)
+        return Campaign2D(tuple(tests), float(radius), float(diameter))
     check_consistent_units(tests, places)
     campaign = Campaign(tuple(tests), float(radius), float(diameter))
     check_plausible(campaign, places, sources)
@@ -226,8 +235,13 @@ def load_manifest(
 
 
 def _read(where: str, file: Path, **options):
-    """:func:`read_record` of a manifest's test; its errors name the manifest and the test."""
+    """:func:`read_record` (or :func:`~isolator.diagnosis.data2d.read_record_2d` for a test in
+    two directions) of a manifest's test; its errors name the manifest and the test."""
+    from isolator.diagnosis.data2d import file_dimension, read_record_2d
+
     try:
+        if file_dimension(file, max_rows=options.get("max_rows", MAX_ROWS)) == 2:
+            return read_record_2d(file, **options)
         return read_record(file, **options)
     except InputError as error:  # DataError, or a value of the manifest out of its range
         text = re.sub(r"The '(\w+)' parameter of test '[^']*'", r"'\1'", str(error))

@@ -52,8 +52,9 @@ def diagnose(
 
     Parameters
     ----------
-    campaign : Campaign
-        The measured tests of one bearing, in the order run.
+    campaign : Campaign or Campaign2D
+        The measured tests of one bearing, in the order run; tests in two directions are
+        diagnosed by :func:`isolator.diagnosis.two_directions.diagnose_2d`.
     baseline : BaselineSpec or str
         The model to diagnose; a string is a model name with all its effects.
     candidates, exclude : sequence of str
@@ -61,6 +62,13 @@ def diagnose(
     thresholds : Thresholds, optional
         The decision thresholds (default: :func:`isolator.diagnosis.thresholds.current`).
     """
+    from isolator.diagnosis.data2d import Campaign2D
+
+    if isinstance(campaign, Campaign2D):  # tests in two directions
+        from isolator.diagnosis.two_directions import diagnose_2d
+
+        return diagnose_2d(campaign, baseline, candidates=candidates, exclude=exclude,
+                           thresholds=thresholds)
     start = _time.perf_counter()
     th = thresholds or Thresholds.load()
     spec = baseline if isinstance(baseline, BaselineSpec) else BaselineSpec(baseline)
@@ -97,6 +105,12 @@ def reselect(diagnosis: Diagnosis, exclude: Sequence[str] = (),
              thresholds: Thresholds | None = None, *, uncertainty: bool = False) -> Diagnosis:
     """The same diagnosis with ``exclude`` withheld (a leave-one-effect-out check) or under
     other ``thresholds``, without refitting (confidence and intervals: only ``uncertainty``)."""
+    from isolator.diagnosis.two_directions import Diagnosis2D, diagnose_2d
+
+    if isinstance(diagnosis, Diagnosis2D):  # tests in two directions: diagnosed again
+        return diagnose_2d(diagnosis.campaign, diagnosis.baseline.spec,
+                           exclude=tuple(dict.fromkeys((*diagnosis.excluded, *exclude))),
+                           thresholds=thresholds or diagnosis.problem.th)
     start = _time.perf_counter()
     excluded = tuple(dict.fromkeys((*diagnosis.excluded, *exclude)))
     selection = diagnosis.problem.select(excluded, thresholds or diagnosis.selection.thresholds)

@@ -1,0 +1,1305 @@
+"""The diagnosis of tests in two directions (orbits): where, which and how far, in vector form.
+
+The model is the package's bidirectional element (:class:`isolator.bearing.BearingElement`
+with ``dimension=2``): F = N u_b / R_eff + mu(t) N z(u_b), z the isotropic return map
+(:func:`isolator.bearing.isotropic_return_map`), u_b the displacement reaching the bearing.
+For a displacement-driven test z depends only on u_b and u_y, so a friction law is a
+modulation of mu(t) (for ``simplified`` and ``precise`` baselines the element itself is run
+on the measured orbit and its mu history is the baseline's).
+
+The steps are those of one direction (``docs/diagnosis.md``), with the thresholds of
+:mod:`isolator.diagnosis.thresholds` (the same ``thresholds.json``):
+
+1. **Baseline.** mu (or mu_t0 of the element's friction model), u_y on a grid from 10 um to
+   2.5 mm and a channel lag of up to two samples, on all samples; a u_y or lag at the edge of
+   its range is reported as a finding. The displacement is used as measured, or smoothed as
+   in one direction when the sensors' noise exceeds a tenth of u_y (smoothing bends the
+   corners and stops of an orbit).
+2. **Direction-change windows** (the reversal windows of one direction, generalised): the
+   samples where the baseline's friction force is not yet aligned with the sliding direction
+   (|z| < 0.95 or an angle between z and v above 15 deg), plus three samples after each
+   entry, and the samples at under 5 % of the peak speed.
+3. **Stage 1, kinematics, on every sample:** ``backlash`` (a play per axis: a dead band of
+   width g_x, g_y in the load train) and ``lag`` (one force-channel lag for the campaign),
+   each with u_y and the channel lag refitted. The lag is judged against the baseline with
+   no lag (the nuisance judged as an effect), named from ``lag_min_samples`` on, only when
+   the lag fitted test by test agrees (a spread over 1.5 samples and 25 % is a speed effect)
+   and within ``PLAUSIBLE_LAG``; a play from ``backlash_min`` on either axis.
+4. **Stage 2, the friction law, outside the direction-change windows:** ``heating``
+   (exp(-a dT / 100 degC), dT from the measured friction power on the 2D heating field
+   :class:`isolator.monitor_grid.GridHeating`), ``velocity`` (1 - d exp(-|v| / v_t) on the
+   speed |v|), ``pressure`` ((p / p_mean)^-n), ``wear`` (1 + c (1 - exp(-s / L)), s the path
+   travelled over the campaign) join by forward selection on held-out data
+   (leave-one-test-out, or alternate blocks of one test), u_y and the lag refitted with each
+   model, a second effect under the stricter ``second_*`` thresholds; then the kinematic
+   candidates are tried again beside the friction law named.
+5. **Verdict**: ``none``, the named effects, ``unexplained``; the materiality rule covers the
+   whole test (every sample, the direction-change windows included).
+6. **Uncertainty**: confidence by block bootstrap, 5-95 % intervals of the parameters.
+
+A block is a stretch of path of a quarter of a turn of a circle of the test's peak radius. The
+held-out statistic z is the larger of two t-statistics over the blocks: of the differences of
+the weighted squared residual (as in one direction) and of their log-ratios (scale-free: an
+effect that acts at a few direction changes of a large orbit improves every block it touches
+by a large factor, which the plain differences' spread hides).
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from isolator.compiled.kernels import jit
+from isolator.diagnosis.baseline import (
+    RIGID_PLASTIC_LIMIT,
+    YIELD_DISPLACEMENT_MAX,
+    BaselineSpec,
+)
+from isolator.diagnosis.data2d import Campaign2D
+from isolator.diagnosis.features import smoothed_displacement
+from isolator.diagnosis.kinematics import noise_std, shifted
+from isolator.diagnosis.solver import levenberg_marquardt
+from isolator.diagnosis.thresholds import Thresholds
+
+EFFECTS_2D = ("heating", "velocity", "pressure", "wear", "backlash", "lag")
+"""The candidate effects in two directions."""
+KINEMATIC_2D = ("backlash", "lag")
+NUISANCE_LAG_SAMPLES = 2.0  # the baseline's channel lag, up to this many samples
+LAG_RANGE_SAMPLES = 30.0  # the lag effect is fitted within +- this many samples
+PLAUSIBLE_LAG = 0.05  # [s] a laboratory channel lag beyond this is not named as a lag
+LAG_SPREAD_SAMPLES = 1.5  # per-test lags differing more than this (and 25 %): not one lag
+BACKLASH_MAX = 0.02  # [m] the largest play fitted per axis
+ALIGNMENT_ANGLE = 15.0  # [deg] friction force not yet turned with the motion
+ALIGNED_SIZE = 0.95  # |z| below this: still in the pre-sliding transition
+SLOW_SHARE = 0.05  # of the peak speed: a stop
+MAX_FRICTION_EFFECTS = 3
+BOOTSTRAP = 200
+BLOCK_TURN = 0.25  # a block: this share of a turn of a circle of the peak radius, as path
+SMOOTH_NOISE = 0.1  # displacement noise over u_y beyond which the displacement is smoothed
+_YIELD_GRID = np.geomspace(RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_MAX, 14)
+_LAG_GRID = np.arange(-NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES + 0.25, 0.5)
+_REPLICATES = 6
+_SECTORS = ("+x", "+x+y", "+y", "-x+y", "-x", "-x-y", "-y", "+x-y")
+
+
+# --- kinematics -----------------------------------------------------------------------------
+
+@jit
+def return_map_2d(ux, uy, yield_displacement):
+    """z (x, y) of the isotropic return map along a displacement path (ux, uy) [m] from z = 0
+    [-]: z* = z + du / u_y, kept when |z*| < 1, else z* / |z*| (the element's update)."""
+    n = ux.size
+    zx = np.zeros(n)
+    zy = np.zeros(n)
+    ax = 0.0
+    ay = 0.0
+    for i in range(1, n):
+        ax += (ux[i] - ux[i - 1]) / yield_displacement
+        ay += (uy[i] - uy[i - 1]) / yield_displacement
+        size = math.sqrt(ax * ax + ay * ay)
+        if size > 1.0:
+            ax /= size
+            ay /= size
+        zx[i] = ax
+        zy[i] = ay
+    return zx, zy
+
+
+@jit
+def play(u, width):
+    """The displacement behind a dead band of full ``width`` [m] on one axis: it follows
+    ``u`` [m] only when pushed by a side of the gap (starts centred)."""
+    n = u.size
+    out = np.empty(n)
+    half = 0.5 * width
+    y = u[0]
+    for i in range(n):
+        if u[i] - y > half:
+            y = u[i] - half
+        elif y - u[i] > half:
+            y = u[i] + half
+        out[i] = y
+    return out
+
+
+@jit
+def shift_uniform(values, shift):
+    """``values`` at sample index i - ``shift`` (a fractional number of samples) by cubic
+    (Catmull-Rom) interpolation on uniform samples, held at the ends."""
+    n = values.size
+    out = np.empty(n)
+    for i in range(n):
+        p = i - shift
+        if p <= 0.0:
+            out[i] = values[0]
+            continue
+        if p >= n - 1:
+            out[i] = values[n - 1]
+            continue
+        k = int(p)
+        t = p - k
+        a = values[max(k - 1, 0)]
+        b = values[k]
+        c = values[min(k + 1, n - 1)]
+        e = values[min(k + 2, n - 1)]
+        out[i] = b + 0.5 * t * (c - a + t * (2.0 * a - 5.0 * b + 4.0 * c - e
+                                             + t * (3.0 * (b - c) + e - a)))
+    return out
+
+
+def lagged(time: np.ndarray, values: np.ndarray, lag: float) -> np.ndarray:
+    """``values`` at ``time - lag`` [s]: :func:`shift_uniform` on uniform samples, else
+    :func:`~isolator.diagnosis.kinematics.shifted`."""
+    steps = np.diff(time)
+    if np.ptp(steps) <= 1e-6 * steps.mean():
+        return shift_uniform(np.ascontiguousarray(values, dtype=float),
+                             float(lag / steps.mean()))
+    return shifted(time, values, lag)
+
+
+# --- parameters and effects -----------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Param:
+    """A parameter: name, start, bounds, unit, and whether a fit at a bound still reads."""
+
+    name: str
+    start: float
+    low: float
+    high: float
+    unit: str
+    edge_ok: bool = False
+
+
+@dataclass(frozen=True)
+class Effect2D:
+    """A candidate effect in two directions: ``factor(theta, data) -> (n,)`` on mu, or a
+    kinematic effect (``kinematic``) whose parameters act on the displacement."""
+
+    name: str
+    description: str
+    params: tuple[Param, ...]
+    factor: Callable | None = None
+    kinematic: bool = False
+    requires: Callable | None = None
+
+
+def _heating(theta, d):
+    return np.exp(-theta[0] * d.temperature_rise / 100.0)
+
+
+def _velocity(theta, d):
+    return 1.0 - theta[0] * np.exp(-d.speed / theta[1])
+
+
+def _pressure(theta, d):
+    return (d.pressure / d.mean_pressure) ** (-theta[0])
+
+
+def _wear(theta, d):
+    return 1.0 + theta[0] * (1.0 - np.exp(-d.travel / theta[1]))
+
+
+def _needs_pressure(d) -> str | None:
+    if np.ptp(d.pressure) < 0.1 * d.mean_pressure:
+        return "the contact pressure varies by less than 10 %"
+    return None
+
+
+def _needs_heat(d) -> str | None:
+    if float(np.max(d.temperature_rise)) < 1.0:
+        return "the friction power heats the contact by less than 1 degC"
+    return None
+
+
+LIBRARY_2D = {
+    "heating": Effect2D("heating", "friction falls as the contact heats (2D heating field)",
+                        (Param("thermal_sensitivity_x100", 0.5, -3.0, 5.0, "1/(100 degC)"),),
+                        factor=_heating, requires=_needs_heat),
+    "velocity": Effect2D("velocity", "friction depends on the sliding speed |v|",
+                         (Param("low_speed_drop", 0.3, -1.0, 0.95, "-"),
+                          Param("transition_velocity", 0.05, 0.002, 0.5, "m/s")),
+                         factor=_velocity),
+    "pressure": Effect2D("pressure", "friction depends on the contact pressure",
+                         (Param("exponent", 0.1, -1.0, 1.0, "-"),), factor=_pressure,
+                         requires=_needs_pressure),
+    "wear": Effect2D("wear", "friction drifts with the path travelled over the campaign",
+                     (Param("change", -0.1, -0.8, 2.0, "-"),
+                      Param("travel_scale", 5.0, 0.05, 1.0e4, "m", edge_ok=True)),
+                     factor=_wear),
+    "backlash": Effect2D("backlash", "a play in the load train, per axis",
+                         (Param("width_x", 2e-3, 0.0, BACKLASH_MAX, "m", edge_ok=False),
+                          Param("width_y", 2e-3, 0.0, BACKLASH_MAX, "m", edge_ok=False)),
+                         kinematic=True),
+    "lag": Effect2D("lag", "the force channel recorded late (one lag for the campaign)",
+                    (Param("lag", 0.0, -1.0, 1.0, "s"),), kinematic=True),
+}
+
+
+# --- the campaign's fixed data --------------------------------------------------------------
+
+@dataclass
+class Data2D:
+    """The campaign's samples, concatenated in run order (``test`` says whose)."""
+
+    campaign: Campaign2D
+    time: list[np.ndarray]
+    displacement: list[np.ndarray]  # smoothed, per test (n_k, 2)
+    force: np.ndarray  # (n, 2)
+    axial: np.ndarray
+    velocity: np.ndarray  # (n, 2)
+    speed: np.ndarray
+    pressure: np.ndarray
+    mean_pressure: float
+    travel: np.ndarray
+    test: np.ndarray
+    block: np.ndarray
+    fold: np.ndarray
+    scheme: str
+    dt: float
+    radius: float
+    temperature_rise: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    mu_shape: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    smoothed: bool = True
+
+    @property
+    def n(self) -> int:
+        return int(self.test.size)
+
+
+def _smooth(time: np.ndarray, values: np.ndarray, smooth: bool) -> np.ndarray:
+    return smoothed_displacement(time, values) if smooth else np.asarray(values, dtype=float)
+
+
+def _prepare(campaign: Campaign2D, smooth: bool = True) -> Data2D:
+    times, disps, test, block, travel = [], [], [], [], []
+    offset_block, offset_travel = 0, 0.0
+    for k, rec in enumerate(campaign.tests):
+        u = np.column_stack([_smooth(rec.time, rec.displacement[:, j], smooth)
+                             for j in range(2)])
+        times.append(np.asarray(rec.time))
+        disps.append(u)
+        step = np.concatenate([[0.0], np.hypot(*np.diff(rec.displacement, axis=0).T)])
+        path = np.cumsum(step)
+        length = BLOCK_TURN * 2.0 * math.pi * max(float(np.max(rec.radius)), 1e-6)
+        b = np.floor(path / length).astype(int)
+        block.append(b + offset_block)
+        offset_block += int(b.max()) + 1
+        travel.append(path + offset_travel)
+        offset_travel += float(path[-1])
+        test.append(np.full(len(rec), k))
+    test = np.concatenate(test)
+    block = np.concatenate(block)
+    if len(campaign.tests) >= 2:
+        fold, scheme = test.copy(), "leave-one-test-out"
+    else:
+        fold, scheme = block % 2, "alternate blocks (half turns) of the test"
+    axial = np.concatenate([r.axial_force for r in campaign.tests])
+    velocity = np.vstack([r.velocity for r in campaign.tests])
+    pressure = axial / campaign.contact_area
+    return Data2D(campaign, times, disps, np.vstack([r.force for r in campaign.tests]), axial,
+                  velocity, np.hypot(*velocity.T), pressure, float(np.mean(pressure)),
+                  np.concatenate(travel), test, block, fold, scheme,
+                  float(np.median(np.concatenate([np.diff(t) for t in times]))),
+                  campaign.effective_radius, smoothed=smooth)
+
+
+def kinematic_state(d: Data2D, yield_displacement: float, lag: float = 0.0,
+                    widths: tuple[float, float] = (0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
+    """The displacement reaching the bearing u_b (n, 2) [m] and the return map's z (n, 2)
+    [-] for a yield displacement [m], a force-channel ``lag`` [s] and a play per axis
+    ``widths`` [m], over every test of ``d``."""
+    ub, z = [], []
+    for t, u in zip(d.time, d.displacement, strict=True):
+        cols = []
+        for j in range(2):
+            x = lagged(t, u[:, j], lag) if lag else u[:, j]
+            if widths[j] > 0.0:
+                x = play(np.ascontiguousarray(x), float(widths[j]))
+            cols.append(np.ascontiguousarray(x))
+        zx, zy = return_map_2d(cols[0], cols[1], float(yield_displacement))
+        ub.append(np.column_stack(cols))
+        z.append(np.column_stack([zx, zy]))
+    return np.vstack(ub), np.vstack(z)
+
+
+# --- models ---------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Model2D:
+    """mu0, the kinematic parameters (log10 u_y, and those of the kinematic effects) and the
+    friction-law effects' parameters, in that order. ``fixed`` holds the kinematics when they
+    are not refitted (a friction law judged on a frozen play)."""
+
+    friction: tuple[str, ...] = ()
+    kinematic: tuple[str, ...] = ()
+    fixed_state: tuple | None = None  # (u_b, z) frozen
+    free: bool = False  # u_y and the channel lag refitted even without a kinematic effect
+
+    @property
+    def refits_kinematics(self) -> bool:
+        """Whether u_y and the lag (or the kinematic effects) are parameters."""
+        return self.fixed_state is None and (bool(self.kinematic) or self.free)
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return (*self.kinematic, *self.friction)
+
+    @property
+    def kinematic_size(self) -> int:
+        """Index of the first friction-law parameter (mu and the kinematics before it)."""
+        if not self.refits_kinematics:
+            return 1
+        return (2 + ("lag" not in self.kinematic)
+                + sum(len(LIBRARY_2D[k].params) for k in self.kinematic))
+
+    def layout(self, d: Data2D, nominal_uy: float) -> list[Param]:
+        out = [Param("mu", 0.05, 1e-4, 1.0, "-")]
+        if self.refits_kinematics:
+            out.append(Param("log10_yield_displacement", math.log10(nominal_uy),
+                             math.log10(RIGID_PLASTIC_LIMIT),
+                             math.log10(YIELD_DISPLACEMENT_MAX), "log10 m", edge_ok=True))
+            if "lag" not in self.kinematic:  # the baseline's nuisance lag, refitted
+                span = NUISANCE_LAG_SAMPLES * d.dt
+                out.append(Param("channel_lag", 0.0, -span, span, "s", edge_ok=True))
+            for name in self.kinematic:
+                for p in LIBRARY_2D[name].params:
+                    if name == "lag":
+                        span = LAG_RANGE_SAMPLES * d.dt
+                        p = Param(p.name, 0.0, -span, span, "s")
+                    out.append(p)
+        for name in self.friction:
+            out.extend(LIBRARY_2D[name].params)
+        return out
+
+    def state(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> tuple:
+        if self.fixed_state is not None:
+            return self.fixed_state
+        if not self.refits_kinematics:
+            return base.ub, base.z
+        i = 2
+        lag, widths = base.lag, (0.0, 0.0)
+        if "lag" not in self.kinematic:
+            lag = float(theta[2])
+            i = 3
+        for name in self.kinematic:
+            if name == "lag":
+                lag = float(theta[i])
+                i += 1
+            else:
+                widths = (float(theta[i]), float(theta[i + 1]))
+                i += 2
+        return kinematic_state(d, 10.0 ** float(theta[1]), lag, widths)
+
+    def mu(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> np.ndarray:
+        mu = float(theta[0]) * d.mu_shape
+        i = self.kinematic_size
+        for name in self.friction:
+            size = len(LIBRARY_2D[name].params)
+            mu = mu * LIBRARY_2D[name].factor(theta[i:i + size], d)
+            i += size
+        return mu
+
+    def force(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> np.ndarray:
+        ub, z = self.state(theta, d, base)
+        mu = self.mu(theta, d, base)
+        inverse = 0.0 if math.isinf(d.radius) else 1.0 / d.radius
+        return d.axial[:, None] * (ub * inverse + mu[:, None] * z)
+
+
+@dataclass
+class Baseline2D:
+    """The calibrated baseline: mu, u_y [m], lag [s], and its u_b, z, force (n, 2)."""
+
+    spec: BaselineSpec
+    mu: float
+    yield_displacement: float
+    lag: float
+    ub: np.ndarray
+    z: np.ndarray
+    force: np.ndarray
+    edges: list[str]
+    runs: int
+
+
+@dataclass
+class Judged:
+    """A model fitted on all samples of a stage and predicted held out."""
+
+    model: Model2D
+    theta: np.ndarray
+    stderr: np.ndarray
+    params: list[Param]
+    prediction: np.ndarray  # held out, (n, 2)
+    full: np.ndarray  # fitted on all, (n, 2)
+    weighted: float = 0.0
+    z: float = float("nan")
+    explained: float = float("nan")
+    practical: float = 0.0
+    earns: bool = False
+    at_bound: list[str] = field(default_factory=list)
+    untestable: str | None = None
+
+
+class Problem2D:
+    """The fits and held-out judgements of one campaign."""
+
+    def __init__(self, d: Data2D, base: Baseline2D, variance: np.ndarray, th: Thresholds):
+        self.d, self.base, self.th = d, base, th
+        self.variance = variance  # per sample, per axis [N^2]
+        r = d.force - base.force
+        excess = max(float(np.mean(r**2) - np.mean(variance)), 0.0)
+        self.weight = 1.0 / (variance + excess)
+        self.force_ms = float(np.mean(np.sum(d.force**2, axis=1)))
+
+    # metrics over a mask of samples
+    def weighted(self, pred: np.ndarray, mask: np.ndarray) -> float:
+        r2 = (self.d.force - pred) ** 2
+        return float(np.mean(self.weight[mask] * r2[mask].sum(axis=1)))
+
+    def weighted_noise(self, mask: np.ndarray) -> float:
+        return float(np.mean(self.weight[mask] * self.variance[mask] * 2.0))
+
+    def block_sse(self, pred: np.ndarray, mask: np.ndarray) -> np.ndarray:
+        r2 = ((self.d.force - pred) ** 2).sum(axis=1)
+        return np.bincount(self.d.block[mask], weights=self.weight[mask] * r2[mask],
+                           minlength=int(self.d.block.max()) + 1)
+
+    def nrmse(self, pred: np.ndarray, mask: np.ndarray | None = None) -> float:
+        mask = np.ones(self.d.n, bool) if mask is None else mask
+        r2 = ((self.d.force - pred) ** 2).sum(axis=1)[mask]
+        return float(np.sqrt(np.mean(r2) / np.mean((self.d.force[mask] ** 2).sum(axis=1))))
+
+    def noise_nrmse(self, mask: np.ndarray | None = None) -> float:
+        mask = np.ones(self.d.n, bool) if mask is None else mask
+        return float(np.sqrt(np.mean(2.0 * self.variance[mask])
+                             / np.mean((self.d.force[mask] ** 2).sum(axis=1))))
+
+    def score(self, pred: np.ndarray, mask: np.ndarray) -> float:
+        r2 = ((self.d.force - pred) ** 2).sum(axis=1)
+        return float(np.mean(r2[mask] / (2.0 * self.variance[mask])))
+
+    def excess_rms(self, pred: np.ndarray, mask: np.ndarray) -> float:
+        r2 = ((self.d.force - pred) ** 2).sum(axis=1)[mask]
+        ms = max(float(np.mean(r2) - np.mean(2.0 * self.variance[mask])), 0.0)
+        return math.sqrt(ms / np.mean((self.d.force[mask] ** 2).sum(axis=1)))
+
+    # fitting
+    def _fit(self, model: Model2D, train: np.ndarray, start: np.ndarray | None,
+             params: list[Param]) -> tuple[np.ndarray, np.ndarray]:
+        low = np.array([p.low for p in params])
+        high = np.array([p.high for p in params])
+        x0 = np.array([p.start for p in params]) if start is None else start
+        x0 = np.clip(x0, low, high)
+        sw = np.sqrt(self.weight[train])[:, None]
+        f = self.d.force[train]
+
+        def residual(theta):
+            return ((f - model.force(theta, self.d, self.base)[train]) * sw).ravel()
+
+        sol = levenberg_marquardt(residual, x0, low, high, max_iterations=40)
+        dof = max(sol.residual.size - x0.size, 1)
+        try:
+            cov = np.linalg.inv(sol.jacobian.T @ sol.jacobian) * (sol.cost / dof)
+            stderr = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+        except np.linalg.LinAlgError:
+            stderr = np.full(x0.size, np.nan)
+        return sol.x, stderr
+
+    def judge(self, model: Model2D, mask: np.ndarray, start: np.ndarray | None = None,
+              starts: Sequence[np.ndarray] = ()) -> Judged:
+        """Fit ``model`` on the samples of ``mask`` and predict each fold from the others."""
+        params = model.layout(self.d, self.base.yield_displacement)
+        if start is None:
+            start = np.array([p.start for p in params])
+            start[0] = self.base.mu
+        best = None
+        for s in (start, *starts):
+            theta, stderr = self._fit(model, mask, s, params)
+            full = model.force(theta, self.d, self.base)
+            cost = self.weighted(full, mask)
+            if best is None or cost < best[2]:
+                best = (theta, stderr, cost, full)
+        theta, stderr, _, full = best
+        held = full.copy()
+        for fold in np.unique(self.d.fold):
+            train = mask & (self.d.fold != fold)
+            if not train.any():
+                continue
+            t_fold, _ = self._fit(model, train, theta, params)
+            pred = model.force(t_fold, self.d, self.base)
+            held[self.d.fold == fold] = pred[self.d.fold == fold]
+        at_bound = []
+        for p, value in zip(params[1:], theta[1:], strict=True):
+            span = p.high - p.low
+            low_edge = value - p.low < 1e-3 * span and not p.name.startswith("width")
+            if not p.edge_ok and (low_edge or p.high - value < 1e-3 * span):
+                at_bound.append(p.name)
+        return Judged(model, theta, stderr, params, held, full,
+                      weighted=self.weighted(held, mask), at_bound=at_bound)
+
+    def compare(self, current: Judged, new: Judged, mask: np.ndarray, *, z_min: float,
+                explained_min: float, practical_min: float) -> Judged:
+        """Whether ``new`` earns its keep over ``current`` on the samples of ``mask``."""
+        before = self.block_sse(current.prediction, mask)
+        after = self.block_sse(new.prediction, mask)
+        used = (np.bincount(self.d.block[mask], minlength=before.size) > 0) & (before > 0) \
+            & (after > 0)
+        z = max(_block_z(before[used] - after[used]),
+                _block_z(np.log(before[used] / after[used])))
+        noise = self.weighted_noise(mask)
+        room = current.weighted - noise
+        explained = (current.weighted - new.weighted) / room if room > 0 else 0.0
+        change = ((new.full - current.full) ** 2).sum(axis=1)[mask]
+        practical = math.sqrt(float(np.mean(change)) / self.force_ms)
+        new.z, new.explained, new.practical = z, explained, practical
+        new.earns = (z >= z_min and explained >= explained_min and practical >= practical_min
+                     and not new.at_bound)
+        return new
+
+    def confidence(self, reference: Judged, new: Judged, mask: np.ndarray, share: float,
+                   seed: int = 0) -> float:
+        """Share of block-bootstrap resamples in which ``new`` still closes ``share`` of the
+        excess ``reference`` leaves [-]."""
+        rng = np.random.default_rng(seed)
+        ref = self.block_sse(reference.prediction, mask)
+        got = self.block_sse(new.prediction, mask)
+        r2n = self.weight * self.variance * 2.0
+        noise = np.bincount(self.d.block[mask], weights=r2n[mask], minlength=ref.size)
+        used = np.flatnonzero(np.bincount(self.d.block[mask], minlength=ref.size) > 0)
+        hits = 0
+        for _ in range(BOOTSTRAP):
+            pick = rng.choice(used, used.size)
+            room = ref[pick].sum() - noise[pick].sum()
+            if room > 0 and (ref[pick].sum() - got[pick].sum()) / room >= share:
+                hits += 1
+        return hits / BOOTSTRAP
+
+
+def _block_z(differences: np.ndarray) -> float:
+    """The sum of block differences over its standard error [-] (0 for fewer than 3)."""
+    if differences.size < 3:
+        return 0.0
+    spread = float(np.std(differences, ddof=1))
+    return float(np.sum(differences) / (spread * math.sqrt(differences.size))) if spread > 0 \
+        else 0.0
+
+
+# --- the steps --------------------------------------------------------------------------------
+
+def _grid_fit(d: Data2D, grid_uy, lags=_LAG_GRID) -> tuple:
+    """The best (cost, mu, u_y, lag, u_b, z, force) over the u_y and nuisance-lag grids."""
+    inverse = 0.0 if math.isinf(d.radius) else 1.0 / d.radius
+    best = None
+    for uy in grid_uy:
+        for lag_samples in lags:
+            ub, z = kinematic_state(d, uy, lag_samples * d.dt)
+            friction = d.force - d.axial[:, None] * ub * inverse
+            basis = d.axial[:, None] * d.mu_shape[:, None] * z
+            mu = float(np.sum(basis * friction) / max(np.sum(basis**2), 1e-300))
+            force = d.axial[:, None] * (ub * inverse + mu * d.mu_shape[:, None] * z)
+            cost = float(np.mean((d.force - force) ** 2))
+            if best is None or cost < best[0]:
+                best = (cost, mu, uy, lag_samples * d.dt, ub, z, force)
+    return best
+
+
+def _calibrate(d: Data2D, spec: BaselineSpec) -> Baseline2D:
+    """mu (or the scale on the element's mu), u_y and a lag of up to two samples."""
+    runs = 0
+    d.mu_shape = np.ones(d.n)
+    grid_uy = ([spec.yield_displacement] if spec.yield_displacement is not None
+               else _YIELD_GRID)
+    best = _grid_fit(d, grid_uy)
+    if spec.model != "constant":
+        mu_t0 = best[1]
+        for _ in range(2):
+            d.mu_shape = _element_mu_shape(d, spec, mu_t0, best[2])
+            runs += 1
+            best = _grid_fit(d, grid_uy)
+            mu_t0 = float(np.clip(best[1], 1e-3, 0.5))  # the scale on mu / mu_t0
+    _, mu, uy, lag, ub, z, force = best
+    edges = []
+    if spec.yield_displacement is None and len(grid_uy) > 1 and uy >= grid_uy[-1]:
+        edges.append(f"u_y calibrated at the top of its range ({1e3 * uy:.2f} mm): a "
+                     "finding (a play or a soft transition), not a calibration")
+    if abs(lag) >= NUISANCE_LAG_SAMPLES * d.dt * (1 - 1e-9):
+        edges.append(f"the channel lag calibrated at the edge of its range "
+                     f"({lag / d.dt:+.1f} samples)")
+    return Baseline2D(spec, mu, uy, lag, ub, z, force, edges, runs)
+
+
+def _element_mu_shape(d: Data2D, spec: BaselineSpec, mu_t0: float,
+                      yield_displacement: float) -> np.ndarray:
+    """mu(t) / mu_t0 of the package's bidirectional element (the ``simplified`` or ``precise``
+    friction model without the effects of ``spec.without``) driven through the measured
+    orbits, tests in run order on fresh plates at the test's initial temperature (the
+    manifest's, else the measured temperature's first value, else 20 degC)."""
+    from isolator.bearing import AxialLoadHistory, DCFPBearing
+    from isolator.friction import PTVFriction
+    from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
+    from isolator.testrig import run_test
+
+    names = {"heating": "temperature", "velocity": "velocity", "pressure": "pressure"}
+    dependencies = tuple(v for k, v in names.items() if k not in spec.without)
+    heating = None
+    if "heating" not in spec.without:
+        heating = MonitorLine() if spec.model == "precise" else CentrePoint(refinement=0.5)
+    mu_t0 = float(np.clip(mu_t0, 1e-3, 0.5))
+    shapes = []
+    for k, rec in enumerate(d.campaign.tests):
+        start = (rec.initial_temperature if rec.initial_temperature is not None
+                 else float(rec.temperature[0]) if rec.temperature is not None else 20.0)
+        friction = PTVFriction(mu_t0, heating=heating, dependencies=dependencies,
+                               thermal=ThermalProperties(initial_temperature=start))
+        load = (float(rec.axial_force[0]) if np.ptp(rec.axial_force) == 0.0 else
+                AxialLoadHistory(rec.time, rec.axial_force))
+        reach = float(np.max(rec.radius))
+        bearing = DCFPBearing(d.radius, d.campaign.slider_diameter, axial_load=load,
+                              friction=friction, yield_displacement=yield_displacement,
+                              displacement_capacity=1.05 * reach + 1e-3)
+        result = run_test(bearing, rec.time, d.displacement[k], rec.velocity)
+        shapes.append(result.mu / mu_t0)
+    return np.concatenate(shapes)
+
+
+def noise_variance(d: Data2D, base: Baseline2D, seed: int = 0) -> np.ndarray:
+    """Variance of the force error measurement noise leaves at each sample, per axis [N^2]:
+    the force sensors' white noise plus the displacement sensors' through the return map (a
+    Monte Carlo estimate, as in one direction)."""
+    rng = np.random.default_rng(seed)
+    inverse = 0.0 if math.isinf(d.radius) else 1.0 / d.radius
+    variance = np.empty(d.n)
+    start = 0
+    for _k, rec in enumerate(d.campaign.tests):
+        n = len(rec)
+        idx = slice(start, start + n)
+        fn = np.mean([noise_std(rec.force[:, j]) ** 2 for j in range(2)])
+        un = math.sqrt(np.mean([noise_std(rec.displacement[:, j]) ** 2 for j in range(2)]))
+        spread = np.zeros(n)
+        if un > 0.0:
+            base_force = base.force[idx]
+            mu = base.mu * d.mu_shape[idx]
+            for _ in range(_REPLICATES):
+                cols = []
+                for j in range(2):
+                    noisy = rec.displacement[:, j] + rng.normal(0.0, un, n)
+                    x = _smooth(rec.time, noisy, d.smoothed)
+                    cols.append(np.ascontiguousarray(lagged(rec.time, x, base.lag)
+                                                     if base.lag else x))
+                zx, zy = return_map_2d(cols[0], cols[1], base.yield_displacement)
+                ub = np.column_stack(cols)
+                f = d.axial[idx, None] * (ub * inverse + mu[:, None] * np.column_stack([zx, zy]))
+                spread += 0.5 * ((f - base_force) ** 2).sum(axis=1)
+            spread /= _REPLICATES
+        variance[idx] = fn + spread
+        start += n
+    floor = 1e-12 * float(np.mean(d.force**2)) + 1e-300
+    return np.maximum(variance, floor)
+
+
+def temperature_rise(d: Data2D, friction_power_mu: np.ndarray) -> np.ndarray:
+    """The contact-temperature rise [degC] on the precise model's 2D heating field
+    (:class:`~isolator.monitor_grid.GridHeating`, two sliding surfaces) under the friction
+    power mu N |v| / 2 per surface from ``friction_power_mu`` (mu per sample), tests in run
+    order: a test with a ``rest_before`` continues the plates' history after the rest."""
+    from isolator.heating import MonitorLine, ThermalProperties, sum_of_exponentials
+    from isolator.monitor_grid import GridHeating, MonitorGrid
+
+    thermal = ThermalProperties()
+    kernel = sum_of_exponentials(1.0e-6, 1.0e4, 1.0e-7)
+    grid = MonitorGrid.from_line(MonitorLine())
+    reach = max(float(np.max(r.radius)) for r in d.campaign.tests)
+    rise = np.zeros(d.n)
+    heating = None
+    start = 0
+    flux_all = friction_power_mu * d.pressure * d.speed / 2.0
+    for rec in d.campaign.tests:
+        n = len(rec)
+        if heating is None or rec.rest_before is None:
+            heating = GridHeating(grid, d.campaign.contact_radius, 0.5 * reach + 1e-3,
+                                  thermal, kernel)
+        elif rec.rest_before > 0.0:
+            trial = heating.trial(np.zeros(2), float(rec.rest_before), hint=np.array([1.0, 0]))
+            heating.commit(float(rec.rest_before), trial, 0.0)
+        position = 0.5 * rec.displacement
+        for i in range(n):
+            dt = float(rec.time[i] - rec.time[i - 1]) if i else 1e-6
+            trial = heating.trial(position[i], dt, hint=rec.velocity[i])
+            q = float(flux_all[start + i]) if i else 0.0
+            _, _, newest = heating.factors(dt)
+            rise[start + i] = (heating.coefficient * trial.rise
+                               + (newest * q if trial.points > 0 else 0.0))
+            heating.commit(dt, trial, q)
+        start += n
+    return rise
+
+
+def transition_window(d: Data2D, base: Baseline2D) -> np.ndarray:
+    """The direction-change windows (module docstring), a boolean per sample."""
+    z = base.z
+    v = d.velocity
+    size = np.hypot(*z.T)
+    speed = d.speed
+    cos = (z * v).sum(axis=1) / np.maximum(size * speed, 1e-300)
+    misaligned = (size < ALIGNED_SIZE) | (cos < math.cos(math.radians(ALIGNMENT_ANGLE)))
+    slow = np.zeros(d.n, bool)
+    for k in range(len(d.campaign.tests)):
+        idx = d.test == k
+        slow[idx] = speed[idx] < SLOW_SHARE * float(np.max(speed[idx]))
+    window = misaligned | slow
+    entries = np.flatnonzero(window[1:] & ~window[:-1]) + 1
+    after = window.copy()
+    for i in entries:
+        stop = i
+        while stop < d.n and window[stop]:
+            stop += 1
+        after[stop:min(stop + 3, d.n)] = True
+    return after
+
+
+# --- the result -------------------------------------------------------------------------------
+
+@dataclass
+class Diagnosis2D:
+    """Everything the diagnosis of tests in two directions found; :meth:`to_json`."""
+
+    campaign: Campaign2D
+    data: Data2D
+    problem: Problem2D
+    baseline: Baseline2D
+    base_all: Judged
+    window: np.ndarray
+    judged: dict[str, Judged]
+    roles: dict[str, str]
+    verdict: list[str]
+    chosen: Judged | None
+    confidence: dict[str, float]
+    notes: list[str]
+    excluded: tuple[str, ...]
+    wall_time: float = 0.0
+
+    @property
+    def gap_before(self) -> float:
+        """Held-out force NRMSE of the baseline, every sample [-]."""
+        return self.problem.nrmse(self.base_all.prediction)
+
+    @property
+    def gap_after(self) -> float:
+        """Held-out force NRMSE with the named effects (the baseline's without) [-]."""
+        final = self.chosen.prediction if self.chosen is not None else self.base_all.prediction
+        return self.problem.nrmse(final)
+
+    @property
+    def noise_nrmse(self) -> float:
+        """The NRMSE measurement noise alone leaves [-]."""
+        return self.problem.noise_nrmse()
+
+    def where(self, prediction: np.ndarray) -> dict:
+        """Where the residual of ``prediction`` lies: tests, part of the orbit, axes."""
+        return locate_2d(self.data, prediction, self.window)
+
+    def to_json(self) -> dict:
+        """The summary: the keys of one direction (``baseline``, ``gap``, ``where``,
+        ``effects``, ``verdict``, ``chosen``, ``unexplained``, ``transition``, ``lag`` ...)
+        and, new, ``dimension``, ``orbits``, ``axes``, ``direction_changes``,
+        ``baseline_notes``."""
+        p, d = self.problem, self.data
+        every = np.ones(d.n, bool)
+        before = p.nrmse(self.base_all.prediction)
+        effects = []
+        for name, j in self.judged.items():
+            entry = {"name": name, "description": LIBRARY_2D[name].description,
+                     "acts_on": "kinematics" if LIBRARY_2D[name].kinematic else "mu",
+                     "role": self.roles.get(name, "")}
+            if j.untestable is None:
+                after = p.nrmse(j.prediction, every)
+                own = _own_params(j, name)
+                entry.update({
+                    "gap_after": after, "shrink": 1.0 - after / before if before else 0.0,
+                    "parameters": {k: v[0] for k, v in own.items()},
+                    "stderr": {k: v[1] for k, v in own.items()},
+                    "units": {k: v[2] for k, v in own.items()},
+                    "held_out_z": _num(j.z), "explained_excess": _num(j.explained),
+                    "earns_keep": bool(j.earns), "at_bound": list(j.at_bound),
+                    "confidence": _num(self.confidence.get(name, float("nan")))})
+            else:
+                entry.update({"gap_after": None, "shrink": None, "parameters": {},
+                              "stderr": {}, "units": {}, "held_out_z": None,
+                              "explained_excess": None, "earns_keep": False,
+                              "confidence": None})
+            effects.append(entry)
+        chosen = None
+        final = self.base_all.prediction
+        if self.chosen is not None:
+            final = self.chosen.prediction
+            after = p.nrmse(final)
+            ex_b, ex_a = p.excess_rms(self.base_all.prediction, every), p.excess_rms(final,
+                                                                                     every)
+            chosen = {
+                "names": [n for n in self.verdict if n != "unexplained"],
+                "gap_before": before, "gap_after": after,
+                "shrink": 1.0 - after / before if before else 0.0,
+                "excess_shrink": 1.0 - ex_a / ex_b if ex_b > 0 else 0.0,
+                "parameters": {n: {k: v[0] for k, v in _own_params(self.chosen, n).items()}
+                               for n in self.chosen.model.names},
+                "intervals": {n: {k: [v[0] - 1.645 * v[1], v[0] + 1.645 * v[1]]
+                                  for k, v in _own_params(self.chosen, n).items()}
+                              for n in self.chosen.model.names},
+                "confidence": {k: _num(v) for k, v in self.confidence.items()},
+            }
+        tw = self.window
+        r2 = ((d.force - self.base_all.prediction) ** 2).sum(axis=1)
+        tw_share = float(r2[tw].sum() / max(r2.sum(), 1e-300))
+        transition = {
+            "rms": float(math.sqrt(np.mean(r2[tw]) / 2.0)) if tw.any() else 0.0,
+            "energy_share": tw_share, "sample_share": float(np.mean(tw)),
+            "statement": (f"{100 * tw_share:.0f} % of the residual energy lies in the "
+                          f"direction-change windows ({100 * float(np.mean(tw)):.0f} % of the "
+                          "samples: the friction force turning with the motion, stops)"),
+        }
+        lag_entry = {"seconds": self.baseline.lag, "samples": self.baseline.lag / d.dt,
+                     "named": False, "plausible_limit_seconds": PLAUSIBLE_LAG}
+        if self.chosen is not None and "lag" in self.chosen.model.kinematic:
+            value = _own_params(self.chosen, "lag")["lag"][0]
+            lag_entry.update({"seconds": value, "samples": value / d.dt, "named": True})
+        unexplained = None
+        if "unexplained" in self.verdict:
+            unexplained = {"statement": locate_2d(d, final, tw)["statement"], "looks_like": []}
+        return {
+            "dimension": 2,
+            "baseline": {"model": self.baseline.spec.label,
+                         "parameters": {"mu": self.baseline.mu,
+                                        "yield_displacement": self.baseline.yield_displacement,
+                                        "lag": self.baseline.lag},
+                         "runs": self.baseline.runs,
+                         "displacement": ("smoothed (Savitzky-Golay)" if d.smoothed
+                                          else "as measured")},
+            "baseline_notes": list(self.baseline.edges),
+            "gap": {"metric": "force_nrmse", "value": before, "noise": p.noise_nrmse(),
+                    "holdout": d.scheme, "phase": "every sample (|F| of both axes)",
+                    "samples": d.n, "all_samples": before,
+                    "sliding_phase": p.nrmse(self.base_all.prediction, ~tw)},
+            "transition": transition,
+            "direction_changes": transition,
+            "lag": lag_entry,
+            "where": self.where(self.base_all.prediction),
+            "axes": _axes(d, self.base_all.prediction, final),
+            "orbits": [_orbit_entry(r) for r in self.campaign.tests],
+            "effects": effects,
+            "chosen": chosen,
+            "verdict": list(self.verdict),
+            "unexplained": unexplained,
+            "notes": list(self.notes),
+            "excluded": list(self.excluded),
+            "tests": len(self.campaign.tests),
+            "samples": d.n,
+            "force_rms": float(math.sqrt(p.force_ms)),
+            "wall_time": self.wall_time,
+        }
+
+
+def _num(x: float) -> float | None:
+    return None if x is None or not np.isfinite(x) else float(x)
+
+
+def _own_params(j: Judged, name: str) -> dict[str, tuple[float, float, str]]:
+    """The parameters of effect ``name`` in judged model ``j``: (value, stderr, unit)."""
+    model = j.model
+    out: dict[str, tuple[float, float, str]] = {}
+    i = 1
+    if model.refits_kinematics:
+        i = 2 + ("lag" not in model.kinematic)
+    for other in (*(model.kinematic if model.fixed_state is None else ()), *model.friction):
+        size = len(LIBRARY_2D[other].params)
+        if other == name:
+            for k, p in enumerate(j.params[i:i + size]):
+                value, err = float(j.theta[i + k]), float(j.stderr[i + k])
+                if p.name == "thermal_sensitivity_x100":
+                    out["thermal_sensitivity"] = (value / 100.0, err / 100.0, "1/degC")
+                else:
+                    out[p.name] = (value, err, p.unit)
+            if name == "lag":
+                out["lag_samples"] = (float(j.theta[i]) / j_dt(j), float(j.stderr[i]) / j_dt(j),
+                                      "samples")
+        i += size
+    return out
+
+
+_DT = {"dt": 1.0}
+
+
+def j_dt(_: Judged) -> float:
+    """The campaign's sampling interval [s] (set by :func:`diagnose_2d`)."""
+    return _DT["dt"]
+
+
+def _orbit_entry(rec) -> dict:
+    r = rec.radius
+    heading = np.unwrap(np.arctan2(rec.velocity[:, 1], rec.velocity[:, 0]))
+    turns = float((heading[-1] - heading[0]) / (2 * math.pi))
+    return {"test": rec.name, "peak_radius": float(np.max(r)),
+            "peak_x": float(np.max(np.abs(rec.displacement[:, 0]))),
+            "peak_y": float(np.max(np.abs(rec.displacement[:, 1]))),
+            "path_length": float(np.sum(np.hypot(*np.diff(rec.displacement, axis=0).T))),
+            "peak_speed": float(np.max(rec.speed)), "heading_turns": turns}
+
+
+def _axes(d: Data2D, before: np.ndarray, after: np.ndarray) -> dict:
+    out = {}
+    for j, axis in enumerate(("x", "y")):
+        rms = float(np.sqrt(np.mean(d.force[:, j] ** 2)))
+        out[axis] = {"force_rms": rms,
+                     "error_rms_before": float(np.sqrt(np.mean((d.force[:, j]
+                                                                - before[:, j]) ** 2))),
+                     "error_rms_after": float(np.sqrt(np.mean((d.force[:, j]
+                                                               - after[:, j]) ** 2)))}
+    return out
+
+
+def locate_2d(d: Data2D, prediction: np.ndarray, window: np.ndarray) -> dict:
+    """Where the residual energy of ``prediction`` lies: by test, by direction of motion
+    (eight sectors), by distance from the centre (inner and outer half of the test's peak
+    radius), in the direction-change windows, and by axis; with a one-line ``statement``."""
+    r2 = ((d.force - prediction) ** 2).sum(axis=1)
+    total = max(float(r2.sum()), 1e-300)
+    names = [r.name for r in d.campaign.tests]
+    by_test = {names[k]: float(r2[d.test == k].sum() / total) for k in range(len(names))}
+    heading = np.degrees(np.arctan2(d.velocity[:, 1], d.velocity[:, 0])) % 360.0
+    sector = np.round(heading / 45.0).astype(int) % 8
+    moving = ~window
+    by_sector = {}
+    for s, label in enumerate(_SECTORS):
+        mask = (sector == s) & moving
+        if mask.any():
+            by_sector[label] = {"energy_share": float(r2[mask].sum() / total),
+                                "sample_share": float(np.mean(mask))}
+    radius = np.hypot(*np.vstack(list(d.displacement)).T)
+    peak = np.concatenate([np.full(int((d.test == k).sum()), float(radius[d.test == k].max()))
+                           for k in range(len(names))])
+    outer = radius > 0.5 * peak
+    by_radius = {"inner half": float(r2[~outer].sum() / total),
+                 "outer half": float(r2[outer].sum() / total)}
+    axes = {"x": float(((d.force[:, 0] - prediction[:, 0]) ** 2).sum() / total),
+            "y": float(((d.force[:, 1] - prediction[:, 1]) ** 2).sum() / total)}
+    tw = float(r2[window].sum() / total)
+    worst = max(by_test, key=by_test.get)
+    parts = []
+    if len(names) > 1:
+        parts.append(f"{100 * by_test[worst]:.0f} % of the residual energy in test {worst!r} "
+                     f"(of {len(names)})")
+    dense = {k: v["energy_share"] / max(v["sample_share"], 1e-12) for k, v in by_sector.items()
+             if v["energy_share"] > 0.05}
+    if dense:
+        top = max(dense, key=dense.get)
+        if dense[top] > 1.5:
+            parts.append(f"most densely while moving {top} ({dense[top]:.1f} x its share of "
+                         "the samples)")
+    side = max(by_radius, key=by_radius.get)
+    parts.append(f"{100 * by_radius[side]:.0f} % in the {side} of the orbit radius")
+    parts.append(f"{100 * tw:.0f} % within the direction-change windows "
+                 f"({100 * float(np.mean(window)):.0f} % of the samples)")
+    parts.append(f"x {100 * axes['x']:.0f} % / y {100 * axes['y']:.0f} %")
+    return {"statement": "; ".join(parts), "tests": by_test, "direction_of_motion": by_sector,
+            "radius": by_radius, "direction_change_windows": tw, "axes": axes}
+
+
+# --- the diagnosis ----------------------------------------------------------------------------
+
+def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant", *,
+                candidates: Sequence[str] = EFFECTS_2D, exclude: Sequence[str] = (),
+                thresholds: Thresholds | None = None) -> Diagnosis2D:
+    """Diagnose the gap between tests in two directions and the ``baseline`` model.
+
+    Parameters
+    ----------
+    campaign : Campaign2D
+        The measured orbits of one bearing, in the order run.
+    baseline : BaselineSpec or str
+        The model to diagnose (``constant``, ``simplified`` or ``precise``, see
+        :class:`~isolator.diagnosis.baseline.BaselineSpec`).
+    candidates, exclude : sequence of str
+        Effects of :data:`EFFECTS_2D` to try, and those withheld.
+    thresholds : Thresholds, optional
+        The decision thresholds (default: ``thresholds.json``).
+
+    Returns
+    -------
+    Diagnosis2D
+        Its :meth:`~Diagnosis2D.to_json` is the report.
+    """
+    start_clock = _time.perf_counter()
+    th = thresholds or Thresholds.load()
+    spec = baseline if isinstance(baseline, BaselineSpec) else BaselineSpec(baseline)
+    names = [c for c in candidates if c in LIBRARY_2D and c not in exclude]
+    # the displacement as measured, or smoothed (a Savitzky-Golay filter cuts the noise the
+    # return map's elastic branch amplifies but bends an orbit's corners and stops) when the
+    # displacement sensors' noise exceeds SMOOTH_NOISE of the calibrated u_y
+    d = _prepare(campaign, smooth=False)
+    base = _calibrate(d, spec)
+    sensor = max(noise_std(r.displacement[:, j]) for r in campaign.tests for j in range(2))
+    if sensor > SMOOTH_NOISE * base.yield_displacement:
+        d = _prepare(campaign, smooth=True)
+        base = _calibrate(d, spec)
+    _DT["dt"] = d.dt
+    variance = noise_variance(d, base)
+    problem = Problem2D(d, base, variance, th)
+    window = transition_window(d, base)
+    every = np.ones(d.n, bool)
+    sliding = ~window
+    if sliding.sum() < 0.2 * d.n:
+        sliding = every
+    base_all = problem.judge(Model2D(), every)
+    notes = list(base.edges)
+    judged: dict[str, Judged] = {}
+    roles: dict[str, str] = {}
+
+    # stage 1: kinematics on every sample
+    grid_uy = ([spec.yield_displacement] if spec.yield_displacement is not None
+               else _YIELD_GRID)
+    fit0 = _grid_fit(d, grid_uy, lags=(0.0,))
+    no_lag = problem.judge(Model2D(fixed_state=(fit0[4], fit0[5])), every)
+    kin = [k for k in names if LIBRARY_2D[k].kinematic]
+    current = base_all
+    named_kin: list[str] = []
+    for _ in range(2):
+        trials = {}
+        for k in kin:
+            if k in named_kin:
+                continue
+            model = Model2D(kinematic=(*named_kin, k))
+            j = problem.judge(model, every, start=_start(model, current, base, d),
+                              starts=_kin_starts(model, current, base, d))
+            reference = current
+            if k == "lag" and not named_kin:  # the nuisance lag judged as an effect
+                reference = no_lag
+            j = problem.compare(reference, j, every, z_min=th.kinematic_z,
+                                explained_min=th.kinematic_explained,
+                                practical_min=th.kinematic_practical)
+            j.earns = j.earns and _size_ok(j, k, th, d, notes)
+            trials[k] = j
+            judged.setdefault(k, j)
+        passing = [k for k, j in trials.items() if j.earns]
+        if not passing:
+            break
+        best = min(passing, key=lambda k: trials[k].weighted)
+        judged[best] = trials[best]
+        named_kin.append(best)
+        current = trials[best]
+
+    # stage 2: the friction law outside the direction-change windows (u_y, lag refitted)
+    kin_model = Model2D(kinematic=tuple(named_kin), free=True)
+    law_base = problem.judge(kin_model, sliding, start=_start(kin_model, current, base, d))
+    cur = law_base
+    law: list[str] = []
+    beside: dict[str, tuple[str, ...]] = {}  # the law each candidate was last tried beside
+    d.temperature_rise = np.zeros(d.n)
+    friction = [k for k in names if not LIBRARY_2D[k].kinematic]
+    if "heating" in friction:
+        mu_hist = base.mu * d.mu_shape
+        d.temperature_rise = temperature_rise(d, mu_hist)
+    for _ in range(MAX_FRICTION_EFFECTS):
+        trials = {}
+        for k in friction:
+            if k in law:
+                continue
+            why = LIBRARY_2D[k].requires(d) if LIBRARY_2D[k].requires else None
+            if why:
+                judged[k] = Judged(Model2D(), np.zeros(0), np.zeros(0), [], cur.prediction,
+                                   cur.full, untestable=why)
+                roles[k] = f"untestable: {why}"
+                continue
+            model = Model2D(friction=(*law, k), kinematic=tuple(named_kin), free=True)
+            start = np.concatenate([cur.theta, [p.start for p in LIBRARY_2D[k].params]])
+            starts = [np.concatenate([cur.theta, s]) for s in _friction_starts(k)]
+            j = problem.judge(model, sliding, start=start, starts=starts)
+            second = bool(law)
+            j = problem.compare(cur, j, sliding, z_min=th.second_z if second else th.z_min,
+                                explained_min=(th.second_explained if second
+                                               else th.explained_min),
+                                practical_min=th.practical_gain)
+            trials[k] = j
+            if k not in law:
+                judged[k] = j
+                beside[k] = tuple(law)
+        passing = [k for k, j in trials.items() if j.earns]
+        if not passing:
+            break
+        best = min(passing, key=lambda k: trials[k].weighted)
+        law.append(best)
+        cur = trials[best]
+        judged[best] = cur
+
+    # kinematics tried again beside the friction law named
+    if law:
+        for k in kin:
+            if k in named_kin:
+                continue
+            model = Model2D(friction=tuple(law), kinematic=(*named_kin, k), free=True)
+            reference = problem.judge(Model2D(friction=tuple(law), kinematic=tuple(named_kin),
+                                              free=True), every, start=cur.theta)
+            j = problem.judge(model, every, start=_start(model, reference, base, d),
+                              starts=_kin_starts(model, reference, base, d))
+            j = problem.compare(reference, j, every, z_min=th.kinematic_z,
+                                explained_min=th.kinematic_explained,
+                                practical_min=th.kinematic_practical)
+            j.earns = j.earns and _size_ok(j, k, th, d, notes)
+            if j.earns:
+                named_kin.append(k)
+                judged[k] = j
+                notes.append(f"{k} found beside the friction law ({', '.join(law)})")
+
+    # the final model on every sample, and the verdict
+    named = [*named_kin, *law]
+    chosen = None
+    if named:
+        model = Model2D(friction=tuple(law), kinematic=tuple(named_kin), free=True)
+        source = cur if law else judged[named_kin[-1]]
+        if named_kin and judged[named_kin[-1]].model.friction:  # found beside the law
+            source = judged[named_kin[-1]]
+        start = _start(model, source, base, d)
+        chosen = problem.judge(model, every, start=start)
+        problem.compare(base_all, chosen, every, z_min=0.0, explained_min=0.0,
+                        practical_min=0.0)
+        if chosen.explained < th.name_min and chosen.explained < th.kinematic_explained:
+            notes.append(f"the effects found ({', '.join(named)}) close only "
+                         f"{100 * chosen.explained:.0f} % of the excess; not named")
+            for k in named:
+                roles[k] = "earns its keep but closes too little"
+            named, chosen = [], None
+    remaining = chosen.prediction if chosen is not None else base_all.prediction
+    real_gap = (problem.score(remaining, every) > 1.0 + th.none_margin
+                and problem.excess_rms(remaining, every) > th.practical_remain)
+    base_gap = (problem.score(base_all.prediction, every) > 1.0 + th.none_margin
+                and problem.excess_rms(base_all.prediction, every) > th.practical_none)
+    if named:
+        verdict = list(named) + (["unexplained"] if real_gap else [])
+    else:
+        verdict = ["unexplained"] if base_gap else ["none"]
+    for k, j in judged.items():
+        if k in named:
+            roles[k] = "named"
+        elif k not in roles:
+            roles[k] = ("at a bound of its range: " + ", ".join(j.at_bound) if j.at_bound
+                        else "does not earn its keep")
+            if beside.get(k):
+                roles[k] += " beside " + " + ".join(beside[k])
+    confidence: dict[str, float] = {}
+    for k in named:
+        j = judged[k]
+        mask = every if LIBRARY_2D[k].kinematic else sliding
+        reference = base_all if LIBRARY_2D[k].kinematic else law_base
+        share = th.kinematic_explained if LIBRARY_2D[k].kinematic else th.explained_min
+        confidence[k] = problem.confidence(reference, j, mask, share)
+    result = Diagnosis2D(campaign, d, problem, base, base_all, window, judged, roles, verdict,
+                         chosen, confidence, notes, tuple(exclude))
+    result.wall_time = _time.perf_counter() - start_clock
+    return result
+
+
+def _start(model: Model2D, current: Judged, base: Baseline2D, d: Data2D) -> np.ndarray:
+    """Start values: the current model's by parameter name (a named lag from the channel
+    lag), the baseline's u_y and lag, else the library's."""
+    params = model.layout(d, base.yield_displacement)
+    known = {p.name: float(v) for p, v in zip(current.params, current.theta, strict=False)}
+    known.setdefault("mu", base.mu)
+    known.setdefault("log10_yield_displacement", math.log10(base.yield_displacement))
+    known.setdefault("channel_lag", base.lag)
+    known.setdefault("lag", known["channel_lag"])
+    return np.array([known.get(p.name, p.start) for p in params])
+
+
+def _kin_starts(model: Model2D, current: Judged, base: Baseline2D,
+                d: Data2D) -> list[np.ndarray]:
+    """Further starts of a kinematic model: plays of 1, 5 and 10 mm, lags of +-8 samples,
+    each with a u_y of 0.1 mm and 1 mm as well as the baseline's."""
+    x = _start(model, current, base, d)
+    names = [p.name for p in model.layout(d, base.yield_displacement)]
+    variants = [x]
+    if "width_x" in names:
+        i = names.index("width_x")
+        variants = []
+        for w in (1e-3, 5e-3, 1e-2):
+            s = x.copy()
+            s[i] = s[i + 1] = w
+            variants.append(s)
+    if "lag" in names:
+        i = names.index("lag")
+        more = []
+        for s in variants:
+            for samples in (-8.0, 8.0):
+                t = s.copy()
+                t[i] = samples * d.dt
+                more.append(t)
+        variants = [*variants, *more] if "width_x" not in names else variants
+    out = []
+    for s in variants:
+        for uy in (None, 1e-4, 1e-3):
+            t = s.copy()
+            if uy is not None:
+                t[1] = math.log10(uy)
+            out.append(t)
+    return out
+
+
+def _friction_starts(name: str) -> list[np.ndarray]:
+    if name == "velocity":
+        return [np.array([0.3, 0.01]), np.array([0.3, 0.2]), np.array([-0.3, 0.05])]
+    if name == "wear":
+        return [np.array([0.2, 50.0]), np.array([-0.2, 0.5])]
+    if name == "heating":
+        return [np.array([-0.5])]
+    return []
+
+
+def per_test_lags(d: Data2D, j: Judged) -> np.ndarray:
+    """The lag [s] that fits each test best, on a half-sample grid within 10 samples of the
+    campaign's, the other parameters of ``j`` kept and mu refitted per test."""
+    params = [p.name for p in j.params]
+    campaign_lag = float(j.theta[params.index("lag")])
+    uy = 10.0 ** float(j.theta[1])
+    widths = ((float(j.theta[params.index("width_x")]), float(j.theta[params.index("width_y")]))
+              if "width_x" in params else (0.0, 0.0))
+    inverse = 0.0 if math.isinf(d.radius) else 1.0 / d.radius
+    grid = campaign_lag + d.dt * np.arange(-10.0, 10.25, 0.5)
+    costs = np.empty((grid.size, len(d.campaign.tests)))
+    for i, lag in enumerate(grid):
+        ub, z = kinematic_state(d, uy, float(lag), widths)
+        friction = d.force - d.axial[:, None] * ub * inverse
+        basis = d.axial[:, None] * d.mu_shape[:, None] * z
+        for k in range(len(d.campaign.tests)):
+            m = d.test == k
+            mu = float(np.sum(basis[m] * friction[m]) / max(np.sum(basis[m] ** 2), 1e-300))
+            costs[i, k] = float(np.mean((friction[m] - mu * basis[m]) ** 2))
+    return grid[np.argmin(costs, axis=0)]
+
+
+def _size_ok(j: Judged, name: str, th: Thresholds, d: Data2D, notes: list[str]) -> bool:
+    """A play is named from ``backlash_min`` on (either axis); a lag beyond
+    ``lag_min_samples`` and within the plausible channel lag."""
+    own = _own_params(j, name)
+    if name == "backlash":
+        return max(own["width_x"][0], own["width_y"][0]) >= th.backlash_min
+    if name == "lag":
+        value = abs(own["lag"][0])
+        if value / d.dt < th.lag_min_samples:
+            return False
+        lags = per_test_lags(d, j)
+        spread = float(np.ptp(lags)) if lags.size > 1 else 0.0
+        if spread > max(LAG_SPREAD_SAMPLES * d.dt, 0.25 * value):
+            notes.append("the lag fitted test by test varies ("
+                         + ", ".join(f"{x / d.dt:+.1f}" for x in lags)
+                         + " samples): not one channel lag for the campaign (a speed effect "
+                         "looks like a lag that changes with the period and the amplitude)")
+            return False
+        if value > PLAUSIBLE_LAG:
+            notes.append(f"a lag of {1e3 * value:.1f} ms fits, beyond what a laboratory "
+                         f"channel plausibly has ({1e3 * PLAUSIBLE_LAG:.0f} ms): not named as "
+                         "a lag (a speed effect or the rig's dynamics look like one)")
+            return False
+        return True
+    return True
