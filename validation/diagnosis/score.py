@@ -14,6 +14,12 @@ case is withheld from the library in turn; the run is right when its verdict say
 ``unexplained`` and names no effect the truth does not have.
 
     python -m validation.diagnosis.score PANEL [--half test] [--markdown FILE]
+    python -m validation.diagnosis.score --panel bidirectional [FOLDER] [--half test]
+
+``--panel bidirectional`` first writes that half of the bidirectional panel
+(:mod:`validation.diagnosis.bidirectional`, two-direction tests) to FOLDER or a temporary
+folder; its cases are then diagnosed like the others, through ``load_campaign`` /
+``load_manifest`` and ``diagnose``.
 """
 
 from __future__ import annotations
@@ -153,14 +159,39 @@ def markdown(rows: list[dict], figures: dict, half: str) -> str:
     return "\n".join(lines) + "\n"
 
 
+def write_bidirectional(folder: str | Path | None, seed: int, half: str | None) -> Path:
+    """Write the bidirectional panel's ``half`` (None: both) to ``folder`` (None: a new
+    temporary folder) with the seed ``seed``; return the folder. The cases are read back
+    through the same entry points as in one direction (:func:`load_case`)."""
+    import tempfile
+
+    from validation.diagnosis.bidirectional import write_panel
+
+    folder = Path(folder) if folder else Path(tempfile.mkdtemp(prefix="bidirectional_panel_"))
+    write_panel(folder, seed=seed, half=half)
+    print(f"bidirectional panel (seed {seed}, half {half or 'all'}) written to {folder}",
+          flush=True)
+    return folder
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("panel", help="panel folder (validation.diagnosis.tuning or .outside)")
+    parser.add_argument("panel", nargs="?", metavar="FOLDER",
+                        help="panel folder (validation.diagnosis.tuning, .outside or "
+                             ".bidirectional); with --panel, where to write it (default: a "
+                             "temporary folder)")
+    parser.add_argument("--panel", dest="write", choices=("bidirectional",),
+                        help="write this panel's half first (seed --seed), then score it")
+    parser.add_argument("--seed", type=int, default=2026, help="seed of a panel written here")
     parser.add_argument("--half", default="test", choices=[*HALVES, "all"])
     parser.add_argument("--markdown", help="write the table here")
     parser.add_argument("--json", help="write the rows and figures here")
     args = parser.parse_args(argv)
     half = None if args.half == "all" else args.half
+    if args.write:
+        args.panel = write_bidirectional(args.panel, args.seed, half)
+    elif args.panel is None:
+        parser.error("give a panel FOLDER, or --panel bidirectional to write one")
     names = case_names(args.panel, half)
     diagnoses = diagnose_cases(args.panel, names, progress=True)
     labels = json.loads((Path(args.panel) / "labels.json").read_text())  # after diagnosing

@@ -22,3 +22,74 @@ with the one-direction truth :mod:`validation.diagnosis.independent`). It shares
     python -m validation.diagnosis.bidirectional --checks
     python -m validation.diagnosis.bidirectional FOLDER [--seed 2026] [--half tune|test]
 """
+
+from __future__ import annotations
+
+from validation.diagnosis.bidirectional.bearing import (
+    Bearing2D,
+    HeatField,
+    SpeedLaw,
+    WearLaw,
+    lens_area,
+    transition_step,
+)
+from validation.diagnosis.bidirectional.cases import CASES, EFFECTS, HALVES, Case, Run
+from validation.diagnosis.bidirectional.checks import TOLERANCES, checks
+from validation.diagnosis.bidirectional.orbits import (
+    Orbit,
+    circular,
+    earthquake,
+    figure_eight,
+    square,
+)
+from validation.diagnosis.bidirectional.rig import (
+    Measurement,
+    Rig,
+    Test2D,
+    measure,
+    noise,
+    quantise,
+    simulate,
+)
+from validation.diagnosis.bidirectional.write import (
+    COLUMNS,
+    contributions,
+    load_labels,
+    make_tests,
+    truth,
+    write_panel,
+)
+
+__all__ = [
+    "CASES",
+    "COLUMNS",
+    "EFFECTS",
+    "HALVES",
+    "TOLERANCES",
+    "Bearing2D",
+    "Case",
+    "HeatField",
+    "Measurement",
+    "Orbit",
+    "Rig",
+    "Run",
+    "SpeedLaw",
+    "Test2D",
+    "WearLaw",
+    "checks",
+    "circular",
+    "contributions",
+    "earthquake",
+    "figure_eight",
+    "lens_area",
+    "load_labels",
+    "make_tests",
+    "measure",
+    "noise",
+    "quantise",
+    "simulate",
+    "square",
+    "transition_step",
+    "truth",
+    "write_panel",
+]

@@ -26,8 +26,8 @@ displacement (x, y) and z the friction direction vector, |z| <= 1:
     direction by a small angle;
   - ``smooth``: the isotropic Bouc-Wen law with n = 2 and beta = gamma = 1/2,
     dz = (du - z max(z . du, 0)) / u_y: loading shrinks the growth of z along z as
-    1 - |z|^2, unloading is elastic. Integrated with sub-steps of at most u_y / 50 (midpoint
-    rule). On a line it is tanh loading and linear unloading.
+    1 - |z|^2, unloading is elastic. Integrated with sub-steps of at most u_y / 20 (midpoint
+    rule, at most 200 per sample). On a line it is tanh loading and linear unloading.
 
 The friction coefficient
 ------------------------
@@ -248,7 +248,7 @@ def transition_step(kind: str, z: np.ndarray, du: np.ndarray, u_y: float) -> np.
         trial = z + du / u_y
         size = math.hypot(trial[0], trial[1])
         return trial / size if size > 1.0 else trial
-    parts = max(1, math.ceil(step / (u_y / 50.0)))
+    parts = min(200, max(1, math.ceil(step / (u_y / 20.0))))
     h = du / parts
 
     def rate(zz: np.ndarray) -> np.ndarray:

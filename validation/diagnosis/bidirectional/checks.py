@@ -175,7 +175,7 @@ TOLERANCES = {
     "circle |F| = mu N": 1e-9,
     "circle EDC = mu N 2 pi A": 2e-3,
     "circle |F| elastic-plastic": 1e-9,
-    "smooth loading = tanh": 1e-4,
+    "smooth loading = tanh": 1e-3,
     "line = 1D truth (of mu N)": 1e-6,
     "line: no force across (of mu N)": 1e-9,
     "line with play = 1D (of mu N)": 1e-6,
