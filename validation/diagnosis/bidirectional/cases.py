@@ -6,13 +6,16 @@ effects and differ in their orbits, campaign and nuisance. Every case is made by
 bidirectional truth (:mod:`validation.diagnosis.bidirectional`); ``spec`` gives its bearing's
 parameters (``base``, always on, and ``effects``, switched on with each labelled effect).
 
-Nuisance, never labelled, varied over the cases: sampling 100-500 Hz; force noise 0.4-1.5 % of
-mu0 W, white, AR(1) (rho 0.8-0.95) or band-limited; displacement noise 0.01-0.04 mm; 16-bit
+Nuisance, never labelled, varied over the cases: sampling 100-500 Hz; force noise 0.5-1.2 % of
+mu0 W, white, AR(1) (rho 0.8-0.9) or band-limited; displacement noise 0.02 mm; 16-bit
 converters (force over +-1.5 MN, displacement over +-0.5 m) or none; spikes of 30 % of the RMS
-force on a few samples; a force channel stuck for 10-25 samples; a gain error of 2-3 % on one
+force on a few samples; a force channel stuck for 20 samples; a gain error of 2-3 % on one
 axis's force or displacement channel; actuators following their command through a
 second-order filter of 8-25 Hz; a force-channel lag up to 1.5 samples; the transition
-(rigid-plastic, elastic-plastic 0.3-1.5 mm, smooth).
+(rigid-plastic, elastic-plastic 0.5-1 mm, smooth 0.5-1 mm).
+
+The designs keep |u| / R below mu0 where there is a play (peak |u| 0.17 m at R 4.5 m), so that
+the bearing stands still in the gap, as the truth assumes.
 """
 
 from __future__ import annotations
