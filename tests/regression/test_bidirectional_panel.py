@@ -18,6 +18,7 @@ import csv
 import functools
 import gzip
 import json
+import math
 from pathlib import Path
 
 import numpy as np
@@ -157,6 +158,22 @@ def test_the_measurement_is_the_truth_plus_its_nuisance():
     lsb = 2.0 * 1.5e6 / 2**16
     assert np.allclose(out["force_x"] / lsb, np.round(out["force_x"] / lsb))
     assert np.max(np.abs(out["displacement_x"] - clean["displacement"][:, 0])) < 2e-4
+
+
+def test_the_orbits_start_and_end_at_rest():
+    from validation.diagnosis.bidirectional.orbits import ground_pair
+
+    assert "synthetic" in ground_pair("NO-SUCH-PAIR")[2]  # the fallback without shared data
+    for orbit in (bi.circular(0.1, 2.0, 2), bi.square(0.1, 0.2, 1),
+                  bi.earthquake("NO-SUCH-PAIR", 0.2), bi.earthquake("TAP094", 0.15)):
+        t = np.arange(0.0, orbit.duration, 0.002)
+        u, v = orbit.displacement(t), orbit.velocity(t)
+        assert np.allclose(u[0], 0.0) and np.max(np.abs(u[-1])) < 1e-3
+        du = np.gradient(u, t, axis=0)  # the velocity is the displacement's derivative
+        off = np.max(np.abs(du - v), axis=1) > 0.02 * np.max(np.abs(v))
+        assert np.mean(off) < 0.01  # (a square's corners: a sample each)
+    assert math.isclose(np.max(np.hypot(*bi.earthquake("TAP094", 0.15).displacement(
+        np.arange(0.0, 20.0, 0.005)).T)), 0.15, rel_tol=0.01)
 
 
 def test_the_panel_is_reproducible(tmp_path, panel):

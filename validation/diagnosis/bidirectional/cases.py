@@ -14,8 +14,10 @@ axis's force or displacement channel; actuators following their command through 
 second-order filter of 8-25 Hz; a force-channel lag up to 1.5 samples; the transition
 (rigid-plastic, elastic-plastic 0.5-1 mm, smooth 0.5-1 mm).
 
-The designs keep |u| / R below mu0 where there is a play (peak |u| 0.17 m at R 4.5 m), so that
-the bearing stands still in the gap, as the truth assumes.
+Where there is a play the truth assumes that the bearing stands still in an open gap (its
+static friction, taken as mu0, holds it against the restoring force): the designs keep |u| / R
+below mu0 there (peak |u| 0.16 m at R 4.5 m). With a speed law beside the play (B14) the
+sliding friction at low speed is lower than that; the assumption is kept.
 """
 
 from __future__ import annotations
