@@ -4,7 +4,7 @@ Part of the bidirectional truth (:mod:`validation.diagnosis.bidirectional`); num
 standard library only. An orbit is the actuators' commanded relative displacement (x, y) [m]
 as a function of time, with its velocity, for t >= 0; it starts at rest at the origin.
 
-- ``circular(A, T, cycles)``: u = A s(t) (sin wt, cos wt - ...) with a one-period ramp of the
+- ``circular(A, T, cycles)``: u = A s(t) (sin wt, cos wt) with a one-period ramp of the
   radius at the start and the end, s(t) = (1 - cos(pi t / T)) / 2, so that the constant-speed
   circle A w lies between;
 - ``figure_eight(A, B, T, cycles)``: the Lissajous orbit (A sin wt, B sin 2wt);
