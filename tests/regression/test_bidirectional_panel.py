@@ -210,6 +210,37 @@ def test_the_scorer_rules_apply_to_bidirectional_verdicts():
     assert scorer.named(["lag", "unexplained"]) == {"lag"}
 
 
+class _Stub2D:
+    """What the scorer uses of a diagnosis in two directions: its verdict and summary."""
+
+    def __init__(self, verdict: list[str], before: float, after: float | None) -> None:
+        self.verdict = verdict
+        self._summary = {"gap": {"value": before, "noise": 0.01},
+                         "chosen": None if after is None else
+                         {"gap_after": after, "shrink": 1.0 - after / before}}
+
+    def to_json(self) -> dict:
+        return self._summary
+
+
+def test_the_scorer_rows_read_a_two_direction_summary():
+    labels = {"case_01": {"effects": ["backlash"], "truth": "", "source": "bidirectional",
+                          "half": "test"},
+              "case_02": {"effects": [], "truth": "", "source": "bidirectional",
+                          "half": "test"}}
+    diagnoses = {"case_01": (_Stub2D(["backlash", "unexplained"], 0.2, 0.05), 1.0),
+                 "case_02": (_Stub2D(["lag"], 0.03, 0.02), 1.0)}
+    rows = scorer.score(diagnoses, labels)
+    assert rows[0]["right"] and rows[0]["gap_before"] == 0.2 and rows[0]["gap_after"] == 0.05
+    assert math.isclose(rows[0]["shrink"], 0.75)
+    assert rows[0]["loo"] == [{"withheld": "backlash", "verdict": None, "right": None}]
+    assert rows[1]["false_names"] == ["lag"] and not rows[1]["right"]
+    figures = scorer.summarize(rows)
+    assert figures["right_count"] == 1 and figures["false_names_in_no_effect_cases"] == 1
+    assert figures["loo_runs"] == 0
+    assert "-backlash: not run" in scorer.markdown(rows, figures, "test")
+
+
 def test_the_diagnosis_reads_a_bidirectional_case(panel):
     """Through the same entry points as in one direction (skips until the diagnosis reads
     two-direction tests)."""

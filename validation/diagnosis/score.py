@@ -19,7 +19,8 @@ case is withheld from the library in turn; the run is right when its verdict say
 ``--panel bidirectional`` first writes that half of the bidirectional panel
 (:mod:`validation.diagnosis.bidirectional`, two-direction tests) to FOLDER or a temporary
 folder; its cases are then diagnosed like the others, through ``load_campaign`` /
-``load_manifest`` and ``diagnose``.
+``load_manifest`` and ``diagnose``. A diagnosis in two directions has no reselection
+without a refit, so its leave-one-effect-out runs are reported as not run.
 """
 
 from __future__ import annotations
@@ -104,9 +105,12 @@ def score(diagnoses: dict[str, tuple[Diagnosis, float]], labels: dict,
                "source": labels[name].get("source"), "verdict": list(d.verdict),
                "right": exactly_right(d.verdict, truth),
                "false_names": sorted(named(d.verdict) - set(truth)),
-               "gap_before": d.gap_before, "gap_after": d.gap_after, "noise": d.noise_nrmse,
+               **_gaps(d, summary),
                "shrink": chosen["shrink"] if chosen else 0.0, "seconds": seconds, "loo": []}
         for effect in truth:
+            if not hasattr(d, "selection"):  # two directions: no reselection without a refit
+                row["loo"].append({"withheld": effect, "verdict": None, "right": None})
+                continue
             loo = reselect(d, (effect,), thresholds)
             row["loo"].append({"withheld": effect, "verdict": list(loo.verdict),
                                "right": ("unexplained" in loo.verdict
@@ -115,11 +119,21 @@ def score(diagnoses: dict[str, tuple[Diagnosis, float]], labels: dict,
     return rows
 
 
+def _gaps(d, summary: dict) -> dict:
+    """The force NRMSE before and after and the noise's: the attributes of a diagnosis in one
+    direction, else the summary's ``gap`` and ``chosen`` (a diagnosis in two directions)."""
+    if hasattr(d, "gap_before"):
+        return {"gap_before": d.gap_before, "gap_after": d.gap_after, "noise": d.noise_nrmse}
+    gap, chosen = summary["gap"], summary["chosen"]
+    return {"gap_before": gap["value"], "gap_after": chosen["gap_after"] if chosen else
+            gap["value"], "noise": gap["noise"]}
+
+
 def summarize(rows: list[dict]) -> dict:
     """The panel's figures: share exactly right, false names, leave-one-out, shrink."""
     labelled = [r for r in rows if r["effects"]]
     nothing = [r for r in rows if not r["effects"]]
-    loo = [x for r in rows for x in r["loo"]]
+    loo = [x for r in rows for x in r["loo"] if x["right"] is not None]
     return {
         "cases": len(rows),
         "exactly_right": float(np.mean([r["right"] for r in rows])) if rows else float("nan"),
@@ -151,7 +165,8 @@ def markdown(rows: list[dict], figures: dict, half: str) -> str:
              "| case | source | truth | verdict | right | shrink | leave-one-out |",
              "|---|---|---|---|---|---|---|"]
     for r in rows:
-        loo = "; ".join(f"-{x['withheld']}: {', '.join(x['verdict'])}"
+        loo = "; ".join(f"-{x['withheld']}: not run" if x["verdict"] is None else
+                        f"-{x['withheld']}: {', '.join(x['verdict'])}"
                         + ("" if x["right"] else " (wrong)") for x in r["loo"])
         lines.append(f"| {r['case']} | {r['source']} | {', '.join(r['effects']) or 'none'} | "
                      f"{', '.join(r['verdict'])} | {'yes' if r['right'] else 'NO'} | "
