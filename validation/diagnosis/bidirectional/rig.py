@@ -15,9 +15,11 @@ the axial load N(t); a two-axis load cell measures the horizontal force.
 - **Play per axis** (the effect ``backlash``) of total width b_x, b_y between the actuators and
   the bearing: on each axis the bearing follows the actuator only when that axis's gap is
   closed, |u_a - u_b| <= b / 2 per axis; an open axis stands still and its load cell reads 0.
-  When an axis closes again, that component of z restarts from the value that gives a zero
-  force on that axis (clipped to keep |z| <= 1), and the force rebuilds through the
-  transition. Each test starts with the gaps centred. The bearing's velocity is the
+  An open axis carries no load, so the friction's component on it balances the restoring
+  force there: z_j = -F_r,j / (mu N) (the other component then kept within |z| <= 1, so
+  that the friction on the loaded axis feels the static friction on the open one). When the
+  axis closes again the force on it rebuilds from zero through the transition, as in one
+  direction. Each test starts with the gaps centred. The bearing's velocity is the
   actuator's on each axis that moved during the step, 0 on an axis that stood still.
 - **Lag** of the force channels (the effect ``lag`` from 5 samples, a nuisance below 1.5):
   the bearing is simulated on the sample times shifted by -tau, so a fractional lag is exact;
@@ -159,7 +161,6 @@ def _run_test(bearing: Bearing2D, test: Test2D, k: int, rig: Rig,
            "engaged": np.zeros((n, 2)), "speed": np.zeros(n)}
     ub = np.zeros(2)
     z = np.zeros(2)
-    was = half == 0.0  # per axis, touching at the previous sample (a play starts centred)
     mu_previous = bearing.mu0
     for i in range(n):
         a = ua[i]
@@ -201,14 +202,13 @@ def _run_test(bearing: Bearing2D, test: Test2D, k: int, rig: Rig,
         if bearing.wear is not None:
             mu *= bearing.wear.factor(k, travel)
         restoring_new = restoring_force(bearing, new, load)
-        for j in range(2):  # an axis closing again restarts its force from zero
-            if touching[j] and not was[j]:
-                z[j] = -restoring_new[j] / (mu * load)
-                size = math.hypot(z[0], z[1])
-                if size > 1.0:
-                    z[j] = math.copysign(math.sqrt(max(1.0 - z[1 - j] ** 2, 0.0)), z[j])
-        was = touching
         z = transition_step(bearing.transition, z, du, u_y)
+        for j in range(2):  # an open axis carries no load: friction balances F_r on it
+            if not touching[j]:
+                z[j] = max(-1.0, min(1.0, -restoring_new[j] / (mu * load)))
+                other = z[1 - j]
+                if z[j] * z[j] + other * other > 1.0:
+                    z[1 - j] = math.copysign(math.sqrt(max(1.0 - z[j] * z[j], 0.0)), other)
         ub = new
         force = restoring_new + mu * load * z
         out["force"][i] = np.where(touching, force, 0.0)
