@@ -14,6 +14,13 @@ case is withheld from the library in turn; the run is right when its verdict say
 ``unexplained`` and names no effect the truth does not have.
 
     python -m validation.diagnosis.score PANEL [--half test] [--markdown FILE]
+    python -m validation.diagnosis.score --panel bidirectional [FOLDER] [--half test]
+
+``--panel bidirectional`` first writes that half of the bidirectional panel
+(:mod:`validation.diagnosis.bidirectional`, two-direction tests) to FOLDER or a temporary
+folder; its cases are then diagnosed like the others, through ``load_campaign`` /
+``load_manifest`` and ``diagnose``. A diagnosis in two directions has no reselection
+without a refit, so its leave-one-effect-out runs are reported as not run.
 """
 
 from __future__ import annotations
@@ -98,9 +105,12 @@ def score(diagnoses: dict[str, tuple[Diagnosis, float]], labels: dict,
                "source": labels[name].get("source"), "verdict": list(d.verdict),
                "right": exactly_right(d.verdict, truth),
                "false_names": sorted(named(d.verdict) - set(truth)),
-               "gap_before": d.gap_before, "gap_after": d.gap_after, "noise": d.noise_nrmse,
+               **_gaps(d, summary),
                "shrink": chosen["shrink"] if chosen else 0.0, "seconds": seconds, "loo": []}
         for effect in truth:
+            if not hasattr(d, "selection"):  # two directions: no reselection without a refit
+                row["loo"].append({"withheld": effect, "verdict": None, "right": None})
+                continue
             loo = reselect(d, (effect,), thresholds)
             row["loo"].append({"withheld": effect, "verdict": list(loo.verdict),
                                "right": ("unexplained" in loo.verdict
@@ -109,11 +119,21 @@ def score(diagnoses: dict[str, tuple[Diagnosis, float]], labels: dict,
     return rows
 
 
+def _gaps(d, summary: dict) -> dict:
+    """The force NRMSE before and after and the noise's: the attributes of a diagnosis in one
+    direction, else the summary's ``gap`` and ``chosen`` (a diagnosis in two directions)."""
+    if hasattr(d, "gap_before"):
+        return {"gap_before": d.gap_before, "gap_after": d.gap_after, "noise": d.noise_nrmse}
+    gap, chosen = summary["gap"], summary["chosen"]
+    return {"gap_before": gap["value"], "gap_after": chosen["gap_after"] if chosen else
+            gap["value"], "noise": gap["noise"]}
+
+
 def summarize(rows: list[dict]) -> dict:
     """The panel's figures: share exactly right, false names, leave-one-out, shrink."""
     labelled = [r for r in rows if r["effects"]]
     nothing = [r for r in rows if not r["effects"]]
-    loo = [x for r in rows for x in r["loo"]]
+    loo = [x for r in rows for x in r["loo"] if x["right"] is not None]
     return {
         "cases": len(rows),
         "exactly_right": float(np.mean([r["right"] for r in rows])) if rows else float("nan"),
@@ -145,7 +165,8 @@ def markdown(rows: list[dict], figures: dict, half: str) -> str:
              "| case | source | truth | verdict | right | shrink | leave-one-out |",
              "|---|---|---|---|---|---|---|"]
     for r in rows:
-        loo = "; ".join(f"-{x['withheld']}: {', '.join(x['verdict'])}"
+        loo = "; ".join(f"-{x['withheld']}: not run" if x["verdict"] is None else
+                        f"-{x['withheld']}: {', '.join(x['verdict'])}"
                         + ("" if x["right"] else " (wrong)") for x in r["loo"])
         lines.append(f"| {r['case']} | {r['source']} | {', '.join(r['effects']) or 'none'} | "
                      f"{', '.join(r['verdict'])} | {'yes' if r['right'] else 'NO'} | "
@@ -153,14 +174,39 @@ def markdown(rows: list[dict], figures: dict, half: str) -> str:
     return "\n".join(lines) + "\n"
 
 
+def write_bidirectional(folder: str | Path | None, seed: int, half: str | None) -> Path:
+    """Write the bidirectional panel's ``half`` (None: both) to ``folder`` (None: a new
+    temporary folder) with the seed ``seed``; return the folder. The cases are read back
+    through the same entry points as in one direction (:func:`load_case`)."""
+    import tempfile
+
+    from validation.diagnosis.bidirectional import write_panel
+
+    folder = Path(folder) if folder else Path(tempfile.mkdtemp(prefix="bidirectional_panel_"))
+    write_panel(folder, seed=seed, half=half)
+    print(f"bidirectional panel (seed {seed}, half {half or 'all'}) written to {folder}",
+          flush=True)
+    return folder
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("panel", help="panel folder (validation.diagnosis.tuning or .outside)")
+    parser.add_argument("panel", nargs="?", metavar="FOLDER",
+                        help="panel folder (validation.diagnosis.tuning, .outside or "
+                             ".bidirectional); with --panel, where to write it (default: a "
+                             "temporary folder)")
+    parser.add_argument("--panel", dest="write", choices=("bidirectional",),
+                        help="write this panel's half first (seed --seed), then score it")
+    parser.add_argument("--seed", type=int, default=2026, help="seed of a panel written here")
     parser.add_argument("--half", default="test", choices=[*HALVES, "all"])
     parser.add_argument("--markdown", help="write the table here")
     parser.add_argument("--json", help="write the rows and figures here")
     args = parser.parse_args(argv)
     half = None if args.half == "all" else args.half
+    if args.write:
+        args.panel = write_bidirectional(args.panel, args.seed, half)
+    elif args.panel is None:
+        parser.error("give a panel FOLDER, or --panel bidirectional to write one")
     names = case_names(args.panel, half)
     diagnoses = diagnose_cases(args.panel, names, progress=True)
     labels = json.loads((Path(args.panel) / "labels.json").read_text())  # after diagnosing
