@@ -128,6 +128,21 @@ def _print(summary: dict) -> None:
     if lag:
         print(f"channel lag: {1e3 * lag['seconds']:.3g} ms ({lag['samples']:.2f} samples)"
               + (" - named" if lag["named"] else " - calibrated in the baseline"))
+    nuisance = summary.get("nuisance")
+    if nuisance:
+        uy, lg = nuisance["yield_displacement"], nuisance["lag"]
+        edge = {"top": " - AT THE TOP OF ITS RANGE (a finding, not a calibration)"}
+        lead = {"lead": " - AT ITS EDGE, force leading", "late": " - AT ITS EDGE, force late"}
+        print(f"nuisance: u_y {1e3 * uy['value']:.3g} mm in {1e3 * uy['range'][0]:.3g}-"
+              f"{1e3 * uy['range'][1]:.3g} mm{edge.get(uy['at_edge'], '')}; lag "
+              f"{lg['samples']:.2f} samples in +-{lg['range_samples'][1]:g}"
+              f"{lead.get(lg['at_edge'], '')}")
+        cand = nuisance.get("lag_candidate")
+        if cand and cand.get("per_test_samples"):
+            print("lag fitted test by test: "
+                  + ", ".join(f"{x:.1f}" for x in cand["per_test_samples"])
+                  + f" samples (a channel lag is one for all tests, force late, at most "
+                  f"{1e3 * lg['plausible_max']:.0f} ms)")
     print(f"{'effect':11s} {'NRMSE':>8s} {'shrink':>7s} {'z':>6s}  role")
     for e in summary["effects"]:
         if e.get("gap_after") is not None:
@@ -144,6 +159,7 @@ def _print(summary: dict) -> None:
             if value is not None:
                 print(f"confidence in {name}: {100 * value:.0f} % of block resamples")
     if summary["unexplained"]:
+        print(f"unexplained: {summary['unexplained']['statement']}")
         for text in summary["unexplained"]["looks_like"]:
             print(f"unexplained: looks like {text}")
     for path in summary.get("report", []):
