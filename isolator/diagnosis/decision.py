@@ -16,7 +16,10 @@
 When neither stage names anything on its own (a play can hide a friction law and the law the
 play), each kinematic candidate that closes its share on every sample but misses the z
 threshold is tried *provisionally*: the friction law is selected with it applied, and the play
-or lag is judged again beside the law so found; both are named only if both earn their keep.
+or lag is judged again beside the law so found; both are named only if both earn their keep
+(the play beside the law by the ``kinematic_*`` thresholds, or the pair as one by
+``kinematic_z`` over the baseline with the play still closing ``kinematic_explained`` of what
+the law leaves, as stage 2 judges a pair).
 
 A lag is named only as a channel can have it: the force recorded *after* the displacement
 (a force leading the displacement is a speed effect's phase, not a channel), by at most
@@ -54,6 +57,7 @@ from isolator.diagnosis.selection import (
     Stage,
     Workspace,
     assess,
+    improvement,
     on_samples,
     qualifies,
     untestable,
@@ -200,6 +204,26 @@ class Problem:
                 out.append(a)
         return sorted(out, key=lambda a: a.weighted)
 
+    def _jointly(self, candidate: Assessment, law: tuple[Effect, ...],
+                 th: Thresholds) -> Assessment | None:
+        """``candidate`` (one kinematic effect) when, as a pair with the friction-law effects
+        ``law``, it earns its keep over the baseline on every sample by ``kinematic_z`` (a pair
+        is judged as one, as in stage 2) and, beside the law, still closes its share
+        (``kinematic_explained``) by a practical force (``kinematic_practical``)."""
+        key = ("law", *(e.name for e in law))
+        if key not in self.all.cache:
+            self.all.cache[key] = assess(self.all, Model(law), None)
+        current = self.all.cache[key]
+        judged = self._extended(self.all, current, (candidate,))
+        z, _ = improvement(self.all, self.all_baseline, judged)
+        _, beside = improvement(self.all, current, judged)
+        size = self.all.gain_rms(current.prediction, judged.prediction)
+        if (z >= th.kinematic_z and beside >= th.kinematic_explained
+                and size >= th.kinematic_practical and self._kinematic_size_ok(judged, th)
+                and plausible(judged, len(current.model.effects))):
+            return candidate
+        return None
+
     def _stage_one(self, exclude: tuple[str, ...], th: Thresholds,
                    law: tuple[Effect, ...] = ()) -> Assessment | None:
         """The kinematic effects that earn their keep on every sample, over the baseline
@@ -322,8 +346,13 @@ class Problem:
             # a play and a friction law hiding each other: the law found with the play
             # applied provisionally, then the play judged again beside that law
             for candidate in self._provisional(exclude, th):
-                _, _, _, _, law_model, law_named, _ = self._pass(candidate, exclude, th,
-                                                                 retry=False)
+                _, st, _, _, law_model, law_named, _ = self._pass(candidate, exclude, th,
+                                                                  retry=False)
+                excess = st.baseline.weighted - st.work.weighted_noise
+                closed = ((st.baseline.weighted - law_model.weighted) / excess
+                          if excess > 0.0 else 0.0)
+                if closed < th.name_min:  # no nameable law hid it
+                    continue
                 law = tuple(e for e in law_model.model.effects
                             if e.name in law_named and e.acts_on not in ("kinematics",))
                 law = tuple(e for e in law if e.name != "timing")
@@ -331,6 +360,8 @@ class Problem:
                     continue
                 st = self.stage(candidate)
                 again = self._stage_one(exclude, th, _own_forms(law, st.singles))
+                if again is None:
+                    again = self._jointly(candidate, _own_forms(law, st.singles), th)
                 if again is None:
                     continue
                 kinematic = again

@@ -193,10 +193,9 @@ CASES: tuple[Case, ...] = (
          independent, dt=0.005, noise=0.006,
          options={"backlash": 0.002, "transition": "smooth", "u_y": 4e-4}),
     Case(("backlash", "heating"), "test", "independent", "3 mm play and temperature "
-         "dependence, rigid-plastic, 500 Hz, lag 1 sample", (Test(0.2, 3.0, 3),
-                                                             Test(0.15, 2.5, 4, rest=600.0)),
-         independent, dt=0.002, lag_samples=1.0,
-         options={"backlash": 0.003, "transition": "rigid-plastic"}),
+         "dependence, rigid-plastic, 500 Hz", (Test(0.2, 3.0, 3),
+                                               Test(0.15, 2.5, 4, rest=600.0)),
+         independent, dt=0.002, options={"backlash": 0.003, "transition": "rigid-plastic"}),
     # no effect: noise plus a drift of the force zero (what a hint must not call a finding)
     Case((), "tune", "independent", "constant friction, white noise and a drift of the force "
          "zero of 0.4 % of mu W", (Test(0.15, 2.5, 3), Test(0.2, 3.0, 3)), independent,
