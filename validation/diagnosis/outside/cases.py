@@ -422,6 +422,13 @@ CASES: tuple[Case, ...] = (
 )
 
 
+ISSUE21_PAIRS = ("P25", "P26", "P27", "P28", "P29", "P30", "P31", "P32", "P33", "P34")
+"""The pairs of issue 21's four kinds (a play a nuisance could swallow, a speed effect at
+several periods, residual inside the transition windows, a play beside heating; noise and a
+drift with no effect)."""
+ISSUE21_TRUTHS = frozenset(c.truth for c in CASES if c.pair in ISSUE21_PAIRS)
+
+
 def check_design(cases: tuple[Case, ...] = CASES) -> None:
     """Raise ValueError unless every pair has one tune and one test case with the same known
     effects, and every case's source and sample count are admissible."""

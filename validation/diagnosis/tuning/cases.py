@@ -18,6 +18,7 @@ __all__ = [
     "DAMPER",
     "EXP_VELOCITY",
     "HEAT_SET",
+    "ISSUE21_TRUTHS",
     "ONE",
     "PAIR",
     "PRESSURE_SET",
@@ -211,3 +212,6 @@ CASES: tuple[Case, ...] = (
          independent, dt=0.002, noise=0.012, drift=0.003,
          options={"transition": "rigid-plastic"}),
 )
+
+ISSUE21_TRUTHS = frozenset(c.truth for c in CASES[42:])
+"""The 16 cases of issue 21's four kinds (the last 8 pairs)."""
