@@ -185,7 +185,8 @@ class Problem:
         score, excess = self.window_statistics(prediction)
         return score >= th.transition_score and excess >= th.transition_practical
 
-    def _full_force(self, chosen: Assessment) -> np.ndarray:
+    def full_force(self, chosen: Assessment) -> np.ndarray:
+        """The force of ``chosen`` (fitted on the sliding phase) at every sample [N]."""
         key = ("full", *chosen.model.names, *map(float, chosen.fit.theta))
         if key not in self.all.cache:
             self.all.cache[key] = chosen.model.force(chosen.fit.theta, self.features,
@@ -382,7 +383,7 @@ class Problem:
         chosen = current if (named or kin_names) else None
         # the materiality rule covers the whole test: the transition windows too
         reference = (self.all_baseline.prediction if chosen is None
-                     else self._full_force(chosen))
+                     else self.full_force(chosen))
         if self.transition_gap(reference, th):
             findings.append("transition")
         if self.edges.get("yield_displacement") == "top" and "backlash" not in kin_names:

@@ -158,12 +158,18 @@ def _gap_statement(d: Diagnosis) -> str:
         parts.append(d.remaining.statement)
     t = d.transition
     if "transition" in findings and t is not None:
+        chosen = d.selection.chosen
+        left = (d.problem.all_baseline.prediction if chosen is None
+                else d.problem.full_force(chosen))
+        score, excess = d.problem.window_statistics(left)
+        what = "the baseline" if chosen is None else "the named effects"
         parts.append(f"Inside the transition windows after the reversals "
                      f"({1e3 * t.window_travel:.3g} mm or {t.window_samples} samples, "
-                     f"{100 * t.sample_share:.0f} % of the samples) the residual is far above "
-                     f"the noise ({math.sqrt(t.score):.3g} x its RMS, "
-                     f"{100 * t.energy_share:.0f} % of the residual energy): a play, a softer or "
-                     f"slower transition or a breakaway the candidates do not capture.")
+                     f"{100 * t.sample_share:.0f} % of the samples) the residual {what} leave "
+                     f"is far above the noise ({math.sqrt(score):.3g} x its RMS there, an "
+                     f"excess of {100 * excess:.2g} % of the RMS force over the whole test): a "
+                     f"play, a softer or slower transition or a breakaway the candidates do not "
+                     f"capture.")
     for f in findings:
         if f.startswith("yield_displacement"):
             top = d.baseline.yield_range[1]
