@@ -6,9 +6,10 @@ the paper, OpenSees elements, the package's own element) with the labels kept ap
 data (``labels.json``, read only by the scorer, after diagnosing):
 
 - the **tuning panel** (``validation/diagnosis/tuning/`` with its ``truths.py``): 58 cases
-  in 29 tune/test pairs (the last 8 pairs: issue 21's four kinds). The thresholds in ``isolator/diagnosis/thresholds.json`` were chosen
-  on its tune half (seed 2026) by ``validation/diagnosis/tune.py``; its test half is scored
-  here with fresh noise (seed 2028), never seen by the tuning;
+  in 29 tune/test pairs (the last 8 pairs: issue 21's four kinds). The thresholds in
+  ``isolator/diagnosis/thresholds.json`` were chosen on its tune half (seed 2026) by
+  ``validation/diagnosis/tune.py``; its test half is scored here with fresh noise (seed
+  2028), never seen by the tuning;
 - the **outside panel** (``validation/diagnosis/outside/`` with ``independent/``):
   68 cases designed and written separately (P25-P34: issue 21's four kinds), never used to
   choose anything; its test half (34 cases) is scored here.
