@@ -124,6 +124,11 @@ def _print(summary: dict) -> None:
     print(f"where: {summary['where']['statement']}")
     if summary.get("transition"):
         print(f"transition: {summary['transition']['statement']}")
+        after = summary["transition"].get("after_named")
+        if after and after["far_above_noise"]:
+            print(f"transition, with the named effects: still {after['score'] ** 0.5:.3g} x "
+                  f"the noise there (an excess of {100 * after['excess']:.2g} % of the RMS "
+                  f"force over the whole test)")
     lag = summary.get("lag")
     if lag:
         print(f"channel lag: {1e3 * lag['seconds']:.3g} ms ({lag['samples']:.2f} samples)"

@@ -96,7 +96,20 @@ def _transition(d: Diagnosis) -> dict | None:
             "window_samples": t.window_samples, "sample_share": t.sample_share,
             "energy_share": t.energy_share, "rms": t.rms, "relative_rms": t.relative_rms,
             "sliding_rms": t.sliding_rms, "score": _number(t.score), "excess": t.excess,
-            "gap": "transition" in d.selection.findings}
+            "gap": "transition" in d.selection.findings, "after_named": _after_named(d)}
+
+
+def _after_named(d: Diagnosis) -> dict | None:
+    """What the transition windows still hold once the named effects are applied (u_y refitted
+    to them): reported, not part of the verdict."""
+    chosen = d.selection.chosen
+    if chosen is None:
+        return None
+    th = d.selection.thresholds
+    score, excess = d.problem.window_after(chosen)
+    return {"score": _number(score), "excess": excess,
+            "far_above_noise": bool(score >= th.transition_score
+                                    and excess >= th.transition_practical)}
 
 
 def _nuisance(d: Diagnosis) -> dict:
@@ -159,9 +172,8 @@ def _gap_statement(d: Diagnosis) -> str:
     t = d.transition
     if "transition" in findings and t is not None:
         chosen = d.selection.chosen
-        left = (d.problem.all_baseline.prediction if chosen is None
-                else d.problem.full_force(chosen))
-        score, excess = d.problem.window_statistics(left)
+        score, excess = (d.problem.window_statistics(d.problem.all_baseline.prediction)
+                         if chosen is None else d.problem.window_after(chosen))
         what = "the baseline" if chosen is None else "the named effects"
         parts.append(f"Inside the transition windows after the reversals "
                      f"({1e3 * t.window_travel:.3g} mm or {t.window_samples} samples, "

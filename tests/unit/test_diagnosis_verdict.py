@@ -3,7 +3,7 @@ finding, a lag is named only as a channel can have it, and a residual far above 
 inside the transition windows is never ``none``.
 
 Synthetic campaigns from closed forms (F = N u / R + mu N z with z from the return map), so
-the answer is known; about 10 s in all.
+the answer is known; about 5 s in all.
 """
 
 from __future__ import annotations
