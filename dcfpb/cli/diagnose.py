@@ -170,12 +170,32 @@ def _lines(summary: dict) -> list[str]:
     if summary.get("transition"):
         label = "direction changes" if two else "transition"
         emit(f"{label}: {summary['transition']['statement']}")
+        after = summary["transition"].get("after_named")
+        if after and after["far_above_noise"]:
+            emit(f"{label}, with the named effects: still {after['score'] ** 0.5:.3g} x "
+                 f"the noise there (an excess of {100 * after['excess']:.2g} % of the RMS "
+                 f"force over the whole test)")
     for note in summary.get("baseline_notes", []):
         emit(f"baseline: {note}")
     lag = summary.get("lag")
     if lag:
         emit(f"channel lag: {1e3 * lag['seconds']:.3g} ms ({lag['samples']:.2f} samples)"
               + (" - named" if lag["named"] else " - calibrated in the baseline"))
+    nuisance = summary.get("nuisance")
+    if nuisance:
+        uy, lg = nuisance["yield_displacement"], nuisance["lag"]
+        edge = {"top": " - AT THE TOP OF ITS RANGE (a finding, not a calibration)"}
+        lead = {"lead": " - AT ITS EDGE, force leading", "late": " - AT ITS EDGE, force late"}
+        emit(f"nuisance: u_y {1e3 * uy['value']:.3g} mm in {1e3 * uy['range'][0]:.3g}-"
+              f"{1e3 * uy['range'][1]:.3g} mm{edge.get(uy['at_edge'], '')}; lag "
+              f"{lg['samples']:.2f} samples in +-{lg['range_samples'][1]:g}"
+              f"{lead.get(lg['at_edge'], '')}")
+        cand = nuisance.get("lag_candidate")
+        if cand and cand.get("per_test_samples"):
+            emit("lag fitted test by test: "
+                  + ", ".join(f"{x:.1f}" for x in cand["per_test_samples"])
+                  + f" samples (a channel lag is one for all tests, force late, at most "
+                  f"{1e3 * lg['plausible_max']:.0f} ms)")
     emit(f"{'effect':11s} {'NRMSE':>8s} {'shrink':>7s} {'z':>6s}  role")
     for e in summary["effects"]:
         if e.get("gap_after") is not None:
@@ -203,8 +223,7 @@ def _lines(summary: dict) -> list[str]:
             if note not in summary.get("baseline_notes", []):
                 emit(f"note: {note}")
     if summary["unexplained"]:
-        if two:
-            emit(f"unexplained: {summary['unexplained']['statement']}")
+        emit(f"unexplained: {summary['unexplained']['statement']}")
         for text in summary["unexplained"]["looks_like"]:
             emit(f"unexplained: looks like {text}")
     for path in summary.get("report", []):

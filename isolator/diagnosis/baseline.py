@@ -137,6 +137,28 @@ class BaselineFit:
     iterations: int
     lag: float = 0.0
     sample_interval: float = 0.01
+    yield_range: tuple[float, float] = (RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_MAX)
+
+
+EDGE_TOLERANCE = 0.03  # a nuisance within 3 % of its range's end (in log u_y, in samples) is at it
+
+
+def nuisance_edges(fit: BaselineFit) -> dict[str, str]:
+    """The baseline's nuisance parameters fitted at an edge of their range: a finding, not a
+    calibration. ``{"yield_displacement": "top"}`` when u_y sits at the top of its grid (a play
+    or a soft transition it may stand in for; its bottom is the rigid-plastic limit, a physical
+    reading) and ``{"lag": "lead" | "late"}`` when the channel offset sits at
+    +-``NUISANCE_LAG_SAMPLES`` (``lead``: the force leads the displacement)."""
+    edges: dict[str, str] = {}
+    if fit.spec.yield_displacement is None:
+        low, high = (np.log10(x) for x in fit.yield_range)
+        value = np.log10(fit.parameters["yield_displacement"])
+        if high > low and value >= high - EDGE_TOLERANCE * (high - low):
+            edges["yield_displacement"] = "top"
+    samples = fit.lag / fit.sample_interval if fit.sample_interval else 0.0
+    if abs(samples) >= (1.0 - EDGE_TOLERANCE) * NUISANCE_LAG_SAMPLES:
+        edges["lag"] = "late" if samples > 0.0 else "lead"
+    return edges
 
 
 def calibrate(campaign: Campaign, features: Features, spec: BaselineSpec) -> BaselineFit:
@@ -178,7 +200,7 @@ def calibrate(campaign: Campaign, features: Features, spec: BaselineSpec) -> Bas
                                        thermal)
     return BaselineFit(spec, {name: float(mu_t0), "yield_displacement": float(u_y)},
                        with_baseline(done, temperature_rise=line, centre_rise=centre),
-                       iterations, lag, dt)
+                       iterations, lag, dt, _yield_range(moved))
 
 
 def _shifted_features(features: Features, lag: float) -> Features:
@@ -230,6 +252,17 @@ def _scale_fit(target: np.ndarray, regressor: np.ndarray) -> tuple[float, float]
     return factor, float(np.dot(residual, residual))
 
 
+def _yield_range(features: Features) -> tuple[float, float]:
+    """The range of the u_y grid for these features [m] (its top: a quarter of the stroke)."""
+    grid = _yield_grid(features)
+    return float(grid[0]), float(grid[-1])
+
+
+def _yield_grid(features: Features) -> np.ndarray:
+    stroke = float(np.percentile(np.abs(features.displacement), 99))
+    return _YIELD_GRID[max(0.25 * stroke, _YIELD_GRID[1]) >= _YIELD_GRID]
+
+
 def _fit_yield_and_scale(
     features: Features, target: np.ndarray, shape: np.ndarray, fixed: float | None
 ) -> tuple[float, float, float]:
@@ -242,8 +275,7 @@ def _fit_yield_and_scale(
     if fixed is not None:
         u_y = float(fixed)
     else:
-        stroke = float(np.percentile(np.abs(features.displacement), 99))
-        grid = _YIELD_GRID[max(0.25 * stroke, _YIELD_GRID[1]) >= _YIELD_GRID]
+        grid = _yield_grid(features)
         logs = np.log10(grid)
         costs = [sse(x) for x in logs]
         i = int(np.argmin(costs))

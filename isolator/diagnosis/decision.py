@@ -13,9 +13,27 @@
    Effects fitted at a bound of a parameter are not named, nor effects that together close
    less than ``name_min`` of the excess.
 
-The verdict: ``["none"]`` when nothing is named and the sliding-phase gap is within the noise
-or practically negligible; the named effects, then ``"unexplained"`` when a real gap remains;
-``["unexplained"]`` when a real gap remains that no candidate closes.
+When neither stage names anything on its own (a play can hide a friction law and the law the
+play), each kinematic candidate that closes its share on every sample but misses the z
+threshold is tried *provisionally*: the friction law is selected with it applied, and the play
+or lag is judged again beside the law so found; both are named only if both earn their keep
+(the play beside the law by the ``kinematic_*`` thresholds, or the pair as one by
+``kinematic_z`` over the baseline with the play still closing ``kinematic_explained`` of what
+the law leaves, as stage 2 judges a pair).
+
+A lag is named only as a channel can have it: the force recorded *after* the displacement
+(a force leading the displacement is a speed effect's phase, not a channel), by at most
+``LAG_PLAUSIBLE_MAX`` seconds, and the same in every test of the campaign (a lag fitted test by
+test that differs by more than ``LAG_SPREAD`` samples, as a speed effect's apparent lag
+changes with the period and the amplitude, is not a channel lag).
+
+The verdict: ``["none"]`` when nothing is named, the sliding-phase gap is within the noise or
+practically negligible, the residual inside the transition windows is not far above the noise
+there (:attr:`Problem.transition_gap`) and no nuisance of the baseline sits at the edge of its
+range (u_y at the top of its grid: a play or a soft transition it may be standing in for);
+the named effects, then ``"unexplained"`` when a real gap remains in the sliding phase (or the
+u_y finding); ``["unexplained"]`` when a real gap remains that no candidate closes.
+``Selection.findings`` says where such a gap lies.
 """
 
 from __future__ import annotations
@@ -26,8 +44,9 @@ from itertools import combinations
 
 import numpy as np
 
+from isolator.diagnosis.baseline import RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_MAX
 from isolator.diagnosis.effects import Context, Effect
-from isolator.diagnosis.features import Features
+from isolator.diagnosis.features import Features, return_map, with_baseline
 from isolator.diagnosis.fitting import Fit, HoldOut, Model, fit, kinematic_change
 from isolator.diagnosis.flexible import direction, flexible
 from isolator.diagnosis.selection import (
@@ -39,12 +58,16 @@ from isolator.diagnosis.selection import (
     Stage,
     Workspace,
     assess,
+    improvement,
     on_samples,
     qualifies,
     untestable,
 )
 from isolator.diagnosis.thresholds import Thresholds
 from isolator.diagnosis.transition import TIMING, in_transition
+
+LAG_PLAUSIBLE_MAX = 0.1  # [s] the largest lag a laboratory channel can plausibly have
+LAG_SPREAD = 1.0  # [samples] per-test lags of one channel agree within this (or 20 %)
 
 
 class Problem:
@@ -60,14 +83,20 @@ class Problem:
         The candidates.
     thresholds : Thresholds
         Used for the candidates' own ``earns_keep`` flags (the decisions take their own).
+    edges : dict, optional
+        The baseline's nuisance parameters fitted at an edge of their range
+        (:func:`isolator.diagnosis.baseline.nuisance_edges`), e.g.
+        ``{"yield_displacement": "top"}``.
     """
 
     def __init__(self, features: Features, context: Context, effects: tuple[Effect, ...],
-                 thresholds: Thresholds) -> None:
+                 thresholds: Thresholds, edges: dict[str, str] | None = None) -> None:
         self.features = features
         self.context = context
         self.effects = effects
         self.thresholds = thresholds
+        self.edges = dict(edges or {})
+        self.window = in_transition(features, context.yield_displacement)
         self.all = Workspace(features, HoldOut.of(features), context)
         self.all_baseline = assess(self.all, Model(), None, [np.array([1.0])])
         self.kinematic = {e.name: self._assess_kinematic(e) for e in effects
@@ -87,11 +116,136 @@ class Problem:
         for effect, part in zip(a.model.effects, a.model.slices(), strict=True):
             values = effect.physical_parameters(a.fit.theta[part], a.fit.stderr[part],
                                                 self.context)
-            if effect.name == "lag" and abs(values["lag_samples"][0]) < th.lag_min_samples:
+            if effect.name == "lag" and not self._lag_plausible(
+                    values["lag_samples"][0], a, th):
                 return False
             if effect.name == "backlash" and values["width"][0] < th.backlash_min:
                 return False
         return True
+
+    def _lag_plausible(self, samples: float, a: Assessment, th: Thresholds) -> bool:
+        """Whether a fitted lag of ``samples`` can be a channel's (see the module docstring)."""
+        if samples < th.lag_min_samples:  # too small, or the force leads the displacement
+            return False
+        if samples * self.context.sample_interval > LAG_PLAUSIBLE_MAX:
+            return False
+        per_test = self.lag_per_test(a)
+        return bool(per_test.size < 2
+                    or np.ptp(per_test) <= max(LAG_SPREAD, 0.2 * abs(samples)))
+
+    def lag_per_test(self, a: Assessment) -> np.ndarray:
+        """The lag [samples] that fits each test best, the other parameters of the model ``a``
+        (which holds ``lag``) held: a grid of half samples around the campaign's lag, refined
+        by a parabola."""
+        key = ("lag_per_test", *a.model.names, *map(float, a.fit.theta))
+        if key in self.all.cache:
+            return self.all.cache[key]
+        names = a.model.names
+        i = next(sl for n, sl in zip(names, a.model.slices(), strict=True) if n == "lag").start
+        f, w = self.features, self.features.weight
+        grid = a.fit.theta[i] + np.arange(-6.0, 6.5, 0.5)
+        tests = np.unique(f.test)
+        sse = np.empty((grid.size, tests.size))
+        for g, value in enumerate(grid):
+            theta = np.array(a.fit.theta, dtype=float)
+            theta[i] = value
+            r = w * (f.force - a.model.force(theta, f, self.context)) ** 2
+            sse[g] = [float(r[f.test == k].sum()) for k in tests]
+        best = []
+        for k in range(tests.size):
+            j = int(np.argmin(sse[:, k]))
+            if 0 < j < grid.size - 1:
+                y0, y1, y2 = sse[j - 1, k], sse[j, k], sse[j + 1, k]
+                curve = y0 - 2.0 * y1 + y2
+                step = 0.5 * (y0 - y2) / curve if curve > 0.0 else 0.0
+                best.append(grid[j] + 0.5 * float(np.clip(step, -1.0, 1.0)))
+            else:
+                best.append(float(grid[j]))
+        out = np.array(best)
+        self.all.cache[key] = out
+        return out
+
+    # -- the transition window ---------------------------------------------------------------
+
+    def window_statistics(self, prediction: np.ndarray) -> tuple[float, float]:
+        """(mean squared residual over the noise variance inside the transition windows [-],
+        the excess above noise there as an RMS over the whole test, over the RMS force [-])
+        of a ``prediction`` at every sample."""
+        f, w = self.features, self.window
+        if not w.any():
+            return 1.0, 0.0
+        r2 = (f.force[w] - prediction[w]) ** 2
+        score = float(np.mean(r2 / f.noise_variance[w]))
+        excess = float(np.sum(r2 - f.noise_variance[w])) / len(f)
+        return score, float(np.sqrt(max(excess, 0.0) / np.mean(f.force**2)))
+
+    def transition_gap(self, prediction: np.ndarray, th: Thresholds) -> bool:
+        """Whether the residual of ``prediction`` inside the transition windows is far above
+        the noise there (``transition_score``) and material over the whole test
+        (``transition_practical``)."""
+        score, excess = self.window_statistics(prediction)
+        return score >= th.transition_score and excess >= th.transition_practical
+
+    def full_force(self, chosen: Assessment) -> np.ndarray:
+        """The force of ``chosen`` (fitted on the sliding phase) at every sample [N]."""
+        key = ("full", *chosen.model.names, *map(float, chosen.fit.theta))
+        if key not in self.all.cache:
+            self.all.cache[key] = chosen.model.force(chosen.fit.theta, self.features,
+                                                     self.context)
+        return self.all.cache[key]
+
+    def window_after(self, chosen: Assessment) -> tuple[float, float]:
+        """:meth:`window_statistics` of ``chosen`` with the transition's u_y refitted to it (a
+        nuisance calibrated without the named effects can be biased by them, as an effect at
+        low speed softens the reversals): the least excess over u_y from a quarter to three
+        times the baseline's (kinematic effects keep their own u_y)."""
+        key = ("window_after", *chosen.model.names, *map(float, chosen.fit.theta))
+        if key in self.all.cache:
+            return self.all.cache[key]
+        best = self.window_statistics(self.full_force(chosen))
+        if not any(e.acts_on == "kinematics" for e in chosen.model.effects):
+            u_y = self.context.yield_displacement
+            for factor in (0.25, 0.5, 0.7, 1.4, 2.0, 3.0):
+                u = min(max(u_y * factor, RIGID_PLASTIC_LIMIT), YIELD_DISPLACEMENT_MAX)
+                moved = with_baseline(self.features, z=return_map(self.features, u))
+                stats = self.window_statistics(
+                    chosen.model.force(chosen.fit.theta, moved, self.context))
+                if stats[1] < best[1]:
+                    best = stats
+        self.all.cache[key] = best
+        return best
+
+    def _provisional(self, exclude: tuple[str, ...], th: Thresholds) -> list[Assessment]:
+        """Kinematic candidates that close their share on every sample and are of a
+        plausible size, but miss the z threshold (a friction law may be hiding them)."""
+        out = []
+        for name, a in self.kinematic.items():
+            if name in exclude or a.untestable is not None or not a.z_score > 0.0:
+                continue
+            if (a.explained >= th.kinematic_explained and self._kinematic_size_ok(a, th)
+                    and plausible(a)):
+                out.append(a)
+        return sorted(out, key=lambda a: a.weighted)
+
+    def _jointly(self, candidate: Assessment, law: tuple[Effect, ...],
+                 th: Thresholds) -> Assessment | None:
+        """``candidate`` (one kinematic effect) when, as a pair with the friction-law effects
+        ``law``, it earns its keep over the baseline on every sample by ``kinematic_z`` (a pair
+        is judged as one, as in stage 2) and, beside the law, still closes its share
+        (``kinematic_explained``) by a practical force (``kinematic_practical``)."""
+        key = ("law", *(e.name for e in law))
+        if key not in self.all.cache:
+            self.all.cache[key] = assess(self.all, Model(law), None)
+        current = self.all.cache[key]
+        judged = self._extended(self.all, current, (candidate,))
+        z, _ = improvement(self.all, self.all_baseline, judged)
+        _, beside = improvement(self.all, current, judged)
+        size = self.all.gain_rms(current.prediction, judged.prediction)
+        if (z >= th.kinematic_z and beside >= th.kinematic_explained
+                and size >= th.kinematic_practical and self._kinematic_size_ok(judged, th)
+                and plausible(judged, len(current.model.effects))):
+            return candidate
+        return None
 
     def _stage_one(self, exclude: tuple[str, ...], th: Thresholds,
                    law: tuple[Effect, ...] = ()) -> Assessment | None:
@@ -178,12 +332,11 @@ class Problem:
         self._stages[key] = stage
         return stage
 
-    def select(self, exclude: tuple[str, ...] = (),
-               thresholds: Thresholds | None = None) -> Selection:
-        """The decision with ``exclude`` withheld, under ``thresholds`` (default: the problem's)."""
-        th = thresholds or self.thresholds
-        kinematic = self._stage_one(tuple(exclude), th)
-        for _ in range(2):  # a second pass when the friction law hid a kinematic effect
+    def _pass(self, kinematic: Assessment | None, exclude: tuple[str, ...], th: Thresholds,
+              retry: bool = True):
+        """Stage 2 over ``kinematic``, and, when it names a friction law and no kinematic
+        effect is named yet, stage 1 again beside that law (``retry``)."""
+        for _ in range(2):
             stage = self.stage(kinematic)
             work, base = stage.work, stage.baseline
             pool = {n: a for n, a in stage.singles.items() if n not in exclude}
@@ -194,14 +347,51 @@ class Problem:
             current, named, form = base, [], {}
             if not noise_like:
                 current, named, form = self._forward(stage, testable, th)
-            if kinematic is not None or not named:
+            if not retry or kinematic is not None or not named:
                 break
             law = tuple(e for e in current.model.effects
                         if e.name in named and e.acts_on != "kinematics")
-            again = self._stage_one(tuple(exclude), th, _own_forms(law, stage.singles))
+            again = self._stage_one(exclude, th, _own_forms(law, stage.singles))
             if again is None:
                 break
             kinematic = again
+        return kinematic, stage, testable, noise_like, current, named, form
+
+    def select(self, exclude: tuple[str, ...] = (),
+               thresholds: Thresholds | None = None) -> Selection:
+        """The decision with ``exclude`` withheld, under ``thresholds`` (default: the problem's)."""
+        th = thresholds or self.thresholds
+        exclude = tuple(exclude)
+        kinematic = self._stage_one(exclude, th)
+        kinematic, stage, testable, noise_like, current, named, form = self._pass(
+            kinematic, exclude, th)
+        if kinematic is None:
+            # a play and a friction law hiding each other: the law found with the play
+            # applied provisionally, then the play judged again beside that law
+            for candidate in self._provisional(exclude, th):
+                _, st, _, _, law_model, law_named, _ = self._pass(candidate, exclude, th,
+                                                                  retry=False)
+                excess = st.baseline.weighted - st.work.weighted_noise
+                closed = ((st.baseline.weighted - law_model.weighted) / excess
+                          if excess > 0.0 else 0.0)
+                if closed < th.name_min:  # no nameable law hid it
+                    continue
+                law = tuple(e for e in law_model.model.effects
+                            if e.name in law_named and e.acts_on not in ("kinematics",))
+                law = tuple(e for e in law if e.name != "timing")
+                if not law:
+                    continue
+                st = self.stage(candidate)
+                again = self._stage_one(exclude, th, _own_forms(law, st.singles))
+                if again is None:
+                    again = self._jointly(candidate, _own_forms(law, st.singles), th)
+                if again is None:
+                    continue
+                kinematic = again
+                kinematic, stage, testable, noise_like, current, named, form = self._pass(
+                    kinematic, exclude, th, retry=False)
+                break
+        work, base = stage.work, stage.baseline
         excess = base.weighted - work.weighted_noise
         explained = (base.weighted - current.weighted) / excess if excess > 0.0 else 0.0
         left = work.excess_rms(current.prediction)
@@ -209,12 +399,24 @@ class Problem:
         kin_names = [] if kinematic is None else list(kinematic.model.names)
         if named and explained < th.name_min:  # stand-ins, not named: the model is the base
             named, real_gap, current, form, explained = [], True, base, {}, 0.0
-        if not named and not kin_names:
-            verdict = ["unexplained"] if (real_gap and not noise_like) else ["none"]
-            real_gap = verdict == ["unexplained"]
-        else:
-            verdict = kin_names + named + (["unexplained"] if real_gap else [])
+        findings: list[str] = []
+        if real_gap and not noise_like:
+            findings.append("sliding")
         chosen = current if (named or kin_names) else None
+        # the materiality rule covers the whole test: the transition windows too
+        # (once effects are named, what the windows still hold is reported beside the verdict,
+        # ``transition.after_named`` in the JSON, not in it: a law fitted on the sliding phase
+        # extrapolates to the low speeds of the reversals, see docs/diagnosis.md)
+        if chosen is None and self.transition_gap(self.all_baseline.prediction, th):
+            findings.append("transition")
+        if self.edges.get("yield_displacement") == "top" and "backlash" not in kin_names:
+            findings.append("yield_displacement at the top of its range")
+        if not named and not kin_names:
+            verdict = ["unexplained"] if findings else ["none"]
+            real_gap = bool(findings)
+        else:
+            real_gap = real_gap or bool(findings)
+            verdict = kin_names + named + (["unexplained"] if real_gap else [])
         order = [n for n in verdict if n not in ("unexplained", "none")]
         rest = sorted((a for a in [*self.kinematic.values(), *testable]
                        if a.untestable is None and a.model.names[-1] not in order),
@@ -225,7 +427,7 @@ class Problem:
         return Selection(stage, kinematic, {n: a for n, a in self.kinematic.items()
                                             if n not in exclude},
                          chosen, verdict, explained, real_gap, order, form, th,
-                         _all=self.features.sample)
+                         _all=self.features.sample, findings=tuple(findings))
 
     def _forward(self, stage: Stage, testable: list[Assessment],
                  th: Thresholds) -> tuple[Assessment, list[str], dict[str, str]]:

@@ -20,6 +20,7 @@ from isolator.diagnosis.baseline import (
     BaselineFit,
     BaselineSpec,
     calibrate,
+    nuisance_edges,
 )
 from isolator.diagnosis.data import Campaign
 from isolator.diagnosis.decision import Problem
@@ -95,7 +96,7 @@ def diagnose(
                          yield_displacement=u_y, nominal_mu=float(np.mean(f.mu_base)),
                          tests=len(campaign.tests), channel_lag=fitted.lag,
                          kinematics=kinematics)
-    problem = Problem(f, context, effects, th)
+    problem = Problem(f, context, effects, th, nuisance_edges(fitted))
     selection = problem.select(tuple(exclude), th)
     return _finish(campaign, fitted, problem, selection, tuple(exclude), start,
                    uncertainty=True)

@@ -218,6 +218,10 @@ class Selection:
     form : dict
         ``{effect: "paper" | "flexible"}``: the form of each named effect on mu reported.
     thresholds : Thresholds
+    findings : tuple of str
+        Where a real gap lies: ``"sliding"`` (the sliding phase), ``"transition"`` (the
+        transition windows after the reversals, far above the noise there) and the baseline's
+        nuisance parameters fitted at an edge of their range.
     """
 
     stage: Stage
@@ -253,6 +257,7 @@ class Selection:
         return self._all
 
     _all: np.ndarray = field(default=None, repr=False)
+    findings: tuple[str, ...] = ()
 
 
 def on_samples(prediction: np.ndarray, samples: np.ndarray, wanted: np.ndarray) -> np.ndarray:

@@ -17,11 +17,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from isolator.diagnosis.baseline import BaselineFit
+from isolator.diagnosis.baseline import BaselineFit, nuisance_edges
 from isolator.diagnosis.data import Campaign
 from isolator.diagnosis.decision import Problem
 from isolator.diagnosis.selection import Assessment, Selection, Workspace
-from isolator.diagnosis.transition import TransitionFinding
+from isolator.diagnosis.transition import NUISANCE_LAG_SAMPLES, TransitionFinding
 from isolator.diagnosis.where import QUANTITIES, CycleErrors, Where
 
 
@@ -95,7 +95,52 @@ def _transition(d: Diagnosis) -> dict | None:
             "rigid_plastic": t.rigid_plastic, "window_travel": t.window_travel,
             "window_samples": t.window_samples, "sample_share": t.sample_share,
             "energy_share": t.energy_share, "rms": t.rms, "relative_rms": t.relative_rms,
-            "sliding_rms": t.sliding_rms}
+            "sliding_rms": t.sliding_rms, "score": _number(t.score), "excess": t.excess,
+            "gap": "transition" in d.selection.findings, "after_named": _after_named(d)}
+
+
+def _after_named(d: Diagnosis) -> dict | None:
+    """What the transition windows still hold once the named effects are applied (u_y refitted
+    to them): reported, not part of the verdict."""
+    chosen = d.selection.chosen
+    if chosen is None:
+        return None
+    th = d.selection.thresholds
+    score, excess = d.problem.window_after(chosen)
+    return {"score": _number(score), "excess": excess,
+            "far_above_noise": bool(score >= th.transition_score
+                                    and excess >= th.transition_practical)}
+
+
+def _nuisance(d: Diagnosis) -> dict:
+    """The baseline's nuisance parameters with their ranges and whether they sit at an edge
+    (a finding, not a calibration), and the lag candidate fitted test by test."""
+    from isolator.diagnosis.decision import LAG_PLAUSIBLE_MAX
+
+    fit = d.baseline
+    edges = nuisance_edges(fit)
+    dt = fit.sample_interval
+    out = {
+        "yield_displacement": {"value": fit.parameters["yield_displacement"],
+                               "range": list(fit.yield_range), "unit": "m",
+                               "at_edge": edges.get("yield_displacement"),
+                               "calibrated": fit.spec.yield_displacement is None},
+        "lag": {"value": fit.lag, "samples": fit.lag / dt if dt else 0.0,
+                "range_samples": [-NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES], "unit": "s",
+                "at_edge": edges.get("lag"), "plausible_max": LAG_PLAUSIBLE_MAX},
+        "findings": list(d.selection.findings),
+    }
+    lag = d.problem.kinematic.get("lag")
+    if lag is not None and lag.untestable is None:
+        i = lag.model.names.index("lag")
+        samples = float(lag.fit.theta[lag.model.slices()[i]][0])
+        per_test = None
+        if abs(samples) >= d.selection.thresholds.lag_min_samples:
+            per_test = [float(x) for x in d.problem.lag_per_test(lag)]
+        out["lag_candidate"] = {"samples": samples, "seconds": samples * dt,
+                                "per_test_samples": per_test,
+                                "force_leads": samples < 0.0}
+    return out
 
 
 def _lag(d: Diagnosis) -> dict:
@@ -115,6 +160,35 @@ def _lag(d: Diagnosis) -> dict:
     return {"seconds": float(total), "samples": float(total / dt), "sample_interval": dt,
             "calibrated_in_baseline": float(d.baseline.lag),
             "refitted_while_sliding": correction, "named": bool(named)}
+
+
+def _gap_statement(d: Diagnosis) -> str:
+    """Where the real gap left lies: the sliding phase, the transition windows, or a nuisance
+    of the baseline at the edge of its range."""
+    parts = []
+    findings = d.selection.findings
+    if "sliding" in findings or not findings:
+        parts.append(d.remaining.statement)
+    t = d.transition
+    if "transition" in findings and t is not None:
+        chosen = d.selection.chosen
+        score, excess = (d.problem.window_statistics(d.problem.all_baseline.prediction)
+                         if chosen is None else d.problem.window_after(chosen))
+        what = "the baseline" if chosen is None else "the named effects"
+        parts.append(f"Inside the transition windows after the reversals "
+                     f"({1e3 * t.window_travel:.3g} mm or {t.window_samples} samples, "
+                     f"{100 * t.sample_share:.0f} % of the samples) the residual {what} leave "
+                     f"is far above the noise ({math.sqrt(score):.3g} x its RMS there, an "
+                     f"excess of {100 * excess:.2g} % of the RMS force over the whole test): a "
+                     f"play, a softer or slower transition or a breakaway the candidates do not "
+                     f"capture.")
+    for f in findings:
+        if f.startswith("yield_displacement"):
+            top = d.baseline.yield_range[1]
+            parts.append(f"The pre-sliding yield displacement was fitted at the top of its "
+                         f"range ({1e3 * top:.3g} mm): a play or a soft transition it stands "
+                         f"in for, not a calibration.")
+    return " ".join(parts)
 
 
 def summary(d: Diagnosis) -> dict:
@@ -168,7 +242,8 @@ def summary(d: Diagnosis) -> dict:
         }
     unexplained = None
     if sel.real_gap_remains and d.remaining is not None:
-        unexplained = {"statement": d.remaining.statement, "looks_like": d.looks_like}
+        unexplained = {"statement": _gap_statement(d), "looks_like": d.looks_like,
+                       "findings": list(sel.findings)}
     f = d.work.features
     return {
         "baseline": {"model": d.baseline.spec.label, "parameters": d.baseline.parameters,
@@ -180,6 +255,7 @@ def summary(d: Diagnosis) -> dict:
                 "all_samples": d.problem.all.nrmse(d.problem.all_baseline.prediction)},
         "transition": _transition(d),
         "lag": _lag(d),
+        "nuisance": _nuisance(d),
         "where": _where(d.where),
         "effects": effects,
         "chosen": chosen,

@@ -9,7 +9,9 @@ weighted residual (a block is a half cycle of one test); ``*_explained`` and ``n
 shares of the weighted excess above noise that a model leaves; ``practical_*`` are RMS force
 changes over the RMS force (an effect smaller than that is not worth naming, whatever its
 statistical significance); ``none_margin`` is the held-out standardised score above one that
-still counts as noise.
+still counts as noise; ``transition_score`` is the mean squared residual over the noise
+variance inside the transition windows from which they hold a gap, when its excess energy,
+as an RMS over the whole test over the RMS force, is at least ``transition_practical``.
 """
 
 from __future__ import annotations
@@ -40,6 +42,8 @@ class Thresholds:
     lag_min_samples: float = 2.5  # a lag is named beyond this many samples in all
     backlash_min: float = 1.0e-3  # [m] a play is named from this width on
     flexible_margin: float = 0.1  # the flexible form is reported when it closes this much more
+    transition_score: float = 4.0  # inside the transition windows: a residual RMS twice the
+    transition_practical: float = 0.03  # noise's, and this excess RMS over the whole test
 
     @classmethod
     def load(cls, path: str | Path = THRESHOLDS_FILE) -> Thresholds:

@@ -52,6 +52,11 @@ class TransitionFinding:
         RMS residual inside and outside the window [N].
     relative_rms : float
         ``rms`` over the RMS force [-].
+    score, excess : float
+        Inside the window: the mean squared residual over the noise variance [-] (about 1 for
+        noise alone), and the excess energy above the noise as an RMS over the whole test,
+        over the RMS force [-] (the verdict's materiality rule,
+        :meth:`isolator.diagnosis.decision.Problem.transition_gap`).
     """
 
     yield_displacement: float
@@ -63,6 +68,8 @@ class TransitionFinding:
     rms: float
     relative_rms: float
     sliding_rms: float
+    score: float = float("nan")
+    excess: float = 0.0
 
     def statement(self) -> str:
         """One sentence on the transition."""
@@ -73,8 +80,10 @@ class TransitionFinding:
                 f"({1e3 * self.window_travel:.3g} mm or {self.window_samples} samples after "
                 f"each reversal, {100 * self.sample_share:.0f} % of the samples) the residual "
                 f"is {self.rms:.4g} N RMS ({100 * self.relative_rms:.2f} % of the RMS force, "
-                f"{100 * self.energy_share:.0f} % of the residual energy) against "
-                f"{self.sliding_rms:.4g} N while sliding.")
+                f"{100 * self.energy_share:.0f} % of the residual energy"
+                + (f", {np.sqrt(self.score):.3g} x the noise there" if np.isfinite(self.score)
+                   else "")
+                + f") against {self.sliding_rms:.4g} N while sliding.")
 
 
 def transition_finding(features: Features, prediction: np.ndarray, window: np.ndarray,
@@ -87,11 +96,17 @@ def transition_finding(features: Features, prediction: np.ndarray, window: np.nd
     force_rms = float(np.sqrt(np.mean(features.force**2))) or 1.0
     inside = float(np.sqrt(np.mean(energy[window]))) if window.any() else 0.0
     outside = float(np.sqrt(np.mean(energy[~window]))) if (~window).any() else 0.0
+    score, excess = float("nan"), 0.0
+    noise = getattr(features, "noise_variance", None)
+    if noise is not None and window.any():
+        score = float(np.mean(energy[window] / noise[window]))
+        extra = float(np.sum(energy[window] - noise[window])) / energy.size
+        excess = float(np.sqrt(max(extra, 0.0))) / force_rms
     return TransitionFinding(float(yield_displacement),
                              bool(yield_displacement <= 1.5 * rigid_limit),
                              window_travel(yield_displacement, half_width), WINDOW_SAMPLES,
                              float(window.mean()), float(energy[window].sum()) / total,
-                             inside, inside / force_rms, outside)
+                             inside, inside / force_rms, outside, score, excess)
 
 
 def _timing_extra(theta, f, c):

@@ -13,7 +13,8 @@ named effect the truth does not have. Leave-one-effect-out: each true effect of 
 case is withheld from the library in turn; the run is right when its verdict says
 ``unexplained`` and names no effect the truth does not have.
 
-    python -m validation.diagnosis.score PANEL [--half test] [--markdown FILE]
+    python -m validation.diagnosis.score PANEL [--half test] [--cases case_49,case_52]
+        [--markdown FILE] [--json FILE]
     python -m validation.diagnosis.score --panel bidirectional [FOLDER] [--half test]
 
 ``--panel bidirectional`` first writes that half of the bidirectional panel
@@ -201,6 +202,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--half", default="test", choices=[*HALVES, "all"])
     parser.add_argument("--markdown", help="write the table here")
     parser.add_argument("--json", help="write the rows and figures here")
+    parser.add_argument("--cases", help="comma-separated case folders of the half to score "
+                        "(case_49,case_52; default: all of the half)")
     args = parser.parse_args(argv)
     half = None if args.half == "all" else args.half
     if args.write:
@@ -208,6 +211,9 @@ def main(argv: list[str] | None = None) -> int:
     elif args.panel is None:
         parser.error("give a panel FOLDER, or --panel bidirectional to write one")
     names = case_names(args.panel, half)
+    if args.cases:
+        wanted = {c.strip() for c in args.cases.split(",")}
+        names = [n for n in names if n in wanted]
     diagnoses = diagnose_cases(args.panel, names, progress=True)
     labels = json.loads((Path(args.panel) / "labels.json").read_text())  # after diagnosing
     rows = score(diagnoses, labels)

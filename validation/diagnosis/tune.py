@@ -45,6 +45,8 @@ GRIDS: dict[str, tuple[float, ...]] = {
     "kinematic_practical": (0.01, 0.02, 0.03, 0.05, 0.08),
     "lag_min_samples": (2.0, 2.5, 3.0, 4.0),
     "backlash_min": (5e-4, 1e-3, 1.5e-3, 2e-3),
+    "transition_score": (2.0, 3.0, 4.0, 6.0, 9.0),
+    "transition_practical": (0.0125, 0.02, 0.03, 0.05),
 }
 
 

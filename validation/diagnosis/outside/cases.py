@@ -1,4 +1,4 @@
-"""The outside panel's design: its records (a test, a case) and its 48 cases in 24 pairs.
+"""The outside panel's design: its records (a test, a case) and its 68 cases in 34 pairs.
 
 Each *scenario* (a set of true effects, possibly none) is made twice: one case goes to the
 **tune** half, the other to the **test** half. The two cases of a pair share the labelled
@@ -61,6 +61,8 @@ class Case:
     spec : the truth's parameters for its source: ``base`` (always on) and ``effects``
         (switched on with each labelled effect), see the source functions.
     noise : force noise as a fraction of mu0 W; ``noise_kind`` white, ar1 or band.
+    drift : a slow drift of the force channel's zero over each test, as a fraction of mu0 W
+        (a ramp from -drift to +drift plus a half sine; instrument nuisance, never labelled).
     lag_samples : the force channel's delay in samples (a nuisance up to 1.5, else the
         labelled ``lag``).
     weight, mu0 : the nominal axial load [N] and friction coefficient (the noise scale).
@@ -78,6 +80,7 @@ class Case:
     noise: float = 0.01
     noise_kind: str = "white"
     rho: float = 0.0
+    drift: float = 0.0
     displacement_noise: float = 2.0e-5
     lag_samples: float = 0.0
     velocity_column: bool = True
@@ -318,7 +321,112 @@ CASES: tuple[Case, ...] = (
     Case("P24", (), "test", "package", "constant friction, friction damper (flat, W 1 MN, "
          "mu 0.08), u_y 0.1 mm", (S(0.025, 2.0, 4),), {"u_y": 1e-4}, dt=0.004,
          radius=math.inf, weight=1.0e6, mu0=0.08, noise=0.012, lag_samples=1.5),
+    # --- issue 21: the four kinds, in one direction: 10 pairs ---
+    # a nuisance that could swallow an effect: a play of a few mm (u_y's grid ends at 2.5 mm)
+    Case("P25", ("backlash",), "tune", "independent", "2 mm play behind a smooth 1 mm "
+         "transition on a pendulum", (S(0.1, 2.5, 3), S(0.15, 3.0, 3, rest=600.0)),
+         {"base": {"transition": "smooth", "yield_displacement": 1.0e-3},
+          "effects": {"backlash": {"backlash": 0.002}}}, dt=0.005, noise=0.008),
+    Case("P25", ("backlash",), "test", "independent", "3 mm play behind a 1.5 mm "
+         "elastic-plastic transition, friction damper (flat, W 1 MN, mu 0.08), AR(1) noise",
+         (S(0.03, 2.0, 4), S(0.045, 3.0, 3, rest=600.0)),
+         {"base": {"yield_displacement": 1.5e-3}, "effects": {"backlash": {"backlash": 0.003}}},
+         dt=0.004, radius=math.inf, weight=1.0e6, mu0=0.08, noise=0.008, noise_kind="ar1",
+         rho=0.8),
+    Case("P26", ("backlash",), "tune", "independent", "5 mm play, rigid-plastic, friction "
+         "damper (flat, W 1 MN, mu 0.08), lag 1 sample", DAMPER,
+         {"base": {"transition": "rigid-plastic"}, "effects": {"backlash": {"backlash": 0.005}}},
+         dt=0.004, radius=math.inf, weight=1.0e6, mu0=0.08, lag_samples=1.0),
+    Case("P26", ("backlash",), "test", "independent", "3.5 mm play behind a smooth 2 mm "
+         "transition on a pendulum, 500 Hz", (S(0.08, 2.5, 3), S(0.12, 3.0, 2, rest=900.0)),
+         {"base": {"transition": "smooth", "yield_displacement": 2.0e-3},
+          "effects": {"backlash": {"backlash": 0.0035}}}, dt=0.002, noise=0.01),
+    # a speed effect in a campaign at different periods (what a lag would be asked to mimic)
+    Case("P27", ("velocity",), "tune", "independent", "velocity: mu_slow / mu_fast 0.55, v_c "
+         "60 mm/s, one amplitude at periods 1.5-8 s", (S(0.1, 1.5, 3), S(0.1, 3.0, 3, rest=600.0),
+                                                      S(0.1, 8.0, 2, rest=600.0)),
+         {"effects": {"velocity": {"velocity": ind.Velocity("exp", ratio=0.55, speed=0.06)}}},
+         dt=0.005, noise=0.008),
+    Case("P27", ("velocity",), "test", "independent", "Stribeck: friction 50 % higher at rest, "
+         "v_s 50 mm/s, one amplitude at periods 1-6 s, lag 1 sample",
+         (S(0.08, 1.0, 4), S(0.08, 2.5, 3, rest=600.0), S(0.08, 6.0, 2, rest=600.0)),
+         {"effects": {"velocity": {"velocity": ind.Velocity("stribeck", peak=0.5,
+                                                            speed=0.05)}}},
+         dt=0.004, noise=0.008, lag_samples=1.0),
+    Case("P28", ("velocity",), "tune", "opensees", "OpenSees singleFPBearing VelDependent at "
+         "periods 1-6 s, one amplitude", (S(0.06, 1.0, 4), S(0.06, 2.5, 3), S(0.06, 6.0, 2)),
+         {"element": "velocity"}, dt=0.004, velocity_column=False),
+    Case("P28", ("velocity",), "test", "independent", "velocity (the paper's Eq. 2), "
+         "periods 0.8-5 s at 50-150 mm, smooth transition",
+         (S(0.05, 0.8, 4), S(0.1, 2.0, 3, rest=600.0), S(0.15, 5.0, 2, rest=600.0)),
+         {"base": {"transition": "smooth", "yield_displacement": 4e-4},
+          "effects": {"velocity": {"velocity": ind.Velocity("paper-normalised")}}},
+         dt=0.004, noise=0.01, noise_kind="ar1", rho=0.85),
+    # the residual energy inside the transition window
+    Case("P29", ("breakaway",), "tune", "independent", "breakaway 80 % fading linearly over "
+         "2 mm (all within a few mm of each reversal)", (S(0.05, 2.0, 4), S(0.08, 2.5, 3)),
+         {"effects": {"breakaway": {"breakaway": ind.Breakaway("linear", 0.8, 0.002)}}},
+         dt=0.004, noise=0.006),
+    Case("P29", ("breakaway",), "test", "independent", "Gaussian breakaway 70 % over 2.5 mm, "
+         "rigid-plastic, friction damper (flat, W 1 MN, mu 0.08)",
+         (S(0.03, 2.0, 4), S(0.04, 3.0, 3, rest=600.0)),
+         {"base": {"transition": "rigid-plastic"},
+          "effects": {"breakaway": {"breakaway": ind.Breakaway("gauss", 0.7, 0.0025)}}},
+         dt=0.004, radius=math.inf, weight=1.0e6, mu0=0.08, noise=0.006),
+    Case("P30", ("backlash",), "tune", "independent", "1.8 mm play, rigid-plastic pendulum, "
+         "500 Hz (the residual lies at the reversals only)", (S(0.1, 2.5, 3), S(0.2, 3.0, 2)),
+         {"base": {"transition": "rigid-plastic"}, "effects": {"backlash": {"backlash": 0.0018}}},
+         dt=0.002, noise=0.008),
+    Case("P30", ("backlash",), "test", "independent", "2 mm play with a 0.3 mm transition, "
+         "pendulum, 500 Hz, band-limited noise", (S(0.06, 2.0, 3), S(0.12, 2.5, 3, rest=600.0)),
+         {"base": {"yield_displacement": 3e-4}, "effects": {"backlash": {"backlash": 0.002}}},
+         dt=0.002, noise=0.008, noise_kind="band"),
+    # a play beside a friction law (heating)
+    Case("P31", ("backlash", "heating"), "tune", "independent", "3 mm play and temperature "
+         "dependence (normalised at 20 degC), heat carried over rests", HEAT_SET,
+         {"base": {"yield_displacement": 3.0e-4},
+          "effects": {"backlash": {"backlash": 0.003}, "heating": HEAT}}, dt=0.005),
+    Case("P31", ("backlash", "heating"), "test", "independent", "4 mm play and temperature "
+         "dependence (normalised), ASCE-like tests, AR(1) noise", ASCE,
+         {"base": {"yield_displacement": 5.0e-4},
+          "effects": {"backlash": {"backlash": 0.004}, "heating": HEAT}},
+         noise=0.008, noise_kind="ar1", rho=0.8),
+    Case("P32", ("backlash", "heating"), "tune", "independent", "2.5 mm play and temperature "
+         "dependence, smooth transition, 3 tests after short rests",
+         (S(0.15, 2.5, 3), S(0.2, 3.0, 3, rest=300.0), S(0.25, 3.0, 2, rest=300.0)),
+         {"base": {"transition": "smooth", "yield_displacement": 4.0e-4},
+          "effects": {"backlash": {"backlash": 0.0025}, "heating": HEAT}}, dt=0.005,
+         noise=0.006),
+    Case("P32", ("backlash", "heating"), "test", "independent", "3 mm play and temperature "
+         "dependence, rigid-plastic, 500 Hz, lag 1 sample",
+         (S(0.2, 3.0, 3), S(0.15, 2.5, 4, rest=600.0)),
+         {"base": {"transition": "rigid-plastic"},
+          "effects": {"backlash": {"backlash": 0.003}, "heating": HEAT}}, dt=0.002,
+         noise=0.01, lag_samples=1.0),
+    # no effect: pure noise and a drift of the force channel's zero (hints must stay silent)
+    Case("P33", (), "tune", "independent", "constant friction, white noise and a drift of the "
+         "force zero of 0.4 % of mu W", (S(0.15, 2.5, 3), S(0.2, 3.0, 3, rest=900.0)),
+         {"base": {"yield_displacement": 5e-4}}, noise=0.008, drift=0.004),
+    Case("P33", (), "test", "independent", "constant friction, AR(1) noise and a drift of the "
+         "force zero of 0.5 % of mu W, 200 Hz", (S(0.1, 2.5, 3), S(0.25, 4.0, 2, rest=900.0)),
+         {"base": {"yield_displacement": 3e-4}}, dt=0.005, noise=0.008, noise_kind="ar1",
+         rho=0.85, drift=0.005),
+    Case("P34", (), "tune", "package", "constant friction, white noise and a drift of the force "
+         "zero of 0.5 % of mu W, tests at 0.25-2 Hz", (S(0.05, 0.5, 6), S(0.1, 2.0, 3),
+                                                       S(0.2, 4.0, 2)),
+         {"u_y": 3e-4}, dt=0.005, noise=0.01, drift=0.005),
+    Case("P34", (), "test", "independent", "rigid-plastic constant friction at 0.25-2 Hz, white "
+         "noise and a drift of the force zero of 0.3 % of mu W, 500 Hz",
+         (S(0.05, 0.5, 6), S(0.1, 2.0, 3, rest=600.0), S(0.2, 4.0, 2, rest=600.0)),
+         {"base": {"transition": "rigid-plastic"}}, dt=0.002, noise=0.012, drift=0.003),
 )
+
+
+ISSUE21_PAIRS = ("P25", "P26", "P27", "P28", "P29", "P30", "P31", "P32", "P33", "P34")
+"""The pairs of issue 21's four kinds (a play a nuisance could swallow, a speed effect at
+several periods, residual inside the transition windows, a play beside heating; noise and a
+drift with no effect)."""
+ISSUE21_TRUTHS = frozenset(c.truth for c in CASES if c.pair in ISSUE21_PAIRS)
 
 
 def check_design(cases: tuple[Case, ...] = CASES) -> None:

@@ -62,7 +62,17 @@ def measured(case: Case, clean: dict, rng: np.random.Generator) -> dict[str, np.
         out["velocity"] = clean["velocity"] + rng.normal(0.0, VELOCITY_NOISE, n)
     if case.axial_column:
         out["axial_force"] = clean["axial_force"] * (1.0 + rng.normal(0.0, AXIAL_NOISE, n))
+    if case.drift:
+        out["force"] = out["force"] + drift(n, case.drift * case.mu0 * case.weight,
+                                            float(rng.uniform(0.0, 2.0 * np.pi)))
     return out
+
+
+def drift(n: int, size: float, phase: float) -> np.ndarray:
+    """A slow drift of a channel's zero over ``n`` samples: a ramp from -size to +size plus
+    half a sine of amplitude ``size`` started at ``phase`` [rad] (in the channel's unit)."""
+    x = np.linspace(0.0, 1.0, n)
+    return size * (2.0 * x - 1.0) + size * np.sin(np.pi * x + phase)
 
 
 def _write_case(case: Case, out: Path, rng: np.random.Generator) -> dict:
@@ -90,7 +100,8 @@ def _write_case(case: Case, out: Path, rng: np.random.Generator) -> dict:
 
 
 def write_panel(folder: str | Path, *, seed: int = 2026, opensees: bool | None = None,
-                half: str | None = None, progress: bool = False) -> Path:
+                half: str | None = None, progress: bool = False,
+                pairs: tuple[str, ...] | None = None) -> Path:
     """Write the panel to ``folder`` (see the module docstring); return the labels file.
 
     Parameters
@@ -105,6 +116,9 @@ def write_panel(folder: str | Path, *, seed: int = 2026, opensees: bool | None =
         Write one half only (None: both).
     progress : bool
         Print a line per case.
+    pairs : tuple of str or None
+        Write these scenario pairs only (``("P25", "P31")``; None: all). The case numbers and
+        each case's noise stay those of the whole panel.
     """
     check_design()
     folder = Path(folder)
@@ -116,6 +130,8 @@ def write_panel(folder: str | Path, *, seed: int = 2026, opensees: bool | None =
     for number, index in enumerate(order, start=1):
         case = CASES[int(index)]
         if (case.source == "opensees" and not opensees) or (half and case.half != half):
+            continue
+        if pairs is not None and case.pair not in pairs:
             continue
         start = _time.perf_counter()
         name = f"case_{number:02d}"
@@ -152,8 +168,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=2026)
     parser.add_argument("--half", choices=HALVES)
     parser.add_argument("--no-opensees", action="store_true")
+    parser.add_argument("--pairs", help="comma-separated scenario pairs to write (P25,P31)")
     args = parser.parse_args(argv)
+    pairs = None if not args.pairs else tuple(p.strip() for p in args.pairs.split(","))
     write_panel(args.folder, seed=args.seed, half=args.half,
-                opensees=False if args.no_opensees else None, progress=True)
+                opensees=False if args.no_opensees else None, progress=True, pairs=pairs)
     return 0
 

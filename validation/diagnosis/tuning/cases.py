@@ -1,4 +1,4 @@
-"""The tuning panel's 42 cases in 21 tune/test pairs, and the test histories they use.
+"""The tuning panel's 58 cases in 29 tune/test pairs, and the test histories they use.
 
 Each case names its labelled effects, its half, its truth source
 (:mod:`validation.diagnosis.tuning.sources`), a description, its tests and its nuisance (see
@@ -18,6 +18,7 @@ __all__ = [
     "DAMPER",
     "EXP_VELOCITY",
     "HEAT_SET",
+    "ISSUE21_TRUTHS",
     "ONE",
     "PAIR",
     "PRESSURE_SET",
@@ -150,4 +151,67 @@ CASES: tuple[Case, ...] = (
          options={"wear_drop": -0.08, "breakaway": (0.4, 0.008)}),
     Case(("wear", "breakaway"), "test", "package", "wear S^0.6 (-20 %) and breakaway 35 %",
          SINE_SET, package, noise=0.006),
+    # --- issue 21, the four kinds in one direction (16) ---
+    # a play of a few mm that the calibrated u_y (grid up to 2.5 mm) could swallow
+    Case(("backlash",), "tune", "independent", "2.5 mm play behind a smooth 1.2 mm transition "
+         "on a pendulum, 200 Hz", (Test(0.08, 2.5, 3), Test(0.12, 3.0, 3)), independent,
+         dt=0.005, noise=0.008, options={"backlash": 0.0025, "transition": "smooth",
+                                         "u_y": 1.2e-3}),
+    Case(("backlash",), "test", "independent", "3 mm play behind a 2 mm elastic-plastic "
+         "transition, flat slider (R = inf), coloured noise", DAMPER, independent, dt=0.004,
+         radius=math.inf, colour=0.8, options={"backlash": 0.003, "u_y": 2e-3}),
+    # a speed effect in a campaign of one amplitude at several periods
+    Case(("velocity",), "tune", "independent", "velocity: mu_slow/mu_fast 0.5, v_c 50 mm/s, "
+         "one amplitude at periods 1.2-8 s", (Test(0.1, 1.2, 4), Test(0.1, 3.0, 3, rest=600.0),
+                                              Test(0.1, 8.0, 2, rest=600.0)),
+         independent, dt=0.005, options={"velocity": ("exponential", 0.5, 0.05)}),
+    Case(("velocity",), "test", "independent", "velocity (Eq. 2) at periods 1-6 s, 80 mm, lag "
+         "1 sample", (Test(0.08, 1.0, 4), Test(0.08, 2.5, 3, rest=600.0),
+                      Test(0.08, 6.0, 2, rest=600.0)),
+         independent, dt=0.004, lag_samples=1.0, options={"velocity": ("paper",)}),
+    # residual energy inside the transition window
+    Case(("breakaway",), "tune", "independent", "breakaway 80 % fading linearly over 2.5 mm",
+         (Test(0.05, 2.0, 4), Test(0.1, 2.5, 3)), independent, dt=0.004, noise=0.006,
+         options={"breakaway": (0.8, 0.0025)}),
+    Case(("breakaway",), "test", "independent", "breakaway 70 % over 3 mm, rigid-plastic, "
+         "flat slider (R = inf)", DAMPER, independent, dt=0.004, radius=math.inf,
+         options={"breakaway": (0.7, 0.003), "transition": "rigid-plastic"}),
+    Case(("backlash",), "tune", "independent", "2 mm play, rigid-plastic pendulum, 500 Hz",
+         (Test(0.1, 2.5, 3), Test(0.2, 3.0, 2)), independent, dt=0.002, noise=0.008,
+         options={"backlash": 0.002, "transition": "rigid-plastic"}),
+    Case(("backlash",), "test", "independent", "1.8 mm play with a 0.3 mm transition, 500 Hz",
+         (Test(0.06, 2.0, 3), Test(0.12, 2.5, 3)), independent, dt=0.002, noise=0.008,
+         options={"backlash": 0.0018, "u_y": 3e-4}),
+    # a play beside heating
+    Case(("backlash", "heating"), "tune", "independent", "3 mm play and temperature "
+         "dependence, rests of 600 s", HEAT_SET, independent, dt=0.005,
+         options={"backlash": 0.003, "u_y": 3e-4}),
+    Case(("backlash", "heating"), "test", "independent", "4 mm play and temperature "
+         "dependence, coloured noise", (Test(0.2, 3.0, 4), Test(0.25, 3.0, 3, rest=300.0)),
+         independent, colour=0.8, options={"backlash": 0.004, "u_y": 5e-4}),
+    Case(("backlash", "heating"), "tune", "independent", "2 mm play and temperature "
+         "dependence, smooth transition", (Test(0.15, 2.5, 4), Test(0.2, 3.0, 3, rest=300.0)),
+         independent, dt=0.005, noise=0.006,
+         options={"backlash": 0.002, "transition": "smooth", "u_y": 4e-4}),
+    Case(("backlash", "heating"), "test", "independent", "3 mm play and temperature "
+         "dependence, rigid-plastic, 500 Hz", (Test(0.2, 3.0, 3),
+                                               Test(0.15, 2.5, 4, rest=600.0)),
+         independent, dt=0.002, options={"backlash": 0.003, "transition": "rigid-plastic"}),
+    # no effect: noise plus a drift of the force zero (what a hint must not call a finding)
+    Case((), "tune", "independent", "constant friction, white noise and a drift of the force "
+         "zero of 0.4 % of mu W", (Test(0.15, 2.5, 3), Test(0.2, 3.0, 3)), independent,
+         noise=0.008, drift=0.004),
+    Case((), "test", "package", "constant friction, coloured noise and a drift of 0.5 % of "
+         "mu W, 200 Hz", (Test(0.1, 2.5, 3), Test(0.25, 4.0, 2)), package, dt=0.005,
+         noise=0.008, colour=0.85, drift=0.005),
+    Case((), "tune", "package", "constant friction at 0.25-2 Hz, a drift of 0.5 % of mu W",
+         (Test(0.05, 0.5, 6), Test(0.1, 2.0, 3), Test(0.2, 4.0, 2)), package, dt=0.005,
+         noise=0.01, drift=0.005),
+    Case((), "test", "independent", "rigid-plastic constant friction at 0.25-2 Hz, 500 Hz, a "
+         "drift of 0.3 % of mu W", (Test(0.05, 0.5, 6), Test(0.1, 2.0, 3), Test(0.2, 4.0, 2)),
+         independent, dt=0.002, noise=0.012, drift=0.003,
+         options={"transition": "rigid-plastic"}),
 )
+
+ISSUE21_TRUTHS = frozenset(c.truth for c in CASES[42:])
+"""The 16 cases of issue 21's four kinds (the last 8 pairs)."""

@@ -56,6 +56,7 @@ class Case:
     dt: float = 0.01
     noise: float = 0.01
     colour: float = 0.0
+    drift: float = 0.0  # a drift of the force zero over each test, a fraction of mu0 W
     displacement_noise: float = 2.0e-5
     lag_samples: float = 0.0  # nuisance lag (<= 1.5 samples) or a labelled lag
     velocity_column: bool = True

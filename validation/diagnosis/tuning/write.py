@@ -55,6 +55,11 @@ def measured(case: Case, clean: dict, rng: np.random.Generator) -> dict[str, np.
         out["velocity"] = clean["velocity"] + rng.normal(0.0, 2.0e-3, n)
     if case.axial_column:
         out["axial_force"] = clean["axial_force"] * (1.0 + rng.normal(0.0, 0.005, n))
+    if case.drift:  # a ramp from -drift to +drift plus half a sine (instrument nuisance)
+        x = np.linspace(0.0, 1.0, n)
+        phase = float(rng.uniform(0.0, 2.0 * np.pi))
+        size = case.drift * MU0 * W
+        out["force"] = out["force"] + size * (2.0 * x - 1.0 + np.sin(np.pi * x + phase))
     return out
 
 
