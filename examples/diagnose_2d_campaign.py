@@ -11,7 +11,8 @@ the tests in the two-direction format (``time``, ``displacement_x``, ``displacem
 
 Effects: ``none`` (constant friction), ``heating`` (the precise model's heating only),
 ``velocity`` (the speed dependence only), ``backlash`` (a play of 4 mm along x and 2 mm
-along y in the load train), ``lag`` (the force channel 4 samples late), or several joined by
+along y in the load train; an axis whose gap is open stands still and reads no force),
+``lag`` (the force channel 4 samples late), or several joined by
 ``+`` (``heating+backlash``).
 """
 
@@ -41,6 +42,44 @@ def _play(u: np.ndarray, width: float) -> np.ndarray:
         y = x - half if x - y > half else x + half if y - x > half else y
         out[i] = y
     return out
+
+
+def _behind_play(u: np.ndarray, yield_displacement: float) -> tuple[np.ndarray, ...]:
+    """The bearing behind the play :data:`PLAY` driven by the actuators' ``u`` (n, 2): per
+    axis a motion against that axis's force first unloads the pre-sliding spring, then
+    crosses the gap (the bearing standing still on that axis, no force on it), then loads
+    the spring the other way; the element's isotropic return map does the loading. Returns
+    the bearing's displacement, z and whether each axis transmits force (n, 2)."""
+    from isolator.bearing import isotropic_return_map
+
+    half = 0.5 * np.asarray(PLAY)
+    z, gap = np.zeros(2), np.zeros(2)
+    ub, zs, engaged = u.copy(), np.zeros_like(u), np.ones_like(u)
+    for i in range(1, u.shape[0]):
+        step = u[i] - u[i - 1]
+        for j in range(2):
+            r = step[j]
+            if z[j] * r < 0.0:
+                if abs(r) <= abs(z[j]) * yield_displacement:
+                    z[j] += r / yield_displacement
+                    r = 0.0
+                else:
+                    r += z[j] * yield_displacement
+                    z[j] = 0.0
+            if r != 0.0 and z[j] == 0.0:
+                target = np.sign(r) * half[j]
+                if abs(r) < abs(target - gap[j]):
+                    gap[j] += r
+                    r = 0.0
+                    engaged[i, j] = 0.0
+                else:
+                    r -= target - gap[j]
+                    gap[j] = target
+            step[j] = r
+        z = np.array(isotropic_return_map(z[0], z[1], step[0], step[1],
+                                          yield_displacement)[:2])
+        ub[i], zs[i] = u[i] - gap, z
+    return ub, zs, engaged
 
 
 def earthquake_orbit(peak: float, duration: float, dt: float, seed: int = 0):
@@ -105,9 +144,11 @@ def synthesise(effect: str = "none", *, seed: int = 0, dt: float = 0.01,
             driven = np.column_stack([_play(u[:, j], PLAY[j]) for j in range(2)])
         if "backlash" in chosen:  # the bearing moves behind the play
             result = run_test(bearing, o.time, driven, name=kind)
+            ub, z, engaged = _behind_play(u, 2.0e-4)
+            force = LOAD * engaged * (ub / RADIUS + np.asarray(result.mu)[:, None] * z)
         else:
             result = run_orbit(bearing, o)
-        force = np.array(result.force)
+            force = np.array(result.force)
         if "lag" in chosen:
             late = o.time - LAG_SAMPLES * dt
             force = np.column_stack([np.interp(late, o.time, force[:, j]) for j in range(2)])

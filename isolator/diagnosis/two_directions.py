@@ -19,10 +19,13 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    samples where the baseline's friction force is not yet aligned with the sliding direction
    (|z| < 0.95 or an angle between z and v above 15 deg), plus three samples after each
    entry, and the samples at under 5 % of the peak speed.
-3. **Stage 1, kinematics, on every sample:** ``backlash`` (a play per axis: a dead band of
-   width g_x, g_y in the load train) and ``lag`` (one force-channel lag for the campaign),
-   each with u_y and the channel lag refitted. The lag is judged against the baseline with
-   no lag (the nuisance judged as an effect), named from ``lag_min_samples`` on, only when
+3. **Stage 1, kinematics, on every sample:** ``backlash`` (a play per axis of width g_x,
+   g_y in the load train, one direction's play on each axis: after a reversal the axis's
+   pre-sliding spring unloads, then the gap opens and that axis stands still and carries no
+   force until it closes; :func:`play_return_map_2d`) and ``lag`` (one force-channel lag
+   for the campaign), each with u_y and the channel lag refitted. The lag is judged against
+   the baseline with no lag (the nuisance judged as an effect), named from
+   ``lag_min_samples`` on, only when
    the lag fitted test by test agrees (a spread over 1.5 samples and 25 % is a speed effect)
    and within ``PLAUSIBLE_LAG``; a play from ``backlash_min`` on either axis.
 4. **Stage 2, the friction law, outside the direction-change windows:** ``heating``
@@ -32,7 +35,9 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    travelled over the campaign) join by forward selection on held-out data
    (leave-one-test-out, or alternate blocks of one test), u_y and the lag refitted with each
    model, a second effect under the stricter ``second_*`` thresholds; then the kinematic
-   candidates are tried again beside the friction law named.
+   candidates are tried again beside the friction law named. A kinematic effect that was
+   significant but closed too little of the excess on its own (a play beside heating) is
+   applied provisionally, the law selected beside it, and judged again beside that law.
 5. **Verdict**: ``none``, the named effects, ``unexplained``; the materiality rule covers the
    whole test (every sample, the direction-change windows included).
 6. **Uncertainty**: confidence by block bootstrap, 5-95 % intervals of the parameters.
@@ -124,6 +129,74 @@ def play(u, width):
             y = u[i] + half
         out[i] = y
     return out
+
+
+@jit
+def play_return_map_2d(ux, uy, half_x, half_y, yield_displacement):
+    """The isotropic return map behind a play per axis, as one direction's
+    :func:`isolator.diagnosis.kinematics.play_return_map` on each axis: (u_b, z, engaged),
+    each (n, 2).
+
+    An axis with a gap of half width ``half_x`` / ``half_y`` [m] (starting centred): a
+    displacement increment against that axis's force first unloads the pre-sliding spring
+    (z_j towards 0 over u_y), then crosses the gap with the bearing standing still on that
+    axis and no force transmitted on it (``engaged`` 0), then loads the spring the other way
+    through the isotropic return map (z* = z + du / u_y, normalised when |z*| > 1). An axis
+    without a gap follows the plain return map (:func:`return_map_2d`).
+    """
+    n = ux.size
+    ub = np.empty((n, 2))
+    z = np.zeros((n, 2))
+    engaged = np.ones((n, 2))
+    ub[0, 0] = ux[0]
+    ub[0, 1] = uy[0]
+    zs = np.zeros(2)
+    p = np.zeros(2)
+    half = np.array([half_x, half_y])
+    load = np.zeros(2)
+    crossing = np.zeros(2, dtype=np.bool_)
+    for i in range(1, n):
+        for j in range(2):
+            u_now = ux[i] if j == 0 else uy[i]
+            u_then = ux[i - 1] if j == 0 else uy[i - 1]
+            r = u_now - u_then
+            crossing[j] = False
+            if half[j] > 0.0:
+                if zs[j] * r < 0.0:  # unload the spring towards zero force
+                    dz = r / yield_displacement
+                    if abs(dz) <= abs(zs[j]):
+                        zs[j] += dz
+                        r = 0.0
+                    else:
+                        r += zs[j] * yield_displacement
+                        zs[j] = 0.0
+                if r != 0.0 and zs[j] == 0.0:  # cross the gap
+                    target = half[j] if r > 0.0 else -half[j]
+                    distance = target - p[j]
+                    if abs(r) < abs(distance):
+                        p[j] += r
+                        r = 0.0
+                        crossing[j] = True
+                    else:
+                        p[j] = target
+                        r -= distance
+            load[j] = r
+        ax = zs[0] + load[0] / yield_displacement
+        ay = zs[1] + load[1] / yield_displacement
+        size = math.sqrt(ax * ax + ay * ay)
+        if size > 1.0:
+            ax /= size
+            ay /= size
+        zs[0] = ax
+        zs[1] = ay
+        ub[i, 0] = ux[i] - p[0]
+        ub[i, 1] = uy[i] - p[1]
+        z[i, 0] = ax
+        z[i, 1] = ay
+        for j in range(2):
+            if crossing[j]:
+                engaged[i, j] = 0.0
+    return ub, z, engaged
 
 
 @jit
@@ -265,10 +338,23 @@ class Data2D:
     temperature_rise: np.ndarray = field(default_factory=lambda: np.zeros(0))
     mu_shape: np.ndarray = field(default_factory=lambda: np.zeros(0))
     smoothed: bool = True
+    _play_paths: list = field(default_factory=list)
 
     @property
     def n(self) -> int:
         return int(self.test.size)
+
+    def play_paths(self) -> list[np.ndarray]:
+        """The displacement a play is driven with, per test (n_k, 2): smoothed as in one
+        direction even when the rest of the diagnosis uses it as measured, since a sensor's
+        jitter reopens a just-closed gap, which zeroes that axis's force for a sample."""
+        if self.smoothed:
+            return self.displacement
+        if not self._play_paths:
+            self._play_paths = [np.column_stack([smoothed_displacement(t, u[:, j])
+                                                 for j in range(2)])
+                                for t, u in zip(self.time, self.displacement, strict=True)]
+        return self._play_paths
 
 
 def _smooth(time: np.ndarray, values: np.ndarray, smooth: bool) -> np.ndarray:
@@ -312,15 +398,21 @@ def kinematic_state(d: Data2D, yield_displacement: float, lag: float = 0.0,
                     widths: tuple[float, float] = (0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
     """The displacement reaching the bearing u_b (n, 2) [m] and the return map's z (n, 2)
     [-] for a yield displacement [m], a force-channel ``lag`` [s] and a play per axis
-    ``widths`` [m], over every test of ``d``."""
+    ``widths`` [m], over every test of ``d``. Behind a play (:func:`play_return_map_2d`)
+    both are zero on an axis while its gap is open, so that the force N (u_b / R + mu z)
+    they give is zero there, as one direction's play (the force times ``engaged``)."""
     ub, z = [], []
-    for t, u in zip(d.time, d.displacement, strict=True):
-        cols = []
-        for j in range(2):
-            x = lagged(t, u[:, j], lag) if lag else u[:, j]
-            if widths[j] > 0.0:
-                x = play(np.ascontiguousarray(x), float(widths[j]))
-            cols.append(np.ascontiguousarray(x))
+    gap = widths[0] > 0.0 or widths[1] > 0.0
+    for t, u in zip(d.time, d.play_paths() if gap else d.displacement, strict=True):
+        cols = [np.ascontiguousarray(lagged(t, u[:, j], lag) if lag else u[:, j])
+                for j in range(2)]
+        if gap:
+            b, zz, engaged = play_return_map_2d(cols[0], cols[1], 0.5 * float(widths[0]),
+                                                0.5 * float(widths[1]),
+                                                float(yield_displacement))
+            ub.append(b * engaged)
+            z.append(zz * engaged)
+            continue
         zx, zy = return_map_2d(cols[0], cols[1], float(yield_displacement))
         ub.append(np.column_stack(cols))
         z.append(np.column_stack([zx, zy]))
@@ -1092,56 +1184,102 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         current = trials[best]
 
     # stage 2: the friction law outside the direction-change windows (u_y, lag refitted)
-    kin_model = Model2D(kinematic=tuple(named_kin), free=True)
-    law_base = problem.judge(kin_model, sliding, start=_start(kin_model, current, base, d))
-    cur = law_base
-    law: list[str] = []
     beside: dict[str, tuple[str, ...]] = {}  # the law each candidate was last tried beside
     d.temperature_rise = np.zeros(d.n)
     friction = [k for k in names if not LIBRARY_2D[k].kinematic]
     if "heating" in friction:
         mu_hist = base.mu * d.mu_shape
         d.temperature_rise = temperature_rise(d, mu_hist)
-    for _ in range(MAX_FRICTION_EFFECTS):
-        trials = {}
-        for k in friction:
-            if k in law:
-                continue
-            why = LIBRARY_2D[k].requires(d) if LIBRARY_2D[k].requires else None
-            if why:
-                judged[k] = Judged(Model2D(), np.zeros(0), np.zeros(0), [], cur.prediction,
-                                   cur.full, untestable=why)
-                roles[k] = f"untestable: {why}"
-                continue
-            model = Model2D(friction=(*law, k), kinematic=tuple(named_kin), free=True)
-            start = np.concatenate([cur.theta, [p.start for p in LIBRARY_2D[k].params]])
-            starts = [np.concatenate([cur.theta, s]) for s in _friction_starts(k)]
-            j = problem.judge(model, sliding, start=start, starts=starts)
-            second = bool(law)
-            j = problem.compare(cur, j, sliding, z_min=th.second_z if second else th.z_min,
-                                explained_min=(th.second_explained if second
-                                               else th.explained_min),
-                                practical_min=th.practical_gain)
-            trials[k] = j
-            if k not in law:
+
+    def friction_stage(kinematic: tuple[str, ...], start_from: Judged, judged: dict,
+                       roles: dict, beside: dict) -> tuple[list[str], Judged, Judged]:
+        """Forward selection of the friction law beside the kinematic effects named:
+        (the law, its judged model, the kinematic model it started from)."""
+        kin_model = Model2D(kinematic=kinematic, free=True)
+        law_base = problem.judge(kin_model, sliding,
+                                 start=_start(kin_model, start_from, base, d))
+        cur = law_base
+        law: list[str] = []
+        for _ in range(MAX_FRICTION_EFFECTS):
+            trials = {}
+            for k in friction:
+                if k in law:
+                    continue
+                why = LIBRARY_2D[k].requires(d) if LIBRARY_2D[k].requires else None
+                if why:
+                    judged[k] = Judged(Model2D(), np.zeros(0), np.zeros(0), [],
+                                       cur.prediction, cur.full, untestable=why)
+                    roles[k] = f"untestable: {why}"
+                    continue
+                model = Model2D(friction=(*law, k), kinematic=kinematic, free=True)
+                start = np.concatenate([cur.theta, [p.start for p in LIBRARY_2D[k].params]])
+                starts = [np.concatenate([cur.theta, s]) for s in _friction_starts(k)]
+                j = problem.judge(model, sliding, start=start, starts=starts)
+                second = bool(law)
+                j = problem.compare(cur, j, sliding,
+                                    z_min=th.second_z if second else th.z_min,
+                                    explained_min=(th.second_explained if second
+                                                   else th.explained_min),
+                                    practical_min=th.practical_gain)
+                trials[k] = j
                 judged[k] = j
                 beside[k] = tuple(law)
-        passing = [k for k, j in trials.items() if j.earns]
-        if not passing:
+            passing = [k for k, j in trials.items() if j.earns]
+            if not passing:
+                break
+            best = min(passing, key=lambda k: trials[k].weighted)
+            law.append(best)
+            cur = trials[best]
+            judged[best] = cur
+        return law, cur, law_base
+
+    law, cur, law_base = friction_stage(tuple(named_kin), current, judged, roles, beside)
+
+    # a play (or lag) and a friction law hiding each other, as in one direction: a kinematic
+    # effect that is significant and large enough but closes too little of the excess on its
+    # own is applied provisionally, the law selected beside it, and the kinematic effect
+    # judged again beside that law on every sample
+    if not named_kin:
+        for k in kin:
+            first = judged.get(k)
+            if first is None or not _hidden(first, k, th, d):
+                continue
+            trial_judged: dict[str, Judged] = {}
+            trial_roles: dict[str, str] = {}
+            trial_beside: dict[str, tuple[str, ...]] = {}
+            law_p, cur_p, base_p = friction_stage((k,), first, trial_judged, trial_roles,
+                                                  trial_beside)
+            if not law_p:
+                continue
+            without = Model2D(friction=tuple(law_p), free=True)
+            reference = problem.judge(without, every, start=_start(without, cur_p, base, d))
+            model = Model2D(friction=tuple(law_p), kinematic=(k,), free=True)
+            j = problem.judge(model, every, start=_start(model, cur_p, base, d),
+                              starts=_kin_starts(model, cur_p, base, d))
+            j = problem.compare(reference, j, every, z_min=th.kinematic_z,
+                                explained_min=th.kinematic_explained,
+                                practical_min=th.kinematic_practical)
+            j.earns = j.earns and _size_ok(j, k, th, d, notes)
+            if not j.earns:
+                continue
+            named_kin.append(k)
+            law, cur, law_base = law_p, cur_p, base_p
+            judged.update(trial_judged)
+            roles.update(trial_roles)
+            beside.update(trial_beside)
+            judged[k] = j
+            notes.append(f"{k} and the friction law ({', '.join(law)}) hid each other: the law "
+                         f"selected with {k} applied, then {k} judged again beside it")
             break
-        best = min(passing, key=lambda k: trials[k].weighted)
-        law.append(best)
-        cur = trials[best]
-        judged[best] = cur
 
     # kinematics tried again beside the friction law named
     if law:
+        reference = problem.judge(Model2D(friction=tuple(law), kinematic=tuple(named_kin),
+                                          free=True), every, start=cur.theta)
         for k in kin:
             if k in named_kin:
                 continue
             model = Model2D(friction=tuple(law), kinematic=(*named_kin, k), free=True)
-            reference = problem.judge(Model2D(friction=tuple(law), kinematic=tuple(named_kin),
-                                              free=True), every, start=cur.theta)
             j = problem.judge(model, every, start=_start(model, reference, base, d),
                               starts=_kin_starts(model, reference, base, d))
             j = problem.compare(reference, j, every, z_min=th.kinematic_z,
@@ -1151,6 +1289,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             if j.earns:
                 named_kin.append(k)
                 judged[k] = j
+                reference = j  # the next candidate is judged beside this one too
                 notes.append(f"{k} found beside the friction law ({', '.join(law)})")
 
     # the final model on every sample, and the verdict
@@ -1216,10 +1355,12 @@ def _start(model: Model2D, current: Judged, base: Baseline2D, d: Data2D) -> np.n
 def _kin_starts(model: Model2D, current: Judged, base: Baseline2D,
                 d: Data2D) -> list[np.ndarray]:
     """Further starts of a kinematic model: plays of 1, 5 and 10 mm, lags of +-8 samples,
-    each with a u_y of 0.1 mm and 1 mm as well as the baseline's."""
+    each with a u_y of 0.1 mm and 1 mm as well as the baseline's; for a play also the best
+    points of a grid over the two widths and u_y (:func:`_play_grid`)."""
     x = _start(model, current, base, d)
     names = [p.name for p in model.layout(d, base.yield_displacement)]
     variants = [x]
+    gridded: list[np.ndarray] = []  # a play's grid starts, with their own u_y
     if "width_x" in names:
         i = names.index("width_x")
         variants = []
@@ -1227,6 +1368,15 @@ def _kin_starts(model: Model2D, current: Judged, base: Baseline2D,
             s = x.copy()
             s[i] = s[i + 1] = w
             variants.append(s)
+        at = names.index("lag") if "lag" in names else (
+            names.index("channel_lag") if "channel_lag" in names else None)
+        lags = {0.0, float(x[at]) if at is not None else base.lag}
+        for mu, uy, lag, wx, wy in _play_grid(d, sorted(lags)):
+            s = x.copy()
+            s[0], s[1], s[i], s[i + 1] = mu, math.log10(uy), wx, wy
+            if at is not None:
+                s[at] = lag
+            gridded.append(s)
     if "lag" in names:
         i = names.index("lag")
         more = []
@@ -1243,7 +1393,34 @@ def _kin_starts(model: Model2D, current: Judged, base: Baseline2D,
             if uy is not None:
                 t[1] = math.log10(uy)
             out.append(t)
-    return out
+    return out + gridded
+
+
+_PLAY_GRID = np.concatenate([[0.0], np.geomspace(5e-4, BACKLASH_MAX, 11)])
+
+
+def _play_grid(d: Data2D, lags: Sequence[float],
+               keep: int = 2) -> list[tuple[float, float, float, float, float]]:
+    """The ``keep`` best (mu, u_y, lag, width_x, width_y) of a grid (plays of 0 and 0.5-20 mm
+    per axis, u_y from 0.1 to 1 mm, the channel ``lags`` [s]) with mu by least squares: starts
+    for the play's fit, whose cost is rough in the widths (a gap opens and closes at whole
+    samples), and whose baseline's u_y and lag the play has pulled."""
+    inverse = 0.0 if math.isinf(d.radius) else 1.0 / d.radius
+    costs = []
+    for lag in lags:
+        for uy in (1e-4, 3e-4, 1e-3):
+            for wx in _PLAY_GRID:
+                for wy in _PLAY_GRID:
+                    if wx == 0.0 and wy == 0.0:
+                        continue
+                    ub, z = kinematic_state(d, uy, lag, (float(wx), float(wy)))
+                    friction = d.force - d.axial[:, None] * ub * inverse
+                    basis = d.axial[:, None] * d.mu_shape[:, None] * z
+                    mu = float(np.sum(basis * friction) / max(np.sum(basis**2), 1e-300))
+                    cost = float(np.mean((friction - mu * basis) ** 2))
+                    costs.append((cost, mu, uy, float(lag), float(wx), float(wy)))
+    costs.sort()
+    return [c[1:] for c in costs[:keep]]
 
 
 def _friction_starts(name: str) -> list[np.ndarray]:
@@ -1276,6 +1453,15 @@ def per_test_lags(d: Data2D, j: Judged) -> np.ndarray:
             mu = float(np.sum(basis[m] * friction[m]) / max(np.sum(basis[m] ** 2), 1e-300))
             costs[i, k] = float(np.mean((friction[m] - mu * basis[m]) ** 2))
     return grid[np.argmin(costs, axis=0)]
+
+
+def _hidden(j: Judged, name: str, th: Thresholds, d: Data2D) -> bool:
+    """Whether a kinematic effect's first judgement failed only on the share of the excess
+    it closes: significant, practically large, within its range and of a nameable size."""
+    if j.untestable is not None or j.earns or j.at_bound or not np.isfinite(j.z):
+        return False
+    return (j.z >= th.kinematic_z and j.practical >= th.kinematic_practical
+            and j.explained < th.kinematic_explained and _size_ok(j, name, th, d, []))
 
 
 def _size_ok(j: Judged, name: str, th: Thresholds, d: Data2D, notes: list[str]) -> bool:

@@ -5,9 +5,10 @@ effect) are run through the package's bidirectional element with ``run_orbit`` b
 documented example ``examples/diagnose_2d_campaign.py``, each with one effect switched on
 through the friction model's parameters or the load train, and sensor noise (force 0.4 % of
 the peak |F|, displacement 10 um): the precise model's heating against a constant baseline,
-the speed dependence, a play of 4 mm along x and 2 mm along y, a force channel 4 samples
-late. Checked: ``none`` on clean data with noise, each single effect named alone (no other
-effect beside it), its parameters recovered, the shrink of the held-out gap reported, and the
+the speed dependence, a play of 4 mm along x and 2 mm along y (no force on an axis while its
+gap is open), a force channel 4 samples late. Checked: ``none`` on clean data with noise, each
+single effect named alone (no other effect beside it; beside the play an ``unexplained`` may
+stand), its parameters recovered, the shrink of the held-out gap reported, and the
 command line's printed where / which / how far; and the element as baseline (the precise
 model without speed and pressure factors) leaves no gap on its own data. About 40 s.
 """
@@ -99,7 +100,9 @@ def test_speed_dependence_is_named_on_the_speed(example):
 def test_play_per_axis_is_named_with_its_widths(example):
     summary = _summary(example, "backlash", seed=5)
     _check_report(summary)
-    assert summary["verdict"] == ["backlash"]
+    # an open gap reads zero force, so where the displacement noise moves a reversal by a
+    # sample the axis's force N u / R is missed there: "unexplained" may stand beside it
+    assert [n for n in summary["verdict"] if n != "unexplained"] == ["backlash"]
     widths = summary["chosen"]["parameters"]["backlash"]
     assert math.isclose(widths["width_x"], example.PLAY[0], rel_tol=0.25)
     assert math.isclose(widths["width_y"], example.PLAY[1], rel_tol=0.25)

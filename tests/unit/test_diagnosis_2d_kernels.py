@@ -1,7 +1,8 @@
 """The kernels of the diagnosis in two directions (issue 21) against the package's element.
 
 The return map along an orbit is the element's (:func:`isolator.bearing.isotropic_return_map`
-step by step), the play is a dead band per axis, the fractional shift of a channel is the
+step by step), the play is a dead band per axis and, behind it, one direction's play on each
+axis (no force while a gap is open), the fractional shift of a channel is the
 cubic interpolation of :func:`isolator.diagnosis.kinematics.shifted`, and the model's force is
 the element's force on the same orbit to rounding.
 """
@@ -11,8 +12,13 @@ from __future__ import annotations
 import numpy as np
 
 from isolator.bearing import DCFPBearing, isotropic_return_map
-from isolator.diagnosis.kinematics import shifted
-from isolator.diagnosis.two_directions import play, return_map_2d, shift_uniform
+from isolator.diagnosis.kinematics import play_return_map, shifted
+from isolator.diagnosis.two_directions import (
+    play,
+    play_return_map_2d,
+    return_map_2d,
+    shift_uniform,
+)
 from isolator.friction import ConstantFriction
 from isolator.orbits import orbit
 from isolator.testrig import run_orbit
@@ -37,6 +43,24 @@ def test_play_is_a_dead_band():
     assert np.all(np.abs(u - out) <= 0.002 + 1e-15)
     assert np.isclose(np.ptp(out), np.ptp(u) - 0.004)
     assert np.array_equal(play(u, 0.0), u)
+
+
+def test_play_per_axis_is_one_directions_play_on_a_line():
+    """Along x the play of two directions is one direction's (the bearing standing still and
+    no force while the gap is open); with no gap it is the plain return map."""
+    t = np.linspace(0.0, 4.0, 801)
+    x = 0.01 * np.sin(2 * np.pi * t) + 0.002 * np.sin(2 * np.pi * 3.1 * t)
+    ub, z, engaged = play_return_map_2d(x, np.zeros_like(x), 0.002, 0.001, 3e-4)
+    ub1, z1, engaged1 = play_return_map(x, 0.002, 3e-4, 0.0, 0.05)
+    assert np.array_equal(ub[:, 0], ub1) and np.array_equal(z[:, 0], z1)
+    assert np.array_equal(engaged[:, 0], engaged1) and engaged1.min() == 0.0
+    rng = np.random.default_rng(2)
+    u = np.cumsum(rng.normal(0.0, 2e-4, (400, 2)), axis=0)
+    u[0] = 0.0
+    ub, z, engaged = play_return_map_2d(u[:, 0].copy(), u[:, 1].copy(), 0.0, 0.0, 5e-4)
+    zx, zy = return_map_2d(u[:, 0].copy(), u[:, 1].copy(), 5e-4)
+    assert np.array_equal(z, np.column_stack([zx, zy])) and np.array_equal(ub, u)
+    assert engaged.min() == 1.0
 
 
 def test_fractional_shift_is_cubic_interpolation():
