@@ -14,7 +14,10 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    2.5 mm and a channel lag of up to two samples, on all samples; a u_y or lag at the edge of
    its range is reported as a finding. The displacement is used as measured, or smoothed as
    in one direction when the sensors' noise exceeds a tenth of u_y (smoothing bends the
-   corners and stops of an orbit).
+   corners and stops of an orbit). A relative gain of the y force channel of 1-5 %, the same
+   in every test, is corrected as the load cells' calibration (:func:`_axis_gain`); the
+   force noise is measured beyond its correlation when it is correlated
+   (:func:`force_noise_std`).
 2. **Direction-change windows** (the reversal windows of one direction, generalised): the
    samples where the baseline's friction force is not yet aligned with the sliding direction
    (|z| < 0.95 or an angle between z and v above 15 deg), plus three samples after each
@@ -88,6 +91,11 @@ SMOOTH_NOISE = 0.1  # displacement noise over u_y beyond which the displacement 
 _YIELD_GRID = np.geomspace(RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_MAX, 14)
 _LAG_GRID = np.arange(-NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES + 0.25, 0.5)
 _REPLICATES = 6
+AXIS_GAIN_MIN = 0.01  # a relative gain of the y force channel from 1 % ...
+AXIS_GAIN_MAX = 0.05  # ... to 5 % in every test is corrected as the load cells' calibration
+AXIS_GAIN_SPREAD = 0.3  # ... when the tests' gains agree within this share of their mean
+CORRELATED_RATIO = 1.3  # a noise estimate on every 2nd sample this much above: correlated
+CORRELATED_STRIDE = 8  # correlated force noise is measured on every 8th sample
 _SECTORS = ("+x", "+x+y", "+y", "-x+y", "-x", "-x-y", "-y", "+x-y")
 
 
@@ -700,6 +708,32 @@ def _grid_fit(d: Data2D, grid_uy, lags=_LAG_GRID) -> tuple:
     return best
 
 
+def _axis_gain(d: Data2D, base: Baseline2D) -> float | None:
+    """The y force channel's gain relative to the x one [-] (a load cell's calibration error
+    of a few per cent), or None: the ratio of each axis's least-squares scale on the
+    baseline's force, over the campaign. Named only when every test (two at least) agrees: a
+    ratio between ``AXIS_GAIN_MIN`` and ``AXIS_GAIN_MAX`` from 1, of one sign, spread by at
+    most ``AXIS_GAIN_SPREAD`` of its mean (a load cell's gain is the campaign's; an effect
+    that loads one axis more, a speed effect on a figure-eight, changes with the test)."""
+    def ratio(mask: np.ndarray) -> float:
+        scales = []
+        for j in range(2):
+            p = base.force[mask, j]
+            norm = float(np.sum(p * p))
+            scales.append(float(np.sum(d.force[mask, j] * p)) / norm if norm > 0.0 else 0.0)
+        return scales[1] / scales[0] - 1.0 if scales[0] > 0.0 else 0.0
+
+    tests = len(d.campaign.tests)
+    if tests < 2:
+        return None
+    each = np.array([ratio(d.test == k) for k in range(tests)])
+    size = np.abs(each)
+    if (size.min() < AXIS_GAIN_MIN or size.max() > AXIS_GAIN_MAX
+            or np.ptp(np.sign(each)) > 0 or np.ptp(each) > AXIS_GAIN_SPREAD * size.mean()):
+        return None
+    return 1.0 + ratio(np.ones(d.n, bool))
+
+
 def _calibrate(d: Data2D, spec: BaselineSpec) -> Baseline2D:
     """mu (or the scale on the element's mu), u_y and a lag of up to two samples."""
     runs = 0
@@ -759,10 +793,34 @@ def _element_mu_shape(d: Data2D, spec: BaselineSpec, mu_t0: float,
     return np.concatenate(shapes)
 
 
+def _strided_noise_std(x: np.ndarray, stride: int) -> float:
+    """:func:`~isolator.diagnosis.kinematics.noise_std` of every ``stride``-th sample,
+    averaged over the offsets [units of ``x``]."""
+    return float(np.mean([noise_std(x[o::stride]) for o in range(stride)]))
+
+
+def force_noise_std(force: np.ndarray, residual: np.ndarray) -> float:
+    """The force channel's noise standard deviation [N]: the white estimate
+    (:func:`~isolator.diagnosis.kinematics.noise_std`), unless the noise is correlated.
+
+    A high-order difference sees only the fast part of correlated (AR(1), band-limited)
+    noise: its estimate on every second sample then exceeds that on every sample by more
+    than ``CORRELATED_RATIO`` (white noise: the same). The noise is then measured on the
+    baseline's residual (which has lost the smooth force) at a stride of
+    ``CORRELATED_STRIDE`` samples, beyond the noise's correlation, never below the white
+    estimate."""
+    white = noise_std(force)
+    if force.size < 8 * CORRELATED_STRIDE:
+        return white
+    if _strided_noise_std(force, 2) <= CORRELATED_RATIO * white:
+        return white
+    return max(white, _strided_noise_std(residual, CORRELATED_STRIDE))
+
+
 def noise_variance(d: Data2D, base: Baseline2D, seed: int = 0) -> np.ndarray:
     """Variance of the force error measurement noise leaves at each sample, per axis [N^2]:
-    the force sensors' white noise plus the displacement sensors' through the return map (a
-    Monte Carlo estimate, as in one direction)."""
+    the force sensors' noise (:func:`force_noise_std`) plus the displacement sensors'
+    through the return map (a Monte Carlo estimate, as in one direction)."""
     rng = np.random.default_rng(seed)
     inverse = 0.0 if math.isinf(d.radius) else 1.0 / d.radius
     variance = np.empty(d.n)
@@ -770,7 +828,8 @@ def noise_variance(d: Data2D, base: Baseline2D, seed: int = 0) -> np.ndarray:
     for _k, rec in enumerate(d.campaign.tests):
         n = len(rec)
         idx = slice(start, start + n)
-        fn = np.mean([noise_std(rec.force[:, j]) ** 2 for j in range(2)])
+        fn = np.mean([force_noise_std(rec.force[:, j], d.force[idx, j] - base.force[idx, j])
+                      ** 2 for j in range(2)])
         un = math.sqrt(np.mean([noise_std(rec.displacement[:, j]) ** 2 for j in range(2)]))
         spread = np.zeros(n)
         if un > 0.0:
@@ -1137,6 +1196,12 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
     if sensor > SMOOTH_NOISE * base.yield_displacement:
         d = _prepare(campaign, smooth=True)
         base = _calibrate(d, spec)
+    gain = _axis_gain(d, base)
+    if gain is not None:  # the two load cells calibrated against each other (a nuisance)
+        d.force[:, 1] /= gain
+        base = _calibrate(d, spec)
+        base.edges.append(f"the y force channel reads {100 * (gain - 1):+.1f} % against the x "
+                          "one (a relative gain of the load cells, corrected as a nuisance)")
     _DT["dt"] = d.dt
     variance = noise_variance(d, base)
     problem = Problem2D(d, base, variance, th)
