@@ -109,6 +109,12 @@ class FrictionModel(Protocol):
         modification factor, ASCE 7-16 Sec. 17.2.8.4)."""
         ...
 
+    def nominal_mu(self, pressure: float, velocity: float) -> float:
+        """The nominal (cold) friction coefficient [-] at a contact ``pressure`` [Pa] and a
+        sliding ``velocity`` [m/s], at the initial temperature (no heating). Optional: a model
+        without it has no nominal coefficient for the design layer."""
+        ...
+
 
 def speed_of(velocity: Pair) -> float:
     """|v| of an (x, y) velocity [m/s] (exactly |v_x| when v_y = 0)."""
@@ -179,6 +185,10 @@ class ConstantFriction:
         """The model with mu_0, and so mu_c, times ``factor`` [-]."""
         check_real(factor, "factor", "ConstantFriction.scaled", low=0.0, low_open=True)
         return replace(self, mu0=self.mu0 * factor)
+
+    def nominal_mu(self, pressure: float, velocity: float) -> float:
+        """mu_c (Eq. 8) [-], whatever the ``pressure`` [Pa] and ``velocity`` [m/s]."""
+        return self.mu
 
 
 class ConstantFrictionState:
@@ -322,6 +332,12 @@ class PTVFriction:
         """The model with mu_t0, and so mu at every state, times ``factor`` [-]."""
         check_real(factor, "factor", "PTVFriction.scaled", low=0.0, low_open=True)
         return replace(self, mu_t0=self.mu_t0 * factor)
+
+    def nominal_mu(self, pressure: float, velocity: float) -> float:
+        """Eq. 7 [-] at ``pressure`` [Pa], ``velocity`` [m/s] and the initial temperature (the
+        cold, nominal value: no heating)."""
+        return float(eq7(pressure, velocity, self.initial_temperature, mu_t0=self.mu_t0,
+                         factors=self.factors, dependencies=self.dependencies))
 
     def bind(self, contact_radius: float, travel: float, dimension: int = 1,
              orientation: float | None = None) -> PTVFrictionState:

@@ -44,7 +44,6 @@ from dcfpb.common.validation import (
     check_real,
 )
 from isolator.experiments import MODELS
-from isolator.friction import ConstantFriction, PTVFriction, eq7
 from structures.config import BuildingConfig
 from structures.design.limits import LIMITS, damping_coefficient, limit
 from structures.design.properties import BOUNDS, PropertyModification
@@ -134,14 +133,10 @@ def nominal_mu(config: BuildingConfig, model: str | None = None) -> float:
     check_instance(config, "config", _OWNER, BuildingConfig, "a BuildingConfig")
     bearing = config.bearing(model)
     friction = bearing.friction
-    if isinstance(friction, ConstantFriction):
-        return friction.mu
-    if isinstance(friction, PTVFriction):
+    if hasattr(friction, "nominal_mu"):
         pressure = bearing.axial_load_at(0.0) / bearing.contact_area
         velocity = float(config.friction.get("design_velocity", 0.4))
-        return float(eq7(pressure, velocity, friction.initial_temperature,
-                         mu_t0=friction.mu_t0, factors=friction.factors,
-                         dependencies=friction.dependencies))
+        return float(friction.nominal_mu(pressure, velocity))
     raise InputError(f"The 'mu' parameter of {_OWNER} must be given for the friction model "
                      f"{getattr(friction, 'name', friction)!r}, whose nominal coefficient this "
                      "module does not know. Got None instead.")
