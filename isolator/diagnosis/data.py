@@ -145,16 +145,7 @@ class Campaign:
     slider_diameter: float
 
     def __post_init__(self) -> None:
-        owner = type(self).__name__
-        tests = tuple(self.tests)
-        if not tests or not all(isinstance(t, BearingRecord) for t in tests):
-            raise InputTypeError(f"The 'tests' parameter of {owner} must be one or more "
-                                 f"BearingRecord objects. Got {self.tests!r} instead.")
-        object.__setattr__(self, "tests", tests)
-        check_real(self.effective_radius, "effective_radius", owner, low=0.0, low_open=True,
-                   allow_inf=True)
-        check_real(self.slider_diameter, "slider_diameter", owner, low=0.0, low_open=True,
-                   high=10.0)
+        check_campaign(self, BearingRecord)
 
     @property
     def contact_radius(self) -> float:
@@ -165,6 +156,23 @@ class Campaign:
     def contact_area(self) -> float:
         """Contact area pi r^2 [m^2]."""
         return math.pi * self.contact_radius**2
+
+
+def check_campaign(campaign, record_class: type) -> None:
+    """Check a campaign's fields (its ``tests`` made a tuple of ``record_class`` objects, at
+    least one; R_eff [m] > 0 or inf; slider diameter [m] in (0, 10]), in its
+    ``__post_init__``."""
+    owner = type(campaign).__name__
+    tests = tuple(campaign.tests)
+    if not tests or not all(isinstance(t, record_class) for t in tests):
+        raise InputTypeError(f"The 'tests' parameter of {owner} must be one or more "
+                             f"{record_class.__name__} objects. Got {campaign.tests!r} "
+                             "instead.")
+    object.__setattr__(campaign, "tests", tests)
+    check_real(campaign.effective_radius, "effective_radius", owner, low=0.0, low_open=True,
+               allow_inf=True)
+    check_real(campaign.slider_diameter, "slider_diameter", owner, low=0.0, low_open=True,
+               high=10.0)
 
 
 def derived_velocity(time: np.ndarray, displacement: np.ndarray) -> np.ndarray:
@@ -408,17 +416,23 @@ def _check_values(columns: dict[str, np.ndarray], where: str, *, first_row: int)
                         f"(at most {MAX_DISPLACEMENT:g} m). Was it written in millimetres?")
     if np.ptp(columns["displacement"]) == 0.0:
         raise DataError(f"{where}: 'displacement' never changes; there is nothing to diagnose.")
-    temperature = columns.get("temperature")
-    if temperature is not None:
-        low, high = TEMPERATURE_RANGE
-        bad = (temperature < low) | (temperature > high)
-        if bad.any():
-            i = int(np.argmax(bad))
-            raise DataError(f"{where}: column 'temperature' must be in degC within "
-                            f"[{low:g}, {high:g}]; row {i + first_row} has "
-                            f"{float(temperature[i])!r}.")
+    _check_temperature_range(columns.get("temperature"), where, first_row=first_row)
     if columns.get("velocity") is not None:
         _check_velocity(columns, where)
+
+
+def _check_temperature_range(temperature: np.ndarray | None, where: str, *,
+                             first_row: int) -> None:
+    """Refuse a temperature column [degC] outside :data:`TEMPERATURE_RANGE`, naming the row."""
+    if temperature is None:
+        return
+    low, high = TEMPERATURE_RANGE
+    bad = (temperature < low) | (temperature > high)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise DataError(f"{where}: column 'temperature' must be in degC within "
+                        f"[{low:g}, {high:g}]; row {i + first_row} has "
+                        f"{float(temperature[i])!r}.")
 
 
 def _check_max_rows(max_rows: int) -> None:
@@ -521,9 +535,11 @@ def _column_name(text: str) -> tuple[str, str | None]:
     return match["name"].strip(), unit.strip() if unit is not None else None
 
 
-def _header_units(header: Sequence[str], path: Path) -> dict[str, str | None]:
+def _header_units(header: Sequence[str], path: Path,
+                  known: dict[str, str] = UNITS) -> dict[str, str | None]:
     """Check a header: no column named twice (letter case and spaces aside), and a unit
-    stated for a known column must be one read here; return the units stated."""
+    stated for a column of ``known`` (its units: :data:`UNITS`, or the two-direction table)
+    must be one read here; return the units stated."""
     seen: dict[str, str] = {}
     for cell in header:
         name, _ = _column_name(cell)
@@ -536,21 +552,21 @@ def _header_units(header: Sequence[str], path: Path) -> dict[str, str | None]:
     units: dict[str, str | None] = {}
     for cell in header:
         name, unit = _column_name(cell)
-        if name not in UNITS or unit is None:
+        if name not in known or unit is None:
             continue
         stated = unit.strip()
-        if name == "velocity" and stated in VELOCITY_UNITS:
+        if name.startswith("velocity") and stated in VELOCITY_UNITS:
             units[name] = stated
         elif name == "temperature" and stated.lower() in TEMPERATURE_UNITS:
             units[name] = "degC"
         elif name == "temperature" and stated.lower() in ("k", "kelvin"):
             raise DataError(f"{path}: column 'temperature' is stated in kelvin ({cell.strip()!r}); "
                             "give it in degC (subtract 273.15) and write 'temperature [degC]'.")
-        elif stated == UNITS[name]:
+        elif stated == known[name]:
             units[name] = None
         else:
-            allowed = (", ".join(VELOCITY_UNITS) if name == "velocity" else
-                       "degC or °C" if name == "temperature" else UNITS[name])
+            allowed = (", ".join(VELOCITY_UNITS) if name.startswith("velocity") else
+                       "degC or °C" if name == "temperature" else known[name])
             raise DataError(f"{path}: column {name!r} is stated in {stated!r} "
                             f"({cell.strip()!r}); it must be in {allowed}. Convert the column "
                             "and its header.")

@@ -18,13 +18,11 @@ from pathlib import Path
 
 import numpy as np
 
-from dcfpb.common.errors import InputTypeError
 from dcfpb.common.validation import check_real
 from isolator.diagnosis.data import (
     MAX_DISPLACEMENT,
     MAX_ROWS,
     MIN_SAMPLES,
-    TEMPERATURE_RANGE,
     UNIT_RATIO,
     VELOCITY_UNITS,
     DataError,
@@ -32,8 +30,11 @@ from isolator.diagnosis.data import (
     _check_increasing,
     _check_kelvin,
     _check_max_rows,
+    _check_temperature_range,
     _column_name,
+    _header_units,
     _numeric_column,
+    check_campaign,
     check_size,
     derived_velocity,
     velocity_ratio,
@@ -161,16 +162,7 @@ class Campaign2D:
     slider_diameter: float
 
     def __post_init__(self) -> None:
-        owner = type(self).__name__
-        tests = tuple(self.tests)
-        if not tests or not all(isinstance(t, BearingRecord2D) for t in tests):
-            raise InputTypeError(f"The 'tests' parameter of {owner} must be one or more "
-                                 f"BearingRecord2D objects. Got {self.tests!r} instead.")
-        object.__setattr__(self, "tests", tests)
-        check_real(self.effective_radius, "effective_radius", owner, low=0.0, low_open=True,
-                   allow_inf=True)
-        check_real(self.slider_diameter, "slider_diameter", owner, low=0.0, low_open=True,
-                   high=10.0)
+        check_campaign(self, BearingRecord2D)
 
     @property
     def dimension(self) -> int:
@@ -209,7 +201,7 @@ def read_record_2d(path: str | Path, *, axial_load: float | None = None,
     if not path.is_file():
         raise DataError(f"{path}: no such file.")
     header = check_size(path, max_rows=max_rows)
-    units = _header_units_2d(header, path)
+    units = _header_units(header, path, UNITS_2D)
     try:
         frame = pd.read_csv(path, dtype=str, keep_default_na=False, skipinitialspace=True)
     except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as error:
@@ -344,37 +336,6 @@ def check_consistent_units_2d(tests: Sequence[BearingRecord2D],
                                 "campaign mixes units (every file must be in s, m and N).")
 
 
-def _header_units_2d(header: Sequence[str], path: Path) -> dict[str, str | None]:
-    """No column named twice; a unit stated for a known column must be one read here."""
-    seen: dict[str, str] = {}
-    units: dict[str, str | None] = {}
-    for cell in header:
-        name, unit = _column_name(cell)
-        key = " ".join(name.lower().split())
-        if key and key in seen:
-            raise DataError(f"{path}: the column {name!r} appears twice in the header "
-                            f"({seen[key]!r} and {cell.strip()!r}); which one to read is "
-                            "unclear. Rename or remove one of them.")
-        seen[key] = cell.strip()
-        if name not in UNITS_2D or unit is None:
-            continue
-        stated = unit.strip()
-        if name.startswith("velocity_") and stated in VELOCITY_UNITS:
-            units[name] = stated
-        elif name == "temperature" and stated.lower() in ("degc", "°c", "c", "deg c",
-                                                            "celsius"):
-            units[name] = "degC"
-        elif stated == UNITS_2D[name]:
-            units[name] = None
-        else:
-            allowed = (", ".join(VELOCITY_UNITS) if name.startswith("velocity_") else
-                       "degC" if name == "temperature" else UNITS_2D[name])
-            raise DataError(f"{path}: column {name!r} is stated in {stated!r} "
-                            f"({cell.strip()!r}); it must be in {allowed}. Convert the column "
-                            "and its header.")
-    return units
-
-
 def _check_values_2d(values: dict[str, np.ndarray], where: str, *, first_row: int) -> None:
     axial = values.get("axial_force")
     if axial is not None and np.any(axial <= 0.0):
@@ -391,15 +352,7 @@ def _check_values_2d(values: dict[str, np.ndarray], where: str, *, first_row: in
     if np.ptp(u[:, 0]) == 0.0 and np.ptp(u[:, 1]) == 0.0:
         raise DataError(f"{where}: 'displacement_x' and 'displacement_y' never change; there "
                         "is nothing to diagnose.")
-    temperature = values.get("temperature")
-    if temperature is not None:
-        low, high = TEMPERATURE_RANGE
-        bad = (temperature < low) | (temperature > high)
-        if bad.any():
-            i = int(np.argmax(bad))
-            raise DataError(f"{where}: column 'temperature' must be in degC within "
-                            f"[{low:g}, {high:g}]; row {i + first_row} has "
-                            f"{float(temperature[i])!r}.")
+    _check_temperature_range(values.get("temperature"), where, first_row=first_row)
     velocity = values.get("velocity")
     if velocity is None:
         return
