@@ -340,20 +340,23 @@ def check_plausible(campaign: Campaign, where: Sequence[str] | None = None,
 UNIT_RATIO = 30.0  # tests of one campaign whose scales differ more than this mix units
 
 
-def check_consistent_units(tests: Sequence[BearingRecord],
+def check_consistent_units(tests: Sequence,
                            where: Sequence[str] | None = None) -> None:
     """Refuse a campaign whose tests look written in different units.
 
-    A test whose sampling interval, peak displacement or peak force [s, m, N] differs from the
+    A test whose sampling interval, peak displacement or peak force [s, m, N] (in two
+    directions their magnitudes |u| and |F|) differs from the
     campaign's median by a factor above ``UNIT_RATIO`` (a unit mistake is 1000) raises a
     ``DataError`` naming it (``where``: per test; default ``test 'name'``).
     """
     if len(tests) < 2:
         return
+    vector = tests[0].displacement.ndim == 2  # tests in two directions: magnitudes
     scales = {
         "time step": ([float(np.median(np.diff(t.time))) for t in tests], "s"),
-        "peak displacement": ([float(np.max(np.abs(t.displacement))) for t in tests], "m"),
-        "peak force": ([float(np.max(np.abs(t.force))) for t in tests], "N"),
+        "peak displacement |u|" if vector else "peak displacement":
+            ([_peak(t.displacement) for t in tests], "m"),
+        "peak force |F|" if vector else "peak force": ([_peak(t.force) for t in tests], "N"),
     }
     for what, (values, unit) in scales.items():
         middle = float(np.median(values))
@@ -524,6 +527,13 @@ def check_size(path: str | Path, *, max_rows: int = MAX_ROWS) -> list[str]:
 
 
 _UNIT = re.compile(r"^(?P<name>[^\[\(]*?)\s*(?:[\[\(](?P<unit>[^\]\)]*)[\]\)])?\s*$")
+
+
+def _peak(values: np.ndarray) -> float:
+    """The peak magnitude of a channel: |x| of (n,) values, |(x, y)| of (n, 2) values."""
+    if values.ndim == 1:
+        return float(np.max(np.abs(values)))
+    return float(np.max(np.hypot(values[:, 0], values[:, 1])))
 
 
 def _column_name(text: str) -> tuple[str, str | None]:

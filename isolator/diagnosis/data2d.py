@@ -23,7 +23,6 @@ from isolator.diagnosis.data import (
     MAX_DISPLACEMENT,
     MAX_ROWS,
     MIN_SAMPLES,
-    UNIT_RATIO,
     VELOCITY_UNITS,
     DataError,
     _check_finite,
@@ -35,6 +34,7 @@ from isolator.diagnosis.data import (
     _header_units,
     _numeric_column,
     check_campaign,
+    check_consistent_units,
     check_size,
     derived_velocity,
     velocity_ratio,
@@ -267,13 +267,13 @@ def load_campaign_2d(
     max_rows: int = MAX_ROWS,
 ) -> Campaign2D:
     """Read the tests in two directions of a campaign, in the order run, and check that they
-    are of one kind and in one set of units (:func:`check_consistent_units_2d`)."""
+    are of one kind and in one set of units (:func:`check_consistent_units`)."""
     if isinstance(paths, str | Path) or not paths:
         raise DataError("load_campaign_2d needs a list of one or more CSV files.")
     _check_max_rows(max_rows)
     check_one_kind(paths, max_rows=max_rows)
     tests = tuple(read_record_2d(p, axial_load=axial_load, max_rows=max_rows) for p in paths)
-    check_consistent_units_2d(tests, [str(p) for p in paths])
+    check_consistent_units(tests, [str(p) for p in paths])
     return Campaign2D(tests, effective_radius, slider_diameter)
 
 
@@ -313,27 +313,6 @@ def check_one_kind(paths: Sequence[str | Path], *, max_rows: int = MAX_ROWS,
                         "displacement_y, force_x, force_y); a campaign holds tests of one kind "
                         "only. Diagnose them as two campaigns.")
     return kinds[0]
-
-
-def check_consistent_units_2d(tests: Sequence[BearingRecord2D],
-                              where: Sequence[str] | None = None) -> None:
-    """Refuse a campaign whose tests look written in different units (time step, peak radius
-    |u| or peak force |F| differing from the median test's by more than ``UNIT_RATIO``)."""
-    if len(tests) < 2:
-        return
-    scales = {
-        "time step": ([float(np.median(np.diff(t.time))) for t in tests], "s"),
-        "peak displacement |u|": ([float(np.max(t.radius)) for t in tests], "m"),
-        "peak force |F|": ([float(np.max(np.hypot(*t.force.T))) for t in tests], "N"),
-    }
-    for what, (values, unit) in scales.items():
-        middle = float(np.median(values))
-        for k, (test, value) in enumerate(zip(tests, values, strict=True)):
-            if middle > 0.0 and value > 0.0 and max(value / middle, middle / value) > UNIT_RATIO:
-                name = where[k] if where else f"test {test.name!r}"
-                raise DataError(f"{name}: its {what} is {value:.4g} {unit} against "
-                                f"{middle:.4g} {unit} for the campaign's median test; the "
-                                "campaign mixes units (every file must be in s, m and N).")
 
 
 def _check_values_2d(values: dict[str, np.ndarray], where: str, *, first_row: int) -> None:

@@ -223,12 +223,11 @@ def load_manifest(
         warnings.warn(f"{names['axial_load']} {axial_load!r} N has no effect: every test of "
                       f"{path} has an axial_force column, which gives its axial load.",
                       InputWarning, stacklevel=2)
-    if two:  # tests in two directions
-        from isolator.diagnosis.data2d import Campaign2D, check_consistent_units_2d
-
-        check_consistent_units_2d(tests, places)
-        return Campaign2D(tuple(tests), float(radius), float(diameter))
     check_consistent_units(tests, places)
+    if two:  # tests in two directions
+        from isolator.diagnosis.data2d import Campaign2D
+
+        return Campaign2D(tuple(tests), float(radius), float(diameter))
     campaign = Campaign(tuple(tests), float(radius), float(diameter))
     check_plausible(campaign, places, sources)
     return campaign
