@@ -116,14 +116,7 @@ class BearingRecord:
         if "velocity" not in checked:
             checked["velocity"] = derived_velocity(checked["time"], checked["displacement"])
             object.__setattr__(self, "velocity_measured", False)
-        for column, arr in checked.items():
-            arr.setflags(write=False)
-            object.__setattr__(self, column, arr)
-        if self.initial_temperature is not None:
-            check_real(self.initial_temperature, "initial_temperature", where, low=-50.0,
-                       high=300.0)
-        if self.rest_before is not None:
-            check_real(self.rest_before, "rest_before", where, low=0.0)
+        set_columns(self, checked, where)
 
     def __len__(self) -> int:
         return int(self.time.size)
@@ -156,6 +149,19 @@ class Campaign:
     def contact_area(self) -> float:
         """Contact area pi r^2 [m^2]."""
         return math.pi * self.contact_radius**2
+
+
+def set_columns(record, checked: dict[str, np.ndarray], where: str) -> None:
+    """Give a test record (in its ``__post_init__``) its checked columns, read-only, and check
+    its conditions: ``initial_temperature`` [degC] in [-50, 300], ``rest_before`` [s] >= 0."""
+    for column, arr in checked.items():
+        arr.setflags(write=False)
+        object.__setattr__(record, column, arr)
+    if record.initial_temperature is not None:
+        check_real(record.initial_temperature, "initial_temperature", where, low=-50.0,
+                   high=300.0)
+    if record.rest_before is not None:
+        check_real(record.rest_before, "rest_before", where, low=0.0)
 
 
 def check_campaign(campaign, record_class: type) -> None:

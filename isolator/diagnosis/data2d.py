@@ -37,6 +37,7 @@ from isolator.diagnosis.data import (
     check_consistent_units,
     check_size,
     derived_velocity,
+    set_columns,
     velocity_ratio,
 )
 
@@ -124,14 +125,7 @@ class BearingRecord2D:
             checked["velocity"] = np.column_stack(
                 [derived_velocity(time, checked["displacement"][:, j]) for j in range(2)])
             object.__setattr__(self, "velocity_measured", False)
-        for name, arr in checked.items():
-            arr.setflags(write=False)
-            object.__setattr__(self, name, arr)
-        if self.initial_temperature is not None:
-            check_real(self.initial_temperature, "initial_temperature", where, low=-50.0,
-                       high=300.0)
-        if self.rest_before is not None:
-            check_real(self.rest_before, "rest_before", where, low=0.0)
+        set_columns(self, checked, where)
 
     def __len__(self) -> int:
         return int(self.time.size)
