@@ -122,10 +122,7 @@ def read_target(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         periods = np.asarray(spectrum.periods, dtype=float)
         keep = periods > 0
         return periods[keep], np.asarray(spectrum.sa, dtype=float)[keep] / STANDARD_GRAVITY
-    try:
-        from groundmotions.scaling import MAX_TARGET_SA
-    except ImportError:  # target_hook says what is missing
-        MAX_TARGET_SA = 10.0  # the same limit [g]
+    from groundmotions.scaling import MAX_TARGET_SA
 
     file = Path(path)
     if not file.is_file():
