@@ -20,6 +20,8 @@ _ELEMENT = {"constant": "coulomb", "velocity": "velocity", "ptv": "ptv"}
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add ``compare-opensees`` and ``compare-opensees-bearing`` to the ``dcfpb`` parser."""
+    from dcfpb.cli.protocol import add_sine_flags
+
     p = subparsers.add_parser(
         "compare-opensees",
         help="run a building file with our engine and with OpenSees, and compare",
@@ -69,13 +71,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="friction model (default: constant)")
     b.add_argument("--slider-diameter", type=float, default=0.3, help="slider diameter [m]")
     b.add_argument("--pressure", type=float, default=60e6, help="contact pressure [Pa]")
-    b.add_argument("--effective-radius", type=float, default=4.5, help="effective radius [m]")
-    b.add_argument("--amplitude", type=float, default=0.2, help="displacement amplitude [m]")
-    b.add_argument("--period", type=float, default=4.26, help="period of the sine [s]")
-    b.add_argument("--cycles", type=int, default=3, help="number of cycles")
-    b.add_argument("--dt", type=float, default=0.005,
-                   help="time step [s], at most 1/20 of the period (default 0.005)")
-    add_max_steps(b, "the test")
+    add_sine_flags(b, amplitude=0.2)
     b.add_argument("--mu-t0", type=float, default=None,
                    help="mu_t0 (velocity, ptv; default 0.075; with constant a warning: no "
                    "effect)")
@@ -91,54 +87,34 @@ def _import_error(command: str, error: ImportError) -> int:
 
 
 def _inputs(args: argparse.Namespace, command: str):
-    """The building file, the integrator and the (scaled, truncated) record or pair, every
-    flag checked and the run's length bounded before any work."""
+    """The building file, the integrator, the (scaled, truncated) record or pair and the
+    analysis step, every flag checked and the run's length bounded before any work
+    (:func:`dcfpb.cli.run.building_run_inputs`)."""
     from dcfpb.cli.run import (
         analysis_dt,
+        building_run_inputs,
         check_building_outputs,
-        integrator_from_args,
-        pair_from_args,
-        read_record_from_args,
+        check_run_length,
     )
     from dcfpb.common.errors import InputError
-    from dcfpb.common.validation import check_int, check_real
-    from structures.analysis import default_step
-    from structures.config import load_config
-    from structures.limits import building_fields, check_run
+    from dcfpb.common.validation import check_real
     from structures.opensees.comparison import truncated
 
-    pair = args.record_y is not None or args.record_z is not None
-    if args.overturning and not pair:
+    if args.overturning and args.record_y is None and args.record_z is None:
         raise InputError("--overturning applies to a building in plan under a pair: give "
                          "--record-y (and a building file with a [plan] table).")
     check_building_outputs(args, folders={"--plot": args.plot})
-    check_real(args.scale, "--scale", command, low=0.0, low_open=True)
-    if args.dt is not None:
-        check_real(args.dt, "--dt", command, low=0.0, low_open=True, high=1.0)
     if args.duration is not None:
         check_real(args.duration, "--duration", command, low=0.0, low_open=True)
-    check_int(args.max_steps, "--max-steps", command, low=1)
-    config = load_config(args.building)
+    config, integrator, motion = building_run_inputs(args, command)
     if args.overturning and config.plan is not None and config.plan.storey_heights is None:
         raise InputError("--overturning needs the storey heights of the building file's [plan] "
                          "table (storey_heights, the lever arms of the floors' inertia forces); "
                          f"{args.building} has none.")
-    integrator = integrator_from_args(config, args.integrator, args.alpha)
-    if pair:
-        motion = pair_from_args(args, config, command)
-    else:
-        motion = read_record_from_args(args.record, args)
-        motion = motion.scaled(args.scale) if args.scale != 1.0 else motion
     if args.duration is not None:
         motion = truncated(motion, args.duration)
-    building = config.building
-    dt = analysis_dt(args, config, motion)
-    first = motion.x if pair else motion
-    check_run(first, default_step(first.dt) if dt is None else dt,
-              building_fields(building.n_storeys, building.level_dofs,
-                              len(building.bearing_positions)),
-              max_steps=args.max_steps, raise_with="--max-steps", owner=command)
-    return config, integrator, motion, dt
+    check_run_length(args, config, motion, command)
+    return config, integrator, motion, analysis_dt(args, config, motion)
 
 
 def run_building(args: argparse.Namespace) -> int:
@@ -237,7 +213,7 @@ def print_axial_loads(summary: dict[str, Any]) -> None:
 
 def run_bearing(args: argparse.Namespace) -> int:
     """Handler of ``dcfpb compare-opensees-bearing``; returns the exit status."""
-    from dcfpb.cli.protocol import check_sine_flags
+    from dcfpb.cli.protocol import check_sine_flags, friction_flags
     from isolator.experiments import protocol_bearing
     from isolator.protocols import sine
     from structures.opensees.comparison import (
@@ -247,15 +223,8 @@ def run_bearing(args: argparse.Namespace) -> int:
     )
 
     check_sine_flags(args, "dcfpb compare-opensees-bearing")
-    mu_t0 = None if args.model == "constant" else 0.075 if args.mu_t0 is None else args.mu_t0
-    if args.model == "constant" and args.mu_t0 is not None:
-        import warnings
-
-        from dcfpb.common.errors import InputWarning
-
-        warnings.warn(f"--mu-t0 {args.mu_t0:g} has no effect with --model constant: it applies "
-                      "to --model velocity and ptv only; it is ignored.", InputWarning,
-                      stacklevel=2)
+    given = friction_flags(args, {"mu_t0": ("velocity", "ptv")})
+    mu_t0 = None if args.model == "constant" else given.get("mu_t0", 0.075)
     bearing = shaped_bearing(protocol_bearing(
         "constant" if args.model == "constant" else "simplified",
         slider_diameter=args.slider_diameter, effective_radius=args.effective_radius,

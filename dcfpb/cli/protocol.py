@@ -33,12 +33,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                       "200 MPa (default 60e6: 60 MPa)")
     load.add_argument("--axial-load", type=float,
                       help="axial load [N], at least 1e4 (10 kN), e.g. 4.2e6 for 4200 kN")
-    p.add_argument("--effective-radius", type=float, default=4.5, help="effective radius [m]")
-    p.add_argument("--amplitude", type=float, default=0.3, help="displacement amplitude [m]")
-    p.add_argument("--period", type=float, default=4.26, help="period of the sine [s]")
-    p.add_argument("--cycles", type=int, default=3, help="number of cycles")
-    p.add_argument("--dt", type=float, default=0.005,
-                   help="time step [s], at most 1/20 of the period (default 0.005)")
+    add_sine_flags(p, amplitude=0.3)
     p.add_argument("--refinement", type=float, default=None,
                    help="refinement factor lambda of the simplified model (default 0.5; "
                    "with another model a warning: no effect)")
@@ -51,9 +46,6 @@ def register(sub: argparse._SubParsersAction) -> None:
                    "constant model a warning: no effect)")
     p.add_argument("--initial-temperature", type=float, default=20.0,
                    help="initial temperature [degC]")
-    from dcfpb.cli.run import add_max_steps
-
-    add_max_steps(p, "the test")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument("--output", metavar="FILE.csv", help="write the history to a CSV file (the "
                    "name must end in .csv)")
@@ -69,6 +61,22 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--overwrite", action="store_true",
                    help="replace output files that exist (never an input of the command)")
     p.set_defaults(handler=_run_protocol)
+
+
+def add_sine_flags(p: argparse.ArgumentParser, amplitude: float) -> None:
+    """Add the flags of a sine test that :func:`check_sine_flags` checks: ``--effective-radius``
+    [m], ``--amplitude`` [m] (default ``amplitude``), ``--period`` [s], ``--cycles``, ``--dt``
+    [s] and ``--max-steps``."""
+    from dcfpb.cli.run import add_max_steps
+
+    p.add_argument("--effective-radius", type=float, default=4.5, help="effective radius [m]")
+    p.add_argument("--amplitude", type=float, default=amplitude,
+                   help="displacement amplitude [m]")
+    p.add_argument("--period", type=float, default=4.26, help="period of the sine [s]")
+    p.add_argument("--cycles", type=int, default=3, help="number of cycles")
+    p.add_argument("--dt", type=float, default=0.005,
+                   help="time step [s], at most 1/20 of the period (default 0.005)")
+    add_max_steps(p, "the test")
 
 
 ORBIT_CHOICES = ("circle", "figure8", "square", "line")
@@ -159,7 +167,7 @@ def _run_protocol(args: argparse.Namespace) -> int:
     if args.orbit is None and args.angle is not None:
         raise InputError("--angle turns an --orbit; give --orbit or leave it out.")
     angle = check_real(args.angle or 0.0, "--angle", command, low=-360.0, high=360.0)
-    friction = _friction_flags(args, command)
+    friction = friction_flags(args)
     if args.orbit is None:
         history = sine(args.amplitude, args.period, args.cycles, args.dt,
                        max_steps=args.max_steps)
@@ -212,16 +220,20 @@ def _run_protocol(args: argparse.Namespace) -> int:
     return 0
 
 
-def _friction_flags(args: argparse.Namespace, command: str) -> dict[str, float]:
-    """``--refinement``, ``--mu0`` and ``--mu-t0`` as given for ``--model``: one the model does
-    not use (checked already) is dropped with an :class:`~dcfpb.common.errors.InputWarning`
-    naming the flag, the model and that it has no effect."""
+FRICTION_FLAGS = {"refinement": ("simplified",), "mu0": ("constant",),
+                  "mu_t0": ("precise", "simplified")}
+"""The friction flags of ``dcfpb protocol`` and the ``--model`` choices each applies to."""
+
+
+def friction_flags(args: argparse.Namespace, uses: dict = FRICTION_FLAGS) -> dict[str, float]:
+    """The friction flags of ``uses`` (flag: the models it applies to) as given for
+    ``--model``: one the model does not use (checked already) is dropped with an
+    :class:`~dcfpb.common.errors.InputWarning` naming the flag, the model and that it has no
+    effect."""
     import warnings
 
     from dcfpb.common.errors import InputWarning
 
-    uses = {"refinement": ("simplified",), "mu0": ("constant",),
-            "mu_t0": ("precise", "simplified")}
     given = {}
     for name, models in uses.items():
         value = getattr(args, name)
