@@ -118,12 +118,10 @@ def print_summary(summary: dict[str, Any]) -> None:
 def plot_spectra(motion: Any, path: str | Path, *, damping: float = 0.05) -> Path:
     """Draw the pseudo-acceleration, pseudo-velocity and displacement spectra of a record
     (`GroundMotion`) at damping ratio ``damping`` [-] to the PNG file ``path``."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    from dcfpb.plotting.base import finish, pyplot
     from groundmotions.spectra import spectrum
+
+    plt = pyplot()
 
     spec = spectrum(motion, PLOT_PERIODS, damping)
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.0), constrained_layout=True)
@@ -140,8 +138,4 @@ def plot_spectra(motion: Any, path: str | Path, *, damping: float = 0.05) -> Pat
         ax.grid(alpha=0.3, which="both")
         ax.set_ylim(bottom=0.0)
     fig.suptitle(f"{motion.name}: elastic response spectra, {100 * damping:g} % damping")
-    from dcfpb.plotting.base import save_figure
-
-    path = save_figure(fig, path, dpi=120)
-    plt.close(fig)
-    return path
+    return finish(fig, path)

@@ -39,6 +39,17 @@ def save_figure(fig, path: str | os.PathLike, **options) -> Path:
     return path
 
 
+def finish(fig, path: str | os.PathLike, *, title: str = "", dpi: int = 120,
+           **options) -> Path:
+    """Save ``fig`` to ``path`` (:func:`save_figure` at ``dpi`` with ``options``) under
+    ``title`` (when given: 12 pt on a figure wider than 7 in, else 9, wrapped) and close it."""
+    if title:
+        fig.suptitle(title, fontsize=12 if fig.get_figwidth() > 7.0 else 9, wrap=True)
+    path = save_figure(fig, path, dpi=dpi, **options)
+    pyplot().close(fig)
+    return path
+
+
 def margins(fig, *, left: float = 0.85, right: float = 0.2, bottom: float = 0.6,
              top: float = 0.85, **spacing: float) -> None:
     """Fixed margins in inches (quicker to draw than a constrained layout)."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from dcfpb.plotting.base import PNG_OPTIONS, pyplot, save_figure
+from dcfpb.plotting.base import PNG_OPTIONS, finish, pyplot
 
 
 def plot_bearing_test(result: Any, path: str | Path, *, title: str = "") -> Path:
@@ -39,7 +39,4 @@ def plot_bearing_test(result: Any, path: str | Path, *, title: str = "") -> Path
     ax_mu.set_ylabel("friction coefficient [-]", color="tab:gray")
     if title:
         fig.suptitle(title)
-    path = Path(path)
-    save_figure(fig, path, dpi=120, **PNG_OPTIONS)
-    plt.close(fig)
-    return path
+    return finish(fig, path, **PNG_OPTIONS)

@@ -9,15 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from dcfpb.plotting.base import (
-    PNG_OPTIONS,
-    colour,
-    corner_bearing,
-    draw,
-    margins,
-    pyplot,
-    save_figure,
-)
+from dcfpb.plotting.base import PNG_OPTIONS, colour, corner_bearing, draw, finish, margins, pyplot
 from dcfpb.plotting.plan import plot_bearing_orbits, plot_force_orbits, plot_plate_temperature
 from dcfpb.plotting.spectra import plot_floor_spectra, plot_isolation_effect
 
@@ -51,12 +43,7 @@ def plot_runs(results: dict[str, Any], directory: str | Path, *, title: str = ""
     one_direction = len(directions) == 1
 
     def save(fig, name):
-        if title:
-            fig.suptitle(title, fontsize=12 if fig.get_figwidth() > 7.0 else 9, wrap=True)
-        path = directory / name
-        save_figure(fig, path, dpi=120, **PNG_OPTIONS)
-        plt.close(fig)
-        return path
+        return finish(fig, directory / name, title=title, **PNG_OPTIONS)
 
     def hysteresis():
         fig, axes = plt.subplots(1, len(directions), figsize=(6.5 * len(directions), 5),

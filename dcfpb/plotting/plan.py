@@ -8,27 +8,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from dcfpb.plotting.base import (
-    PNG_OPTIONS,
-    colour,
-    corner_bearing,
-    margins,
-    pyplot,
-    save_figure,
-)
+from dcfpb.plotting.base import PNG_OPTIONS, colour, corner_bearing, finish, margins, pyplot
 
 __all__ = ["plot_bearing_orbits", "plot_force_orbits", "plot_plate_temperature"]
 
 
-
-
-def _save(plt, fig, directory: Path, name: str, title: str) -> Path:
-    if title:
-        fig.suptitle(title, fontsize=12 if fig.get_figwidth() > 7.0 else 9, wrap=True)
-    path = directory / name
-    save_figure(fig, path, dpi=120, **PNG_OPTIONS)
-    plt.close(fig)
-    return path
 
 
 def _capacity_circle(ax, result) -> None:
@@ -74,7 +58,7 @@ def plot_bearing_orbits(results: dict[str, Any], directory: Path, title: str = "
         ax.grid(alpha=0.3)
     colourbar = fig.colorbar(lines, ax=list(axes[0]), fraction=0.04, pad=0.02)
     colourbar.set_label("time [s] (no heating)" if by_time else "contact temperature [degC]")
-    return _save(plt, fig, directory, "bearing_orbits.png", title)
+    return finish(fig, directory / "bearing_orbits.png", title=title, **PNG_OPTIONS)
 
 
 def plot_force_orbits(results: dict[str, Any], directory: Path, title: str = "") -> Path:
@@ -102,7 +86,7 @@ def plot_force_orbits(results: dict[str, Any], directory: Path, title: str = "")
     for ax in axes:
         ax.grid(alpha=0.3)
     axes[0].legend(loc="upper left", fontsize=8)
-    return _save(plt, fig, directory, "force_orbits.png", title)
+    return finish(fig, directory / "force_orbits.png", title=title, **PNG_OPTIONS)
 
 
 def plot_plate_temperature(results: dict[str, Any], directory: Path,
@@ -144,4 +128,4 @@ def plot_plate_temperature(results: dict[str, Any], directory: Path,
         ax.legend(loc="upper left", fontsize=7)
     colourbar = fig.colorbar(image, ax=list(axes[0]), fraction=0.04, pad=0.02)
     colourbar.set_label("plate temperature at the end [degC]")
-    return _save(plt, fig, directory, "plate_temperature.png", title)
+    return finish(fig, directory / "plate_temperature.png", title=title, **PNG_OPTIONS)

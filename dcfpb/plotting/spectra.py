@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from dcfpb.common.units import STANDARD_GRAVITY
-from dcfpb.plotting.base import PNG_OPTIONS, pyplot, save_figure
+from dcfpb.plotting.base import PNG_OPTIONS, finish, pyplot
 
 FIXED_BASE_COLOUR = "0.25"
 PERIOD_TICKS = (0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0)  # [s], labelled as plain numbers
@@ -73,10 +73,7 @@ def plot_floor_spectra(results: dict[str, Any], path: str | Path, *, title: str 
     damping = 100 * first.attrs.get("spectrum_damping", 0.05)
     fig.suptitle((f"{title}\n" if title else "")
                  + f"floor response spectra, {damping:g} % damping (floor 0 = base)")
-    path = Path(path)
-    save_figure(fig, path, dpi=110, **PNG_OPTIONS)
-    plt.close(fig)
-    return path
+    return finish(fig, path, dpi=110, **PNG_OPTIONS)
 
 
 def plot_isolation_effect(results: dict[str, Any], fixed_base: Any, path: str | Path, *,
@@ -156,7 +153,4 @@ def plot_isolation_effect(results: dict[str, Any], fixed_base: Any, path: str | 
         ax.legend(fontsize=7 if len(directions) == 1 else 6, loc=place)
     if title:
         fig.suptitle(title)
-    path = Path(path)
-    save_figure(fig, path, dpi=110, **PNG_OPTIONS)
-    plt.close(fig)
-    return path
+    return finish(fig, path, dpi=110, **PNG_OPTIONS)

@@ -11,8 +11,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dcfpb.common.units import STANDARD_GRAVITY
+from dcfpb.plotting.base import finish
 from dcfpb.plotting.base import pyplot as _pyplot
-from dcfpb.plotting.base import save_figure
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -66,9 +66,7 @@ def plot_peak_distributions(peaks: pd.DataFrame, path: str | Path, *, title: str
     fig.suptitle(title or f"peak responses of {len(done)} runs (whiskers: 5-95 %)")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    save_figure(fig, path, dpi=120)
-    plt.close(fig)
-    return path
+    return finish(fig, path)
 
 
 def plot_scaled_spectra(
@@ -125,6 +123,4 @@ def plot_scaled_spectra(
     ax.legend()
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    save_figure(fig, path, dpi=120)
-    plt.close(fig)
-    return path
+    return finish(fig, path)
