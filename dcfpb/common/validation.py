@@ -26,6 +26,11 @@ def _interval(low: float | None, high: float | None, low_open: bool, high_open: 
     return f"{left}{lo}, {hi}{right}"
 
 
+def _error(kind: type[Exception], name: str, owner: str, must: str, got: str) -> Exception:
+    """The one template: ``The 'name' parameter of owner must <must>. Got <got> instead.``"""
+    return kind(f"The {name!r} parameter of {owner} must {must}. Got {got} instead.")
+
+
 def check_real(
     value: object,
     name: str,
@@ -45,13 +50,9 @@ def check_real(
     a real number raises ``TypeError``; NaN, infinity (unless allowed) or a value outside the
     interval raises ``ValueError``.
     """
-    interval = _interval(low, high, low_open, high_open)
-    kind = "a float"
+    must = f"be a float in {_interval(low, high, low_open, high_open)}"
     if isinstance(value, bool) or not isinstance(value, Real | np.floating | np.integer):
-        raise InputTypeError(
-            f"The {name!r} parameter of {owner} must be {kind} in {interval}. "
-            f"Got {value!r} instead."
-        )
+        raise _error(InputTypeError, name, owner, must, repr(value))
     x = float(value)
     bad = math.isnan(x) or (math.isinf(x) and not allow_inf)
     if low is not None:
@@ -59,10 +60,7 @@ def check_real(
     if high is not None and not (allow_inf and x == math.inf):
         bad = bad or x > high or (high_open and x == high)
     if bad:
-        raise InputError(
-            f"The {name!r} parameter of {owner} must be {kind} in {interval}. "
-            f"Got {value!r} instead."
-        )
+        raise _error(InputError, name, owner, must, repr(value))
     return x
 
 
@@ -70,18 +68,12 @@ def check_int(
     value: object, name: str, owner: str, *, low: int | None = None, high: int | None = None
 ) -> int:
     """``value`` as an int, checked to lie in ``[low, high]`` (errors as :func:`check_real`)."""
-    interval = _interval(low, high, False, False)
+    must = f"be an int in {_interval(low, high, False, False)}"
     if isinstance(value, bool) or not isinstance(value, Integral):
-        raise InputTypeError(
-            f"The {name!r} parameter of {owner} must be an int in {interval}. "
-            f"Got {value!r} instead."
-        )
+        raise _error(InputTypeError, name, owner, must, repr(value))
     x = int(value)
     if (low is not None and x < low) or (high is not None and x > high):
-        raise InputError(
-            f"The {name!r} parameter of {owner} must be an int in {interval}. "
-            f"Got {value!r} instead."
-        )
+        raise _error(InputError, name, owner, must, repr(value))
     return x
 
 
@@ -90,11 +82,8 @@ def check_choice(value: object, name: str, owner: str, choices: tuple[str, ...])
     ``InputTypeError`` when ``value`` is not even a str)."""
     if value not in choices:
         allowed = ", ".join(repr(c) for c in choices)
-        kind = InputError if isinstance(value, str) else InputTypeError
-        raise kind(
-            f"The {name!r} parameter of {owner} must be one of {{{allowed}}}. "
-            f"Got {value!r} instead."
-        )
+        raise _error(InputError if isinstance(value, str) else InputTypeError, name, owner,
+                     f"be one of {{{allowed}}}", repr(value))
     return str(value)
 
 
@@ -114,21 +103,13 @@ def check_array(
     try:
         arr = np.asarray(values, dtype=float)
     except (TypeError, ValueError) as error:
-        raise InputTypeError(
-            f"The {name!r} parameter of {owner} must be a {ndim}-d array of floats. "
-            f"Got {_shown(values)} instead ({error})."
-        ) from None
+        raise InputTypeError(f"The {name!r} parameter of {owner} must be a {ndim}-d array of "
+                             f"floats. Got {_shown(values)} instead ({error}).") from None
     if arr.ndim != ndim:
-        raise InputError(
-            f"The {name!r} parameter of {owner} must be a {ndim}-d array. "
-            f"Got shape {arr.shape} instead."
-        )
+        raise _error(InputError, name, owner, f"be a {ndim}-d array", f"shape {arr.shape}")
     if arr.shape[0] < min_length:
-        raise InputError(
-            f"The {name!r} parameter of {owner} must have at least {min_length} values. "
-            f"Got {arr.shape[0]} instead."
-        )
-    interval = _interval(low, high, low_open, False)
+        raise _error(InputError, name, owner, f"have at least {min_length} values",
+                     str(arr.shape[0]))
     bad = ~np.isfinite(arr)
     if low is not None:
         bad |= (arr < low) | ((arr == low) if low_open else False)
@@ -137,10 +118,8 @@ def check_array(
     if bad.any():
         index = tuple(int(i) for i in np.argwhere(bad)[0])
         where = index[0] if len(index) == 1 else index
-        raise InputError(
-            f"The {name!r} parameter of {owner} must hold finite floats in {interval}. "
-            f"Got {arr[index]!r} at index {where} instead."
-        )
+        raise _error(InputError, name, owner, "hold finite floats in "
+                     + _interval(low, high, low_open, False), f"{arr[index]!r} at index {where}")
     return arr
 
 
@@ -156,10 +135,7 @@ def check_path(value: object, name: str, owner: str) -> str | os.PathLike:
     if isinstance(value, str) or (isinstance(value, os.PathLike)
                                   and isinstance(os.fspath(value), str)):
         return value
-    raise InputTypeError(
-        f"The {name!r} parameter of {owner} must be a path (a str or pathlib.Path). "
-        f"Got {_shown(value)} instead."
-    )
+    raise _error(InputTypeError, name, owner, "be a path (a str or pathlib.Path)", _shown(value))
 
 
 def check_instance(value: object, name: str, owner: str, kinds: type | tuple[type, ...],
@@ -169,9 +145,7 @@ def check_instance(value: object, name: str, owner: str, kinds: type | tuple[typ
     (e.g. ``"a GroundMotion"``) otherwise."""
     if isinstance(value, kinds):
         return value
-    raise InputTypeError(
-        f"The {name!r} parameter of {owner} must be {what}. Got {_shown(value)} instead."
-    )
+    raise _error(InputTypeError, name, owner, f"be {what}", _shown(value))
 
 
 def check_dataset(value: object, name: str, owner: str) -> object:
@@ -179,7 +153,5 @@ def check_dataset(value: object, name: str, owner: str) -> object:
     attributes, so that xarray is not imported here)."""
     if all(hasattr(value, attribute) for attribute in ("data_vars", "attrs", "sizes")):
         return value
-    raise InputTypeError(
-        f"The {name!r} parameter of {owner} must be a run's result (an xarray.Dataset). "
-        f"Got {_shown(value)} instead."
-    )
+    raise _error(InputTypeError, name, owner, "be a run's result (an xarray.Dataset)",
+                 _shown(value))
