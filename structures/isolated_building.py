@@ -33,15 +33,16 @@ from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.common.validation import check_int
 from groundmotions.records import GroundMotion
 from isolator.bearing import BearingElement, BearingState, DCFPBearing
-from structures.model import RestoringForce
+from structures.model import ConstantMatrices, RestoringForce
 from structures.plan import bearing_transformation
 from structures.shear_building import ShearBuilding
 
 __all__ = ["IsolatedShearBuilding"]
 
 
-class IsolatedShearBuilding:
-    """Building + isolators implementing :class:`~structures.model.DynamicModel`.
+class IsolatedShearBuilding(ConstantMatrices):
+    """Building + isolators implementing :class:`~structures.model.DynamicModel` (the
+    superstructure's damping acts on the drifts only; the influence is (n_dof, 2) in plan).
 
     Parameters
     ----------
@@ -122,21 +123,6 @@ class IsolatedShearBuilding:
     def positions(self) -> np.ndarray:
         """Where the bearing positions stand, shape (n_b, 2) [m]."""
         return self.building.bearing_positions
-
-    @property
-    def mass_matrix(self) -> np.ndarray:
-        """Mass matrix on the levels' degrees of freedom [kg, kg m, kg m^2]."""
-        return self._mass
-
-    @property
-    def damping_matrix(self) -> np.ndarray:
-        """Superstructure damping on the drifts only [N s/m, ...]."""
-        return self._damping
-
-    @property
-    def influence(self) -> np.ndarray:
-        """Ground-motion influence: (n_dof,) in one direction, (n_dof, 2) in plan [-]."""
-        return self._influence
 
     @property
     def superstructure_stiffness(self) -> np.ndarray:

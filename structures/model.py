@@ -63,6 +63,30 @@ class DynamicModel(Protocol):
         ...
 
 
+class ConstantMatrices:
+    """The constant part of a :class:`DynamicModel` for a class that holds it as ``_mass``,
+    ``_damping`` and ``_influence``."""
+
+    _mass: np.ndarray
+    _damping: np.ndarray
+    _influence: np.ndarray
+
+    @property
+    def mass_matrix(self) -> np.ndarray:
+        """Mass matrix, shape (n, n) [kg; kg m, kg m^2 with rotations]."""
+        return self._mass
+
+    @property
+    def damping_matrix(self) -> np.ndarray:
+        """Viscous damping matrix, shape (n, n) [N s/m; N s, N m s with rotations]."""
+        return self._damping
+
+    @property
+    def influence(self) -> np.ndarray:
+        """Ground-motion influence, shape (n,) or (n, k) for k components [-]."""
+        return self._influence
+
+
 def _square(matrix: object, name: str, n: int | None) -> np.ndarray:
     arr = np.array(matrix, dtype=float)
     if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or (n is not None and arr.shape[0] != n):
@@ -79,7 +103,7 @@ def _square(matrix: object, name: str, n: int | None) -> np.ndarray:
     return arr
 
 
-class LinearModel:
+class LinearModel(ConstantMatrices):
     """A linear model ``M a + C v + K u = -M r a_g``: the :class:`DynamicModel` with no history
     (the fixed-base building, the tests).
 
@@ -120,24 +144,9 @@ class LinearModel:
         self._no_velocity_tangent.setflags(write=False)
 
     @property
-    def mass_matrix(self) -> np.ndarray:
-        """Mass matrix, shape (n, n) [kg]."""
-        return self._mass
-
-    @property
-    def damping_matrix(self) -> np.ndarray:
-        """Viscous damping matrix, shape (n, n) [N s/m]."""
-        return self._damping
-
-    @property
     def stiffness_matrix(self) -> np.ndarray:
         """Stiffness matrix, shape (n, n) [N/m]."""
         return self._stiffness
-
-    @property
-    def influence(self) -> np.ndarray:
-        """Ground-motion influence, shape (n,) or (n, k) [-]."""
-        return self._influence
 
     def restoring_force(self, u: np.ndarray, v: np.ndarray, time: float) -> RestoringForce:
         """Return ``K u`` with tangents ``K`` and zero (``f`` does not depend on ``v``)."""
