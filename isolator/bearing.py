@@ -186,10 +186,6 @@ class DCFPBearing:
             return self.axial_load.at(time)
         return float(self.axial_load)
 
-    def pressure_at(self, time: float) -> float:
-        """Contact pressure p = N / (pi r^2) at ``time`` [Pa]."""
-        return self.axial_load_at(time) / self.contact_area
-
     @property
     def pendulum_stiffness(self) -> float:
         """Post-yield stiffness N / R_eff at the initial axial load [N/m]."""

@@ -11,7 +11,6 @@ compile with numba.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
 
 import numpy as np
 
@@ -19,24 +18,6 @@ from dcfpb.common.units import MM_PER_M, PA_PER_N_PER_MM2
 from dcfpb.common.validation import check_choice, check_real
 
 ArrayLike = float | np.ndarray
-
-
-class FactorSet(Protocol):
-    """Pressure, velocity and temperature factors of a friction coefficient."""
-
-    name: str
-
-    def pressure(self, pressure: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
-        """Pressure factor and its derivative [1/Pa] at ``pressure`` [Pa]."""
-        ...
-
-    def velocity(self, speed: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
-        """Velocity factor and its derivative [s/m] at ``speed`` = |v| [m/s]."""
-        ...
-
-    def temperature(self, temperature: ArrayLike) -> tuple[ArrayLike, ArrayLike]:
-        """Temperature factor and its derivative [1/degC] at ``temperature`` [degC]."""
-        ...
 
 
 def paper_pressure_raw(pressure):

@@ -81,12 +81,6 @@ class SumOfExponentials:
         lag = np.asarray(lag, dtype=float)
         return np.exp(-np.multiply.outer(lag, self.rates)) @ self.weights
 
-    def interval_integral(self, lag_start: np.ndarray, lag_stop: np.ndarray) -> np.ndarray:
-        """Approximate integral of 1/sqrt(tau) from ``lag_start`` to ``lag_stop`` [s^0.5]."""
-        a = np.exp(-np.multiply.outer(np.asarray(lag_start, float), self.rates))
-        b = np.exp(-np.multiply.outer(np.asarray(lag_stop, float), self.rates))
-        return (a - b) @ (self.weights / self.rates)
-
 
 @lru_cache(maxsize=8)
 def sum_of_exponentials(

@@ -166,16 +166,6 @@ class IsolatedShearBuilding(ConstantMatrices):
             loads = loads + self._overturning @ (self._stiffness @ u + self._damping @ v)
         return loads
 
-    def bearing_displacements(self, u: np.ndarray) -> np.ndarray:
-        """Displacement (x, y) of each bearing position, shape (n_b, 2) [m], or (nt, n_b, 2)
-        for a history ``u`` of shape (nt, n_dof) (y = 0 in one direction)."""
-        u = np.asarray(u)
-        if self.level_dofs == 1:
-            along = np.repeat(u[..., :1], len(self.elements), axis=-1)
-            return np.stack([along, np.zeros_like(along)], axis=-1)
-        t = np.asarray(self.transformations)  # (n_b, 2, 3)
-        return np.einsum("bij,...j->...bi", t, u[..., :3])
-
     def restoring_force(self, u: np.ndarray, v: np.ndarray, time: float) -> RestoringForce:
         """Storey forces plus the bearings' forces on the base slab, and the tangents."""
         force = self._stiffness @ u
