@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from dcfpb.common.errors import CapacityExceeded, InputError, InputTypeError
-from dcfpb.common.validation import check_array, check_choice, check_int, check_real
+from dcfpb.common.validation import check_array, check_choice, check_instance, check_int, check_real
 from isolator.friction import FrictionModel, FrictionState
 
 
@@ -250,10 +250,8 @@ class BearingElement:
 
     def __init__(self, bearing: DCFPBearing, dimension: int = 1,
                  grid_orientation: float | None = None) -> None:
-        if not isinstance(bearing, DCFPBearing):
-            raise InputTypeError(f"The 'bearing' parameter of BearingElement must be a "
-                                 f"DCFPBearing. Got {bearing!r} instead.")
-        self.bearing = bearing
+        self.bearing = check_instance(bearing, "bearing", "BearingElement", DCFPBearing,
+                                      "a DCFPBearing")
         self.dimension = check_int(dimension, "dimension", "BearingElement", low=1, high=2)
         self._friction: FrictionState = bearing.friction.bind(
             bearing.contact_radius, bearing.displacement_capacity, self.dimension,

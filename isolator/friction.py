@@ -21,8 +21,7 @@ from typing import NamedTuple, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from dcfpb.common.errors import InputTypeError
-from dcfpb.common.validation import check_choice, check_int, check_real
+from dcfpb.common.validation import check_choice, check_instance, check_int, check_real
 from isolator.compiled.kernels import initial_friction
 from isolator.compiled.layout import pack_ptv
 from isolator.factors import KumarFactors, PaperFactors, factor_set
@@ -292,16 +291,10 @@ class PTVFriction:
         check_real(self.mu_t0, "mu_t0", owner, low=0.0, high=1.0, low_open=True)
         if isinstance(self.factors, str):
             object.__setattr__(self, "factors", factor_set(self.factors))
-        if not isinstance(self.factors, PaperFactors | KumarFactors):
-            raise InputTypeError(
-                f"The 'factors' parameter of {owner} must be 'paper', 'kumar' or a factor set. "
-                f"Got {self.factors!r} instead."
-            )
-        if not isinstance(self.heating, MonitorLine | CentrePoint | None):
-            raise InputTypeError(
-                f"The 'heating' parameter of {owner} must be a MonitorLine, a CentrePoint or "
-                f"None. Got {self.heating!r} instead."
-            )
+        check_instance(self.factors, "factors", owner, PaperFactors | KumarFactors,
+                       "'paper', 'kumar' or a factor set")
+        check_instance(self.heating, "heating", owner, MonitorLine | CentrePoint | None,
+                       "a MonitorLine, a CentrePoint or None")
         object.__setattr__(self, "dependencies", tuple(self.dependencies))
         for name in self.dependencies:
             check_choice(name, "dependencies", owner, DEPENDENCIES)

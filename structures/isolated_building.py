@@ -28,9 +28,9 @@ import warnings
 
 import numpy as np
 
-from dcfpb.common.errors import InputError, InputTypeError, InputWarning
+from dcfpb.common.errors import InputError, InputWarning
 from dcfpb.common.units import STANDARD_GRAVITY
-from dcfpb.common.validation import check_int
+from dcfpb.common.validation import check_instance, check_int
 from groundmotions.records import GroundMotion
 from isolator.bearing import BearingElement, BearingState, DCFPBearing
 from structures.model import ConstantMatrices, RestoringForce
@@ -70,14 +70,10 @@ class IsolatedShearBuilding(ConstantMatrices):
                  vertical: GroundMotion | None = None,
                  grid_orientation: float | None = None) -> None:
         owner = type(self).__name__
-        for name, value, kind in (("building", building, ShearBuilding),
-                                  ("bearing", bearing, DCFPBearing)):
-            if not isinstance(value, kind):
-                raise InputTypeError(f"The {name!r} parameter of {owner} must be a "
-                                     f"{kind.__name__}. Got {value!r} instead.")
-        if vertical is not None and not isinstance(vertical, GroundMotion):
-            raise InputTypeError(f"The 'vertical' parameter of {owner} must be a GroundMotion "
-                                 f"or None. Got {vertical!r} instead.")
+        check_instance(building, "building", owner, ShearBuilding, "a ShearBuilding")
+        check_instance(bearing, "bearing", owner, DCFPBearing, "a DCFPBearing")
+        check_instance(vertical, "vertical", owner, GroundMotion | None,
+                       "a GroundMotion or None")
         self.building = building
         self.level_dofs = building.level_dofs
         positions = building.bearing_positions
