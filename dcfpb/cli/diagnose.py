@@ -102,29 +102,20 @@ def run(args: argparse.Namespace) -> int:
                                      axial_load=args.axial_load, max_rows=max_rows)
     diagnosis = diagnose(campaign, spec, exclude=tuple(args.exclude))
     summary = diagnosis.to_json()
-    if summary.get("dimension") == 2:  # tests in two directions
-        text = "\n".join(_lines(summary))
-        if args.report:
-            from dcfpb.cli.outputs import writing
-            from isolator.diagnosis.report2d import write_report_2d
-
-            with writing("--report", args.report):
-                written = write_report_2d(diagnosis, args.report, text)
-            summary["report"] = [str(p) for p in written]
-            text += "".join(f"\nwrote {p}" for p in summary["report"])
-        print(json.dumps(summary, indent=2) if args.json else text)
-        return 0
     if args.report:
         from dcfpb.cli.outputs import writing
-        from isolator.diagnosis.report import write_report
 
         with writing("--report", args.report):
-            written = write_report(diagnosis, args.report)
+            if summary.get("dimension") == 2:  # tests in two directions
+                from isolator.diagnosis.report2d import write_report_2d
+
+                written = write_report_2d(diagnosis, args.report, "\n".join(_lines(summary)))
+            else:
+                from isolator.diagnosis.report import write_report
+
+                written = write_report(diagnosis, args.report)
         summary["report"] = [str(p) for p in written]
-    if args.json:
-        print(json.dumps(summary, indent=2))
-    else:
-        _print(summary)
+    print(json.dumps(summary, indent=2) if args.json else "\n".join(_lines(summary)))
     return 0
 
 
@@ -145,10 +136,6 @@ def _check_flags(args: argparse.Namespace) -> None:
     if args.yield_displacement is not None:
         check_real(args.yield_displacement, "--yield-displacement", owner, low=0.0,
                    low_open=True, high=0.1)
-
-
-def _print(summary: dict) -> None:
-    print("\n".join(_lines(summary)))
 
 
 def _lines(summary: dict) -> list[str]:

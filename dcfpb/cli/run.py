@@ -228,17 +228,15 @@ def pair_from_args(args: argparse.Namespace, config, command: str):
                          truncate=args.truncate)
     except InputError as error:
         named = record_dt_named(error, args.record, getattr(args, "record_dt", None))
-        hint = ""
         if named is not error:  # the step given or missing, not a mismatch of the components
-            pass
-        elif "time step" in str(error) and not args.resample:
+            raise named from None
+        hint = ""
+        if "time step" in str(error) and not args.resample:
             hint = "--resample resamples the y (and z) component to the x component's step."
         elif "samples" in str(error) and not args.truncate:
             hint = "--truncate cuts the components to the shortest."
         if hint:
             raise InputError(f"{error} On the command line: {hint}") from None
-        if named is not error:
-            raise named from None
         raise
     return pair.scaled(args.scale) if args.scale != 1.0 else pair
 
