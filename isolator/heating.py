@@ -196,6 +196,28 @@ def step_factors(rates, weights, coefficient, dt, step, weighted_decay):
     return 2.0 * coefficient * np.sqrt(dt)
 
 
+def cached_step_factors(cache: dict, kernel: SumOfExponentials, coefficient: float,
+                        dt: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """The :func:`step_factors` of a step ``dt`` [s] for the flux coefficient ``coefficient``
+    c: exp(-s_k dt) and (1 - exp(-s_k dt)) / s_k stacked (2, K), w_k exp(-s_k dt) (K,) and
+    2 c sqrt(dt) [degC m^2 / W], computed exactly for each distinct dt and kept in ``cache`` for
+    the last few. Raises InputError for a step shorter than the kernel's ``min_lag``."""
+    entry = cache.get(dt)
+    if entry is None:
+        if dt < kernel.min_lag:
+            raise InputError(
+                f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
+                f"{kernel.min_lag:g} s; build the kernel with a smaller min_lag."
+            )
+        size = kernel.rates.size
+        step, weighted = np.empty((2, size)), np.empty(size)
+        newest = step_factors(kernel.rates, kernel.weights, coefficient, dt, step, weighted)
+        if len(cache) >= _FACTOR_CACHE_SIZE:
+            cache.pop(next(iter(cache)))  # the oldest entry
+        entry = cache[dt] = (step, weighted, float(newest))
+    return entry
+
+
 class SurfaceHeating:
     """Temperature of one sliding surface under a moving slider, with trial / commit: the
     monitor points of ``layout`` for a slider of ``contact_radius`` r [m] whose centre moves up to
@@ -229,24 +251,10 @@ class SurfaceHeating:
         self._staged = (0, 0)  # the points the last friction trial heats
 
     def prepare(self, dt: float) -> None:
-        """Make the step factors exp(-s_k dt) of the step ``dt`` [s] current (computed exactly
-        for each distinct dt, kept for the last few)."""
+        """Make the step factors of the step ``dt`` [s] current (:func:`cached_step_factors`)."""
         self.prepared_step = dt
-        entry = self._factor_cache.get(dt)
-        if entry is None:
-            if dt < self.kernel.min_lag:
-                raise InputError(
-                    f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
-                    f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag."
-                )
-            size = self.kernel.rates.size
-            step, weighted = np.empty((2, size)), np.empty(size)
-            newest = step_factors(self.kernel.rates, self.kernel.weights, self.coefficient, dt,
-                                  step, weighted)
-            if len(self._factor_cache) >= _FACTOR_CACHE_SIZE:
-                self._factor_cache.pop(next(iter(self._factor_cache)))  # the oldest entry
-            entry = self._factor_cache[dt] = (step, weighted, newest)
-        self._step, self.weighted_decay, self.newest_coefficient = entry
+        self._step, self.weighted_decay, self.newest_coefficient = cached_step_factors(
+            self._factor_cache, self.kernel, self.coefficient, dt)
 
     def window(self, position: float) -> tuple[int, int]:
         """Index range ``[lo, hi)`` of the points within the flux half width of ``position``."""

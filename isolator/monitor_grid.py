@@ -22,10 +22,10 @@ from typing import NamedTuple
 
 import numpy as np
 
-from dcfpb.common.errors import CapacityExceeded, InputError
+from dcfpb.common.errors import CapacityExceeded
 from dcfpb.common.validation import check_real
 from isolator.compiled.kernels import heated_window, ptv_friction
-from isolator.heating import MonitorLine, SumOfExponentials, ThermalProperties, step_factors
+from isolator.heating import MonitorLine, SumOfExponentials, ThermalProperties, cached_step_factors
 
 _INITIAL_CAPACITY = 256  # stored points before the first growth of the arrays
 
@@ -164,22 +164,8 @@ class GridHeating:
     # --- the step factors -----------------------------------------------------------------
 
     def factors(self, dt: float) -> tuple[np.ndarray, np.ndarray, float]:
-        """exp(-s_k dt) and (1 - exp(-s_k dt)) / s_k stacked (2, K), w_k exp(-s_k dt) (K,) and
-        2 c sqrt(dt) [degC m^2 / W] for a step ``dt`` [s] (kept for the last few dt)."""
-        entry = self._factors.get(dt)
-        if entry is None:
-            if dt < self.kernel.min_lag:
-                raise InputError(
-                    f"The time step {dt:g} s is shorter than the heating kernel's min_lag "
-                    f"{self.kernel.min_lag:g} s; build the kernel with a smaller min_lag.")
-            size = self.kernel.rates.size
-            step, weighted = np.empty((2, size)), np.empty(size)
-            newest = step_factors(self.kernel.rates, self.kernel.weights, self.coefficient, dt,
-                                  step, weighted)
-            if len(self._factors) >= 16:
-                self._factors.pop(next(iter(self._factors)))
-            entry = self._factors[dt] = (step, weighted, float(newest))
-        return entry
+        """:func:`~isolator.heating.cached_step_factors` of a step ``dt`` [s] on this plate."""
+        return cached_step_factors(self._factors, self.kernel, self.coefficient, dt)
 
     # --- stored histories -----------------------------------------------------------------
 
