@@ -41,15 +41,13 @@ class AxialLoadHistory:
 
     def __post_init__(self) -> None:
         owner = type(self).__name__
-        time = check_array(self.time, "time", owner, min_length=1)
+        time = check_array(self.time, "time", owner, min_length=1, increasing=True)
         load = check_array(self.load, "load", owner, min_length=1)
         if time.shape != load.shape:
             raise InputError(
                 f"The 'load' parameter of {owner} must have the length of 'time' "
                 f"({time.size}). Got {load.size} instead."
             )
-        if np.any(np.diff(time) <= 0.0):
-            raise InputError(f"The 'time' parameter of {owner} must be strictly increasing.")
         object.__setattr__(self, "time", time)
         object.__setattr__(self, "load", load)
 

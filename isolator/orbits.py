@@ -42,9 +42,7 @@ class Orbit:
 
     def __post_init__(self) -> None:
         owner = "Orbit"
-        time = check_array(self.time, "time", owner, min_length=2).copy()
-        if np.any(np.diff(time) <= 0.0):
-            raise InputError(f"The 'time' parameter of {owner} must be strictly increasing.")
+        time = check_array(self.time, "time", owner, min_length=2, increasing=True).copy()
         time.setflags(write=False)
         object.__setattr__(self, "time", time)
         for name in ("displacement", "velocity"):

@@ -48,13 +48,7 @@ class ImposedHistory:
 
     def __post_init__(self) -> None:
         owner = "ImposedHistory"
-        time = check_array(self.time, "time", owner, min_length=2)
-        if np.any(np.diff(time) <= 0.0):
-            i = int(np.argmax(np.diff(time) <= 0.0)) + 1
-            raise InputError(
-                f"The 'time' parameter of {owner} must be strictly increasing. "
-                f"Got {time[i]!r} after {time[i - 1]!r} at index {i} instead."
-            )
+        time = check_array(self.time, "time", owner, min_length=2, increasing=True)
         for name in ("time", "displacement", "velocity"):
             arr = check_array(getattr(self, name), name, owner, min_length=2).copy()
             if arr.shape != time.shape:

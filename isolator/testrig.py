@@ -160,9 +160,7 @@ def imposed_history(time: ArrayLike, displacement: ArrayLike, velocity: ArrayLik
     """Check an imposed history and return it as float arrays ``(t [s], u [m], v [m/s])``:
     strictly increasing times, a displacement of shape (n,) or (n, 2), a velocity of the same
     shape or None (then ``numpy.gradient`` of the displacement). Errors name ``owner``."""
-    t = check_array(time, "time", owner, min_length=2)
-    if np.any(np.diff(t) <= 0.0):
-        raise InputError(f"The 'time' parameter of {owner} must be strictly increasing.")
+    t = check_array(time, "time", owner, min_length=2, increasing=True)
     ndim = 2 if np.ndim(displacement) == 2 else 1  # two directions or one
     u = check_array(displacement, "displacement", owner, ndim=ndim, min_length=2)
     shape = (t.size, 2) if ndim == 2 else t.shape

@@ -97,9 +97,11 @@ def check_array(
     low_open: bool = False,
     ndim: int = 1,
     min_length: int = 1,
+    increasing: bool = False,
 ) -> np.ndarray:
-    """``values`` as a float array, checked for ``ndim``, ``min_length``, finiteness and bounds;
-    a ``ValueError`` names the array, the first offending index and its value."""
+    """``values`` as a float array, checked for ``ndim``, ``min_length``, finiteness, bounds and,
+    with ``increasing``, to increase strictly along its first axis; a ``ValueError`` names the
+    array, the first offending index and its value."""
     try:
         arr = np.asarray(values, dtype=float)
     except (TypeError, ValueError) as error:
@@ -120,6 +122,10 @@ def check_array(
         where = index[0] if len(index) == 1 else index
         raise _error(InputError, name, owner, "hold finite floats in "
                      + _interval(low, high, low_open, False), f"{arr[index]!r} at index {where}")
+    if increasing and np.any(np.diff(arr, axis=0) <= 0.0):
+        i = int(np.argmax(np.diff(arr, axis=0) <= 0.0)) + 1
+        raise _error(InputError, name, owner, "be strictly increasing",
+                     f"{arr[i]!r} after {arr[i - 1]!r} at index {i}")
     return arr
 
 
