@@ -19,7 +19,7 @@ import numpy as np
 from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_array, check_choice, check_int, check_real
 from isolator.limits import DEFAULT_MAX_STEPS, HISTORY_FIELDS, check_steps
-from isolator.protocols import sine
+from isolator.protocols import LabelledBlocks, sine
 
 ORBITS = ("circle", "figure8", "square", "line")
 """Names of the orbits :func:`orbit` makes."""
@@ -28,7 +28,7 @@ _STEPS_PER_PERIOD_MIN = 20  # as for the sine of isolator.protocols: dt <= perio
 
 
 @dataclass(frozen=True, eq=False)
-class Orbit:
+class Orbit(LabelledBlocks):
     """A 2D displacement history imposed on a bearing, with its exact velocity (read-only): the
     strictly increasing sample ``time`` (n,) [s], the relative ``displacement`` (x, y) (n, 2) [m]
     and the analytic ``velocity`` (n, 2) [m/s] at each, a ``name`` (e.g. ``"circle"``) and the
@@ -52,23 +52,12 @@ class Orbit:
                                  f"({time.size}, 2). Got {arr.shape} instead.")
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
-        for label, start, stop in self.segments:
-            if not (isinstance(label, str) and 0 <= start < stop <= time.size):
-                raise InputError(f"The 'segments' parameter of {owner} must hold (label, start, "
-                                 f"stop) with 0 <= start < stop <= {time.size}. Got "
-                                 f"{(label, start, stop)!r} instead.")
-
-    def __len__(self) -> int:
-        return int(self.time.size)
+        self._set_segments(owner)
 
     @property
     def path_length(self) -> float:
         """Length of the polyline through the samples [m]."""
         return float(np.sum(np.hypot(*np.diff(self.displacement, axis=0).T)))
-
-    def segment_slices(self, label: str) -> list[slice]:
-        """Slices of every block labelled ``label`` (both end samples included)."""
-        return [slice(start, stop) for lab, start, stop in self.segments if lab == label]
 
 
 def rotation(angle: float) -> np.ndarray:

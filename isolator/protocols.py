@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dcfpb.common.errors import InputError, InputTypeError
-from dcfpb.common.validation import check_array, check_choice, check_int, check_real
+from dcfpb.common.validation import check_array, check_choice, check_instance, check_int, check_real
 from isolator.limits import DEFAULT_MAX_STEPS, history_steps
 
 WIND_PEAK_VELOCITY = 0.015
@@ -24,8 +24,39 @@ _STEPS_PER_PERIOD_MIN = 20  # dt <= period / 20: a sine is resolved by at least 
 _ROUNDING = 1e-9  # relative slack when deciding how many steps of dt fill a duration
 
 
+class LabelledBlocks:
+    """What an imposed history and an orbit (:class:`isolator.orbits.Orbit`) share: samples at
+    ``time`` [s] cut into ``segments``, labelled blocks ``(label, start, stop)`` with both end
+    samples included."""
+
+    def _set_segments(self, owner: str) -> None:
+        """Check ``segments`` against the samples and store them as (str, int, int)."""
+        segments = tuple(tuple(s) for s in self.segments)
+        for seg in segments:
+            label, *bounds = seg if len(seg) == 3 else (None, 0, 0)
+            if not (
+                isinstance(label, str)
+                and all(isinstance(i, int | np.integer) for i in bounds)
+                and 0 <= bounds[0] < bounds[1] <= self.time.size
+            ):
+                raise InputError(
+                    f"The 'segments' parameter of {owner} must hold (label, start, stop) with "
+                    f"0 <= start < stop <= {self.time.size}. Got {seg!r} instead."
+                )
+        object.__setattr__(
+            self, "segments", tuple((str(s[0]), int(s[1]), int(s[2])) for s in segments)
+        )
+
+    def __len__(self) -> int:
+        return int(self.time.size)
+
+    def segment_slices(self, label: str) -> list[slice]:
+        """Slices of every block labelled ``label`` (both end samples included)."""
+        return [slice(start, stop) for lab, start, stop in self.segments if lab == label]
+
+
 @dataclass(frozen=True, eq=False)
-class ImposedHistory:
+class ImposedHistory(LabelledBlocks):
     """A displacement history imposed on a bearing, with its exact velocity (read-only arrays).
 
     Parameters
@@ -58,36 +89,13 @@ class ImposedHistory:
                 )
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
-        if not isinstance(self.name, str):
-            raise InputTypeError(f"The 'name' parameter of {owner} must be a str. "
-                                 f"Got {self.name!r}.")
-        segments = tuple(tuple(s) for s in self.segments)
-        for seg in segments:
-            label, *bounds = seg if len(seg) == 3 else (None, 0, 0)
-            if not (
-                isinstance(label, str)
-                and all(isinstance(i, int | np.integer) for i in bounds)
-                and 0 <= bounds[0] < bounds[1] <= time.size
-            ):
-                raise InputError(
-                    f"The 'segments' parameter of {owner} must hold (label, start, stop) with "
-                    f"0 <= start < stop <= {time.size}. Got {seg!r} instead."
-                )
-        object.__setattr__(
-            self, "segments", tuple((str(s[0]), int(s[1]), int(s[2])) for s in segments)
-        )
-
-    def __len__(self) -> int:
-        return int(self.time.size)
+        check_instance(self.name, "name", owner, str, "a str")
+        self._set_segments(owner)
 
     @property
     def duration(self) -> float:
         """Time from the first to the last sample [s]."""
         return float(self.time[-1] - self.time[0])
-
-    def segment_slices(self, label: str) -> list[slice]:
-        """Slices of every block labelled ``label`` (both end samples included)."""
-        return [slice(start, stop) for lab, start, stop in self.segments if lab == label]
 
 
 def _labelled(history: ImposedHistory, label: str) -> ImposedHistory:
