@@ -1,10 +1,5 @@
 """``dcfpb diagnose``: the sim-to-real gap of a friction model on measured bearing tests.
 
-    dcfpb diagnose FILE [FILE ...] --model BASELINE --effective-radius R --slider-diameter D
-                   [--axial-load N] [--without EFFECT ...] [--max-rows N] [--json]
-                   [--report DIR]
-    dcfpb diagnose --manifest CAMPAIGN.csv|.toml --model BASELINE [...]
-
 Each FILE is one test of a campaign, in the order run: a CSV with ``time``, ``displacement``,
 ``force`` and optionally ``axial_force``, ``velocity``, ``temperature`` [SI units]. A manifest
 lists them instead, with each test's axial load, initial temperature and rest before it

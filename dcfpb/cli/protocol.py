@@ -1,12 +1,10 @@
 """``dcfpb protocol``: a virtual bearing test and its per-cycle force-deflection
 characteristics.
 
-The bearing follows a sine displacement history in one direction or, with ``--orbit circle|
-figure8|square|line [--angle DEG]``, an orbit in two directions (:mod:`isolator.orbits`) of size
-``--amplitude`` (the circle's radius, the figure-eight's and the line's amplitude, the square's
-half side) and of the sine's period, cycles and step. An orbit's report gives the
-characteristics along x and along y and the energy dissipated, the integral of F . du, over the
-whole orbit and per cycle.
+The bearing follows a sine displacement history in one direction or, with ``--orbit``, an
+orbit in two directions of size ``--amplitude`` (:func:`isolator.orbits.orbit`) and of the
+sine's period, cycles and step. An orbit's report gives the characteristics along x and along y
+and the energy dissipated, the integral of F . du, over the whole orbit and per cycle.
 """
 
 from __future__ import annotations

@@ -1,8 +1,5 @@
-"""The figures of building runs, in one direction or in plan: hysteresis, temperature, roof
-acceleration, storey drift, response histories, and with floor spectra the spectra and the
-effect of isolation; in plan also the bearings' orbits, the force orbits and the plate's
-temperature field (:mod:`dcfpb.plotting.plan`). A quantity with a direction gets a panel, or a
-line style, per direction."""
+"""The figures of building runs, in one direction or in plan (:func:`plot_runs`): a quantity
+with a direction gets a panel, or a line style, per direction."""
 
 from __future__ import annotations
 
