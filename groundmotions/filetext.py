@@ -23,6 +23,7 @@ from typing import NamedTuple
 import numpy as np
 
 from dcfpb.common.errors import InputError
+from dcfpb.common.files import available_memory
 from dcfpb.common.units import STANDARD_GRAVITY
 from dcfpb.common.validation import check_real
 from groundmotions.records import RecordFormatError
@@ -85,17 +86,6 @@ READ_MEMORY_FACTOR = 12
 """Memory the reading of a text file takes per byte of it (bytes, text, lines, numbers)."""
 
 
-def _available_memory() -> int | None:
-    """``MemAvailable`` of ``/proc/meminfo`` [bytes], or None where there is none."""
-    try:
-        for line in Path("/proc/meminfo").read_text().splitlines():
-            if line.startswith("MemAvailable:"):
-                return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
-
-
 def check_record_file(path: Path) -> None:
     """Refuse, before reading it, a device or pipe (which may never end), a record
     file past :data:`MAX_RECORD_BYTES` or the memory available, or one that is gzip-compressed
@@ -105,7 +95,7 @@ def check_record_file(path: Path) -> None:
                          "end); give the record file itself.")
     size = path.stat().st_size
     limit = MAX_RECORD_BYTES
-    memory = _available_memory()
+    memory = available_memory()
     if memory is not None:
         limit = min(limit, memory // READ_MEMORY_FACTOR)
     if size > limit:

@@ -12,23 +12,11 @@ import sys
 from pathlib import Path
 
 from dcfpb.common.errors import InputError
+from dcfpb.common.files import MEMINFO, available_memory
 
 DEFAULT_MAX_STEPS = 2_000_000
 """Most time steps a run may take unless the caller raises the limit."""
 
-MEMINFO = Path("/proc/meminfo")
-
-
-def available_memory(meminfo: Path = MEMINFO) -> int | None:
-    """Memory available to a new allocation [bytes]: ``MemAvailable`` of ``/proc/meminfo``,
-    or None where there is no such file or line (the memory check is then skipped)."""
-    try:
-        for line in meminfo.read_text().splitlines():
-            if line.startswith("MemAvailable:"):
-                return int(line.split()[1]) * 1024  # the file gives kB
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
 
 
 def _size(n_bytes: float) -> str:

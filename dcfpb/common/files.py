@@ -15,7 +15,22 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-__all__ = ["TEMPORARY_PATTERN", "atomic_output", "temporary_name"]
+__all__ = ["MEMINFO", "TEMPORARY_PATTERN", "atomic_output", "available_memory", "temporary_name"]
+
+MEMINFO = Path("/proc/meminfo")
+
+
+def available_memory(meminfo: Path = MEMINFO) -> int | None:
+    """Memory available to a new allocation [bytes]: ``MemAvailable`` of ``/proc/meminfo``,
+    or None where there is no such file or line (a memory check is then skipped)."""
+    try:
+        for line in meminfo.read_text().splitlines():
+            if line.startswith("MemAvailable:"):
+                return int(line.split()[1]) * 1024  # the file gives kB
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
+
 
 TEMPORARY_PATTERN = ".*.tmp"
 """The glob of the temporary files :func:`atomic_output` makes (``.<name>.<pid>.<hex>.tmp``)."""
