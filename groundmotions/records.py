@@ -14,8 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from dcfpb.common.errors import InputError
-from dcfpb.common.validation import check_array, check_real
+from dcfpb.common.errors import InputError, InputTypeError
+from dcfpb.common.validation import check_array, check_instance, check_real
 from groundmotions.processing import baseline_corrected, filtered, resampled
 
 __all__ = ["GroundMotion", "RecordFormatError"]
@@ -35,12 +35,6 @@ class RecordFormatError(InputError):
 
     def __reduce__(self) -> tuple[Any, ...]:  # picklable across processes (Dask suites)
         return (type(self), (self.file, self.line, self.reason))
-
-
-def _type_error(name: str, kind: str, value: object) -> TypeError:
-    return TypeError(
-        f"The {name!r} parameter of GroundMotion must be {kind}. Got {value!r} instead."
-    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,12 +69,11 @@ class GroundMotion:
         acc = np.array(check_array(self.acceleration, "acceleration", owner, min_length=2))
         acc.flags.writeable = False
         steps = self.processing
-        if not isinstance(self.name, str):
-            raise _type_error("name", "a str", self.name)
-        if not isinstance(self.metadata, Mapping):
-            raise _type_error("metadata", "a mapping", self.metadata)
+        check_instance(self.name, "name", owner, str, "a str")
+        check_instance(self.metadata, "metadata", owner, Mapping, "a mapping")
         if not (isinstance(steps, tuple | list) and all(isinstance(s, str) for s in steps)):
-            raise _type_error("processing", "a tuple of str", steps)
+            raise InputTypeError(f"The 'processing' parameter of {owner} must be a tuple of str. "
+                                 f"Got {steps!r} instead.")
         object.__setattr__(self, "acceleration", acc)
         object.__setattr__(self, "dt", dt)
         object.__setattr__(self, "metadata", dict(self.metadata))
