@@ -267,18 +267,14 @@ def check_outputs(files: dict[str, object] | None = None,
         Naming the flag, the path and why (exit status 2 on the command line).
     """
     sources = _inputs(inputs)
-    for flag, path in (files or {}).items():
-        if path is not None:
-            _check_not_input(flag, _as_path(path, flag), sources)
-            file = check_output_file(path, flag)
-            if formats and flag in formats:
-                _check_format(flag, file, formats[flag])
-            _check_file_target(flag, file, sources, overwrite)
-    for flag, path in (figures or {}).items():
-        if path is not None:
-            _check_not_input(flag, _as_path(path, flag), sources)
-            _check_file_target(flag, check_output_file(path, flag, figure=True), sources,
-                               overwrite)
+    for figure, outputs in ((False, files), (True, figures)):
+        for flag, path in (outputs or {}).items():
+            if path is not None:
+                _check_not_input(flag, _as_path(path, flag), sources)  # before it is probed
+                file = check_output_file(path, flag, figure=figure)
+                if formats and flag in formats:
+                    _check_format(flag, file, formats[flag])
+                _check_file_target(flag, file, sources, overwrite)
     for flag, path in (folders or {}).items():
         if path is not None:
             folder = check_output_dir(path, flag)
