@@ -42,12 +42,7 @@ class AxialLoadHistory:
     def __post_init__(self) -> None:
         owner = type(self).__name__
         time = check_array(self.time, "time", owner, min_length=1, increasing=True)
-        load = check_array(self.load, "load", owner, min_length=1)
-        if time.shape != load.shape:
-            raise InputError(
-                f"The 'load' parameter of {owner} must have the length of 'time' "
-                f"({time.size}). Got {load.size} instead."
-            )
+        load = check_array(self.load, "load", owner, min_length=1, length_of=("time", time.size))
         object.__setattr__(self, "time", time)
         object.__setattr__(self, "load", load)
 

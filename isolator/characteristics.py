@@ -234,12 +234,7 @@ def cycle_characteristics(
     """
     owner = "cycle_characteristics"
     u = check_array(displacement, "displacement", owner, min_length=3)
-    f = check_array(force, "force", owner, min_length=3)
-    if f.shape != u.shape:
-        raise InputError(
-            f"The 'force' parameter of {owner} must have the length of 'displacement' "
-            f"({u.size}). Got {f.size} instead."
-        )
+    f = check_array(force, "force", owner, min_length=3, length_of=("displacement", u.size))
     t = None
     if time is not None:
         t = check_array(time, "time", owner, min_length=3)

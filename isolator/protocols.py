@@ -81,12 +81,8 @@ class ImposedHistory(LabelledBlocks):
         owner = "ImposedHistory"
         time = check_array(self.time, "time", owner, min_length=2, increasing=True)
         for name in ("time", "displacement", "velocity"):
-            arr = check_array(getattr(self, name), name, owner, min_length=2).copy()
-            if arr.shape != time.shape:
-                raise InputError(
-                    f"The {name!r} parameter of {owner} must have the length of 'time' "
-                    f"({time.size}). Got {arr.size} instead."
-                )
+            arr = check_array(getattr(self, name), name, owner, min_length=2,
+                              length_of=("time", time.size)).copy()
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
         check_instance(self.name, "name", owner, str, "a str")

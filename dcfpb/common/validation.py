@@ -98,10 +98,12 @@ def check_array(
     ndim: int = 1,
     min_length: int = 1,
     increasing: bool = False,
+    length_of: tuple[str, int] | None = None,
 ) -> np.ndarray:
-    """``values`` as a float array, checked for ``ndim``, ``min_length``, finiteness, bounds and,
-    with ``increasing``, to increase strictly along its first axis; a ``ValueError`` names the
-    array, the first offending index and its value."""
+    """``values`` as a float array, checked for ``ndim``, ``min_length``, finiteness, bounds,
+    with ``increasing`` to increase strictly along its first axis and with ``length_of``, a
+    (name, length) of another array, to have its length; a ``ValueError`` names the array, the
+    first offending index and its value."""
     try:
         arr = np.asarray(values, dtype=float)
     except (TypeError, ValueError) as error:
@@ -126,6 +128,9 @@ def check_array(
         i = int(np.argmax(np.diff(arr, axis=0) <= 0.0)) + 1
         raise _error(InputError, name, owner, "be strictly increasing",
                      f"{arr[i]!r} after {arr[i - 1]!r} at index {i}")
+    if length_of is not None and arr.shape[0] != length_of[1]:
+        raise _error(InputError, name, owner, f"have the length of {length_of[0]!r} "
+                     f"({length_of[1]})", str(arr.shape[0]))
     return arr
 
 
