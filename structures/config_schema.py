@@ -447,6 +447,9 @@ PLAN_SCHEMA: dict[str, Any] = {
     "storey_heights": Either((Number(low=0.0, low_open=True, high=1000.0),
                               Array(Number(low=0.0, low_open=True, high=1000.0),
                                     what="m, first storey up"))),
+    "load_eccentricity": Pairs(_COORDINATE, "m, the centre the bearings' gravity loads are "
+                               "shared from: one pair for every level or one per level, base "
+                               "slab first"),
 }
 """Key of ``[plan]`` -> what its value must be."""
 
@@ -492,6 +495,11 @@ def check_plan(raw: dict[str, Any], n_storeys: int, bearing: dict[str, Any],
         raise ConfigError(f"{Where(path, 'plan', 'eccentricity')} must be one [e_x, e_y] pair "
                           f"or one per floor ({n_storeys}). Got {len(eccentricity)} pairs "
                           "instead.")
+    loads = table.get("load_eccentricity", [0.0, 0.0])
+    if isinstance(loads[0], list) and len(loads) != n_storeys + 1:
+        raise ConfigError(f"{Where(path, 'plan', 'load_eccentricity')} must be one [x, y] pair "
+                          f"or one per level, base slab first ({n_storeys + 1}). Got "
+                          f"{len(loads)} pairs instead.")
     _plan_geometry(table, path)
     count = len(table["bearing_coordinates"])
     if "count" in bearing and bearing["count"] != count:
