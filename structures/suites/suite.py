@@ -328,4 +328,6 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
             run_timeout=run_timeout, max_steps=max_steps, ship=ship, storage=storage,
             design=design_peaks)
         return finish(specs, rows, store, computed, skipped, start, COLUMNS[suite.kind],
-                      extra_columns=design_columns(rows.values()) if design_peaks else ())
+                      extra_columns=tuple(
+                          k for k in design_columns(rows.values())
+                          if k not in COLUMNS[suite.kind]) if design_peaks else ())
