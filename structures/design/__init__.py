@@ -57,10 +57,12 @@ __all__ = [
     "period_range",
     "prototype_test",
     "response_modification",
+    "scaling_period_range",
 ]
 
 # design() runs suites: its module is a layer above structures.suites (tests/unit/test_layers.py),
 # so it is imported on first use, not here.
-__getattr__, __dir__ = lazy_exports(__name__, {"design": "structures.design.response",
-                                               "period_range": "structures.design.response"},
-                                    globals())
+__getattr__, __dir__ = lazy_exports(__name__, {
+    "building_design": "structures.design.response", "design": "structures.design.response",
+    "period_range": "structures.design.response",
+    "scaling_period_range": "structures.design.response"}, globals())

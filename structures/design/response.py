@@ -60,7 +60,8 @@ from structures.design.result import (
 )
 from structures.suites.sources import MotionSource, motion_sources
 
-__all__ = ["POSITIONS", "SYNTHETIC", "design", "design_positions", "period_range"]
+__all__ = ["POSITIONS", "SYNTHETIC", "building_design", "design", "design_positions",
+           "period_range", "scaling_period_range"]
 
 G = STANDARD_GRAVITY
 _OWNER = "design"
@@ -207,10 +208,65 @@ def _write_synthetic(count: int, folder: Path, dt: float, site: Site
     return sources, labels
 
 
+def building_design(config: BuildingConfig) -> dict[str, Any]:
+    """The building file's ``[design]`` table as objects: ``"lambda"`` (a
+    :class:`PropertyModification`, from ``lambda_max``/``lambda_min`` or the parts), ``"site"``
+    (a :class:`Site`), ``"R"`` and ``"I_e"``, each None where the file does not give it.
+
+    Raises
+    ------
+    InputError
+        Factors the property modification refuses (named, with ``[design]``).
+    """
+    check_instance(config, "config", "building_design", BuildingConfig, "a BuildingConfig")
+    table = dict(config.design or {})
+    out: dict[str, Any] = {"lambda": None, "site": None, "R": table.get("R"),
+                           "I_e": table.get("I_e")}
+    heating = {k: table[k] for k in ("test_includes_heating", "test_heating_max",
+                                     "test_heating_min") if k in table}
+    parts = {k: table[k] for k in ("ae_max", "ae_min", "test_max", "test_min", "spec_max",
+                                   "spec_min") if k in table}
+    try:
+        if "lambda_max" in table:
+            out["lambda"] = PropertyModification.overall(table["lambda_max"],
+                                                         table["lambda_min"], **heating)
+        elif parts or heating:
+            out["lambda"] = PropertyModification(**parts, **heating)
+    except InputError as error:
+        raise InputError(f"[design] of the building file {config.name!r}: {error}") from None
+    if "S_MS" in table:
+        out["site"] = Site(table["S_MS"], table["S_M1"], table.get("T_L"))
+    return out
+
+
+def scaling_period_range(config: BuildingConfig, S_M1: float, lambda_: PropertyModification,
+                         model: str | None = None) -> tuple[float, float]:
+    """The period range of 17.3.3 [s], 0.75 T_M (upper bound) to 1.25 T_M (lower bound), from
+    the ELF's fixed point of D_M alone (:func:`structures.design.elf.fixed_point`: T_M needs
+    neither R nor the storey heights) at ``S_M1`` [g], with the friction of ``model`` (default
+    the file's) times lambda of each bound as applied to it."""
+    from structures.design.elf import fixed_point, nominal_mu
+
+    check_instance(config, "config", "scaling_period_range", BuildingConfig,
+                   "a BuildingConfig")
+    check_instance(lambda_, "lambda_", "scaling_period_range", PropertyModification,
+                   "a PropertyModification")
+    model = model or config.friction["model"]
+    mu = nominal_mu(config, model)
+    friction = config.bearing(model).friction
+    radius = float(config.bearing_geometry["effective_radius"])
+    weight = config.building.weight
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the heating note is the design's to give
+        periods = {bound: fixed_point(weight, radius, mu * lambda_.factor_for(friction, bound),
+                                      S_M1)[4] for bound in BOUNDS}
+    return (limit("period_range_low") * periods["upper"],
+            limit("period_range_high") * periods["lower"])
+
+
 def _lambda_from(config: BuildingConfig, lambda_: Any) -> PropertyModification:
     if lambda_ is None:
-        given = getattr(config, "design", None) or {}
-        lambda_ = given.get("lambda")
+        lambda_ = building_design(config)["lambda"]
         if lambda_ is None:
             raise InputError(f"The 'lambda_' parameter of {_OWNER} must be given (a "
                              "PropertyModification) when the building file has no [design] "
@@ -225,7 +281,7 @@ def _lambda_from(config: BuildingConfig, lambda_: Any) -> PropertyModification:
 
 def _site_from(config: BuildingConfig, site: Any) -> Site:
     if site is None:
-        site = (getattr(config, "design", None) or {}).get("site")
+        site = building_design(config)["site"]
         if site is None:
             raise InputError(f"The 'site' parameter of {_OWNER} must be given (Site or (S_MS, "
                              "S_M1[, T_L])) when the building file has no [design] S_MS and "
@@ -271,7 +327,7 @@ def _scale(motions: Sequence[Any], site: Site, prange: tuple[float, float], n_pe
 
 def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | None = None,
            lambda_: PropertyModification | tuple[float, float] | None = None, *,
-           R: float | None = None, I_e: float = 1.0, model: str | None = None,
+           R: float | None = None, I_e: float | None = None, model: str | None = None,
            allow_fewer: bool = False, complete_with_synthetic: bool | int = False,
            positions: Sequence[str] = POSITIONS, hold_bearing_loads: bool = True,
            regular: bool = True, storey_heights: float | list[float] | None = None,
@@ -293,9 +349,9 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
         MCE_R parameters [g, g, s]; None: the building file's ``[design]``.
     lambda_ : PropertyModification, (lambda_max, lambda_min) or None
         Property modification (17.2.8.4); None: the building file's ``[design]``.
-    R, I_e : float
-        Response modification of the superstructure (R_I = 3/8 R in [1, 2]; None: the
-        file's ``[design]`` R) and importance factor [-].
+    R, I_e : float or None
+        Response modification of the superstructure (R_I = 3/8 R in [1, 2]) and importance
+        factor [-]; None: the file's ``[design]`` (I_e 1 where it gives none).
     model : str, optional
         Friction model of the runs and the ELF's nominal mu (default the file's).
     allow_fewer : bool
@@ -375,10 +431,12 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
     site = _site_from(config, site)
     lambda_ = _lambda_from(config, lambda_)
     if R is None:
-        R = (getattr(config, "design", None) or {}).get("R")
+        R = building_design(config)["R"]
         if R is None:
             raise InputError(f"The 'R' parameter of {_OWNER} must be given when the building "
                              "file has no [design] R. Got None instead.")
+    if I_e is None:
+        I_e = building_design(config)["I_e"] or 1.0
     model = model or config.friction["model"]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
