@@ -294,17 +294,27 @@ def _site_from(config: BuildingConfig, site: Any) -> Site:
                          f"T_L]). Got {site!r} instead.")
 
 
-def _spectra(motions: Sequence[Any], factors: np.ndarray, site: Site, t_l: float,
+def _spectra(motions: Sequence[Any], report: Any, site: Site, t_l: float,
              prange: tuple[float, float], periods: np.ndarray) -> ScaledSpectra:
-    """Target and scaled RotD100 of each pair on ``periods`` [s], in g."""
+    """Target and scaled RotD100 of each pair [s], in g: the scaling's own on its grid, and
+    on the ``periods`` outside the range computed here (each spectrum computed once)."""
     from groundmotions.pairs.rotd import rotd_spectra
     from groundmotions.scaling import asce7_design_spectrum
 
     ratio = limit("design_over_mce")
     target = asce7_design_spectrum(ratio * site.S_MS, ratio * site.S_M1, t_l, level="mce")
-    pairs = {m.name: k * rotd_spectra(m, periods, 0.05, (100,)).sa[0] / G
-             for m, k in zip(motions, factors, strict=True)}
-    return ScaledSpectra(periods, target.sa_at(periods) / G, pairs, prange)
+    lo, hi = report.periods[0], report.periods[-1]
+    outside = np.asarray([t for t in periods if t < lo or t > hi], dtype=float)
+    grid = np.concatenate([outside, report.periods])
+    order = np.argsort(grid)
+    pairs = {}
+    for k, (motion, factor) in enumerate(zip(motions, report.scale_factors, strict=True)):
+        own = report.spectra["rotd100"][k]
+        more = (factor * rotd_spectra(motion, outside, 0.05, (100,)).sa[0] if outside.size
+                else np.empty(0))
+        pairs[motion.name] = np.concatenate([more, own])[order] / G
+    grid = grid[order]
+    return ScaledSpectra(grid, target.sa_at(grid) / G, pairs, prange)
 
 
 def _scale(motions: Sequence[Any], site: Site, prange: tuple[float, float], n_periods: int
@@ -334,7 +344,7 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
            out_dir: str | Path | None = None, n_workers: int | None = None,
            scheduler_address: str | None = None, store: str = "peaks", progress: bool = True,
            governing_history: bool = True, floor_spectra: bool = True,
-           run_timeout: float | None = None, n_periods: int = 60,
+           run_timeout: float | None = None, n_periods: int = 30,
            spectrum_periods: Any = None) -> DesignResult:
     """The response-history analysis of ASCE/SEI 7-16 17.6 with its ELF (17.5) and checks.
 
@@ -386,9 +396,11 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
     run_timeout : float, optional
         Wall-clock limit of each run [s].
     n_periods : int
-        Periods of the scaling grid over the range.
+        Periods of the scaling grid over the range (log-spaced; the criterion is checked on
+        them).
     spectrum_periods : array_like, optional
-        Periods [s] of the spectra reported (default 40 from 0.1 s to twice the range's end).
+        Periods [s] of the spectra reported besides the scaling grid (default 30 from 0.1 s to
+        twice the range's end; those inside the range are the grid's).
 
     Returns
     -------
@@ -477,10 +489,9 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
         report, t_l = _scale(motions, site, prange, n_periods)
         factors = {name: float(k) for name, k in zip(names, report.scale_factors, strict=True)}
         if spectrum_periods is None:
-            spectrum_periods = np.geomspace(0.1, max(2.0 * prange[1], 4.0), 40)
-        spectrum_periods = np.unique(np.concatenate([np.asarray(spectrum_periods, float),
-                                                     prange]))
-        spectra = _spectra(motions, report.scale_factors, site, t_l, prange, spectrum_periods)
+            spectrum_periods = np.geomspace(0.1, max(2.0 * prange[1], 4.0), 30)
+        spectra = _spectra(motions, report, site, t_l, prange,
+                           np.asarray(spectrum_periods, dtype=float))
         timings["scaling"] = time.perf_counter() - mark
         low, high = SCALE_FACTOR_RANGE
         odd = {n: k for n, k in factors.items() if not low <= k <= high}
