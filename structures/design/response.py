@@ -417,11 +417,13 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
     check_instance(config, "config", _OWNER, BuildingConfig, "a BuildingConfig")
     offsets = design_positions(config, positions)
     sources = _sources(pairs)
-    for name in ("allow_fewer", "hold_bearing_loads", "regular", "progress",
-                 "governing_history", "floor_spectra"):
-        if not isinstance(locals()[name], bool):
+    flags = {"allow_fewer": allow_fewer, "hold_bearing_loads": hold_bearing_loads,
+             "regular": regular, "progress": progress, "governing_history": governing_history,
+             "floor_spectra": floor_spectra}
+    for name, value in flags.items():
+        if not isinstance(value, bool):
             raise InputTypeError(f"The {name!r} parameter of {_OWNER} must be True or False. "
-                                 f"Got {locals()[name]!r} instead.")
+                                 f"Got {value!r} instead.")
     from structures.suites.runs import STORAGE
 
     store = check_choice(store, "store", _OWNER, STORAGE)
@@ -461,8 +463,9 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
     prange = period_range(result_elf)
     timings["elf"] = time.perf_counter() - start
 
+    temporary = out_dir is None
     with ExitStack() as stack:
-        if out_dir is None:
+        if temporary:
             out_dir = stack.enter_context(tempfile.TemporaryDirectory(prefix="dcfpb-design-"))
         root = Path(out_dir)
         root.mkdir(parents=True, exist_ok=True)
@@ -547,8 +550,7 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
         "period_range": list(prange), "scaling_fraction": limit("rha_scaling_fraction"),
         "scale_factor_range": list(SCALE_FACTOR_RANGE),
         "scaling_min_ratio": report.min_ratio, "storey_heights": heights.tolist(),
-        "out_dir": None if isinstance(out_dir, str) and out_dir.startswith(
-            tempfile.gettempdir()) and not Path(out_dir).exists() else str(out_dir),
+        "out_dir": None if temporary else str(out_dir),
         "timings": timings,
     }
     return DesignResult(config.name, result_elf, pair_info, compliant, spectra, peaks,
@@ -605,7 +607,8 @@ def _run_positions(config: BuildingConfig, sources: Sequence[MotionSource],
 
 def _design_row(row: dict[str, Any], bound: str, position: str) -> dict[str, Any]:
     out = {"pair": row["pair"], "bound": bound, "position": position,
-           "status": row["status"], "reason": row.get("reason"), "run_id": row["run_id"],
+           "status": row["status"], "reason": row.get("reason"),
+           "failure": row.get("failure") or "", "run_id": row["run_id"],
            "scale": row["scale"], "modifier": row["modifier"]}
     for key, value in row.items():
         if key in PEAK_UNITS or key.startswith("drift_ratio_"):
@@ -713,9 +716,8 @@ def _checks(result: ELFResult, peaks: Any, averages: Any, envelope: dict[str, di
         "bearing_displacement_capacity", LIMITS["bearing_capacity"].clause,
         "largest bearing displacement (average over pairs, enveloped) within the bearings' "
         "displacement capacity", demand, capacity, "m", "max", bound, position))
-    beyond = peaks["reason"].astype(str).str.contains("displacement_capacity|Capacity",
-                                                      regex=True)
-    beyond &= peaks["status"] != "done"
+    failure = peaks["failure"] if "failure" in peaks else peaks["status"].map(lambda _: "")
+    beyond = (peaks["status"] != "done") & (failure == "capacity")
     checks.append(Check(
         "bearing_capacity_every_run", LIMITS["bearing_capacity"].clause,
         "runs that stopped at the bearings' displacement capacity (any pair, bound, position)",
