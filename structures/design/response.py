@@ -381,8 +381,9 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
         Storey heights [m] (default the plan's).
     out_dir : str, Path or None
         Folder of the runs (one suite per position in ``positions/<position>``, the synthetic
-        pairs in ``synthetic``); resumable: complete runs are read back, not run again. None: a
-        temporary folder, removed at the end.
+        pairs in ``synthetic``); resumable: complete runs, and runs that stopped at the
+        bearings' capacity, are read back, not run again. None: a temporary folder, removed
+        at the end.
     n_workers, scheduler_address : int, str, optional
         A local Dask cluster of ``n_workers`` processes (default the cores), or a running
         scheduler.
@@ -582,7 +583,8 @@ def _run_positions(config: BuildingConfig, sources: Sequence[MotionSource],
         specs, _, _ = suite.runs(read=False)
         done = RunStore(folder) if folder.exists() else None
         pending = pending or done is None or any(
-            done.completed_row(s.run_id, store, DESIGN_MARK) is None for s in specs)
+            done.completed_row(s.run_id, store, DESIGN_MARK) is None
+            and not _kept_failure(done.failed_row(s.run_id)) for s in specs)
     if pending and scheduler_address is None:
         from structures.suites.tasks import local_cluster
 
@@ -593,7 +595,7 @@ def _run_positions(config: BuildingConfig, sources: Sequence[MotionSource],
     for position, (suite, folder) in suites.items():
         result = run_suite(suite, folder, scheduler_address=scheduler_address,
                            progress=progress, run_timeout=run_timeout, storage=store,
-                           design_peaks=True)
+                           design_peaks=True, keep_failed=KEPT_FAILURES)
         for row in result.peaks.to_dict("records"):
             for bound, modifier in by_bound.items():
                 if row["modifier"] == modifier:
@@ -603,6 +605,19 @@ def _run_positions(config: BuildingConfig, sources: Sequence[MotionSource],
     names = {s.name: k for k, s in enumerate(sources)}
     rows.sort(key=lambda r: (order[r["bound"]], places[r["position"]], names[r["pair"]]))
     return rows
+
+
+KEPT_FAILURES = ("capacity",)
+"""Failed runs a second call keeps instead of running again: a run past the bearings'
+displacement capacity fails the same way each time (its peaks up to the failure are kept)."""
+
+
+def _kept_failure(row: dict[str, Any] | None) -> bool:
+    from structures.suites.runs import failure_kind
+    from structures.suites.tasks import DESIGN_MARK
+
+    return (row is not None and failure_kind(row) in KEPT_FAILURES
+            and all(key in row for key in DESIGN_MARK))
 
 
 def _design_row(row: dict[str, Any], bound: str, position: str) -> dict[str, Any]:

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from dcfpb.common.validation import check_choice, check_int, check_real
 from structures.config import BuildingConfig
-from structures.suites.runs import RunSpec, execute_run
+from structures.suites.runs import RunSpec, execute_run, failure_kind
 from structures.suites.store import RunStore, atomic_write
 from structures.suites.summary import summarize, write_summary
 from structures.suites.tasks import (
@@ -66,6 +66,7 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
                  n_workers: int | None, scheduler_address: str | None, write: str,
                  progress: bool, run_timeout: float | None, max_steps: int,
                  ship: bool, storage: str = "full", design: bool = False,
+                 keep_failed: Sequence[str] = (),
                  ) -> tuple[dict[str, dict[str, Any]], int, int]:
     """Compute the runs not complete in ``store`` and store each as it finishes; return the row
     of every run by run id, and the numbers of runs computed now and complete from before.
@@ -74,8 +75,10 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
     else each task reads its own); ``unreadable`` the reason of each motion that could not be
     read (its runs fail with it); ``storage`` and ``design`` as
     :func:`~structures.suites.runs.execute_run` takes them (a stored run that keeps less, or
-    lacks the design peaks asked, is computed again); the other keywords are those of
-    ``run_suite``.
+    lacks the design peaks asked, is computed again); a run whose last failure is of a kind
+    in ``keep_failed`` (:data:`~structures.suites.runs.FAILURE_KINDS`, e.g. ``"capacity"``, a
+    deterministic outcome of the model) keeps it instead of running again; the other keywords
+    are those of ``run_suite``.
     """
     from distributed import as_completed
     from tqdm import tqdm
@@ -85,8 +88,12 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
     mark = DESIGN_MARK if design else ()
     for spec in specs:
         row = store.completed_row(spec.run_id, storage, mark)
+        failed = store.failed_row(spec.run_id) if row is None and keep_failed else None
         if row is not None:
             rows[spec.run_id] = row
+        elif failed is not None and failure_kind(failed) in keep_failed and all(
+                key in failed for key in mark):
+            rows[spec.run_id] = failed
         elif spec.motion in unreadable:
             rows[spec.run_id] = store.save_failure(spec.failure(unreadable[spec.motion]))
         else:

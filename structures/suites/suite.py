@@ -34,7 +34,7 @@ from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
 from structures.suites.dispatch import SuiteResult, check_run_options, compute_runs, finish
 from structures.suites.lock import SuiteLock
-from structures.suites.runs import COLUMNS, STORAGE, RunSpec, fingerprint
+from structures.suites.runs import COLUMNS, FAILURE_KINDS, STORAGE, RunSpec, fingerprint
 from structures.suites.sources import MotionSource
 from structures.suites.store import RunStore
 
@@ -264,7 +264,8 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
               scheduler_address: str | None = None, write: str = "workers",
               progress: bool = True, run_timeout: float | None = None, lock: bool = True,
               wait_lock: float = 0.0, max_steps: int = DEFAULT_MAX_STEPS,
-              storage: str = "full", design_peaks: bool = False) -> SuiteResult:
+              storage: str = "full", design_peaks: bool = False,
+              keep_failed: Sequence[str] = ()) -> SuiteResult:
     """Compute a suite into ``out_dir``, or finish one that was interrupted.
 
     Parameters
@@ -297,6 +298,10 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
     design_peaks : bool
         Add the keys of :func:`structures.analysis.design_peaks` to every run's row and, after
         the suite's columns, to ``peaks`` (not to ``peaks.csv``).
+    keep_failed : sequence of str
+        Failure kinds (:data:`structures.suites.runs.FAILURE_KINDS`) a stored failed run keeps
+        instead of running again (default none: every failed run is retried), e.g.
+        ``("capacity",)``: past the bearings' capacity the same run fails the same way.
 
     Returns
     -------
@@ -326,7 +331,9 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
             specs, motions, unreadable, suite.config, store, n_workers=n_workers,
             scheduler_address=scheduler_address, write=write, progress=progress,
             run_timeout=run_timeout, max_steps=max_steps, ship=ship, storage=storage,
-            design=design_peaks)
+            design=design_peaks, keep_failed=tuple(
+                check_choice(k, "keep_failed", "run_suite", FAILURE_KINDS)
+                for k in keep_failed))
         return finish(specs, rows, store, computed, skipped, start, COLUMNS[suite.kind],
                       extra_columns=tuple(
                           k for k in design_columns(rows.values())

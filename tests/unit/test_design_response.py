@@ -367,3 +367,48 @@ def test_checks_pass_and_fail_with_their_margins(config):
     assert not drift_y.passed and drift_y.margin == pytest.approx(-0.5)
     assert not checks["bearing_uplift"].passed and checks["bearing_uplift"].demand == -1.0
     assert checks["bearing_displacement_capacity"].demand == pytest.approx(d_tm)
+
+
+# --- building files: load_eccentricity; suites: failures kept -----------------------------------
+
+def test_load_eccentricity_in_a_building_file(tmp_path):
+    levels = "[[0.0, 0.0]" + ", [1.2, 0.6]" * 5 + "]"  # base slab, then the floors
+    text = PLAN_FILE.read_text().replace("eccentricity = [1.2, 0.6]",
+                                         "eccentricity = [1.2, 1.2]\n"
+                                         f"load_eccentricity = {levels}")
+    path = tmp_path / "held.toml"
+    path.write_text(text)
+    held = load_config(path)
+    nominal = load_config(PLAN_FILE)
+    assert np.array_equal(held.building.gravity_shares, nominal.building.gravity_shares)
+    assert held.plan.eccentricity.tolist() == [[1.2, 1.2]]
+    path.write_text(text.replace(f"load_eccentricity = {levels}",
+                                 "load_eccentricity = [1.2, 0.6]"))  # every level, base too
+    one = load_config(path).building
+    everywhere = dataclasses.replace(nominal.building, plan=dataclasses.replace(
+        nominal.plan, base_eccentricity=(1.2, 0.6)))
+    np.testing.assert_allclose(one.gravity_shares, everywhere.gravity_shares, rtol=1e-14)
+    path.write_text(text.replace(f"load_eccentricity = {levels}",
+                                 "load_eccentricity = [[1.2, 0.6], [1.2, 0.6]]"))
+    with pytest.raises(ConfigError, match=r"load_eccentricity.*one per level.*\(6\)"):
+        load_config(path)
+
+
+def test_capacity_failures_are_kept_on_request(tmp_path):
+    from structures.suites.suite import Suite, run_suite
+
+    text = PLAN_FILE.read_text().replace("displacement_capacity = 0.6",
+                                         "displacement_capacity = 0.02")
+    path = tmp_path / "small.toml"
+    path.write_text(text)
+    config = load_config(path)
+    suite = Suite(config, motion_sources(write_manifest(tmp_path / "m", 1), pairs=True),
+                  models=("constant",), factors={"p0": 3.0})
+    options = {"n_workers": 1, "progress": False, "storage": "peaks", "design_peaks": True}
+    first = run_suite(suite, tmp_path / "out", **options)
+    assert first.computed == 1 and first.peaks["failure"].tolist() == ["capacity"]
+    again = run_suite(suite, tmp_path / "out", keep_failed=("capacity",), **options)
+    assert again.computed == 0
+    assert again.peaks["isolator_displacement"].tolist() == first.peaks[
+        "isolator_displacement"].tolist()
+    assert run_suite(suite, tmp_path / "out", **options).computed == 1  # the default retries
