@@ -438,11 +438,11 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
                 f"of ground motions; the suite has {n_pairs}")
         if not allow_fewer:
             raise InputError(f"{rule}. Give more pairs, complete the suite with synthetic "
-                             "pairs (complete_with_synthetic, --synthetic), or allow fewer "
-                             "(allow_fewer, --allow-fewer: the result is then not compliant).")
-        notes.append(f"NOT COMPLIANT: {rule} (allowed by allow_fewer); with fewer than "
-                     f"{minimum} pairs the standard takes the maximum response, not the "
-                     "average, which this analysis does not do.")
+                             "pairs (complete_with_synthetic), or allow fewer (allow_fewer, "
+                             "--allow-fewer: the result is then not compliant).")
+        notes.append(f"NOT COMPLIANT: {rule} (allowed by allow_fewer); the averages over "
+                     f"{n_pairs} pairs are not the design values of 17.6.3.4, which rest on "
+                     f"at least {minimum}.")
     site = _site_from(config, site)
     lambda_ = _lambda_from(config, lambda_)
     if R is None:
