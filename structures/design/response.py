@@ -378,7 +378,8 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
         A regular superstructure: V_s of the response history at least 80 % of the ELF's, else
         100 %.
     storey_heights : float, list of float or None
-        Storey heights [m] (default the plan's).
+        Storey heights [m] (default the plan's): the ELF's, and the runs' (overturning, drift
+        ratios) in place of the plan's.
     out_dir : str, Path or None
         Folder of the runs (one suite per position in ``positions/<position>``, the synthetic
         pairs in ``synthetic``); resumable: complete runs, and runs that stopped at the
@@ -461,6 +462,10 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
         factors_by_bound = {bound: lambda_.factor_for(friction, bound) for bound in BOUNDS}
     notes += [str(w.message) for w in caught]
     heights = np.asarray(result_elf.upper.directions["x"].storey_heights, dtype=float)
+    if storey_heights is not None:  # the runs' overturning and drift ratios take them too
+        plan = dataclasses.replace(config.plan, storey_heights=heights)
+        config = dataclasses.replace(config, building=dataclasses.replace(config.building,
+                                                                          plan=plan))
     prange = period_range(result_elf)
     timings["elf"] = time.perf_counter() - start
 
