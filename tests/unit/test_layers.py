@@ -22,6 +22,7 @@ PACKAGES = ("dcfpb", "groundmotions", "isolator", "structures")
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("dcfpb.cli",),
     ("dcfpb.plotting",),
+    ("structures.design.response",),  # the response history of 17.6 runs suites
     ("structures.suites", "structures.diagnosis", "structures.design"),
     ("structures.opensees",),
     ("structures",),
