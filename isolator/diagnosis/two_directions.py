@@ -27,10 +27,11 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    pre-sliding spring unloads, then the gap opens and that axis stands still and carries no
    force until it closes; :func:`play_return_map_2d`) and ``lag`` (one force-channel lag
    for the campaign), each with u_y and the channel lag refitted. The lag is judged against
-   the baseline with no lag (the nuisance judged as an effect), named from
-   ``lag_min_samples`` on, only when
-   the lag fitted test by test agrees (a spread over 1.5 samples and 25 % is a speed effect)
-   and within ``PLAUSIBLE_LAG``; a play from ``backlash_min`` on either axis.
+   the baseline with no lag (the nuisance judged as an effect) and named as in one direction
+   (:func:`~isolator.diagnosis.decision.lag_reason`): the force after the displacement by
+   ``lag_min_samples`` up to ``LAG_PLAUSIBLE_MAX``, the lags fitted test by test agreeing (a
+   lag that changes with the test is a speed effect); a play from ``backlash_min`` on either
+   axis.
 4. **Stage 2, the friction law, outside the direction-change windows:** ``heating``
    (exp(-a dT / 100 degC), dT from the measured friction power on the 2D heating field
    :class:`isolator.monitor_grid.GridHeating`), ``velocity`` (1 - d exp(-|v| / v_t) on the
@@ -41,9 +42,13 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    candidates are tried again beside the friction law named. A kinematic effect that was
    significant but closed too little of the excess on its own (a play beside heating) is
    applied provisionally, the law selected beside it, and judged again beside that law.
-5. **Verdict**: ``none``, the named effects, ``unexplained``; the materiality rule covers the
-   whole test (every sample, the direction-change windows included).
-6. **Uncertainty**: confidence by block bootstrap, 5-95 % intervals of the parameters.
+5. **Verdict**: ``none``, the named effects, ``unexplained``, by one direction's rule
+   (:func:`~isolator.diagnosis.selection.material`,
+   :func:`~isolator.diagnosis.selection.verdict_of`), over the whole test (every sample, the
+   direction-change windows included).
+6. **Uncertainty**: confidence by one direction's block bootstrap
+   (:func:`~isolator.diagnosis.uncertainty.block_confidence`), 5-95 % intervals of the
+   parameters.
 
 A block is a stretch of path of a quarter of a turn of a circle of the test's peak radius. The
 held-out statistic z is the larger of two t-statistics over the blocks: of the differences of
@@ -68,24 +73,24 @@ from isolator.diagnosis.baseline import (
     BaselineSpec,
 )
 from isolator.diagnosis.data2d import Campaign2D
+from isolator.diagnosis.decision import LAG_PLAUSIBLE_MAX, grid_minima, lag_reason
 from isolator.diagnosis.features import smoothed_displacement
 from isolator.diagnosis.kinematics import noise_std, shifted
+from isolator.diagnosis.selection import block_z, material, verdict_of
 from isolator.diagnosis.solver import levenberg_marquardt
 from isolator.diagnosis.thresholds import Thresholds
+from isolator.diagnosis.uncertainty import block_confidence
 
 EFFECTS_2D = ("heating", "velocity", "pressure", "wear", "backlash", "lag")
 """The candidate effects in two directions."""
 KINEMATIC_2D = ("backlash", "lag")
 NUISANCE_LAG_SAMPLES = 2.0  # the baseline's channel lag, up to this many samples
 LAG_RANGE_SAMPLES = 30.0  # the lag effect is fitted within +- this many samples
-PLAUSIBLE_LAG = 0.05  # [s] a laboratory channel lag beyond this is not named as a lag
-LAG_SPREAD_SAMPLES = 1.5  # per-test lags differing more than this (and 25 %): not one lag
 BACKLASH_MAX = 0.02  # [m] the largest play fitted per axis
 ALIGNMENT_ANGLE = 15.0  # [deg] friction force not yet turned with the motion
 ALIGNED_SIZE = 0.95  # |z| below this: still in the pre-sliding transition
 SLOW_SHARE = 0.05  # of the peak speed: a stop
 MAX_FRICTION_EFFECTS = 3
-BOOTSTRAP = 200
 BLOCK_TURN = 0.25  # a block: this share of a turn of a circle of the peak radius, as path
 SMOOTH_NOISE = 0.1  # displacement noise over u_y beyond which the displacement is smoothed
 _YIELD_GRID = np.geomspace(RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_MAX, 14)
@@ -649,8 +654,10 @@ class Problem2D:
         after = self.block_sse(new.prediction, mask)
         used = (np.bincount(self.d.block[mask], minlength=before.size) > 0) & (before > 0) \
             & (after > 0)
-        z = max(_block_z(before[used] - after[used]),
-                _block_z(np.log(before[used] / after[used])))
+        z = 0.0
+        if used.sum() >= 3:
+            z = max(block_z(before[used] - after[used]),
+                    block_z(np.log(before[used] / after[used])))
         noise = self.weighted_noise(mask)
         room = current.weighted - noise
         explained = (current.weighted - new.weighted) / room if room > 0 else 0.0
@@ -661,32 +668,17 @@ class Problem2D:
                      and not new.at_bound)
         return new
 
-    def confidence(self, reference: Judged, new: Judged, mask: np.ndarray, share: float,
-                   seed: int = 0) -> float:
+    def confidence(self, reference: Judged, new: Judged, mask: np.ndarray,
+                   share: float) -> float:
         """Share of block-bootstrap resamples in which ``new`` still closes ``share`` of the
-        excess ``reference`` leaves [-]."""
-        rng = np.random.default_rng(seed)
+        excess ``reference`` leaves [-] (:func:`~isolator.diagnosis.uncertainty.block_confidence`,
+        as in one direction)."""
         ref = self.block_sse(reference.prediction, mask)
         got = self.block_sse(new.prediction, mask)
         r2n = self.weight * self.variance * 2.0
         noise = np.bincount(self.d.block[mask], weights=r2n[mask], minlength=ref.size)
-        used = np.flatnonzero(np.bincount(self.d.block[mask], minlength=ref.size) > 0)
-        hits = 0
-        for _ in range(BOOTSTRAP):
-            pick = rng.choice(used, used.size)
-            room = ref[pick].sum() - noise[pick].sum()
-            if room > 0 and (ref[pick].sum() - got[pick].sum()) / room >= share:
-                hits += 1
-        return hits / BOOTSTRAP
-
-
-def _block_z(differences: np.ndarray) -> float:
-    """The sum of block differences over its standard error [-] (0 for fewer than 3)."""
-    if differences.size < 3:
-        return 0.0
-    spread = float(np.std(differences, ddof=1))
-    return float(np.sum(differences) / (spread * math.sqrt(differences.size))) if spread > 0 \
-        else 0.0
+        used = np.bincount(self.d.block[mask], minlength=ref.size) > 0
+        return block_confidence(ref[used], got[used], noise[used], share)
 
 
 # --- the steps --------------------------------------------------------------------------------
@@ -1014,7 +1006,7 @@ class Diagnosis2D:
                           "samples: the friction force turning with the motion, stops)"),
         }
         lag_entry = {"seconds": self.baseline.lag, "samples": self.baseline.lag / d.dt,
-                     "named": False, "plausible_limit_seconds": PLAUSIBLE_LAG}
+                     "named": False, "plausible_limit_seconds": LAG_PLAUSIBLE_MAX}
         if self.chosen is not None and "lag" in self.chosen.model.kinematic:
             value = _own_params(self.chosen, "lag")["lag"][0]
             lag_entry.update({"seconds": value, "samples": value / d.dt, "named": True})
@@ -1376,14 +1368,14 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 roles[k] = "earns its keep but closes too little"
             named, chosen = [], None
     remaining = chosen.prediction if chosen is not None else base_all.prediction
-    real_gap = (problem.score(remaining, every) > 1.0 + th.none_margin
-                and problem.excess_rms(remaining, every) > th.practical_remain)
-    base_gap = (problem.score(base_all.prediction, every) > 1.0 + th.none_margin
-                and problem.excess_rms(base_all.prediction, every) > th.practical_none)
+    # the materiality rule of one direction, over the whole test
     if named:
-        verdict = list(named) + (["unexplained"] if real_gap else [])
+        gap = material(problem.score(remaining, every), problem.excess_rms(remaining, every),
+                       th.practical_remain, th)
     else:
-        verdict = ["unexplained"] if base_gap else ["none"]
+        gap = material(problem.score(base_all.prediction, every),
+                       problem.excess_rms(base_all.prediction, every), th.practical_none, th)
+    verdict = verdict_of(list(named), gap)
     for k, j in judged.items():
         if k in named:
             roles[k] = "named"
@@ -1500,7 +1492,8 @@ def _friction_starts(name: str) -> list[np.ndarray]:
 
 def per_test_lags(d: Data2D, j: Judged) -> np.ndarray:
     """The lag [s] that fits each test best, on a half-sample grid within 10 samples of the
-    campaign's, the other parameters of ``j`` kept and mu refitted per test."""
+    campaign's refined by a parabola (as in one direction), the other parameters of ``j``
+    kept and mu refitted per test."""
     params = [p.name for p in j.params]
     campaign_lag = float(j.theta[params.index("lag")])
     uy = 10.0 ** float(j.theta[1])
@@ -1517,7 +1510,7 @@ def per_test_lags(d: Data2D, j: Judged) -> np.ndarray:
             m = d.test == k
             mu = float(np.sum(basis[m] * friction[m]) / max(np.sum(basis[m] ** 2), 1e-300))
             costs[i, k] = float(np.mean((friction[m] - mu * basis[m]) ** 2))
-    return grid[np.argmin(costs, axis=0)]
+    return grid_minima(grid, costs, 0.5 * d.dt)
 
 
 def _hidden(j: Judged, name: str, th: Thresholds, d: Data2D) -> bool:
@@ -1530,27 +1523,19 @@ def _hidden(j: Judged, name: str, th: Thresholds, d: Data2D) -> bool:
 
 
 def _size_ok(j: Judged, name: str, th: Thresholds, d: Data2D, notes: list[str]) -> bool:
-    """A play is named from ``backlash_min`` on (either axis); a lag beyond
-    ``lag_min_samples`` and within the plausible channel lag."""
+    """A play is named from ``backlash_min`` on (either axis); a lag as a laboratory channel
+    can have it (one direction's rule: the force after the displacement by ``lag_min_samples``
+    to ``LAG_PLAUSIBLE_MAX``, the same in every test), else the reason joins ``notes``."""
     own = _own_params(j, name)
     if name == "backlash":
         return max(own["width_x"][0], own["width_y"][0]) >= th.backlash_min
-    if name == "lag":
-        value = abs(own["lag"][0])
-        if value / d.dt < th.lag_min_samples:
-            return False
-        lags = per_test_lags(d, j)
-        spread = float(np.ptp(lags)) if lags.size > 1 else 0.0
-        if spread > max(LAG_SPREAD_SAMPLES * d.dt, 0.25 * value):
-            notes.append("the lag fitted test by test varies ("
-                         + ", ".join(f"{x / d.dt:+.1f}" for x in lags)
-                         + " samples): not one channel lag for the campaign (a speed effect "
-                         "looks like a lag that changes with the period and the amplitude)")
-            return False
-        if value > PLAUSIBLE_LAG:
-            notes.append(f"a lag of {1e3 * value:.1f} ms fits, beyond what a laboratory "
-                         f"channel plausibly has ({1e3 * PLAUSIBLE_LAG:.0f} ms): not named as "
-                         "a lag (a speed effect or the rig's dynamics look like one)")
-            return False
-        return True
+    if name == "lag":  # one direction's rule (:func:`~isolator.diagnosis.decision.lag_reason`)
+        samples = own["lag"][0] / d.dt
+        per_test = np.zeros(0)
+        if lag_reason(samples, d.dt, per_test, th) is None:
+            per_test = per_test_lags(d, j) / d.dt
+        reason = lag_reason(samples, d.dt, per_test, th)
+        if reason is not None and abs(samples) >= th.lag_min_samples and reason not in notes:
+            notes.append(reason)
+        return reason is None
     return True
