@@ -106,10 +106,10 @@ def run(args: argparse.Namespace) -> int:
         text = "\n".join(_lines(summary))
         if args.report:
             from dcfpb.cli.outputs import writing
-            from isolator.diagnosis.report2d import write_report_2d
+            from isolator.diagnosis.report import write_report
 
             with writing("--report", args.report):
-                written = write_report_2d(diagnosis, args.report, text)
+                written = write_report(diagnosis, args.report, text)
             summary["report"] = [str(p) for p in written]
             text += "".join(f"\nwrote {p}" for p in summary["report"])
         print(json.dumps(summary, indent=2) if args.json else text)

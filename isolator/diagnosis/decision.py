@@ -66,7 +66,7 @@ from isolator.diagnosis.selection import (
     verdict_of,
 )
 from isolator.diagnosis.thresholds import Thresholds
-from isolator.diagnosis.transition import TIMING, in_transition
+from isolator.diagnosis.transition import TIMING, in_transition, window_statistics
 
 LAG_PLAUSIBLE_MAX = 0.1  # [s] the largest lag a laboratory channel can plausibly have
 LAG_SPREAD = 1.0  # [samples] per-test lags of one channel agree within this (or 20 %)
@@ -201,10 +201,8 @@ class Problem:
         f, w = self.features, self.window
         if not w.any():
             return 1.0, 0.0
-        r2 = (f.force[w] - prediction[w]) ** 2
-        score = float(np.mean(r2 / f.noise_variance[w]))
-        excess = float(np.sum(r2 - f.noise_variance[w])) / len(f)
-        return score, float(np.sqrt(max(excess, 0.0) / np.mean(f.force**2)))
+        return window_statistics((f.force[w] - prediction[w]) ** 2, f.noise_variance[w], len(f),
+                                 np.mean(f.force**2))
 
     def transition_gap(self, prediction: np.ndarray, th: Thresholds) -> bool:
         """Whether the residual of ``prediction`` inside the transition windows is far above

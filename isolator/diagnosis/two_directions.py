@@ -61,8 +61,8 @@ from __future__ import annotations
 
 import math
 import time as _time
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -71,20 +71,27 @@ from isolator.diagnosis.baseline import (
     RIGID_PLASTIC_LIMIT,
     YIELD_DISPLACEMENT_MAX,
     BaselineSpec,
+    edges_of,
 )
 from isolator.diagnosis.data2d import Campaign2D
 from isolator.diagnosis.decision import LAG_PLAUSIBLE_MAX, grid_minima, lag_reason
+from isolator.diagnosis.effects import Effect, Parameter, effects_named
+from isolator.diagnosis.effects import heating as heating_form
+from isolator.diagnosis.effects import pressure as pressure_form
+from isolator.diagnosis.effects import velocity as velocity_form
+from isolator.diagnosis.effects import wear as wear_form
 from isolator.diagnosis.features import smoothed_displacement
 from isolator.diagnosis.kinematics import noise_std, shifted
 from isolator.diagnosis.selection import block_z, material, verdict_of
 from isolator.diagnosis.solver import levenberg_marquardt
+from isolator.diagnosis.summary import nuisance_entry
 from isolator.diagnosis.thresholds import Thresholds
+from isolator.diagnosis.transition import NUISANCE_LAG_SAMPLES, window_statistics
 from isolator.diagnosis.uncertainty import block_confidence
 
 EFFECTS_2D = ("heating", "velocity", "pressure", "wear", "backlash", "lag")
 """The candidate effects in two directions."""
 KINEMATIC_2D = ("backlash", "lag")
-NUISANCE_LAG_SAMPLES = 2.0  # the baseline's channel lag, up to this many samples
 LAG_RANGE_SAMPLES = 30.0  # the lag effect is fitted within +- this many samples
 BACKLASH_MAX = 0.02  # [m] the largest play fitted per axis
 ALIGNMENT_ANGLE = 15.0  # [deg] friction force not yet turned with the motion
@@ -249,45 +256,24 @@ def lagged(time: np.ndarray, values: np.ndarray, lag: float) -> np.ndarray:
 
 # --- parameters and effects -----------------------------------------------------------------
 
-@dataclass(frozen=True)
-class Param:
-    """A parameter: name, start, bounds, unit, and whether a fit at a bound still reads."""
-
-    name: str
-    start: float
-    low: float
-    high: float
-    unit: str
-    edge_ok: bool = False
+# The candidates are the library's effects (:mod:`isolator.diagnosis.effects`: name, place,
+# physical reading, and on mu their form, ``modulation``) on the orbit's variables: the rise on
+# the 2D heating field, the speed |v|, the pressure, the path travelled; their parameters are
+# fitted as read (no log10) and the play has a width per axis.
+def _heating(theta, d, _=None):
+    return heating_form.modulation(theta[0], d.temperature_rise)
 
 
-@dataclass(frozen=True)
-class Effect2D:
-    """A candidate effect in two directions: ``factor(theta, data) -> (n,)`` on mu, or a
-    kinematic effect (``kinematic``) whose parameters act on the displacement."""
-
-    name: str
-    description: str
-    params: tuple[Param, ...]
-    factor: Callable | None = None
-    kinematic: bool = False
-    requires: Callable | None = None
+def _velocity(theta, d, _=None):
+    return velocity_form.modulation(theta[0], theta[1], d.speed)
 
 
-def _heating(theta, d):
-    return np.exp(-theta[0] * d.temperature_rise / 100.0)
+def _pressure(theta, d, _=None):
+    return pressure_form.modulation(theta[0], d.pressure, d.mean_pressure)
 
 
-def _velocity(theta, d):
-    return 1.0 - theta[0] * np.exp(-d.speed / theta[1])
-
-
-def _pressure(theta, d):
-    return (d.pressure / d.mean_pressure) ** (-theta[0])
-
-
-def _wear(theta, d):
-    return 1.0 + theta[0] * (1.0 - np.exp(-d.travel / theta[1]))
+def _wear(theta, d, _=None):
+    return wear_form.modulation(theta[0], d.travel, theta[1], per_campaign=False)
 
 
 def _needs_pressure(d) -> str | None:
@@ -302,28 +288,52 @@ def _needs_heat(d) -> str | None:
     return None
 
 
+def _through_kinematic_state(theta, context):
+    """The kinematic effects in two directions act through :func:`kinematic_state` (a play
+    per axis, one lag), not through this hook."""
+    raise NotImplementedError("in two directions, kinematic effects act in kinematic_state")
+
+
+def _on_orbits(name: str, where: str, parameters: tuple[Parameter, ...],
+               factor=None, requires=None) -> Effect:
+    """The library's effect ``name`` in two directions (``where``, if any, added to its
+    description) with ``parameters`` fitted on orbits; on mu, ``factor(theta, data)``;
+    ``requires(data)`` says why the orbits cannot show it."""
+    own = effects_named([name])[0]
+    described = f"{own.description}, {where}" if where else own.description
+    return replace(own, description=described, parameters=parameters,
+                   factor=factor if own.acts_on == "mu" else None,
+                   kinematic=(_through_kinematic_state if own.acts_on == "kinematics"
+                              else None),
+                   requires=requires, variable=None, reading=None)
+
+
 LIBRARY_2D = {
-    "heating": Effect2D("heating", "friction falls as the contact heats (2D heating field)",
-                        (Param("thermal_sensitivity_x100", 0.5, -3.0, 5.0, "1/(100 degC)"),),
-                        factor=_heating, requires=_needs_heat),
-    "velocity": Effect2D("velocity", "friction depends on the sliding speed |v|",
-                         (Param("low_speed_drop", 0.3, -1.0, 0.95, "-"),
-                          Param("transition_velocity", 0.05, 0.002, 0.5, "m/s")),
-                         factor=_velocity),
-    "pressure": Effect2D("pressure", "friction depends on the contact pressure",
-                         (Param("exponent", 0.1, -1.0, 1.0, "-"),), factor=_pressure,
-                         requires=_needs_pressure),
-    "wear": Effect2D("wear", "friction drifts with the path travelled over the campaign",
-                     (Param("change", -0.1, -0.8, 2.0, "-"),
-                      Param("travel_scale", 5.0, 0.05, 1.0e4, "m", edge_ok=True)),
-                     factor=_wear),
-    "backlash": Effect2D("backlash", "a play in the load train, per axis",
-                         (Param("width_x", 2e-3, 0.0, BACKLASH_MAX, "m", edge_ok=False),
-                          Param("width_y", 2e-3, 0.0, BACKLASH_MAX, "m", edge_ok=False)),
-                         kinematic=True),
-    "lag": Effect2D("lag", "the force channel recorded late (one lag for the campaign)",
-                    (Param("lag", 0.0, -1.0, 1.0, "s"),), kinematic=True),
+    "heating": _on_orbits("heating", "on the 2D heating field",
+                          (Parameter("thermal_sensitivity_x100", 0.5, -3.0, 5.0,
+                                     unit="1/(100 degC)"),), _heating, _needs_heat),
+    "velocity": _on_orbits("velocity", "on the speed |v|",
+                           (Parameter("low_speed_drop", 0.3, -1.0, 0.95, unit="-"),
+                            Parameter("transition_velocity", 0.05, 0.002, 0.5, unit="m/s")),
+                           _velocity),
+    "pressure": _on_orbits("pressure", "",
+                           (Parameter("exponent", 0.1, -1.0, 1.0, unit="-"),), _pressure,
+                           _needs_pressure),
+    "wear": _on_orbits("wear", "over the path travelled",
+                       (Parameter("change", -0.1, -0.8, 2.0, unit="-"),
+                        Parameter("travel_scale", 5.0, 0.05, 1.0e4, unit="m", edge_ok=True)),
+                       _wear),
+    "backlash": _on_orbits("backlash", "per axis",
+                           (Parameter("width_x", 2e-3, 0.0, BACKLASH_MAX, unit="m"),
+                            Parameter("width_y", 2e-3, 0.0, BACKLASH_MAX, unit="m"))),
+    "lag": _on_orbits("lag", "one lag for the campaign",
+                      (Parameter("lag", 0.0, -1.0, 1.0, unit="s"),)),
 }
+"""The candidates in two directions, by name (:data:`EFFECTS_2D`)."""
+
+
+def _kinematic(name: str) -> bool:
+    return LIBRARY_2D[name].acts_on == "kinematics"
 
 
 # --- the campaign's fixed data --------------------------------------------------------------
@@ -460,25 +470,26 @@ class Model2D:
         if not self.refits_kinematics:
             return 1
         return (2 + ("lag" not in self.kinematic)
-                + sum(len(LIBRARY_2D[k].params) for k in self.kinematic))
+                + sum(len(LIBRARY_2D[k].parameters) for k in self.kinematic))
 
-    def layout(self, d: Data2D, nominal_uy: float) -> list[Param]:
-        out = [Param("mu", 0.05, 1e-4, 1.0, "-")]
+    def layout(self, d: Data2D, nominal_uy: float) -> list[Parameter]:
+        out = [Parameter("mu", 0.05, 1e-4, 1.0, unit="-")]
         if self.refits_kinematics:
-            out.append(Param("log10_yield_displacement", math.log10(nominal_uy),
-                             math.log10(RIGID_PLASTIC_LIMIT),
-                             math.log10(YIELD_DISPLACEMENT_MAX), "log10 m", edge_ok=True))
+            out.append(Parameter("log10_yield_displacement", math.log10(nominal_uy),
+                                 math.log10(RIGID_PLASTIC_LIMIT),
+                                 math.log10(YIELD_DISPLACEMENT_MAX), unit="log10 m",
+                                 edge_ok=True))
             if "lag" not in self.kinematic:  # the baseline's nuisance lag, refitted
                 span = NUISANCE_LAG_SAMPLES * d.dt
-                out.append(Param("channel_lag", 0.0, -span, span, "s", edge_ok=True))
+                out.append(Parameter("channel_lag", 0.0, -span, span, unit="s", edge_ok=True))
             for name in self.kinematic:
-                for p in LIBRARY_2D[name].params:
+                for p in LIBRARY_2D[name].parameters:
                     if name == "lag":
                         span = LAG_RANGE_SAMPLES * d.dt
-                        p = Param(p.name, 0.0, -span, span, "s")
+                        p = Parameter(p.name, 0.0, -span, span, unit="s")
                     out.append(p)
         for name in self.friction:
-            out.extend(LIBRARY_2D[name].params)
+            out.extend(LIBRARY_2D[name].parameters)
         return out
 
     def state(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> tuple:
@@ -504,8 +515,8 @@ class Model2D:
         mu = float(theta[0]) * d.mu_shape
         i = self.kinematic_size
         for name in self.friction:
-            size = len(LIBRARY_2D[name].params)
-            mu = mu * LIBRARY_2D[name].factor(theta[i:i + size], d)
+            size = len(LIBRARY_2D[name].parameters)
+            mu = mu * LIBRARY_2D[name].factor(theta[i:i + size], d, None)
             i += size
         return mu
 
@@ -518,7 +529,9 @@ class Model2D:
 
 @dataclass
 class Baseline2D:
-    """The calibrated baseline: mu, u_y [m], lag [s], and its u_b, z, force (n, 2)."""
+    """The calibrated baseline: mu, u_y [m], lag [s], and its u_b, z, force (n, 2); the
+    nuisances corrected (``edges``: notes, a load cell's relative gain) and those at an edge
+    of their range (``at_edge``, :func:`~isolator.diagnosis.baseline.edges_of`)."""
 
     spec: BaselineSpec
     mu: float
@@ -529,6 +542,7 @@ class Baseline2D:
     force: np.ndarray
     edges: list[str]
     runs: int
+    at_edge: dict[str, str] = field(default_factory=dict)  # baseline.edges_of
 
 
 @dataclass
@@ -538,7 +552,7 @@ class Judged:
     model: Model2D
     theta: np.ndarray
     stderr: np.ndarray
-    params: list[Param]
+    params: list[Parameter]
     prediction: np.ndarray  # held out, (n, 2)
     full: np.ndarray  # fitted on all, (n, 2)
     weighted: float = 0.0
@@ -548,6 +562,7 @@ class Judged:
     earns: bool = False
     at_bound: list[str] = field(default_factory=list)
     untestable: str | None = None
+    per_test: np.ndarray | None = None  # a lag's fit test by test [samples], when computed
 
 
 class Problem2D:
@@ -588,6 +603,12 @@ class Problem2D:
         r2 = ((self.d.force - pred) ** 2).sum(axis=1)
         return float(np.mean(r2[mask] / (2.0 * self.variance[mask])))
 
+    def window_statistics(self, pred: np.ndarray, window: np.ndarray) -> tuple[float, float]:
+        """:func:`~isolator.diagnosis.transition.window_statistics` of ``pred`` in the
+        direction-change ``window`` (both axes summed)."""
+        r2 = ((self.d.force - pred) ** 2).sum(axis=1)[window]
+        return window_statistics(r2, 2.0 * self.variance[window], self.d.n, self.force_ms)
+
     def excess_rms(self, pred: np.ndarray, mask: np.ndarray) -> float:
         r2 = ((self.d.force - pred) ** 2).sum(axis=1)[mask]
         ms = max(float(np.mean(r2) - np.mean(2.0 * self.variance[mask])), 0.0)
@@ -595,10 +616,10 @@ class Problem2D:
 
     # fitting
     def _fit(self, model: Model2D, train: np.ndarray, start: np.ndarray | None,
-             params: list[Param]) -> tuple[np.ndarray, np.ndarray]:
+             params: list[Parameter]) -> tuple[np.ndarray, np.ndarray]:
         low = np.array([p.low for p in params])
         high = np.array([p.high for p in params])
-        x0 = np.array([p.start for p in params]) if start is None else start
+        x0 = np.array([p.initial for p in params]) if start is None else start
         x0 = np.clip(x0, low, high)
         sw = np.sqrt(self.weight[train])[:, None]
         f = self.d.force[train]
@@ -620,7 +641,7 @@ class Problem2D:
         """Fit ``model`` on the samples of ``mask`` and predict each fold from the others."""
         params = model.layout(self.d, self.base.yield_displacement)
         if start is None:
-            start = np.array([p.start for p in params])
+            start = np.array([p.initial for p in params])
             start[0] = self.base.mu
         best = None
         for s in (start, *starts):
@@ -741,14 +762,9 @@ def _calibrate(d: Data2D, spec: BaselineSpec) -> Baseline2D:
             best = _grid_fit(d, grid_uy)
             mu_t0 = float(np.clip(best[1], 1e-3, 0.5))  # the scale on mu / mu_t0
     _, mu, uy, lag, ub, z, force = best
-    edges = []
-    if spec.yield_displacement is None and len(grid_uy) > 1 and uy >= grid_uy[-1]:
-        edges.append(f"u_y calibrated at the top of its range ({1e3 * uy:.2f} mm): a "
-                     "finding (a play or a soft transition), not a calibration")
-    if abs(lag) >= NUISANCE_LAG_SAMPLES * d.dt * (1 - 1e-9):
-        edges.append(f"the channel lag calibrated at the edge of its range "
-                     f"({lag / d.dt:+.1f} samples)")
-    return Baseline2D(spec, mu, uy, lag, ub, z, force, edges, runs)
+    at_edge = edges_of(uy, (grid_uy[0], grid_uy[-1]), lag / d.dt,
+                       calibrated=spec.yield_displacement is None and len(grid_uy) > 1)
+    return Baseline2D(spec, mu, uy, lag, ub, z, force, [], runs, at_edge)
 
 
 def _element_mu_shape(d: Data2D, spec: BaselineSpec, mu_t0: float,
@@ -925,6 +941,7 @@ class Diagnosis2D:
     notes: list[str]
     excluded: tuple[str, ...]
     wall_time: float = 0.0
+    findings: tuple[str, ...] = ()  # where a real gap lies, as in one direction
 
     @property
     def gap_before(self) -> float:
@@ -946,18 +963,34 @@ class Diagnosis2D:
         """Where the residual of ``prediction`` lies: tests, part of the orbit, axes."""
         return locate_2d(self.data, prediction, self.window)
 
+    def _nuisance(self) -> dict:
+        """The JSON ``nuisance`` entry of one direction
+        (:func:`~isolator.diagnosis.summary.nuisance_entry`) and the lag candidate."""
+        b, dt = self.baseline, self.data.dt
+        out = nuisance_entry(b.yield_displacement, (_YIELD_GRID[0], _YIELD_GRID[-1]),
+                             b.spec.yield_displacement is None, b.lag, dt, b.at_edge,
+                             self.findings)
+        lag = self.judged.get("lag")
+        if lag is not None and lag.untestable is None:
+            value = _own_params(lag, "lag")["lag"][0]
+            out["lag_candidate"] = {
+                "samples": value / dt, "seconds": value, "force_leads": value < 0.0,
+                "per_test_samples": (None if lag.per_test is None
+                                     else [float(x) for x in lag.per_test])}
+        return out
+
     def to_json(self) -> dict:
         """The summary: the keys of one direction (``baseline``, ``gap``, ``where``,
-        ``effects``, ``verdict``, ``chosen``, ``unexplained``, ``transition``, ``lag`` ...)
-        and, new, ``dimension``, ``orbits``, ``axes``, ``direction_changes``,
-        ``baseline_notes``."""
+        ``effects``, ``verdict``, ``chosen``, ``unexplained`` with its ``findings``,
+        ``transition``, ``lag``, ``nuisance`` ...) and, new, ``dimension``, ``orbits``,
+        ``axes``, ``direction_changes``, ``baseline_notes``."""
         p, d = self.problem, self.data
         every = np.ones(d.n, bool)
         before = p.nrmse(self.base_all.prediction)
         effects = []
         for name, j in self.judged.items():
             entry = {"name": name, "description": LIBRARY_2D[name].description,
-                     "acts_on": "kinematics" if LIBRARY_2D[name].kinematic else "mu",
+                     "acts_on": LIBRARY_2D[name].acts_on,
                      "role": self.roles.get(name, "")}
             if j.untestable is None:
                 after = p.nrmse(j.prediction, every)
@@ -998,9 +1031,18 @@ class Diagnosis2D:
         tw = self.window
         r2 = ((d.force - self.base_all.prediction) ** 2).sum(axis=1)
         tw_share = float(r2[tw].sum() / max(r2.sum(), 1e-300))
+        score, excess = p.window_statistics(self.base_all.prediction, tw) if tw.any() \
+            else (1.0, 0.0)
+        after_named = None
+        if self.chosen is not None and tw.any():
+            a_score, a_excess = p.window_statistics(self.chosen.prediction, tw)
+            after_named = {"score": a_score, "excess": a_excess,
+                           "far_above_noise": bool(a_score >= p.th.transition_score
+                                                   and a_excess >= p.th.transition_practical)}
         transition = {
             "rms": float(math.sqrt(np.mean(r2[tw]) / 2.0)) if tw.any() else 0.0,
             "energy_share": tw_share, "sample_share": float(np.mean(tw)),
+            "score": score, "excess": excess, "after_named": after_named,
             "statement": (f"{100 * tw_share:.0f} % of the residual energy lies in the "
                           f"direction-change windows ({100 * float(np.mean(tw)):.0f} % of the "
                           "samples: the friction force turning with the motion, stops)"),
@@ -1012,7 +1054,8 @@ class Diagnosis2D:
             lag_entry.update({"seconds": value, "samples": value / d.dt, "named": True})
         unexplained = None
         if "unexplained" in self.verdict:
-            unexplained = {"statement": locate_2d(d, final, tw)["statement"], "looks_like": []}
+            unexplained = {"statement": locate_2d(d, final, tw)["statement"], "looks_like": [],
+                           "findings": list(self.findings)}
         return {
             "dimension": 2,
             "baseline": {"model": self.baseline.spec.label,
@@ -1023,6 +1066,7 @@ class Diagnosis2D:
                          "displacement": ("smoothed (Savitzky-Golay)" if d.smoothed
                                           else "as measured")},
             "baseline_notes": list(self.baseline.edges),
+            "nuisance": self._nuisance(),
             "gap": {"metric": "force_nrmse", "value": before, "noise": p.noise_nrmse(),
                     "holdout": d.scheme, "phase": "every sample (|F| of both axes)",
                     "samples": d.n, "all_samples": before,
@@ -1058,7 +1102,7 @@ def _own_params(j: Judged, name: str) -> dict[str, tuple[float, float, str]]:
     if model.refits_kinematics:
         i = 2 + ("lag" not in model.kinematic)
     for other in (*(model.kinematic if model.fixed_state is None else ()), *model.friction):
-        size = len(LIBRARY_2D[other].params)
+        size = len(LIBRARY_2D[other].parameters)
         if other == name:
             for k, p in enumerate(j.params[i:i + size]):
                 value, err = float(j.theta[i + k]), float(j.stderr[i + k])
@@ -1212,7 +1256,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                else _YIELD_GRID)
     fit0 = _grid_fit(d, grid_uy, lags=(0.0,))
     no_lag = problem.judge(Model2D(fixed_state=(fit0[4], fit0[5])), every)
-    kin = [k for k in names if LIBRARY_2D[k].kinematic]
+    kin = [k for k in names if _kinematic(k)]
     current = base_all
     named_kin: list[str] = []
     for _ in range(2):
@@ -1243,7 +1287,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
     # stage 2: the friction law outside the direction-change windows (u_y, lag refitted)
     beside: dict[str, tuple[str, ...]] = {}  # the law each candidate was last tried beside
     d.temperature_rise = np.zeros(d.n)
-    friction = [k for k in names if not LIBRARY_2D[k].kinematic]
+    friction = [k for k in names if not _kinematic(k)]
     if "heating" in friction:
         mu_hist = base.mu * d.mu_shape
         d.temperature_rise = temperature_rise(d, mu_hist)
@@ -1262,14 +1306,14 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             for k in friction:
                 if k in law:
                     continue
-                why = LIBRARY_2D[k].requires(d) if LIBRARY_2D[k].requires else None
+                why = LIBRARY_2D[k].untestable(d)
                 if why:
                     judged[k] = Judged(Model2D(), np.zeros(0), np.zeros(0), [],
                                        cur.prediction, cur.full, untestable=why)
                     roles[k] = f"untestable: {why}"
                     continue
                 model = Model2D(friction=(*law, k), kinematic=kinematic, free=True)
-                start = np.concatenate([cur.theta, [p.start for p in LIBRARY_2D[k].params]])
+                start = np.concatenate([cur.theta, [p.initial for p in LIBRARY_2D[k].parameters]])
                 starts = [np.concatenate([cur.theta, s]) for s in _friction_starts(k)]
                 j = problem.judge(model, sliding, start=start, starts=starts)
                 second = bool(law)
@@ -1368,14 +1412,15 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 roles[k] = "earns its keep but closes too little"
             named, chosen = [], None
     remaining = chosen.prediction if chosen is not None else base_all.prediction
-    # the materiality rule of one direction, over the whole test
-    if named:
-        gap = material(problem.score(remaining, every), problem.excess_rms(remaining, every),
-                       th.practical_remain, th)
-    else:
-        gap = material(problem.score(base_all.prediction, every),
-                       problem.excess_rms(base_all.prediction, every), th.practical_none, th)
-    verdict = verdict_of(list(named), gap)
+    # the materiality rule of one direction over the whole test, and where a gap lies
+    practical = th.practical_remain if named else th.practical_none
+    gap = material(problem.score(remaining, every), problem.excess_rms(remaining, every),
+                   practical, th)
+    findings = _findings(problem, remaining, window, sliding, practical, gap, th,
+                         transition=not named)
+    if _yield_at_top(base, chosen, named):
+        findings.append("yield_displacement at the top of its range")
+    verdict = verdict_of(list(named), gap or bool(findings))
     for k, j in judged.items():
         if k in named:
             roles[k] = "named"
@@ -1387,14 +1432,48 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
     confidence: dict[str, float] = {}
     for k in named:
         j = judged[k]
-        mask = every if LIBRARY_2D[k].kinematic else sliding
-        reference = base_all if LIBRARY_2D[k].kinematic else law_base
-        share = th.kinematic_explained if LIBRARY_2D[k].kinematic else th.explained_min
+        mask = every if _kinematic(k) else sliding
+        reference = base_all if _kinematic(k) else law_base
+        share = th.kinematic_explained if _kinematic(k) else th.explained_min
         confidence[k] = problem.confidence(reference, j, mask, share)
     result = Diagnosis2D(campaign, d, problem, base, base_all, window, judged, roles, verdict,
-                         chosen, confidence, notes, tuple(exclude))
+                         chosen, confidence, notes, tuple(exclude), findings=tuple(findings))
     result.wall_time = _time.perf_counter() - start_clock
     return result
+
+
+def _yield_at_top(base: Baseline2D, chosen: Judged | None, named: Sequence[str]) -> bool:
+    """Whether the baseline's u_y sits at the top of its range (a play or a soft transition
+    it stands in for: a finding, as in one direction) and neither a play is named nor the
+    named effects, u_y refitted with them, move it off the top (a lag named can have pulled
+    it there)."""
+    if base.at_edge.get("yield_displacement") != "top" or "backlash" in named:
+        return False
+    if chosen is None or not chosen.model.refits_kinematics:
+        return True
+    refitted = 10.0 ** float(chosen.theta[1])
+    return "yield_displacement" in edges_of(refitted, (_YIELD_GRID[0], _YIELD_GRID[-1]), 0.0)
+
+
+def _findings(problem: Problem2D, prediction: np.ndarray, window: np.ndarray,
+              sliding: np.ndarray, practical: float, gap: bool, th: Thresholds, *,
+              transition: bool) -> list[str]:
+    """Where the real gap ``prediction`` leaves lies, as in one direction: ``sliding`` (the
+    materiality rule outside the direction-change windows), ``transition`` (only when
+    ``transition``, i.e. nothing is named: inside the windows far above the noise,
+    ``transition_score``, and material over the whole test, ``transition_practical``), else
+    ``every sample`` for a ``gap`` neither part holds."""
+    out = []
+    if gap and material(problem.score(prediction, sliding),
+                        problem.excess_rms(prediction, sliding), practical, th):
+        out.append("sliding")
+    if transition and window.any():
+        score, excess = problem.window_statistics(prediction, window)
+        if score >= th.transition_score and excess >= th.transition_practical:
+            out.append("transition")
+    if gap and not out:
+        out.append("every sample")
+    return out
 
 
 def _start(model: Model2D, current: Judged, base: Baseline2D, d: Data2D) -> np.ndarray:
@@ -1406,7 +1485,7 @@ def _start(model: Model2D, current: Judged, base: Baseline2D, d: Data2D) -> np.n
     known.setdefault("log10_yield_displacement", math.log10(base.yield_displacement))
     known.setdefault("channel_lag", base.lag)
     known.setdefault("lag", known["channel_lag"])
-    return np.array([known.get(p.name, p.start) for p in params])
+    return np.array([known.get(p.name, p.initial) for p in params])
 
 
 def _kin_starts(model: Model2D, current: Judged, base: Baseline2D,
@@ -1535,6 +1614,7 @@ def _size_ok(j: Judged, name: str, th: Thresholds, d: Data2D, notes: list[str]) 
         if lag_reason(samples, d.dt, per_test, th) is None:
             per_test = per_test_lags(d, j) / d.dt
         reason = lag_reason(samples, d.dt, per_test, th)
+        j.per_test = per_test if per_test.size else None
         if reason is not None and abs(samples) >= th.lag_min_samples and reason not in notes:
             notes.append(reason)
         return reason is None

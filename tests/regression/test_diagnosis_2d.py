@@ -129,8 +129,16 @@ def test_lag_named_through_the_command_line(example, tmp_path, capsys):
     from dcfpb.cli import main
 
     manifest = example.write(example.synthesise("lag", seed=5, orbits=SMALL), tmp_path)
-    assert main(["diagnose", "--manifest", str(manifest), "--model", "constant"]) == 0
+    report = tmp_path / "report"
+    assert main(["diagnose", "--manifest", str(manifest), "--model", "constant",
+                 "--report", str(report)]) == 0
     text = capsys.readouterr().out
+    # one report for tests in one or two directions (isolator.diagnosis.report)
+    for name in ("summary.md", "diagnosis.json", "loops.png", "candidates.png"):
+        assert (report / name).stat().st_size > 0, name
+        assert f"wrote {report / name}" in text
+    assert "verdict: lag" in (report / "summary.md").read_text()
+    assert json.loads((report / "diagnosis.json").read_text())["verdict"][0] == "lag"
     for start in ("tests in two directions:", "where:", "direction changes:", "verdict: lag",
                   "gap with lag:", "force error RMS by axis:"):
         assert any(line.startswith(start) for line in text.splitlines()), (start, text)
