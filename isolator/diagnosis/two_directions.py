@@ -135,23 +135,6 @@ def return_map_2d(ux, uy, yield_displacement):
 
 
 @jit
-def play(u, width):
-    """The displacement behind a dead band of full ``width`` [m] on one axis: it follows
-    ``u`` [m] only when pushed by a side of the gap (starts centred)."""
-    n = u.size
-    out = np.empty(n)
-    half = 0.5 * width
-    y = u[0]
-    for i in range(n):
-        if u[i] - y > half:
-            y = u[i] - half
-        elif y - u[i] > half:
-            y = u[i] + half
-        out[i] = y
-    return out
-
-
-@jit
 def play_return_map_2d(ux, uy, half_x, half_y, yield_displacement):
     """The isotropic return map behind a play per axis, as one direction's
     :func:`isolator.diagnosis.kinematics.play_return_map` on each axis: (u_b, z, engaged),
@@ -972,7 +955,7 @@ class Diagnosis2D:
                              self.findings)
         lag = self.judged.get("lag")
         if lag is not None and lag.untestable is None:
-            value = _own_params(lag, "lag")["lag"][0]
+            value = _own_params(lag, "lag", dt)["lag"][0]
             out["lag_candidate"] = {
                 "samples": value / dt, "seconds": value, "force_leads": value < 0.0,
                 "per_test_samples": (None if lag.per_test is None
@@ -994,7 +977,7 @@ class Diagnosis2D:
                      "role": self.roles.get(name, "")}
             if j.untestable is None:
                 after = p.nrmse(j.prediction, every)
-                own = _own_params(j, name)
+                own = _own_params(j, name, d.dt)
                 entry.update({
                     "gap_after": after, "shrink": 1.0 - after / before if before else 0.0,
                     "parameters": {k: v[0] for k, v in own.items()},
@@ -1021,10 +1004,10 @@ class Diagnosis2D:
                 "gap_before": before, "gap_after": after,
                 "shrink": 1.0 - after / before if before else 0.0,
                 "excess_shrink": 1.0 - ex_a / ex_b if ex_b > 0 else 0.0,
-                "parameters": {n: {k: v[0] for k, v in _own_params(self.chosen, n).items()}
+                "parameters": {n: {k: v[0] for k, v in _own_params(self.chosen, n, d.dt).items()}
                                for n in self.chosen.model.names},
                 "intervals": {n: {k: [v[0] - 1.645 * v[1], v[0] + 1.645 * v[1]]
-                                  for k, v in _own_params(self.chosen, n).items()}
+                                  for k, v in _own_params(self.chosen, n, d.dt).items()}
                               for n in self.chosen.model.names},
                 "confidence": {k: _num(v) for k, v in self.confidence.items()},
             }
@@ -1050,7 +1033,7 @@ class Diagnosis2D:
         lag_entry = {"seconds": self.baseline.lag, "samples": self.baseline.lag / d.dt,
                      "named": False, "plausible_limit_seconds": LAG_PLAUSIBLE_MAX}
         if self.chosen is not None and "lag" in self.chosen.model.kinematic:
-            value = _own_params(self.chosen, "lag")["lag"][0]
+            value = _own_params(self.chosen, "lag", d.dt)["lag"][0]
             lag_entry.update({"seconds": value, "samples": value / d.dt, "named": True})
         unexplained = None
         if "unexplained" in self.verdict:
@@ -1094,8 +1077,9 @@ def _num(x: float) -> float | None:
     return None if x is None or not np.isfinite(x) else float(x)
 
 
-def _own_params(j: Judged, name: str) -> dict[str, tuple[float, float, str]]:
-    """The parameters of effect ``name`` in judged model ``j``: (value, stderr, unit)."""
+def _own_params(j: Judged, name: str, dt: float) -> dict[str, tuple[float, float, str]]:
+    """The parameters of effect ``name`` in judged model ``j``: (value, stderr, unit); a lag
+    also in samples of ``dt`` [s]."""
     model = j.model
     out: dict[str, tuple[float, float, str]] = {}
     i = 1
@@ -1111,18 +1095,10 @@ def _own_params(j: Judged, name: str) -> dict[str, tuple[float, float, str]]:
                 else:
                     out[p.name] = (value, err, p.unit)
             if name == "lag":
-                out["lag_samples"] = (float(j.theta[i]) / j_dt(j), float(j.stderr[i]) / j_dt(j),
+                out["lag_samples"] = (float(j.theta[i]) / dt, float(j.stderr[i]) / dt,
                                       "samples")
         i += size
     return out
-
-
-_DT = {"dt": 1.0}
-
-
-def j_dt(_: Judged) -> float:
-    """The campaign's sampling interval [s] (set by :func:`diagnose_2d`)."""
-    return _DT["dt"]
 
 
 def _orbit_entry(rec) -> dict:
@@ -1238,7 +1214,6 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         base = _calibrate(d, spec)
         base.edges.append(f"the y force channel reads {100 * (gain - 1):+.1f} % against the x "
                           "one (a relative gain of the load cells, corrected as a nuisance)")
-    _DT["dt"] = d.dt
     variance = noise_variance(d, base)
     problem = Problem2D(d, base, variance, th)
     window = transition_window(d, base)
@@ -1605,7 +1580,7 @@ def _size_ok(j: Judged, name: str, th: Thresholds, d: Data2D, notes: list[str]) 
     """A play is named from ``backlash_min`` on (either axis); a lag as a laboratory channel
     can have it (one direction's rule: the force after the displacement by ``lag_min_samples``
     to ``LAG_PLAUSIBLE_MAX``, the same in every test), else the reason joins ``notes``."""
-    own = _own_params(j, name)
+    own = _own_params(j, name, d.dt)
     if name == "backlash":
         return max(own["width_x"][0], own["width_y"][0]) >= th.backlash_min
     if name == "lag":  # one direction's rule (:func:`~isolator.diagnosis.decision.lag_reason`)
