@@ -757,22 +757,14 @@ def _element_mu_shape(d: Data2D, spec: BaselineSpec, mu_t0: float,
     orbits, tests in run order on fresh plates at the test's initial temperature (the
     manifest's, else the measured temperature's first value, else 20 degC)."""
     from isolator.bearing import AxialLoadHistory, DCFPBearing
-    from isolator.friction import PTVFriction
-    from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
     from isolator.testrig import run_test
 
-    names = {"heating": "temperature", "velocity": "velocity", "pressure": "pressure"}
-    dependencies = tuple(v for k, v in names.items() if k not in spec.without)
-    heating = None
-    if "heating" not in spec.without:
-        heating = MonitorLine() if spec.model == "precise" else CentrePoint(refinement=0.5)
     mu_t0 = float(np.clip(mu_t0, 1e-3, 0.5))
     shapes = []
     for k, rec in enumerate(d.campaign.tests):
         start = (rec.initial_temperature if rec.initial_temperature is not None
                  else float(rec.temperature[0]) if rec.temperature is not None else 20.0)
-        friction = PTVFriction(mu_t0, heating=heating, dependencies=dependencies,
-                               thermal=ThermalProperties(initial_temperature=start))
+        friction = spec.friction(mu_t0, start)  # the friction model of one direction
         load = (float(rec.axial_force[0]) if np.ptp(rec.axial_force) == 0.0 else
                 AxialLoadHistory(rec.time, rec.axial_force))
         reach = float(np.max(rec.radius))
