@@ -38,10 +38,12 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    speed |v|), ``pressure`` ((p / p_mean)^-n), ``wear`` (1 + c (1 - exp(-s / L)), s the path
    travelled over the campaign) join by forward selection on held-out data
    (leave-one-test-out, or alternate blocks of one test), u_y and the lag refitted with each
-   model, a second effect under the stricter ``second_*`` thresholds; then the kinematic
-   candidates are tried again beside the friction law named. A kinematic effect that was
-   significant but closed too little of the excess on its own (a play beside heating) is
-   applied provisionally, the law selected beside it, and judged again beside that law.
+   model (a pair as one when no single effect qualifies and the sliding phase holds a real
+   gap, as in one direction), a second effect under the stricter ``second_*`` thresholds;
+   then the kinematic candidates are tried again beside the friction law named. A kinematic
+   effect that was significant but closed too little of the excess on its own (a play beside
+   heating) is applied provisionally, the law selected beside it, and judged again beside
+   that law.
 5. **Verdict**: ``none``, the named effects, ``unexplained``, by one direction's rule
    (:func:`~isolator.diagnosis.selection.material`,
    :func:`~isolator.diagnosis.selection.verdict_of`), over the whole test (every sample, the
@@ -63,6 +65,7 @@ import math
 import time as _time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from itertools import combinations
 
 import numpy as np
 
@@ -1293,13 +1296,42 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 judged[k] = j
                 beside[k] = tuple(law)
             passing = [k for k, j in trials.items() if j.earns]
-            if not passing:
+            if not passing and not law:  # a pair when no single qualifies, as in one direction
+                pair = _pair(trials, kinematic, cur)
+                if pair is None:
+                    break
+                law.extend(pair.model.friction)
+                cur = pair
+                for k in law:
+                    judged[k] = cur
+                continue
+            if not passing or len(law) >= MAX_FRICTION_EFFECTS:
                 break
             best = min(passing, key=lambda k: trials[k].weighted)
             law.append(best)
             cur = trials[best]
             judged[best] = cur
         return law, cur, law_base
+
+    def _pair(trials: dict[str, Judged], kinematic: tuple[str, ...],
+              cur: Judged) -> Judged | None:
+        """The best pair of friction-law effects that earns its keep over ``cur`` as one (by
+        the first effect's thresholds), each from its own fit alone, when the sliding phase
+        holds a real gap (one direction's rule); else None."""
+        if not material(problem.score(cur.prediction, sliding),
+                        problem.excess_rms(cur.prediction, sliding), th.practical_none, th):
+            return None
+        best = None
+        for a, b in combinations(trials, 2):
+            model = Model2D(friction=(a, b), kinematic=kinematic, free=True)
+            own = [trials[k].theta[len(trials[k].theta) - len(LIBRARY_2D[k].parameters):]
+                   for k in (a, b)]
+            j = problem.judge(model, sliding, start=np.concatenate([cur.theta, *own]))
+            j = problem.compare(cur, j, sliding, z_min=th.z_min, explained_min=th.explained_min,
+                                practical_min=th.practical_gain)
+            if j.earns and (best is None or j.weighted < best.weighted):
+                best = j
+        return best
 
     law, cur, law_base = friction_stage(tuple(named_kin), current, judged, roles, beside)
 

@@ -67,6 +67,12 @@ def _check_report(summary: dict) -> None:
         assert key in summary
     assert summary["where"]["statement"]
     assert set(summary["where"]["axes"]) == {"x", "y"}
+    # the nuisances and the transition's materiality as in one direction
+    assert set(summary["nuisance"]) >= {"yield_displacement", "lag", "findings"}
+    assert summary["nuisance"]["lag"]["plausible_max"] == 0.1
+    assert {"score", "excess", "after_named"} <= set(summary["transition"])
+    if summary["unexplained"] is not None:
+        assert summary["unexplained"]["findings"]
     json.dumps(summary)  # plain JSON types
 
 
