@@ -84,8 +84,21 @@ from isolator.diagnosis.effects import pressure as pressure_form
 from isolator.diagnosis.effects import velocity as velocity_form
 from isolator.diagnosis.effects import wear as wear_form
 from isolator.diagnosis.features import smoothed_displacement
+from isolator.diagnosis.hint_tests import (
+    ALPHA,
+    block_length,
+    block_permutation_test,
+    loading_frequency,
+)
 from isolator.diagnosis.kinematics import noise_std, shifted
 from isolator.diagnosis.selection import block_z, material, verdict_of
+from isolator.diagnosis.signatures import (
+    drift_hint,
+    offset_hint,
+    oscillation_hint,
+    position_hint,
+    sentences,
+)
 from isolator.diagnosis.solver import levenberg_marquardt
 from isolator.diagnosis.summary import nuisance_entry
 from isolator.diagnosis.thresholds import Thresholds
@@ -920,6 +933,7 @@ class Diagnosis2D:
     excluded: tuple[str, ...]
     wall_time: float = 0.0
     findings: tuple[str, ...] = ()  # where a real gap lies, as in one direction
+    looks_like: tuple[str, ...] = ()  # what the gap left looks like (looks_like_2d)
 
     @property
     def gap_before(self) -> float:
@@ -1032,8 +1046,8 @@ class Diagnosis2D:
             lag_entry.update({"seconds": value, "samples": value / d.dt, "named": True})
         unexplained = None
         if "unexplained" in self.verdict:
-            unexplained = {"statement": locate_2d(d, final, tw)["statement"], "looks_like": [],
-                           "findings": list(self.findings)}
+            unexplained = {"statement": locate_2d(d, final, tw)["statement"],
+                           "looks_like": list(self.looks_like), "findings": list(self.findings)}
         return {
             "dimension": 2,
             "baseline": {"model": self.baseline.spec.label,
@@ -1117,6 +1131,41 @@ def _axes(d: Data2D, before: np.ndarray, after: np.ndarray) -> dict:
                      "error_rms_after": float(np.sqrt(np.mean((d.force[:, j]
                                                                - after[:, j]) ** 2)))}
     return out
+
+
+def looks_like_2d(d: Data2D, prediction: np.ndarray, window: np.ndarray) -> list[str]:
+    """What the residual ``prediction`` leaves looks like, by one direction's hints
+    (:mod:`isolator.diagnosis.signatures`, each passing its own test against noise): a
+    concentration in the direction-change windows (a block permutation test within each
+    test), and per axis a constant offset, an oscillation above the loading frequencies (the
+    lower of the two axes' fundamentals), a drift along the path travelled and a dependence on
+    the position along the axis; shares of the residual energy of both axes."""
+    r = d.force - prediction
+    energy = float(np.sum(r**2)) or 1.0
+    lengths = [block_length(r[:, j]) for j in range(2)]
+    found: list[tuple[float, str]] = []
+    r2 = (r**2).sum(axis=1)
+    share = float(r2[window].sum()) / energy
+    if (share >= 0.1 and share >= 1.5 * float(np.mean(window))
+            and block_permutation_test(r2, window, d.test, max(lengths)) < ALPHA):
+        found.append((share, f"{100 * share:.0f} % of the residual energy lies in the "
+                             f"direction-change windows ({100 * float(np.mean(window)):.0f} % "
+                             "of the samples): a play, a softer or slower transition or a "
+                             "breakaway where the friction force turns with the motion"))
+    u = np.vstack(d.displacement)
+    steps = [float(np.median(np.diff(t))) for t in d.time]
+    loading = [min(loading_frequency(t, x[:, j]) for j in range(2))
+               for t, x in zip(d.time, d.displacement, strict=True)]
+    for j, axis in enumerate(("x", "y")):
+        rj = r[:, j]
+        hints = [*offset_hint(rj, float(np.max(np.abs(d.force[:, j]))), energy, lengths[j]),
+                 *oscillation_hint([rj[d.test == k] for k in range(len(d.time))], steps,
+                                   loading, energy),
+                 *drift_hint(rj, d.block, d.travel, energy, lengths[j],
+                             along=("along the path travelled", "m")),
+                 *position_hint(rj, u[:, j], energy, lengths[j])]
+        found.extend((share, f"along {axis}, {text}") for share, text in hints)
+    return sentences(found)
 
 
 def locate_2d(d: Data2D, prediction: np.ndarray, window: np.ndarray) -> dict:
@@ -1437,6 +1486,8 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         confidence[k] = problem.confidence(reference, j, mask, share)
     result = Diagnosis2D(campaign, d, problem, base, base_all, window, judged, roles, verdict,
                          chosen, confidence, notes, tuple(exclude), findings=tuple(findings))
+    if "unexplained" in verdict:
+        result.looks_like = tuple(looks_like_2d(d, remaining, window))
     result.wall_time = _time.perf_counter() - start_clock
     return result
 
