@@ -44,7 +44,8 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    effect that was significant but closed too little of the excess on its own (a play beside
    heating) is applied provisionally, the law selected beside it, and judged again beside
    that law.
-5. **Verdict**: ``none``, the named effects, ``unexplained``, by one direction's rule
+5. **Verdict**: ``none``, the named effects, ``unexplained`` (where it lies, ``findings``, and
+   what it looks like, :func:`looks_like_2d`), by one direction's rule
    (:func:`~isolator.diagnosis.selection.material`,
    :func:`~isolator.diagnosis.selection.verdict_of`), over the whole test (every sample, the
    direction-change windows included).

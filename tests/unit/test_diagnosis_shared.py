@@ -111,3 +111,24 @@ def test_effects_on_mu_have_one_form_in_both_directions():
     share = d.travel / d.travel[-1]
     per_campaign = wear.modulation(-0.1, share, 0.5, per_campaign=True)
     assert math.isclose(per_campaign[-1], 0.9) and per_campaign[0] == 1.0
+
+
+def test_a_yield_displacement_at_the_top_is_a_finding_in_two_directions():
+    """As in one direction, unless a play is named or the named effects (u_y refitted with
+    them) move it off the top: a lag can pull the baseline's u_y there."""
+    from isolator.diagnosis.baseline import BaselineSpec
+
+    empty = np.zeros((0, 2))
+    base = two_directions.Baseline2D(BaselineSpec("constant"), 0.05, YIELD_DISPLACEMENT_MAX,
+                                     0.0, empty, empty, empty, [], 0,
+                                     {"yield_displacement": "top"})
+    assert two_directions._yield_at_top(base, None, [])
+    assert not two_directions._yield_at_top(base, None, ["backlash"])
+
+    def chosen(u_y):
+        model = two_directions.Model2D(kinematic=("lag",), free=True)
+        return two_directions.Judged(model, np.array([0.05, math.log10(u_y), 0.01]),
+                                     np.zeros(3), [], empty, empty)
+
+    assert not two_directions._yield_at_top(base, chosen(3e-4), ["lag"])
+    assert two_directions._yield_at_top(base, chosen(YIELD_DISPLACEMENT_MAX), ["lag"])
