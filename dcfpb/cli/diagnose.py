@@ -101,14 +101,9 @@ def run(args: argparse.Namespace) -> int:
         from dcfpb.cli.outputs import writing
 
         with writing("--report", args.report):
-            if summary.get("dimension") == 2:  # tests in two directions
-                from isolator.diagnosis.report2d import write_report_2d
+            from isolator.diagnosis.report import write_report
 
-                written = write_report_2d(diagnosis, args.report, "\n".join(_lines(summary)))
-            else:
-                from isolator.diagnosis.report import write_report
-
-                written = write_report(diagnosis, args.report)
+            written = write_report(diagnosis, args.report, "\n".join(_lines(summary)))
         summary["report"] = [str(p) for p in written]
     print(json.dumps(summary, indent=2) if args.json else "\n".join(_lines(summary)))
     return 0

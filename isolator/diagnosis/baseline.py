@@ -149,15 +149,24 @@ def nuisance_edges(fit: BaselineFit) -> dict[str, str]:
     or a soft transition it may stand in for; its bottom is the rigid-plastic limit, a physical
     reading) and ``{"lag": "lead" | "late"}`` when the channel offset sits at
     +-``NUISANCE_LAG_SAMPLES`` (``lead``: the force leads the displacement)."""
+    samples = fit.lag / fit.sample_interval if fit.sample_interval else 0.0
+    return edges_of(fit.parameters["yield_displacement"], fit.yield_range, samples,
+                    calibrated=fit.spec.yield_displacement is None)
+
+
+def edges_of(yield_displacement: float, yield_range: tuple[float, float], lag_samples: float,
+             *, calibrated: bool = True) -> dict[str, str]:
+    """:func:`nuisance_edges` of a u_y [m] calibrated (``calibrated``) within
+    ``yield_range`` [m] and a channel lag of ``lag_samples`` [samples]: in one direction and
+    in two."""
     edges: dict[str, str] = {}
-    if fit.spec.yield_displacement is None:
-        low, high = (np.log10(x) for x in fit.yield_range)
-        value = np.log10(fit.parameters["yield_displacement"])
+    if calibrated:
+        low, high = (np.log10(x) for x in yield_range)
+        value = np.log10(yield_displacement)
         if high > low and value >= high - EDGE_TOLERANCE * (high - low):
             edges["yield_displacement"] = "top"
-    samples = fit.lag / fit.sample_interval if fit.sample_interval else 0.0
-    if abs(samples) >= (1.0 - EDGE_TOLERANCE) * NUISANCE_LAG_SAMPLES:
-        edges["lag"] = "late" if samples > 0.0 else "lead"
+    if abs(lag_samples) >= (1.0 - EDGE_TOLERANCE) * NUISANCE_LAG_SAMPLES:
+        edges["lag"] = "late" if lag_samples > 0.0 else "lead"
     return edges
 
 

@@ -59,15 +59,55 @@ from isolator.diagnosis.selection import (
     Workspace,
     assess,
     improvement,
+    material,
     on_samples,
     qualifies,
     untestable,
+    verdict_of,
 )
 from isolator.diagnosis.thresholds import Thresholds
-from isolator.diagnosis.transition import TIMING, in_transition
+from isolator.diagnosis.transition import TIMING, in_transition, window_statistics
 
 LAG_PLAUSIBLE_MAX = 0.1  # [s] the largest lag a laboratory channel can plausibly have
 LAG_SPREAD = 1.0  # [samples] per-test lags of one channel agree within this (or 20 %)
+
+
+def lag_reason(samples: float, sample_interval: float, per_test: np.ndarray,
+               th: Thresholds) -> str | None:
+    """Why a fitted lag of ``samples`` [samples] at ``sample_interval`` [s] is not a channel's,
+    or None when it can be (the module docstring): ``per_test`` holds the lag fitted test by
+    test [samples] (empty when not computed; needed only past the first two checks)."""
+    if samples < th.lag_min_samples:
+        return ("the force leads the displacement: a speed effect's phase, not a channel"
+                if samples <= -th.lag_min_samples else "smaller than a lag can be named")
+    seconds = samples * sample_interval
+    if seconds > LAG_PLAUSIBLE_MAX:
+        return (f"a lag of {1e3 * seconds:.1f} ms fits, beyond what a laboratory channel "
+                f"plausibly has ({1e3 * LAG_PLAUSIBLE_MAX:.0f} ms): not named as a lag (a speed "
+                "effect or the rig's dynamics look like one)")
+    if per_test.size >= 2 and np.ptp(per_test) > max(LAG_SPREAD, 0.2 * abs(samples)):
+        return ("the lag fitted test by test varies ("
+                + ", ".join(f"{x:+.1f}" for x in per_test)
+                + " samples): not one channel lag for the campaign (a speed effect looks like "
+                "a lag that changes with the period and the amplitude)")
+    return None
+
+
+def grid_minima(grid: np.ndarray, sse: np.ndarray, step: float) -> np.ndarray:
+    """The minimum of each column of ``sse`` (costs on the uniform ``grid`` of spacing
+    ``step``, one row a grid point), refined by a parabola through its neighbours (by at
+    most one step) [units of ``grid``]; at an end of the grid, that end."""
+    best = []
+    for k in range(sse.shape[1]):
+        j = int(np.argmin(sse[:, k]))
+        if 0 < j < grid.size - 1:
+            y0, y1, y2 = sse[j - 1, k], sse[j, k], sse[j + 1, k]
+            curve = y0 - 2.0 * y1 + y2
+            shift = 0.5 * (y0 - y2) / curve if curve > 0.0 else 0.0
+            best.append(grid[j] + step * float(np.clip(shift, -1.0, 1.0)))
+        else:
+            best.append(float(grid[j]))
+    return np.array(best)
 
 
 class Problem:
@@ -124,14 +164,11 @@ class Problem:
         return True
 
     def _lag_plausible(self, samples: float, a: Assessment, th: Thresholds) -> bool:
-        """Whether a fitted lag of ``samples`` can be a channel's (see the module docstring)."""
-        if samples < th.lag_min_samples:  # too small, or the force leads the displacement
-            return False
-        if samples * self.context.sample_interval > LAG_PLAUSIBLE_MAX:
-            return False
-        per_test = self.lag_per_test(a)
-        return bool(per_test.size < 2
-                    or np.ptp(per_test) <= max(LAG_SPREAD, 0.2 * abs(samples)))
+        """Whether a fitted lag of ``samples`` can be a channel's (:func:`lag_reason`)."""
+        per_test = (self.lag_per_test(a) if samples >= th.lag_min_samples
+                    and samples * self.context.sample_interval <= LAG_PLAUSIBLE_MAX
+                    else np.zeros(0))
+        return lag_reason(samples, self.context.sample_interval, per_test, th) is None
 
     def lag_per_test(self, a: Assessment) -> np.ndarray:
         """The lag [samples] that fits each test best, the other parameters of the model ``a``
@@ -151,17 +188,7 @@ class Problem:
             theta[i] = value
             r = w * (f.force - a.model.force(theta, f, self.context)) ** 2
             sse[g] = [float(r[f.test == k].sum()) for k in tests]
-        best = []
-        for k in range(tests.size):
-            j = int(np.argmin(sse[:, k]))
-            if 0 < j < grid.size - 1:
-                y0, y1, y2 = sse[j - 1, k], sse[j, k], sse[j + 1, k]
-                curve = y0 - 2.0 * y1 + y2
-                step = 0.5 * (y0 - y2) / curve if curve > 0.0 else 0.0
-                best.append(grid[j] + 0.5 * float(np.clip(step, -1.0, 1.0)))
-            else:
-                best.append(float(grid[j]))
-        out = np.array(best)
+        out = grid_minima(grid, sse, 0.5)
         self.all.cache[key] = out
         return out
 
@@ -174,10 +201,8 @@ class Problem:
         f, w = self.features, self.window
         if not w.any():
             return 1.0, 0.0
-        r2 = (f.force[w] - prediction[w]) ** 2
-        score = float(np.mean(r2 / f.noise_variance[w]))
-        excess = float(np.sum(r2 - f.noise_variance[w])) / len(f)
-        return score, float(np.sqrt(max(excess, 0.0) / np.mean(f.force**2)))
+        return window_statistics((f.force[w] - prediction[w]) ** 2, f.noise_variance[w], len(f),
+                                 np.mean(f.force**2))
 
     def transition_gap(self, prediction: np.ndarray, th: Thresholds) -> bool:
         """Whether the residual of ``prediction`` inside the transition windows is far above
@@ -342,8 +367,8 @@ class Problem:
             pool = {n: a for n, a in stage.singles.items() if n not in exclude}
             testable = sorted((a for a in pool.values() if a.untestable is None),
                               key=lambda a: a.weighted)
-            noise_like = (base.score - 1.0 <= th.none_margin
-                          or work.excess_rms(base.prediction) < th.practical_none)
+            noise_like = not material(base.score, work.excess_rms(base.prediction),
+                                      th.practical_none, th)
             current, named, form = base, [], {}
             if not noise_like:
                 current, named, form = self._forward(stage, testable, th)
@@ -395,7 +420,7 @@ class Problem:
         excess = base.weighted - work.weighted_noise
         explained = (base.weighted - current.weighted) / excess if excess > 0.0 else 0.0
         left = work.excess_rms(current.prediction)
-        real_gap = current.score - 1.0 > th.none_margin and left >= th.practical_remain
+        real_gap = material(current.score, left, th.practical_remain, th)
         kin_names = [] if kinematic is None else list(kinematic.model.names)
         if named and explained < th.name_min:  # stand-ins, not named: the model is the base
             named, real_gap, current, form, explained = [], True, base, {}, 0.0
@@ -411,12 +436,8 @@ class Problem:
             findings.append("transition")
         if self.edges.get("yield_displacement") == "top" and "backlash" not in kin_names:
             findings.append("yield_displacement at the top of its range")
-        if not named and not kin_names:
-            verdict = ["unexplained"] if findings else ["none"]
-            real_gap = bool(findings)
-        else:
-            real_gap = real_gap or bool(findings)
-            verdict = kin_names + named + (["unexplained"] if real_gap else [])
+        real_gap = (real_gap if named or kin_names else False) or bool(findings)
+        verdict = verdict_of(kin_names + named, real_gap)
         order = [n for n in verdict if n not in ("unexplained", "none")]
         rest = sorted((a for a in [*self.kinematic.values(), *testable]
                        if a.untestable is None and a.model.names[-1] not in order),

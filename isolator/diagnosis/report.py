@@ -4,7 +4,9 @@
 every candidate, the verdict, the shrink with the fitted parameters, what remains
 unexplained), ``diagnosis.json`` (:meth:`isolator.diagnosis.Diagnosis.to_json`) and the plots
 ``loops.png``, ``residual_breakdown.png``, ``candidates.png``, ``cycle_errors.png`` and
-``residual_history.png``. matplotlib is imported by the plotting functions only.
+``residual_history.png``; of tests in two directions, ``diagnosis.json``, ``summary.md`` (the
+printed summary), ``loops.png`` (force against displacement along x and along y) and
+``candidates.png``. matplotlib is imported by the plotting functions only.
 """
 
 from __future__ import annotations
@@ -42,12 +44,15 @@ def _save(fig, path: Path) -> None:
         fig.savefig(temporary, format="png", dpi=110)
 
 
-def write_report(diagnosis: Diagnosis, folder: str | Path) -> list[Path]:
+def write_report(diagnosis: Diagnosis, folder: str | Path, text: str = "") -> list[Path]:
     """Write the summary, the JSON and the plots of ``diagnosis`` to ``folder``; return the
-    paths written."""
+    paths written. ``text`` is the printed summary, the Markdown of a diagnosis of tests in
+    two directions (:class:`~isolator.diagnosis.two_directions.Diagnosis2D`)."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     summary = diagnosis.to_json()
+    if summary.get("dimension") == 2:
+        return _write_report_2d(diagnosis, summary, folder, text)
     written = [folder / "diagnosis.json"]
     _write_text(written[0], json.dumps(summary, indent=2))
     written += [_loops(diagnosis, folder / "loops.png"),
@@ -58,6 +63,39 @@ def write_report(diagnosis: Diagnosis, folder: str | Path) -> list[Path]:
     md = folder / "summary.md"
     _write_text(md, markdown(diagnosis, summary, [p.name for p in written[1:]]))
     return [md, *written]
+
+
+def _write_report_2d(diagnosis, summary: dict, folder: Path, text: str) -> list[Path]:
+    """The report of tests in two directions (:func:`write_report`)."""
+    paths = [folder / "summary.md", folder / "diagnosis.json", folder / "loops.png",
+             folder / "candidates.png"]
+    _write_text(paths[1], json.dumps(summary, indent=2))
+    plt = _pyplot()
+    d = diagnosis.data
+    fig, axes = plt.subplots(2, len(d.campaign.tests), figsize=(4 * len(d.campaign.tests), 7),
+                             squeeze=False)
+    for k, rec in enumerate(d.campaign.tests):
+        idx = d.test == k
+        for j, axis in enumerate(("x", "y")):
+            ax = axes[j, k]
+            u = 1e3 * rec.displacement[:, j]
+            ax.plot(u, 1e-3 * rec.force[:, j], lw=0.8, color="0.3", label="measured")
+            ax.plot(u, 1e-3 * diagnosis.base_all.prediction[idx, j], lw=0.8,
+                    label="baseline (held out)")
+            if diagnosis.chosen is not None:
+                ax.plot(u, 1e-3 * diagnosis.chosen.full[idx, j], lw=0.8, ls="--",
+                        label="with " + " + ".join(diagnosis.chosen.model.names))
+            ax.set_xlabel(f"displacement {axis} [mm]")
+            ax.set_ylabel(f"force {axis} [kN]")
+            ax.set_title(f"{rec.name}: {axis}", fontsize=9)
+    axes[0, 0].legend(fontsize=7)
+    fig.tight_layout()
+    _save(fig, paths[2])
+    plt.close(fig)
+    _candidates(diagnosis, summary, paths[3])
+    _write_text(paths[0], "# Diagnosis of tests in two directions\n\n```\n" + text
+                + "\n```\n\n![loops](loops.png)\n\n![candidates](candidates.png)\n")
+    return paths
 
 
 def _predictions(d: Diagnosis) -> dict[str, np.ndarray]:
@@ -127,7 +165,7 @@ def _candidates(d: Diagnosis, summary: dict, path: Path) -> Path:
     fig, ax = plt.subplots(figsize=(8, 3.6), constrained_layout=True)
     rows = [e for e in summary["effects"] if e.get("gap_after") is not None]
     names = [e["name"] for e in rows]
-    colours = ["tab:red" if e["role"].startswith("selected") else
+    colours = ["tab:red" if e["role"].startswith(("selected", "named")) else
                "tab:orange" if e.get("earns_keep") else "tab:gray" for e in rows]
     ax.bar(names, [e["gap_after"] for e in rows], color=colours)
     ax.axhline(summary["gap"]["value"], color="tab:blue", lw=1.2, label="baseline")

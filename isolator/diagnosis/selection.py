@@ -130,13 +130,33 @@ class Assessment:
 
 def paired_z(reference: np.ndarray, candidate: np.ndarray) -> float:
     """Summed block improvement over its standard error (0 for fewer than 2 blocks)."""
-    d = reference - candidate
+    return block_z(reference - candidate)
+
+
+def block_z(d: np.ndarray) -> float:
+    """The sum of the block differences ``d`` over its standard error [-] (0 for fewer than 2
+    blocks; +-inf when every block improves by the same amount)."""
     if d.size < 2:
         return 0.0
     spread = float(np.std(d, ddof=1))
     if spread == 0.0:
         return 0.0 if d.sum() == 0.0 else float(np.sign(d.sum()) * np.inf)
     return float(d.sum() / (np.sqrt(d.size) * spread))
+
+
+def material(score: float, excess: float, practical: float, th: Thresholds) -> bool:
+    """Whether a residual is a real gap: its mean square over the noise's [-] beyond
+    1 + ``none_margin`` and its RMS above the noise, over the RMS force [-], at least
+    ``practical`` (the materiality rule of the verdict, in one direction and in two)."""
+    return score - 1.0 > th.none_margin and excess >= practical
+
+
+def verdict_of(named: list[str], gap: bool) -> list[str]:
+    """The verdict: the ``named`` effects, then ``unexplained`` when a real ``gap`` remains;
+    ``["unexplained"]`` when nothing is named but a gap is real, else ``["none"]``."""
+    if named:
+        return [*named, *(["unexplained"] if gap else [])]
+    return ["unexplained"] if gap else ["none"]
 
 
 def assess(work: Workspace, model: Model, reference: Assessment | None,

@@ -58,25 +58,38 @@ def signature(features: Features, prediction: np.ndarray, campaign: Campaign,
     length = block_length(residual)
     found: list[tuple[float, str]] = []
     found.extend(_reversals(f, prediction, residual, energy, near, length))
+    found.extend(offset_hint(residual, float(np.max(np.abs(f.force))), energy, length))
+    found.extend(_oscillation(f, residual, campaign, energy))
+    found.extend(drift_hint(residual, f.block, f.cycle, energy, length))
+    found.extend(position_hint(residual, f.displacement, energy, length))
+    return sentences(found)
+
+
+def sentences(found: list[tuple[float, str]]) -> list[str]:
+    """The hints ``found`` ((share, sentence) pairs), strongest first, or the sentence that
+    none passed."""
+    found.sort(reverse=True)
+    out = [text for _, text in found]
+    if not out:
+        out = ["no simple pattern (no concentration at reversals, offset, oscillation, drift or "
+               "position dependence passes its test against noise); see the residual plots"]
+    return out
+
+
+def offset_hint(residual: np.ndarray, peak_force: float, energy: float,
+                length: int) -> list[tuple[float, str]]:
+    """A constant force offset of ``residual`` [N] (a block-jackknife t on its mean), its share
+    of the residual ``energy`` [N^2]; ``peak_force`` [N] for its size."""
     bias = float(residual.mean())
     share = bias**2 * residual.size / energy
-    if share >= _MIN_SHARE and block_test(residual, np.ones(residual.size), [0],
-                                          length)[1] < ALPHA:
-        ratio = 100 * abs(bias) / float(np.max(np.abs(f.force)))
-        found.append((share, f"a constant force offset of {bias:.4g} N ({ratio:.1f} % of the "
-                             f"peak force; {100 * share:.0f} % of the residual energy), like a "
-                             "load-cell zero error (or friction that differs with the sliding "
-                             "direction, which over whole cycles leaves the same offset)"))
-    found.extend(_oscillation(f, residual, campaign, energy))
-    found.extend(_drift(f, residual, energy, length))
-    found.extend(_position(f, residual, energy, length))
-    found.sort(reverse=True)
-    sentences = [text for _, text in found]
-    if not sentences:
-        sentences = ["no simple pattern (no concentration at reversals, offset, oscillation, "
-                     "drift or position dependence passes its test against noise); see the "
-                     "residual plots"]
-    return sentences
+    if share < _MIN_SHARE or block_test(residual, np.ones(residual.size), [0],
+                                        length)[1] >= ALPHA:
+        return []
+    ratio = 100 * abs(bias) / peak_force
+    return [(share, f"a constant force offset of {bias:.4g} N ({ratio:.1f} % of the peak "
+                    f"force; {100 * share:.0f} % of the residual energy), like a load-cell zero "
+                    "error (or friction that differs with the sliding direction, which over "
+                    "whole cycles leaves the same offset)")]
 
 
 def _reversals(f: Features, prediction: np.ndarray, residual: np.ndarray, energy: float,
@@ -167,6 +180,13 @@ def _oscillation(f: Features, residual: np.ndarray, campaign: Campaign,
         residuals.append(residual[idx])
         steps.append(float(np.median(np.diff(rec.time))))
         loading.append(loading_frequency(f.time[idx], f.displacement[idx]))
+    return oscillation_hint(residuals, steps, loading, energy)
+
+
+def oscillation_hint(residuals: list[np.ndarray], steps: list[float], loading: list[float],
+                     energy: float) -> list[tuple[float, str]]:
+    """:func:`~isolator.diagnosis.hint_tests.spectral_peak` of each test's residual [N], its
+    sample interval [s] and loading frequency [Hz], as a hint with its share of ``energy``."""
     peak = spectral_peak(residuals, steps, loading, energy)
     if peak is None or not peak.passes or peak.share < _MIN_SHARE:
         return []
@@ -176,30 +196,35 @@ def _oscillation(f: Features, residual: np.ndarray, campaign: Campaign,
                          "energy): dynamics of the rig or the specimen, not friction")]
 
 
-def _drift(f: Features, residual: np.ndarray, energy: float,
-           length: int) -> list[tuple[float, str]]:
-    blocks = np.unique(f.block)
+def drift_hint(residual: np.ndarray, block: np.ndarray, progress: np.ndarray, energy: float,
+               length: int, *, along: tuple[str, str] = ("from cycle to cycle", "cycle"),
+               ) -> list[tuple[float, str]]:
+    """A drift of ``residual`` [N] with ``progress`` (the cycle number, or the path travelled
+    [m]) over the ``block`` means, tested by a block-jackknife t; ``along``: how the sentence
+    reads it (where, per what)."""
+    blocks = np.unique(block)
     if blocks.size < 4:
         return []
-    count = np.bincount(f.block)[blocks]
-    mean = np.bincount(f.block, weights=residual)[blocks] / count
-    order = np.bincount(f.block, weights=f.cycle)[blocks] / count
+    count = np.bincount(block)[blocks]
+    mean = np.bincount(block, weights=residual)[blocks] / count
+    order = np.bincount(block, weights=progress)[blocks] / count
     if np.ptp(order) == 0.0:
         return []
     slope, intercept = np.polyfit(order, mean, 1)
     explained = np.sum(count * (slope * order + intercept - mean.mean()) ** 2) / energy
     if explained < _MIN_SHARE:
         return []
-    design = np.column_stack([np.ones(residual.size), f.cycle.astype(float)])
+    design = np.column_stack([np.ones(residual.size), progress.astype(float)])
     if block_test(residual, design, [1], length)[1] >= ALPHA:
         return []
-    return [(float(explained), f"a drift of the force from cycle to cycle ({slope:+.4g} N per "
-                               f"cycle; {100 * explained:.0f} % of the residual energy)")]
+    return [(float(explained), f"a drift of the force {along[0]} ({slope:+.4g} N per "
+                               f"{along[1]}; {100 * explained:.0f} % of the residual energy)")]
 
 
-def _position(f: Features, residual: np.ndarray, energy: float,
-              length: int) -> list[tuple[float, str]]:
-    u = f.displacement
+def position_hint(residual: np.ndarray, u: np.ndarray, energy: float,
+                  length: int) -> list[tuple[float, str]]:
+    """A ``residual`` [N] that grows with the displacement ``u`` [m] or with its size (a
+    block-jackknife F on both coefficients)."""
     design = np.column_stack([np.ones_like(u), u, np.abs(u)])
     coef, *_ = np.linalg.lstsq(design, residual, rcond=None)
     fitted = design @ coef - residual.mean()

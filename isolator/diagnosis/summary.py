@@ -112,24 +112,34 @@ def _after_named(d: Diagnosis) -> dict | None:
                                     and excess >= th.transition_practical)}
 
 
+def nuisance_entry(yield_displacement: float, yield_range: tuple[float, float],
+                   calibrated: bool, lag: float, sample_interval: float,
+                   edges: dict[str, str], findings) -> dict:
+    """The JSON ``nuisance`` entry of a diagnosis in one direction or in two: the baseline's
+    u_y [m] and channel lag [s] with their ranges and whether they sit at an edge
+    (``edges``, :func:`~isolator.diagnosis.baseline.edges_of`), the plausible limit of a
+    channel lag [s] and the ``findings`` (where a real gap lies)."""
+    from isolator.diagnosis.decision import LAG_PLAUSIBLE_MAX
+
+    return {
+        "yield_displacement": {"value": yield_displacement, "range": list(yield_range),
+                               "unit": "m", "at_edge": edges.get("yield_displacement"),
+                               "calibrated": calibrated},
+        "lag": {"value": lag, "samples": lag / sample_interval if sample_interval else 0.0,
+                "range_samples": [-NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES], "unit": "s",
+                "at_edge": edges.get("lag"), "plausible_max": LAG_PLAUSIBLE_MAX},
+        "findings": list(findings),
+    }
+
+
 def _nuisance(d: Diagnosis) -> dict:
     """The baseline's nuisance parameters with their ranges and whether they sit at an edge
     (a finding, not a calibration), and the lag candidate fitted test by test."""
-    from isolator.diagnosis.decision import LAG_PLAUSIBLE_MAX
-
     fit = d.baseline
-    edges = nuisance_edges(fit)
     dt = fit.sample_interval
-    out = {
-        "yield_displacement": {"value": fit.parameters["yield_displacement"],
-                               "range": list(fit.yield_range), "unit": "m",
-                               "at_edge": edges.get("yield_displacement"),
-                               "calibrated": fit.spec.yield_displacement is None},
-        "lag": {"value": fit.lag, "samples": fit.lag / dt if dt else 0.0,
-                "range_samples": [-NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES], "unit": "s",
-                "at_edge": edges.get("lag"), "plausible_max": LAG_PLAUSIBLE_MAX},
-        "findings": list(d.selection.findings),
-    }
+    out = nuisance_entry(fit.parameters["yield_displacement"], fit.yield_range,
+                         fit.spec.yield_displacement is None, fit.lag, dt,
+                         nuisance_edges(fit), d.selection.findings)
     lag = d.problem.kinematic.get("lag")
     if lag is not None and lag.untestable is None:
         i = lag.model.names.index("lag")

@@ -36,6 +36,18 @@ def in_transition(features: Features, yield_displacement: float,
     return (features.since_reversal < travel) | (features.steps_since_reversal < WINDOW_SAMPLES)
 
 
+def window_statistics(r2: np.ndarray, noise: np.ndarray, samples: int,
+                      force_ms: float) -> tuple[float, float]:
+    """(the mean squared residual over the noise variance inside the transition windows [-],
+    the excess above the noise there as an RMS over the whole test of ``samples`` samples,
+    over the RMS force [-]) from the squared residual ``r2`` and the noise variance
+    ``noise`` [N^2] of the windows' samples and the mean square force ``force_ms`` [N^2]: the
+    transition's materiality, in one direction and in two (both axes summed)."""
+    score = float(np.mean(r2 / noise))
+    excess = float(np.sum(r2 - noise)) / samples
+    return score, float(np.sqrt(max(excess, 0.0) / force_ms))
+
+
 @dataclass(frozen=True)
 class TransitionFinding:
     """What the baseline leaves inside the transition window.

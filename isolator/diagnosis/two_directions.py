@@ -27,23 +27,31 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    pre-sliding spring unloads, then the gap opens and that axis stands still and carries no
    force until it closes; :func:`play_return_map_2d`) and ``lag`` (one force-channel lag
    for the campaign), each with u_y and the channel lag refitted. The lag is judged against
-   the baseline with no lag (the nuisance judged as an effect), named from
-   ``lag_min_samples`` on, only when
-   the lag fitted test by test agrees (a spread over 1.5 samples and 25 % is a speed effect)
-   and within ``PLAUSIBLE_LAG``; a play from ``backlash_min`` on either axis.
+   the baseline with no lag (the nuisance judged as an effect) and named as in one direction
+   (:func:`~isolator.diagnosis.decision.lag_reason`): the force after the displacement by
+   ``lag_min_samples`` up to ``LAG_PLAUSIBLE_MAX``, the lags fitted test by test agreeing (a
+   lag that changes with the test is a speed effect); a play from ``backlash_min`` on either
+   axis.
 4. **Stage 2, the friction law, outside the direction-change windows:** ``heating``
    (exp(-a dT / 100 degC), dT from the measured friction power on the 2D heating field
    :class:`isolator.monitor_grid.GridHeating`), ``velocity`` (1 - d exp(-|v| / v_t) on the
    speed |v|), ``pressure`` ((p / p_mean)^-n), ``wear`` (1 + c (1 - exp(-s / L)), s the path
    travelled over the campaign) join by forward selection on held-out data
    (leave-one-test-out, or alternate blocks of one test), u_y and the lag refitted with each
-   model, a second effect under the stricter ``second_*`` thresholds; then the kinematic
-   candidates are tried again beside the friction law named. A kinematic effect that was
-   significant but closed too little of the excess on its own (a play beside heating) is
-   applied provisionally, the law selected beside it, and judged again beside that law.
-5. **Verdict**: ``none``, the named effects, ``unexplained``; the materiality rule covers the
-   whole test (every sample, the direction-change windows included).
-6. **Uncertainty**: confidence by block bootstrap, 5-95 % intervals of the parameters.
+   model (a pair as one when no single effect qualifies and the sliding phase holds a real
+   gap, as in one direction), a second effect under the stricter ``second_*`` thresholds;
+   then the kinematic candidates are tried again beside the friction law named. A kinematic
+   effect that was significant but closed too little of the excess on its own (a play beside
+   heating) is applied provisionally, the law selected beside it, and judged again beside
+   that law.
+5. **Verdict**: ``none``, the named effects, ``unexplained`` (where it lies, ``findings``, and
+   what it looks like, :func:`looks_like_2d`), by one direction's rule
+   (:func:`~isolator.diagnosis.selection.material`,
+   :func:`~isolator.diagnosis.selection.verdict_of`), over the whole test (every sample, the
+   direction-change windows included).
+6. **Uncertainty**: confidence by one direction's block bootstrap
+   (:func:`~isolator.diagnosis.uncertainty.block_confidence`), 5-95 % intervals of the
+   parameters.
 
 A block is a stretch of path of a quarter of a turn of a circle of the test's peak radius. The
 held-out statistic z is the larger of two t-statistics over the blocks: of the differences of
@@ -56,8 +64,9 @@ from __future__ import annotations
 
 import math
 import time as _time
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from itertools import combinations
 
 import numpy as np
 
@@ -66,26 +75,46 @@ from isolator.diagnosis.baseline import (
     RIGID_PLASTIC_LIMIT,
     YIELD_DISPLACEMENT_MAX,
     BaselineSpec,
+    edges_of,
 )
 from isolator.diagnosis.data2d import Campaign2D
+from isolator.diagnosis.decision import LAG_PLAUSIBLE_MAX, grid_minima, lag_reason
+from isolator.diagnosis.effects import Effect, Parameter, effects_named
+from isolator.diagnosis.effects import heating as heating_form
+from isolator.diagnosis.effects import pressure as pressure_form
+from isolator.diagnosis.effects import velocity as velocity_form
+from isolator.diagnosis.effects import wear as wear_form
 from isolator.diagnosis.features import smoothed_displacement
+from isolator.diagnosis.hint_tests import (
+    ALPHA,
+    block_length,
+    block_permutation_test,
+    loading_frequency,
+)
 from isolator.diagnosis.kinematics import noise_std, shifted
+from isolator.diagnosis.selection import block_z, material, verdict_of
+from isolator.diagnosis.signatures import (
+    drift_hint,
+    offset_hint,
+    oscillation_hint,
+    position_hint,
+    sentences,
+)
 from isolator.diagnosis.solver import levenberg_marquardt
+from isolator.diagnosis.summary import nuisance_entry
 from isolator.diagnosis.thresholds import Thresholds
+from isolator.diagnosis.transition import NUISANCE_LAG_SAMPLES, window_statistics
+from isolator.diagnosis.uncertainty import block_confidence
 
 EFFECTS_2D = ("heating", "velocity", "pressure", "wear", "backlash", "lag")
 """The candidate effects in two directions."""
 KINEMATIC_2D = ("backlash", "lag")
-NUISANCE_LAG_SAMPLES = 2.0  # the baseline's channel lag, up to this many samples
 LAG_RANGE_SAMPLES = 30.0  # the lag effect is fitted within +- this many samples
-PLAUSIBLE_LAG = 0.05  # [s] a laboratory channel lag beyond this is not named as a lag
-LAG_SPREAD_SAMPLES = 1.5  # per-test lags differing more than this (and 25 %): not one lag
 BACKLASH_MAX = 0.02  # [m] the largest play fitted per axis
 ALIGNMENT_ANGLE = 15.0  # [deg] friction force not yet turned with the motion
 ALIGNED_SIZE = 0.95  # |z| below this: still in the pre-sliding transition
 SLOW_SHARE = 0.05  # of the peak speed: a stop
 MAX_FRICTION_EFFECTS = 3
-BOOTSTRAP = 200
 BLOCK_TURN = 0.25  # a block: this share of a turn of a circle of the peak radius, as path
 SMOOTH_NOISE = 0.1  # displacement noise over u_y beyond which the displacement is smoothed
 _YIELD_GRID = np.geomspace(RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_MAX, 14)
@@ -120,23 +149,6 @@ def return_map_2d(ux, uy, yield_displacement):
         zx[i] = ax
         zy[i] = ay
     return zx, zy
-
-
-@jit
-def play(u, width):
-    """The displacement behind a dead band of full ``width`` [m] on one axis: it follows
-    ``u`` [m] only when pushed by a side of the gap (starts centred)."""
-    n = u.size
-    out = np.empty(n)
-    half = 0.5 * width
-    y = u[0]
-    for i in range(n):
-        if u[i] - y > half:
-            y = u[i] - half
-        elif y - u[i] > half:
-            y = u[i] + half
-        out[i] = y
-    return out
 
 
 @jit
@@ -244,45 +256,24 @@ def lagged(time: np.ndarray, values: np.ndarray, lag: float) -> np.ndarray:
 
 # --- parameters and effects -----------------------------------------------------------------
 
-@dataclass(frozen=True)
-class Param:
-    """A parameter: name, start, bounds, unit, and whether a fit at a bound still reads."""
-
-    name: str
-    start: float
-    low: float
-    high: float
-    unit: str
-    edge_ok: bool = False
+# The candidates are the library's effects (:mod:`isolator.diagnosis.effects`: name, place,
+# physical reading, and on mu their form, ``modulation``) on the orbit's variables: the rise on
+# the 2D heating field, the speed |v|, the pressure, the path travelled; their parameters are
+# fitted as read (no log10) and the play has a width per axis.
+def _heating(theta, d, _=None):
+    return heating_form.modulation(theta[0], d.temperature_rise)
 
 
-@dataclass(frozen=True)
-class Effect2D:
-    """A candidate effect in two directions: ``factor(theta, data) -> (n,)`` on mu, or a
-    kinematic effect (``kinematic``) whose parameters act on the displacement."""
-
-    name: str
-    description: str
-    params: tuple[Param, ...]
-    factor: Callable | None = None
-    kinematic: bool = False
-    requires: Callable | None = None
+def _velocity(theta, d, _=None):
+    return velocity_form.modulation(theta[0], theta[1], d.speed)
 
 
-def _heating(theta, d):
-    return np.exp(-theta[0] * d.temperature_rise / 100.0)
+def _pressure(theta, d, _=None):
+    return pressure_form.modulation(theta[0], d.pressure, d.mean_pressure)
 
 
-def _velocity(theta, d):
-    return 1.0 - theta[0] * np.exp(-d.speed / theta[1])
-
-
-def _pressure(theta, d):
-    return (d.pressure / d.mean_pressure) ** (-theta[0])
-
-
-def _wear(theta, d):
-    return 1.0 + theta[0] * (1.0 - np.exp(-d.travel / theta[1]))
+def _wear(theta, d, _=None):
+    return wear_form.modulation(theta[0], d.travel, theta[1], per_campaign=False)
 
 
 def _needs_pressure(d) -> str | None:
@@ -297,28 +288,52 @@ def _needs_heat(d) -> str | None:
     return None
 
 
+def _through_kinematic_state(theta, context):
+    """The kinematic effects in two directions act through :func:`kinematic_state` (a play
+    per axis, one lag), not through this hook."""
+    raise NotImplementedError("in two directions, kinematic effects act in kinematic_state")
+
+
+def _on_orbits(name: str, where: str, parameters: tuple[Parameter, ...],
+               factor=None, requires=None) -> Effect:
+    """The library's effect ``name`` in two directions (``where``, if any, added to its
+    description) with ``parameters`` fitted on orbits; on mu, ``factor(theta, data)``;
+    ``requires(data)`` says why the orbits cannot show it."""
+    own = effects_named([name])[0]
+    described = f"{own.description}, {where}" if where else own.description
+    return replace(own, description=described, parameters=parameters,
+                   factor=factor if own.acts_on == "mu" else None,
+                   kinematic=(_through_kinematic_state if own.acts_on == "kinematics"
+                              else None),
+                   requires=requires, variable=None, reading=None)
+
+
 LIBRARY_2D = {
-    "heating": Effect2D("heating", "friction falls as the contact heats (2D heating field)",
-                        (Param("thermal_sensitivity_x100", 0.5, -3.0, 5.0, "1/(100 degC)"),),
-                        factor=_heating, requires=_needs_heat),
-    "velocity": Effect2D("velocity", "friction depends on the sliding speed |v|",
-                         (Param("low_speed_drop", 0.3, -1.0, 0.95, "-"),
-                          Param("transition_velocity", 0.05, 0.002, 0.5, "m/s")),
-                         factor=_velocity),
-    "pressure": Effect2D("pressure", "friction depends on the contact pressure",
-                         (Param("exponent", 0.1, -1.0, 1.0, "-"),), factor=_pressure,
-                         requires=_needs_pressure),
-    "wear": Effect2D("wear", "friction drifts with the path travelled over the campaign",
-                     (Param("change", -0.1, -0.8, 2.0, "-"),
-                      Param("travel_scale", 5.0, 0.05, 1.0e4, "m", edge_ok=True)),
-                     factor=_wear),
-    "backlash": Effect2D("backlash", "a play in the load train, per axis",
-                         (Param("width_x", 2e-3, 0.0, BACKLASH_MAX, "m", edge_ok=False),
-                          Param("width_y", 2e-3, 0.0, BACKLASH_MAX, "m", edge_ok=False)),
-                         kinematic=True),
-    "lag": Effect2D("lag", "the force channel recorded late (one lag for the campaign)",
-                    (Param("lag", 0.0, -1.0, 1.0, "s"),), kinematic=True),
+    "heating": _on_orbits("heating", "on the 2D heating field",
+                          (Parameter("thermal_sensitivity_x100", 0.5, -3.0, 5.0,
+                                     unit="1/(100 degC)"),), _heating, _needs_heat),
+    "velocity": _on_orbits("velocity", "on the speed |v|",
+                           (Parameter("low_speed_drop", 0.3, -1.0, 0.95, unit="-"),
+                            Parameter("transition_velocity", 0.05, 0.002, 0.5, unit="m/s")),
+                           _velocity),
+    "pressure": _on_orbits("pressure", "",
+                           (Parameter("exponent", 0.1, -1.0, 1.0, unit="-"),), _pressure,
+                           _needs_pressure),
+    "wear": _on_orbits("wear", "over the path travelled",
+                       (Parameter("change", -0.1, -0.8, 2.0, unit="-"),
+                        Parameter("travel_scale", 5.0, 0.05, 1.0e4, unit="m", edge_ok=True)),
+                       _wear),
+    "backlash": _on_orbits("backlash", "per axis",
+                           (Parameter("width_x", 2e-3, 0.0, BACKLASH_MAX, unit="m"),
+                            Parameter("width_y", 2e-3, 0.0, BACKLASH_MAX, unit="m"))),
+    "lag": _on_orbits("lag", "one lag for the campaign",
+                      (Parameter("lag", 0.0, -1.0, 1.0, unit="s"),)),
 }
+"""The candidates in two directions, by name (:data:`EFFECTS_2D`)."""
+
+
+def _kinematic(name: str) -> bool:
+    return LIBRARY_2D[name].acts_on == "kinematics"
 
 
 # --- the campaign's fixed data --------------------------------------------------------------
@@ -455,25 +470,26 @@ class Model2D:
         if not self.refits_kinematics:
             return 1
         return (2 + ("lag" not in self.kinematic)
-                + sum(len(LIBRARY_2D[k].params) for k in self.kinematic))
+                + sum(len(LIBRARY_2D[k].parameters) for k in self.kinematic))
 
-    def layout(self, d: Data2D, nominal_uy: float) -> list[Param]:
-        out = [Param("mu", 0.05, 1e-4, 1.0, "-")]
+    def layout(self, d: Data2D, nominal_uy: float) -> list[Parameter]:
+        out = [Parameter("mu", 0.05, 1e-4, 1.0, unit="-")]
         if self.refits_kinematics:
-            out.append(Param("log10_yield_displacement", math.log10(nominal_uy),
-                             math.log10(RIGID_PLASTIC_LIMIT),
-                             math.log10(YIELD_DISPLACEMENT_MAX), "log10 m", edge_ok=True))
+            out.append(Parameter("log10_yield_displacement", math.log10(nominal_uy),
+                                 math.log10(RIGID_PLASTIC_LIMIT),
+                                 math.log10(YIELD_DISPLACEMENT_MAX), unit="log10 m",
+                                 edge_ok=True))
             if "lag" not in self.kinematic:  # the baseline's nuisance lag, refitted
                 span = NUISANCE_LAG_SAMPLES * d.dt
-                out.append(Param("channel_lag", 0.0, -span, span, "s", edge_ok=True))
+                out.append(Parameter("channel_lag", 0.0, -span, span, unit="s", edge_ok=True))
             for name in self.kinematic:
-                for p in LIBRARY_2D[name].params:
+                for p in LIBRARY_2D[name].parameters:
                     if name == "lag":
                         span = LAG_RANGE_SAMPLES * d.dt
-                        p = Param(p.name, 0.0, -span, span, "s")
+                        p = Parameter(p.name, 0.0, -span, span, unit="s")
                     out.append(p)
         for name in self.friction:
-            out.extend(LIBRARY_2D[name].params)
+            out.extend(LIBRARY_2D[name].parameters)
         return out
 
     def state(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> tuple:
@@ -499,8 +515,8 @@ class Model2D:
         mu = float(theta[0]) * d.mu_shape
         i = self.kinematic_size
         for name in self.friction:
-            size = len(LIBRARY_2D[name].params)
-            mu = mu * LIBRARY_2D[name].factor(theta[i:i + size], d)
+            size = len(LIBRARY_2D[name].parameters)
+            mu = mu * LIBRARY_2D[name].factor(theta[i:i + size], d, None)
             i += size
         return mu
 
@@ -513,7 +529,9 @@ class Model2D:
 
 @dataclass
 class Baseline2D:
-    """The calibrated baseline: mu, u_y [m], lag [s], and its u_b, z, force (n, 2)."""
+    """The calibrated baseline: mu, u_y [m], lag [s], and its u_b, z, force (n, 2); the
+    nuisances corrected (``edges``: notes, a load cell's relative gain) and those at an edge
+    of their range (``at_edge``, :func:`~isolator.diagnosis.baseline.edges_of`)."""
 
     spec: BaselineSpec
     mu: float
@@ -524,6 +542,7 @@ class Baseline2D:
     force: np.ndarray
     edges: list[str]
     runs: int
+    at_edge: dict[str, str] = field(default_factory=dict)  # baseline.edges_of
 
 
 @dataclass
@@ -533,7 +552,7 @@ class Judged:
     model: Model2D
     theta: np.ndarray
     stderr: np.ndarray
-    params: list[Param]
+    params: list[Parameter]
     prediction: np.ndarray  # held out, (n, 2)
     full: np.ndarray  # fitted on all, (n, 2)
     weighted: float = 0.0
@@ -543,6 +562,7 @@ class Judged:
     earns: bool = False
     at_bound: list[str] = field(default_factory=list)
     untestable: str | None = None
+    per_test: np.ndarray | None = None  # a lag's fit test by test [samples], when computed
 
 
 class Problem2D:
@@ -583,6 +603,12 @@ class Problem2D:
         r2 = ((self.d.force - pred) ** 2).sum(axis=1)
         return float(np.mean(r2[mask] / (2.0 * self.variance[mask])))
 
+    def window_statistics(self, pred: np.ndarray, window: np.ndarray) -> tuple[float, float]:
+        """:func:`~isolator.diagnosis.transition.window_statistics` of ``pred`` in the
+        direction-change ``window`` (both axes summed)."""
+        r2 = ((self.d.force - pred) ** 2).sum(axis=1)[window]
+        return window_statistics(r2, 2.0 * self.variance[window], self.d.n, self.force_ms)
+
     def excess_rms(self, pred: np.ndarray, mask: np.ndarray) -> float:
         r2 = ((self.d.force - pred) ** 2).sum(axis=1)[mask]
         ms = max(float(np.mean(r2) - np.mean(2.0 * self.variance[mask])), 0.0)
@@ -590,10 +616,10 @@ class Problem2D:
 
     # fitting
     def _fit(self, model: Model2D, train: np.ndarray, start: np.ndarray | None,
-             params: list[Param]) -> tuple[np.ndarray, np.ndarray]:
+             params: list[Parameter]) -> tuple[np.ndarray, np.ndarray]:
         low = np.array([p.low for p in params])
         high = np.array([p.high for p in params])
-        x0 = np.array([p.start for p in params]) if start is None else start
+        x0 = np.array([p.initial for p in params]) if start is None else start
         x0 = np.clip(x0, low, high)
         sw = np.sqrt(self.weight[train])[:, None]
         f = self.d.force[train]
@@ -615,7 +641,7 @@ class Problem2D:
         """Fit ``model`` on the samples of ``mask`` and predict each fold from the others."""
         params = model.layout(self.d, self.base.yield_displacement)
         if start is None:
-            start = np.array([p.start for p in params])
+            start = np.array([p.initial for p in params])
             start[0] = self.base.mu
         best = None
         for s in (start, *starts):
@@ -649,8 +675,10 @@ class Problem2D:
         after = self.block_sse(new.prediction, mask)
         used = (np.bincount(self.d.block[mask], minlength=before.size) > 0) & (before > 0) \
             & (after > 0)
-        z = max(_block_z(before[used] - after[used]),
-                _block_z(np.log(before[used] / after[used])))
+        z = 0.0
+        if used.sum() >= 3:
+            z = max(block_z(before[used] - after[used]),
+                    block_z(np.log(before[used] / after[used])))
         noise = self.weighted_noise(mask)
         room = current.weighted - noise
         explained = (current.weighted - new.weighted) / room if room > 0 else 0.0
@@ -661,32 +689,17 @@ class Problem2D:
                      and not new.at_bound)
         return new
 
-    def confidence(self, reference: Judged, new: Judged, mask: np.ndarray, share: float,
-                   seed: int = 0) -> float:
+    def confidence(self, reference: Judged, new: Judged, mask: np.ndarray,
+                   share: float) -> float:
         """Share of block-bootstrap resamples in which ``new`` still closes ``share`` of the
-        excess ``reference`` leaves [-]."""
-        rng = np.random.default_rng(seed)
+        excess ``reference`` leaves [-] (:func:`~isolator.diagnosis.uncertainty.block_confidence`,
+        as in one direction)."""
         ref = self.block_sse(reference.prediction, mask)
         got = self.block_sse(new.prediction, mask)
         r2n = self.weight * self.variance * 2.0
         noise = np.bincount(self.d.block[mask], weights=r2n[mask], minlength=ref.size)
-        used = np.flatnonzero(np.bincount(self.d.block[mask], minlength=ref.size) > 0)
-        hits = 0
-        for _ in range(BOOTSTRAP):
-            pick = rng.choice(used, used.size)
-            room = ref[pick].sum() - noise[pick].sum()
-            if room > 0 and (ref[pick].sum() - got[pick].sum()) / room >= share:
-                hits += 1
-        return hits / BOOTSTRAP
-
-
-def _block_z(differences: np.ndarray) -> float:
-    """The sum of block differences over its standard error [-] (0 for fewer than 3)."""
-    if differences.size < 3:
-        return 0.0
-    spread = float(np.std(differences, ddof=1))
-    return float(np.sum(differences) / (spread * math.sqrt(differences.size))) if spread > 0 \
-        else 0.0
+        used = np.bincount(self.d.block[mask], minlength=ref.size) > 0
+        return block_confidence(ref[used], got[used], noise[used], share)
 
 
 # --- the steps --------------------------------------------------------------------------------
@@ -749,14 +762,9 @@ def _calibrate(d: Data2D, spec: BaselineSpec) -> Baseline2D:
             best = _grid_fit(d, grid_uy)
             mu_t0 = float(np.clip(best[1], 1e-3, 0.5))  # the scale on mu / mu_t0
     _, mu, uy, lag, ub, z, force = best
-    edges = []
-    if spec.yield_displacement is None and len(grid_uy) > 1 and uy >= grid_uy[-1]:
-        edges.append(f"u_y calibrated at the top of its range ({1e3 * uy:.2f} mm): a "
-                     "finding (a play or a soft transition), not a calibration")
-    if abs(lag) >= NUISANCE_LAG_SAMPLES * d.dt * (1 - 1e-9):
-        edges.append(f"the channel lag calibrated at the edge of its range "
-                     f"({lag / d.dt:+.1f} samples)")
-    return Baseline2D(spec, mu, uy, lag, ub, z, force, edges, runs)
+    at_edge = edges_of(uy, (grid_uy[0], grid_uy[-1]), lag / d.dt,
+                       calibrated=spec.yield_displacement is None and len(grid_uy) > 1)
+    return Baseline2D(spec, mu, uy, lag, ub, z, force, [], runs, at_edge)
 
 
 def _element_mu_shape(d: Data2D, spec: BaselineSpec, mu_t0: float,
@@ -766,22 +774,14 @@ def _element_mu_shape(d: Data2D, spec: BaselineSpec, mu_t0: float,
     orbits, tests in run order on fresh plates at the test's initial temperature (the
     manifest's, else the measured temperature's first value, else 20 degC)."""
     from isolator.bearing import AxialLoadHistory, DCFPBearing
-    from isolator.friction import PTVFriction
-    from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
     from isolator.testrig import run_test
 
-    names = {"heating": "temperature", "velocity": "velocity", "pressure": "pressure"}
-    dependencies = tuple(v for k, v in names.items() if k not in spec.without)
-    heating = None
-    if "heating" not in spec.without:
-        heating = MonitorLine() if spec.model == "precise" else CentrePoint(refinement=0.5)
     mu_t0 = float(np.clip(mu_t0, 1e-3, 0.5))
     shapes = []
     for k, rec in enumerate(d.campaign.tests):
         start = (rec.initial_temperature if rec.initial_temperature is not None
                  else float(rec.temperature[0]) if rec.temperature is not None else 20.0)
-        friction = PTVFriction(mu_t0, heating=heating, dependencies=dependencies,
-                               thermal=ThermalProperties(initial_temperature=start))
+        friction = spec.friction(mu_t0, start)  # the friction model of one direction
         load = (float(rec.axial_force[0]) if np.ptp(rec.axial_force) == 0.0 else
                 AxialLoadHistory(rec.time, rec.axial_force))
         reach = float(np.max(rec.radius))
@@ -933,6 +933,8 @@ class Diagnosis2D:
     notes: list[str]
     excluded: tuple[str, ...]
     wall_time: float = 0.0
+    findings: tuple[str, ...] = ()  # where a real gap lies, as in one direction
+    looks_like: tuple[str, ...] = ()  # what the gap left looks like (looks_like_2d)
 
     @property
     def gap_before(self) -> float:
@@ -954,22 +956,38 @@ class Diagnosis2D:
         """Where the residual of ``prediction`` lies: tests, part of the orbit, axes."""
         return locate_2d(self.data, prediction, self.window)
 
+    def _nuisance(self) -> dict:
+        """The JSON ``nuisance`` entry of one direction
+        (:func:`~isolator.diagnosis.summary.nuisance_entry`) and the lag candidate."""
+        b, dt = self.baseline, self.data.dt
+        out = nuisance_entry(b.yield_displacement, (_YIELD_GRID[0], _YIELD_GRID[-1]),
+                             b.spec.yield_displacement is None, b.lag, dt, b.at_edge,
+                             self.findings)
+        lag = self.judged.get("lag")
+        if lag is not None and lag.untestable is None:
+            value = _own_params(lag, "lag", dt)["lag"][0]
+            out["lag_candidate"] = {
+                "samples": value / dt, "seconds": value, "force_leads": value < 0.0,
+                "per_test_samples": (None if lag.per_test is None
+                                     else [float(x) for x in lag.per_test])}
+        return out
+
     def to_json(self) -> dict:
         """The summary: the keys of one direction (``baseline``, ``gap``, ``where``,
-        ``effects``, ``verdict``, ``chosen``, ``unexplained``, ``transition``, ``lag`` ...)
-        and, new, ``dimension``, ``orbits``, ``axes``, ``direction_changes``,
-        ``baseline_notes``."""
+        ``effects``, ``verdict``, ``chosen``, ``unexplained`` with its ``findings``,
+        ``transition``, ``lag``, ``nuisance`` ...) and, new, ``dimension``, ``orbits``,
+        ``axes``, ``direction_changes``, ``baseline_notes``."""
         p, d = self.problem, self.data
         every = np.ones(d.n, bool)
         before = p.nrmse(self.base_all.prediction)
         effects = []
         for name, j in self.judged.items():
             entry = {"name": name, "description": LIBRARY_2D[name].description,
-                     "acts_on": "kinematics" if LIBRARY_2D[name].kinematic else "mu",
+                     "acts_on": LIBRARY_2D[name].acts_on,
                      "role": self.roles.get(name, "")}
             if j.untestable is None:
                 after = p.nrmse(j.prediction, every)
-                own = _own_params(j, name)
+                own = _own_params(j, name, d.dt)
                 entry.update({
                     "gap_after": after, "shrink": 1.0 - after / before if before else 0.0,
                     "parameters": {k: v[0] for k, v in own.items()},
@@ -996,31 +1014,41 @@ class Diagnosis2D:
                 "gap_before": before, "gap_after": after,
                 "shrink": 1.0 - after / before if before else 0.0,
                 "excess_shrink": 1.0 - ex_a / ex_b if ex_b > 0 else 0.0,
-                "parameters": {n: {k: v[0] for k, v in _own_params(self.chosen, n).items()}
+                "parameters": {n: {k: v[0] for k, v in _own_params(self.chosen, n, d.dt).items()}
                                for n in self.chosen.model.names},
                 "intervals": {n: {k: [v[0] - 1.645 * v[1], v[0] + 1.645 * v[1]]
-                                  for k, v in _own_params(self.chosen, n).items()}
+                                  for k, v in _own_params(self.chosen, n, d.dt).items()}
                               for n in self.chosen.model.names},
                 "confidence": {k: _num(v) for k, v in self.confidence.items()},
             }
         tw = self.window
         r2 = ((d.force - self.base_all.prediction) ** 2).sum(axis=1)
         tw_share = float(r2[tw].sum() / max(r2.sum(), 1e-300))
+        score, excess = p.window_statistics(self.base_all.prediction, tw) if tw.any() \
+            else (1.0, 0.0)
+        after_named = None
+        if self.chosen is not None and tw.any():
+            a_score, a_excess = p.window_statistics(self.chosen.prediction, tw)
+            after_named = {"score": a_score, "excess": a_excess,
+                           "far_above_noise": bool(a_score >= p.th.transition_score
+                                                   and a_excess >= p.th.transition_practical)}
         transition = {
             "rms": float(math.sqrt(np.mean(r2[tw]) / 2.0)) if tw.any() else 0.0,
             "energy_share": tw_share, "sample_share": float(np.mean(tw)),
+            "score": score, "excess": excess, "after_named": after_named,
             "statement": (f"{100 * tw_share:.0f} % of the residual energy lies in the "
                           f"direction-change windows ({100 * float(np.mean(tw)):.0f} % of the "
                           "samples: the friction force turning with the motion, stops)"),
         }
         lag_entry = {"seconds": self.baseline.lag, "samples": self.baseline.lag / d.dt,
-                     "named": False, "plausible_limit_seconds": PLAUSIBLE_LAG}
+                     "named": False, "plausible_limit_seconds": LAG_PLAUSIBLE_MAX}
         if self.chosen is not None and "lag" in self.chosen.model.kinematic:
-            value = _own_params(self.chosen, "lag")["lag"][0]
+            value = _own_params(self.chosen, "lag", d.dt)["lag"][0]
             lag_entry.update({"seconds": value, "samples": value / d.dt, "named": True})
         unexplained = None
         if "unexplained" in self.verdict:
-            unexplained = {"statement": locate_2d(d, final, tw)["statement"], "looks_like": []}
+            unexplained = {"statement": locate_2d(d, final, tw)["statement"],
+                           "looks_like": list(self.looks_like), "findings": list(self.findings)}
         return {
             "dimension": 2,
             "baseline": {"model": self.baseline.spec.label,
@@ -1031,6 +1059,7 @@ class Diagnosis2D:
                          "displacement": ("smoothed (Savitzky-Golay)" if d.smoothed
                                           else "as measured")},
             "baseline_notes": list(self.baseline.edges),
+            "nuisance": self._nuisance(),
             "gap": {"metric": "force_nrmse", "value": before, "noise": p.noise_nrmse(),
                     "holdout": d.scheme, "phase": "every sample (|F| of both axes)",
                     "samples": d.n, "all_samples": before,
@@ -1058,15 +1087,16 @@ def _num(x: float) -> float | None:
     return None if x is None or not np.isfinite(x) else float(x)
 
 
-def _own_params(j: Judged, name: str) -> dict[str, tuple[float, float, str]]:
-    """The parameters of effect ``name`` in judged model ``j``: (value, stderr, unit)."""
+def _own_params(j: Judged, name: str, dt: float) -> dict[str, tuple[float, float, str]]:
+    """The parameters of effect ``name`` in judged model ``j``: (value, stderr, unit); a lag
+    also in samples of ``dt`` [s]."""
     model = j.model
     out: dict[str, tuple[float, float, str]] = {}
     i = 1
     if model.refits_kinematics:
         i = 2 + ("lag" not in model.kinematic)
     for other in (*(model.kinematic if model.fixed_state is None else ()), *model.friction):
-        size = len(LIBRARY_2D[other].params)
+        size = len(LIBRARY_2D[other].parameters)
         if other == name:
             for k, p in enumerate(j.params[i:i + size]):
                 value, err = float(j.theta[i + k]), float(j.stderr[i + k])
@@ -1075,18 +1105,10 @@ def _own_params(j: Judged, name: str) -> dict[str, tuple[float, float, str]]:
                 else:
                     out[p.name] = (value, err, p.unit)
             if name == "lag":
-                out["lag_samples"] = (float(j.theta[i]) / j_dt(j), float(j.stderr[i]) / j_dt(j),
+                out["lag_samples"] = (float(j.theta[i]) / dt, float(j.stderr[i]) / dt,
                                       "samples")
         i += size
     return out
-
-
-_DT = {"dt": 1.0}
-
-
-def j_dt(_: Judged) -> float:
-    """The campaign's sampling interval [s] (set by :func:`diagnose_2d`)."""
-    return _DT["dt"]
 
 
 def _orbit_entry(rec) -> dict:
@@ -1110,6 +1132,41 @@ def _axes(d: Data2D, before: np.ndarray, after: np.ndarray) -> dict:
                      "error_rms_after": float(np.sqrt(np.mean((d.force[:, j]
                                                                - after[:, j]) ** 2)))}
     return out
+
+
+def looks_like_2d(d: Data2D, prediction: np.ndarray, window: np.ndarray) -> list[str]:
+    """What the residual ``prediction`` leaves looks like, by one direction's hints
+    (:mod:`isolator.diagnosis.signatures`, each passing its own test against noise): a
+    concentration in the direction-change windows (a block permutation test within each
+    test), and per axis a constant offset, an oscillation above the loading frequencies (the
+    lower of the two axes' fundamentals), a drift along the path travelled and a dependence on
+    the position along the axis; shares of the residual energy of both axes."""
+    r = d.force - prediction
+    energy = float(np.sum(r**2)) or 1.0
+    lengths = [block_length(r[:, j]) for j in range(2)]
+    found: list[tuple[float, str]] = []
+    r2 = (r**2).sum(axis=1)
+    share = float(r2[window].sum()) / energy
+    if (share >= 0.1 and share >= 1.5 * float(np.mean(window))
+            and block_permutation_test(r2, window, d.test, max(lengths)) < ALPHA):
+        found.append((share, f"{100 * share:.0f} % of the residual energy lies in the "
+                             f"direction-change windows ({100 * float(np.mean(window)):.0f} % "
+                             "of the samples): a play, a softer or slower transition or a "
+                             "breakaway where the friction force turns with the motion"))
+    u = np.vstack(d.displacement)
+    steps = [float(np.median(np.diff(t))) for t in d.time]
+    loading = [min(loading_frequency(t, x[:, j]) for j in range(2))
+               for t, x in zip(d.time, d.displacement, strict=True)]
+    for j, axis in enumerate(("x", "y")):
+        rj = r[:, j]
+        hints = [*offset_hint(rj, float(np.max(np.abs(d.force[:, j]))), energy, lengths[j]),
+                 *oscillation_hint([rj[d.test == k] for k in range(len(d.time))], steps,
+                                   loading, energy),
+                 *drift_hint(rj, d.block, d.travel, energy, lengths[j],
+                             along=("along the path travelled", "m")),
+                 *position_hint(rj, u[:, j], energy, lengths[j])]
+        found.extend((share, f"along {axis}, {text}") for share, text in hints)
+    return sentences(found)
 
 
 def locate_2d(d: Data2D, prediction: np.ndarray, window: np.ndarray) -> dict:
@@ -1202,7 +1259,6 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         base = _calibrate(d, spec)
         base.edges.append(f"the y force channel reads {100 * (gain - 1):+.1f} % against the x "
                           "one (a relative gain of the load cells, corrected as a nuisance)")
-    _DT["dt"] = d.dt
     variance = noise_variance(d, base)
     problem = Problem2D(d, base, variance, th)
     window = transition_window(d, base)
@@ -1220,7 +1276,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                else _YIELD_GRID)
     fit0 = _grid_fit(d, grid_uy, lags=(0.0,))
     no_lag = problem.judge(Model2D(fixed_state=(fit0[4], fit0[5])), every)
-    kin = [k for k in names if LIBRARY_2D[k].kinematic]
+    kin = [k for k in names if _kinematic(k)]
     current = base_all
     named_kin: list[str] = []
     for _ in range(2):
@@ -1251,7 +1307,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
     # stage 2: the friction law outside the direction-change windows (u_y, lag refitted)
     beside: dict[str, tuple[str, ...]] = {}  # the law each candidate was last tried beside
     d.temperature_rise = np.zeros(d.n)
-    friction = [k for k in names if not LIBRARY_2D[k].kinematic]
+    friction = [k for k in names if not _kinematic(k)]
     if "heating" in friction:
         mu_hist = base.mu * d.mu_shape
         d.temperature_rise = temperature_rise(d, mu_hist)
@@ -1270,14 +1326,14 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             for k in friction:
                 if k in law:
                     continue
-                why = LIBRARY_2D[k].requires(d) if LIBRARY_2D[k].requires else None
+                why = LIBRARY_2D[k].untestable(d)
                 if why:
                     judged[k] = Judged(Model2D(), np.zeros(0), np.zeros(0), [],
                                        cur.prediction, cur.full, untestable=why)
                     roles[k] = f"untestable: {why}"
                     continue
                 model = Model2D(friction=(*law, k), kinematic=kinematic, free=True)
-                start = np.concatenate([cur.theta, [p.start for p in LIBRARY_2D[k].params]])
+                start = np.concatenate([cur.theta, [p.initial for p in LIBRARY_2D[k].parameters]])
                 starts = [np.concatenate([cur.theta, s]) for s in _friction_starts(k)]
                 j = problem.judge(model, sliding, start=start, starts=starts)
                 second = bool(law)
@@ -1290,13 +1346,42 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 judged[k] = j
                 beside[k] = tuple(law)
             passing = [k for k, j in trials.items() if j.earns]
-            if not passing:
+            if not passing and not law:  # a pair when no single qualifies, as in one direction
+                pair = _pair(trials, kinematic, cur)
+                if pair is None:
+                    break
+                law.extend(pair.model.friction)
+                cur = pair
+                for k in law:
+                    judged[k] = cur
+                continue
+            if not passing or len(law) >= MAX_FRICTION_EFFECTS:
                 break
             best = min(passing, key=lambda k: trials[k].weighted)
             law.append(best)
             cur = trials[best]
             judged[best] = cur
         return law, cur, law_base
+
+    def _pair(trials: dict[str, Judged], kinematic: tuple[str, ...],
+              cur: Judged) -> Judged | None:
+        """The best pair of friction-law effects that earns its keep over ``cur`` as one (by
+        the first effect's thresholds), each from its own fit alone, when the sliding phase
+        holds a real gap (one direction's rule); else None."""
+        if not material(problem.score(cur.prediction, sliding),
+                        problem.excess_rms(cur.prediction, sliding), th.practical_none, th):
+            return None
+        best = None
+        for a, b in combinations(trials, 2):
+            model = Model2D(friction=(a, b), kinematic=kinematic, free=True)
+            own = [trials[k].theta[len(trials[k].theta) - len(LIBRARY_2D[k].parameters):]
+                   for k in (a, b)]
+            j = problem.judge(model, sliding, start=np.concatenate([cur.theta, *own]))
+            j = problem.compare(cur, j, sliding, z_min=th.z_min, explained_min=th.explained_min,
+                                practical_min=th.practical_gain)
+            if j.earns and (best is None or j.weighted < best.weighted):
+                best = j
+        return best
 
     law, cur, law_base = friction_stage(tuple(named_kin), current, judged, roles, beside)
 
@@ -1376,14 +1461,15 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 roles[k] = "earns its keep but closes too little"
             named, chosen = [], None
     remaining = chosen.prediction if chosen is not None else base_all.prediction
-    real_gap = (problem.score(remaining, every) > 1.0 + th.none_margin
-                and problem.excess_rms(remaining, every) > th.practical_remain)
-    base_gap = (problem.score(base_all.prediction, every) > 1.0 + th.none_margin
-                and problem.excess_rms(base_all.prediction, every) > th.practical_none)
-    if named:
-        verdict = list(named) + (["unexplained"] if real_gap else [])
-    else:
-        verdict = ["unexplained"] if base_gap else ["none"]
+    # the materiality rule of one direction over the whole test, and where a gap lies
+    practical = th.practical_remain if named else th.practical_none
+    gap = material(problem.score(remaining, every), problem.excess_rms(remaining, every),
+                   practical, th)
+    findings = _findings(problem, remaining, window, sliding, practical, gap, th,
+                         transition=not named)
+    if _yield_at_top(base, chosen, named):
+        findings.append("yield_displacement at the top of its range")
+    verdict = verdict_of(list(named), gap or bool(findings))
     for k, j in judged.items():
         if k in named:
             roles[k] = "named"
@@ -1395,14 +1481,50 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
     confidence: dict[str, float] = {}
     for k in named:
         j = judged[k]
-        mask = every if LIBRARY_2D[k].kinematic else sliding
-        reference = base_all if LIBRARY_2D[k].kinematic else law_base
-        share = th.kinematic_explained if LIBRARY_2D[k].kinematic else th.explained_min
+        mask = every if _kinematic(k) else sliding
+        reference = base_all if _kinematic(k) else law_base
+        share = th.kinematic_explained if _kinematic(k) else th.explained_min
         confidence[k] = problem.confidence(reference, j, mask, share)
     result = Diagnosis2D(campaign, d, problem, base, base_all, window, judged, roles, verdict,
-                         chosen, confidence, notes, tuple(exclude))
+                         chosen, confidence, notes, tuple(exclude), findings=tuple(findings))
+    if "unexplained" in verdict:
+        result.looks_like = tuple(looks_like_2d(d, remaining, window))
     result.wall_time = _time.perf_counter() - start_clock
     return result
+
+
+def _yield_at_top(base: Baseline2D, chosen: Judged | None, named: Sequence[str]) -> bool:
+    """Whether the baseline's u_y sits at the top of its range (a play or a soft transition
+    it stands in for: a finding, as in one direction) and neither a play is named nor the
+    named effects, u_y refitted with them, move it off the top (a lag named can have pulled
+    it there)."""
+    if base.at_edge.get("yield_displacement") != "top" or "backlash" in named:
+        return False
+    if chosen is None or not chosen.model.refits_kinematics:
+        return True
+    refitted = 10.0 ** float(chosen.theta[1])
+    return "yield_displacement" in edges_of(refitted, (_YIELD_GRID[0], _YIELD_GRID[-1]), 0.0)
+
+
+def _findings(problem: Problem2D, prediction: np.ndarray, window: np.ndarray,
+              sliding: np.ndarray, practical: float, gap: bool, th: Thresholds, *,
+              transition: bool) -> list[str]:
+    """Where the real gap ``prediction`` leaves lies, as in one direction: ``sliding`` (the
+    materiality rule outside the direction-change windows), ``transition`` (only when
+    ``transition``, i.e. nothing is named: inside the windows far above the noise,
+    ``transition_score``, and material over the whole test, ``transition_practical``), else
+    ``every sample`` for a ``gap`` neither part holds."""
+    out = []
+    if gap and material(problem.score(prediction, sliding),
+                        problem.excess_rms(prediction, sliding), practical, th):
+        out.append("sliding")
+    if transition and window.any():
+        score, excess = problem.window_statistics(prediction, window)
+        if score >= th.transition_score and excess >= th.transition_practical:
+            out.append("transition")
+    if gap and not out:
+        out.append("every sample")
+    return out
 
 
 def _start(model: Model2D, current: Judged, base: Baseline2D, d: Data2D) -> np.ndarray:
@@ -1414,7 +1536,7 @@ def _start(model: Model2D, current: Judged, base: Baseline2D, d: Data2D) -> np.n
     known.setdefault("log10_yield_displacement", math.log10(base.yield_displacement))
     known.setdefault("channel_lag", base.lag)
     known.setdefault("lag", known["channel_lag"])
-    return np.array([known.get(p.name, p.start) for p in params])
+    return np.array([known.get(p.name, p.initial) for p in params])
 
 
 def _kin_starts(model: Model2D, current: Judged, base: Baseline2D,
@@ -1500,7 +1622,8 @@ def _friction_starts(name: str) -> list[np.ndarray]:
 
 def per_test_lags(d: Data2D, j: Judged) -> np.ndarray:
     """The lag [s] that fits each test best, on a half-sample grid within 10 samples of the
-    campaign's, the other parameters of ``j`` kept and mu refitted per test."""
+    campaign's refined by a parabola (as in one direction), the other parameters of ``j``
+    kept and mu refitted per test."""
     params = [p.name for p in j.params]
     campaign_lag = float(j.theta[params.index("lag")])
     uy = 10.0 ** float(j.theta[1])
@@ -1517,7 +1640,7 @@ def per_test_lags(d: Data2D, j: Judged) -> np.ndarray:
             m = d.test == k
             mu = float(np.sum(basis[m] * friction[m]) / max(np.sum(basis[m] ** 2), 1e-300))
             costs[i, k] = float(np.mean((friction[m] - mu * basis[m]) ** 2))
-    return grid[np.argmin(costs, axis=0)]
+    return grid_minima(grid, costs, 0.5 * d.dt)
 
 
 def _hidden(j: Judged, name: str, th: Thresholds, d: Data2D) -> bool:
@@ -1530,27 +1653,20 @@ def _hidden(j: Judged, name: str, th: Thresholds, d: Data2D) -> bool:
 
 
 def _size_ok(j: Judged, name: str, th: Thresholds, d: Data2D, notes: list[str]) -> bool:
-    """A play is named from ``backlash_min`` on (either axis); a lag beyond
-    ``lag_min_samples`` and within the plausible channel lag."""
-    own = _own_params(j, name)
+    """A play is named from ``backlash_min`` on (either axis); a lag as a laboratory channel
+    can have it (one direction's rule: the force after the displacement by ``lag_min_samples``
+    to ``LAG_PLAUSIBLE_MAX``, the same in every test), else the reason joins ``notes``."""
+    own = _own_params(j, name, d.dt)
     if name == "backlash":
         return max(own["width_x"][0], own["width_y"][0]) >= th.backlash_min
-    if name == "lag":
-        value = abs(own["lag"][0])
-        if value / d.dt < th.lag_min_samples:
-            return False
-        lags = per_test_lags(d, j)
-        spread = float(np.ptp(lags)) if lags.size > 1 else 0.0
-        if spread > max(LAG_SPREAD_SAMPLES * d.dt, 0.25 * value):
-            notes.append("the lag fitted test by test varies ("
-                         + ", ".join(f"{x / d.dt:+.1f}" for x in lags)
-                         + " samples): not one channel lag for the campaign (a speed effect "
-                         "looks like a lag that changes with the period and the amplitude)")
-            return False
-        if value > PLAUSIBLE_LAG:
-            notes.append(f"a lag of {1e3 * value:.1f} ms fits, beyond what a laboratory "
-                         f"channel plausibly has ({1e3 * PLAUSIBLE_LAG:.0f} ms): not named as "
-                         "a lag (a speed effect or the rig's dynamics look like one)")
-            return False
-        return True
+    if name == "lag":  # one direction's rule (:func:`~isolator.diagnosis.decision.lag_reason`)
+        samples = own["lag"][0] / d.dt
+        per_test = np.zeros(0)
+        if lag_reason(samples, d.dt, per_test, th) is None:
+            per_test = per_test_lags(d, j) / d.dt
+        reason = lag_reason(samples, d.dt, per_test, th)
+        j.per_test = per_test if per_test.size else None
+        if reason is not None and abs(samples) >= th.lag_min_samples and reason not in notes:
+            notes.append(reason)
+        return reason is None
     return True

@@ -37,7 +37,16 @@ def confidence(work: Workspace, reference: Assessment, extended: Assessment,
     ext = _block_sums(work, extended.prediction)
     noise = np.bincount(f.block, weights=f.weight * f.noise_variance, minlength=ref.size)
     present = np.bincount(f.block, minlength=ref.size) > 0
-    ref, ext, noise = ref[present], ext[present], noise[present]
+    return block_confidence(ref[present], ext[present], noise[present], explained_min,
+                            resamples=resamples)
+
+
+def block_confidence(ref: np.ndarray, ext: np.ndarray, noise: np.ndarray,
+                     explained_min: float, *, resamples: int = RESAMPLES) -> float:
+    """Share of ``resamples`` block resamples in which the extended model closes
+    ``explained_min`` of the excess its reference leaves [-] (NaN for fewer than 2 blocks),
+    from the weighted squared residuals summed by block [-] of the reference (``ref``), the
+    extended model (``ext``) and noise alone (``noise``): in one direction and in two."""
     if ref.size < 2:
         return float("nan")
     rng = np.random.default_rng(_SEED)

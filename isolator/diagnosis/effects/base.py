@@ -38,6 +38,9 @@ class Parameter:
         Whether a fit at a bound is still a physical reading (a weight at 0 or 1, a
         rigid-plastic transition, a linear drift); otherwise an effect fitted at a bound is
         not named, since the data ask for more than its physics gives.
+    unit : str
+        Unit of the value on the fitting scale (the parameters of tests in two directions
+        are read as fitted).
     """
 
     name: str
@@ -47,6 +50,7 @@ class Parameter:
     log: bool = False
     starts: tuple[float, ...] = ()
     edge_ok: bool = False
+    unit: str = "-"
 
     def at_bound(self, value: float) -> bool:
         """Whether ``value`` (fitting scale) sits at a bound (within 0.5 % of the range)."""

@@ -22,8 +22,14 @@ def rise(theta, f, c: Context) -> np.ndarray:
     return (1.0 - w) * f.temperature_rise + w * f.centre_rise
 
 
+def modulation(a, rise: np.ndarray) -> np.ndarray:
+    """m = exp(-a dT / 100 degC) [-] for a log-factor ``a`` per 100 degC and a contact-
+    temperature ``rise`` dT [degC]: the effect's form in one direction and in two."""
+    return np.exp(-a * rise / TEMPERATURE_SCALE)
+
+
 def _factor(theta, f, c):
-    return np.exp(-theta[0] * rise(theta, f, c) / TEMPERATURE_SCALE)
+    return modulation(theta[0], rise(theta, f, c))
 
 
 def _requires(c: Context) -> str | None:

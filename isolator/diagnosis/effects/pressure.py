@@ -12,8 +12,14 @@ import numpy as np
 from isolator.diagnosis.effects.base import Context, Effect, Parameter, linear
 
 
+def modulation(n, pressure: np.ndarray, reference: float) -> np.ndarray:
+    """m = (p / p_ref)^-n [-] for an exponent ``n`` [-], the contact ``pressure`` p and its
+    ``reference`` p_ref [Pa]: the effect's form in one direction and in two."""
+    return (pressure / reference) ** (-n)
+
+
 def _factor(theta, f, c):
-    return (f.pressure / c.reference_pressure) ** (-theta[0])
+    return modulation(theta[0], f.pressure, c.reference_pressure)
 
 
 def _requires(c: Context) -> str | None:

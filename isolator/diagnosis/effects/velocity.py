@@ -14,8 +14,15 @@ from isolator.diagnosis.effects.base import Effect, Parameter, exp10, linear
 SPEED_FLOOR = 1.0e-4  # [m/s] the flexible form's variable is log10(|v| + this)
 
 
+def modulation(a, v_c, speed: np.ndarray) -> np.ndarray:
+    """m = 1 - a exp(-|v| / v_c) [-] for a low-speed drop ``a`` [-], a transition velocity
+    ``v_c`` [m/s] and the sliding ``speed`` |v| [m/s]: the effect's form in one direction and
+    in two (on the speed of the orbit)."""
+    return 1.0 - a * np.exp(-speed / v_c)
+
+
 def _factor(theta, f, c):
-    return 1.0 - theta[0] * np.exp(-f.speed / 10.0 ** theta[1])
+    return modulation(theta[0], 10.0 ** theta[1], f.speed)
 
 
 def _reading(theta, stderr, c):

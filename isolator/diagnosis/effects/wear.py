@@ -15,11 +15,21 @@ import numpy as np
 from isolator.diagnosis.effects.base import Effect, Parameter, exp10, linear
 
 
+def modulation(a, travel: np.ndarray, scale, *, per_campaign: bool) -> np.ndarray:
+    """m = 1 + a g [-], g = 1 - exp(-S / L) of the accumulated ``travel`` S over a travel
+    ``scale`` L (the same unit): the effect's form in one direction and in two. With
+    ``per_campaign`` S and L are shares of the campaign's travel and g is divided by its
+    value at the campaign's end, so that ``a`` is the change over the campaign (one
+    direction); without, ``a`` is the change as S grows large (two directions, S and L in m)."""
+    growth = -np.expm1(-travel / scale)
+    if per_campaign:
+        growth = growth / -math.expm1(-1.0 / scale)
+    return 1.0 + a * growth
+
+
 def _factor(theta, f, c):
-    tau = 10.0 ** theta[1]
     share = f.campaign_travel / max(c.campaign_travel, 1e-12)
-    growth = -np.expm1(-share / tau) / -math.expm1(-1.0 / tau)
-    return 1.0 + theta[0] * growth
+    return modulation(theta[0], share, 10.0 ** theta[1], per_campaign=True)
 
 
 def _reading(theta, stderr, c):
