@@ -70,13 +70,15 @@ class CompileAhead:
         runs). Call it right after :func:`compile_ahead`, before this process's own work."""
         if self.process is None or self.process.poll() is not None:
             return 0.0
-        from structures.compiled.engine import warm_up_early
-
         stage = self.stage
         if stage is None:
+            from structures.compiled.engine import warm_up_early
+
             return warm_up_early()
-        write_stage(stage, 0)
+        write_stage(stage, 0)  # at once: the second process now knows it will be helped
         try:
+            from structures.compiled.engine import warm_up_early
+
             spent = warm_up_early(lambda: write_stage(stage, 1))
             write_stage(stage, 2)
         except BaseException:
