@@ -7,9 +7,10 @@ and writes numba's disk cache (:func:`structures.compiled.engine.warm_up_late`, 
 while the caller compiles the bearings' trials (:meth:`CompileAhead.help`), does its own work
 and waits (:meth:`CompileAhead.wait`) before its first engine call, which then loads the same
 code it would have compiled. Neither process compiles what the other one does: the caller
-reports how far its share has come in a stage file (1: the plate functions the trials share
+reports how far its share has come in a stage file (1: the window's move that the trials share
 with the commit, 2: the trials), and the second process waits for it before the commit and
-before the engine's loop, which call them (without a helping caller it waits for nothing).
+before the engine's loop, which call them (without a helping caller it waits for nothing); the
+second process compiles the step's factors first, which the trials reach only later.
 Nothing is started when the cache holds the engine, without numba (or with
 ``DCFPB_DISABLE_NUMBA=1``), or with ``DCFPB_COMPILE_AHEAD=0``; if the second process fails,
 the caller compiles itself."""
@@ -152,8 +153,8 @@ def compile_ahead() -> CompileAhead:
 
 
 def write_stage(stage: Path, value: int) -> None:
-    """Write how far the caller's share has come (0 started, 1 the shared plate functions,
-    2 the trials: in the cache) to the file ``stage``, replacing it whole."""
+    """Write how far the caller's share has come (0 started, 1 the window's move, 2 the
+    trials: in the cache) to the file ``stage``, replacing it whole."""
     partial = stage.with_name(stage.name + ".partial")
     partial.write_text(str(value))
     os.replace(partial, stage)
@@ -184,8 +185,7 @@ if __name__ == "__main__":  # the second process
     from structures.compiled.engine import warm_up, warm_up_late
 
     STAGE = Path(os.environ[STAGE_VARIABLE]) if os.environ.get(STAGE_VARIABLE) else None
-    # while the first process compiles the bearings' trials, and what the commit shares with
-    # them first
+    # while the first process compiles the window's move and the bearings' trials
     warm_up_late(lambda: wait_for_stage(STAGE, 1))
     wait_for_stage(STAGE, 2)
     warm_up()

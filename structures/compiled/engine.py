@@ -252,9 +252,9 @@ def compile_engine() -> float:
 
 def _parts(stage: str) -> list:
     """The engine's callees as (function, example arguments of the engine's types), by
-    ``stage``: ``"shared"`` the plate functions the bearings' trials and their commit both call,
-    ``"trials"`` the trials, ``"linear"`` the Newton matrix's pieces and the plate field,
-    ``"commit"`` the commit."""
+    ``stage``: ``"window"`` and ``"step"`` the plate functions the bearings' trials and their
+    commit both call (the window's move, the step's factors), ``"trials"`` the trials,
+    ``"linear"`` the Newton matrix's pieces and the plate field, ``"commit"`` the commit."""
     from isolator.compiled import plate
     from structures.compiled import lapack, linear
 
@@ -264,9 +264,9 @@ def _parts(stage: str) -> list:
     pivots, vector = np.zeros(1, dtype=np.int32), np.zeros(1)
     window = heat.windows[0, plate.HELD]
     return {
-        "shared": [
-            (plate.prepare_step, (1.0, 1.0, 1.0, heat.rates, heat.weights, heat.factors,
-                                  heat.decays, heat.slots, heat.table)),
+        "step": [(plate.prepare_step, (1.0, 1.0, 1.0, heat.rates, heat.weights, heat.factors,
+                                       heat.decays, heat.slots, heat.table))],
+        "window": [
             (plate.move_window, (0, 1, window, window, 0.0, heat.rates, heat.states[0],
                                  heat.stamps[0], heat.accumulators[0], heat.offsets[0],
                                  heat.cache_keys, heat.cache_values, heat.cache_state,
@@ -300,11 +300,12 @@ def _compile_parts(*stages: str) -> float:
 
 def warm_up_early(shared_done: Callable[[], None] | None = None) -> float:
     """Compile (or load) the bearings' trials (:func:`isolator.compiled.element.set_trials`
-    and its callees) for the engine's argument types, the plate functions the commit shares
-    with them first (``shared_done()`` is called once those are in the cache); the time [s].
-    See :mod:`structures.compiled.ahead`."""
+    and its callees) for the engine's argument types, the window's move that the commit shares
+    with them first (``shared_done()`` is called once it is in the cache); the time [s]. See
+    :mod:`structures.compiled.ahead`: the second process meanwhile compiles the step's factors
+    (:func:`warm_up_late`), which the trials call only later."""
     start = _time.perf_counter()
-    _compile_parts("shared")
+    _compile_parts("window")
     if shared_done is not None:
         shared_done()
     _compile_parts("trials")
@@ -312,13 +313,13 @@ def warm_up_early(shared_done: Callable[[], None] | None = None) -> float:
 
 
 def warm_up_late(before_commit: Callable[[], None] | None = None) -> float:
-    """Compile (or load) the engine's callees other than the bearings' trials; the time [s].
-    ``before_commit()`` is called before the commit
-    (:func:`isolator.compiled.element.commit_trials`), whose plate functions
-    :func:`warm_up_early` compiles first: a second process waits there for them to be in the
-    cache rather than compile them too."""
+    """Compile (or load) the engine's callees other than the bearings' trials, the step's
+    factors first; the time [s]. ``before_commit()`` is called before the commit
+    (:func:`isolator.compiled.element.commit_trials`), whose window's move
+    :func:`warm_up_early` compiles first: a second process waits there for it to be in the
+    cache rather than compile it too."""
     start = _time.perf_counter()
-    _compile_parts("linear")
+    _compile_parts("step", "linear")
     if before_commit is not None:
         before_commit()
     _compile_parts("commit")
