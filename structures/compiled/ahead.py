@@ -6,15 +6,22 @@ a thread cannot overlap with the caller's work; a process can, on a second core.
 and writes numba's disk cache (:func:`structures.compiled.engine.warm_up_late`, then ``warm_up``)
 while the caller compiles the bearings' trials (:meth:`CompileAhead.help`), does its own work
 and waits (:meth:`CompileAhead.wait`) before its first engine call, which then loads the same
-code it would have compiled. Nothing is started when the cache holds the engine, without numba
-(or with ``DCFPB_DISABLE_NUMBA=1``), or with ``DCFPB_COMPILE_AHEAD=0``; if the second process
-fails, the caller compiles itself."""
+code it would have compiled. Neither process compiles what the other one does: the caller
+reports how far its share has come in a stage file (1: the window's move that the trials share
+with the commit, 2: the trials), and the second process waits for it before the commit and
+before the engine's loop, which call them (without a helping caller it waits for nothing); the
+second process compiles the step's factors first, which the trials reach only later.
+Nothing is started when the cache holds the engine, without numba (or with
+``DCFPB_DISABLE_NUMBA=1``), or with ``DCFPB_COMPILE_AHEAD=0``; if the second process fails,
+the caller compiles itself."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 from types import TracebackType
@@ -23,6 +30,10 @@ __all__ = ["CompileAhead", "compile_ahead", "engine_in_cache"]
 
 WAIT_LIMIT = 600.0
 """Longest wait for the second process [s]; past it, it is stopped and the caller compiles."""
+STAGE_LIMIT = 120.0
+"""Longest wait of the second process for a stage of the caller's share [s]; past it, it
+compiles that share itself."""
+STAGE_VARIABLE = "DCFPB_AHEAD_STAGE"  # the stage file's path, for the second process
 
 _PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 _ENGINE_INDEX = "integrator.integrate-*.nbi"  # numba's index file of the engine
@@ -44,8 +55,9 @@ def engine_in_cache() -> bool:
 class CompileAhead:
     """A handle on the compiling process (or on none); leaving its ``with`` block stops it."""
 
-    def __init__(self, process: subprocess.Popen | None) -> None:
+    def __init__(self, process: subprocess.Popen | None, stage: Path | None = None) -> None:
         self.process = process
+        self.stage = stage  # the stage file (:func:`write_stage`), in a folder of its own
         self.waited = 0.0  # time spent in :meth:`wait` [s]
 
     @property
@@ -59,9 +71,21 @@ class CompileAhead:
         runs). Call it right after :func:`compile_ahead`, before this process's own work."""
         if self.process is None or self.process.poll() is not None:
             return 0.0
-        from structures.compiled.engine import warm_up_early
+        stage = self.stage
+        if stage is None:
+            from structures.compiled.engine import warm_up_early
 
-        return warm_up_early()
+            return warm_up_early()
+        write_stage(stage, 0)  # at once: the second process now knows it will be helped
+        try:
+            from structures.compiled.engine import warm_up_early
+
+            spent = warm_up_early(lambda: write_stage(stage, 1))
+            write_stage(stage, 2)
+        except BaseException:
+            stage.unlink(missing_ok=True)  # the second process stops waiting and compiles
+            raise
+        return spent
 
     def wait(self) -> bool:
         """Block until the engine is compiled; whether the process succeeded (True at once
@@ -78,10 +102,14 @@ class CompileAhead:
         return status == 0
 
     def stop(self) -> None:
-        """Stop the process if it is still running."""
+        """Stop the process if it is still running; remove the stage file."""
         if self.process is not None and self.process.poll() is None:
             self.process.kill()
             self.process.wait()
+        if self.stage is not None:
+            self.stage.unlink(missing_ok=True)
+            with contextlib.suppress(OSError):
+                self.stage.parent.rmdir()
 
     def __enter__(self) -> CompileAhead:
         return self
@@ -108,12 +136,45 @@ def compile_ahead() -> CompileAhead:
     path = os.environ.get("PYTHONPATH", "")
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (str(_PACKAGE_ROOT), path) if p)}
     try:
+        stage = Path(tempfile.mkdtemp(prefix="dcfpb-ahead-")) / "stage"
+    except OSError:
+        stage = None
+    if stage is not None:
+        env[STAGE_VARIABLE] = str(stage)
+    try:
         process = subprocess.Popen([sys.executable, "-m", "structures.compiled.ahead"], env=env,
                                    stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                    stderr=subprocess.DEVNULL)
     except OSError:
+        if stage is not None:
+            stage.parent.rmdir()
         return CompileAhead(None)
-    return CompileAhead(process)
+    return CompileAhead(process, stage)
+
+
+def write_stage(stage: Path, value: int) -> None:
+    """Write how far the caller's share has come (0 started, 1 the window's move, 2 the
+    trials: in the cache) to the file ``stage``, replacing it whole."""
+    partial = stage.with_name(stage.name + ".partial")
+    partial.write_text(str(value))
+    os.replace(partial, stage)
+
+
+def wait_for_stage(stage: Path | None, value: int, limit: float = STAGE_LIMIT) -> bool:
+    """In the second process: wait until the caller's share has reached ``value``; False at
+    once when no caller helps (no stage file: none started, or it failed), or after ``limit``
+    [s] (this process then compiles that share itself)."""
+    if stage is None:
+        return False
+    deadline = time.perf_counter() + limit
+    while time.perf_counter() < deadline:
+        try:
+            if int(stage.read_text() or "0") >= value:
+                return True
+        except (OSError, ValueError):
+            return False  # no stage file: nobody is helping
+        time.sleep(0.005)
+    return False
 
 
 if __name__ == "__main__":  # the second process
@@ -123,7 +184,10 @@ if __name__ == "__main__":  # the second process
 
     from structures.compiled.engine import warm_up, warm_up_late
 
-    warm_up_late()  # while the first process compiles the bearings' trials
+    STAGE = Path(os.environ[STAGE_VARIABLE]) if os.environ.get(STAGE_VARIABLE) else None
+    # while the first process compiles the window's move and the bearings' trials
+    warm_up_late(lambda: wait_for_stage(STAGE, 1))
+    wait_for_stage(STAGE, 2)
     warm_up()
     # the cache is written: skip the teardown the first process would otherwise wait for
     os._exit(0)

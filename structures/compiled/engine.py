@@ -9,6 +9,7 @@ the same run in the form :func:`structures.analysis.run` reads."""
 from __future__ import annotations
 
 import time as _time
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
@@ -249,53 +250,80 @@ def compile_engine() -> float:
     return warm_up()
 
 
-def _parts(late: bool) -> list:
-    """The engine's callees as (function, example arguments of the engine's types): the
-    bearings' trials (``late`` False) or everything else it calls (``late`` True)."""
+def _parts(stage: str) -> list:
+    """The engine's callees as (function, example arguments of the engine's types), by
+    ``stage``: ``"window"`` and ``"step"`` the plate functions the bearings' trials and their
+    commit both call (the window's move, the step's factors), ``"trials"`` the trials,
+    ``"linear"`` the Newton matrix's pieces and the plate field, ``"commit"`` the commit."""
     from isolator.compiled import plate
     from structures.compiled import lapack, linear
 
     heat = plate.new_plate_heating(1, 1, np.ones(1), np.zeros(1))
     states, rows, square = np.zeros((1, E.STATE_SIZE)), np.zeros((3, 1)), np.zeros((1, 1))
     parameters = np.zeros((1, E.PARAMETERS_SIZE))
-    if not late:
-        return [(E.set_trials, (0.0, np.zeros((1, E.MOTION_SIZE)), parameters, parameters,
-                                states, states, *heat))]
     pivots, vector = np.zeros(1, dtype=np.int32), np.zeros(1)
-    return [  # the commit last: the plate functions it shares with the trials are cached by then
-        (linear.woodbury, (square, rows, rows, 1, 1.0, 1.0, vector, vector, rows)),
-        (linear.effective_inverse, (1.0, square, square, square, 1.0, 1.0, 1.0, square,
-                                    square, square, pivots)),
-        (linear.add_block, (rows, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0)),
-        (linear.interpolate, (1.0, vector, vector)),
-        (lapack.solve, (square, vector, vector, square, pivots)),
-        (plate.field_temperatures, (np.zeros(1, dtype=np.int64), np.zeros(1, dtype=np.bool_),
-                                    1.0, 1.0, 1.0, heat.rates, heat.weights, heat.states[0],
-                                    heat.stamps[0], heat.accumulators[0], vector)),
-        (E.commit_trials, (parameters, states, states, *heat))]
+    window = heat.windows[0, plate.HELD]
+    return {
+        "step": [(plate.prepare_step, (1.0, 1.0, 1.0, heat.rates, heat.weights, heat.factors,
+                                       heat.decays, heat.slots, heat.table))],
+        "window": [
+            (plate.move_window, (0, 1, window, window, 0.0, heat.rates, heat.states[0],
+                                 heat.stamps[0], heat.accumulators[0], heat.offsets[0],
+                                 heat.cache_keys, heat.cache_values, heat.cache_state,
+                                 heat.marks[0], heat.pending[0]))],
+        "trials": [(E.set_trials, (0.0, np.zeros((1, E.MOTION_SIZE)), parameters, parameters,
+                                   states, states, *heat))],
+        "linear": [
+            (linear.woodbury, (square, rows, rows, 1, 1.0, 1.0, vector, vector, rows)),
+            (linear.effective_inverse, (1.0, square, square, square, 1.0, 1.0, 1.0, square,
+                                        square, square, pivots)),
+            (linear.add_block, (rows, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0)),
+            (linear.interpolate, (1.0, vector, vector)),
+            (lapack.solve, (square, vector, vector, square, pivots)),
+            (plate.field_temperatures, (np.zeros(1, dtype=np.int64),
+                                        np.zeros(1, dtype=np.bool_), 1.0, 1.0, 1.0, heat.rates,
+                                        heat.weights, heat.states[0], heat.stamps[0],
+                                        heat.accumulators[0], vector))],
+        "commit": [(E.commit_trials, (parameters, states, states, *heat))]}[stage]
 
 
-def _compile_parts(late: bool) -> float:
-    """Compile (or load) :func:`_parts` for the engine's argument types, without running
-    them; the time it took [s]."""
+def _compile_parts(*stages: str) -> float:
+    """Compile (or load) the :func:`_parts` of ``stages`` for the engine's argument types,
+    without running them; the time it took [s]."""
     start = _time.perf_counter()
-    for function, arguments in _parts(late):
-        if hasattr(function, "compile"):
-            function.compile(tuple(_typeof(argument) for argument in arguments))
+    for stage in stages:
+        for function, arguments in _parts(stage):
+            if hasattr(function, "compile"):
+                function.compile(tuple(_typeof(argument) for argument in arguments))
     return _time.perf_counter() - start
 
 
-def warm_up_early() -> float:
+def warm_up_early(shared_done: Callable[[], None] | None = None) -> float:
     """Compile (or load) the bearings' trials (:func:`isolator.compiled.element.set_trials`
-    and its callees) for the engine's argument types; the time [s]. See
-    :mod:`structures.compiled.ahead`."""
-    return _compile_parts(False)
+    and its callees) for the engine's argument types, the window's move that the commit shares
+    with them first (``shared_done()`` is called once it is in the cache); the time [s]. See
+    :mod:`structures.compiled.ahead`: the second process meanwhile compiles the step's factors
+    (:func:`warm_up_late`), which the trials call only later."""
+    start = _time.perf_counter()
+    _compile_parts("window")
+    if shared_done is not None:
+        shared_done()
+    _compile_parts("trials")
+    return _time.perf_counter() - start
 
 
-def warm_up_late() -> float:
-    """Compile (or load) the engine's callees other than the bearings' trials; the time [s].
-    See :func:`warm_up_early`."""
-    return _compile_parts(True)
+def warm_up_late(before_commit: Callable[[], None] | None = None) -> float:
+    """Compile (or load) the engine's callees other than the bearings' trials, the step's
+    factors first; the time [s]. ``before_commit()`` is called before the commit
+    (:func:`isolator.compiled.element.commit_trials`), whose window's move
+    :func:`warm_up_early` compiles first: a second process waits there for it to be in the
+    cache rather than compile it too."""
+    start = _time.perf_counter()
+    _compile_parts("step", "linear")
+    if before_commit is not None:
+        before_commit()
+    _compile_parts("commit")
+    return _time.perf_counter() - start
 
 
 def _typeof(value):
