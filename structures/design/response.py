@@ -704,7 +704,7 @@ def _checks(result: ELFResult, peaks: Any, averages: Any, envelope: dict[str, di
             f"D_TM of the response history (largest bearing resultant, average over pairs) "
             f"not less than {limit('rha_D_TM_min'):.0%} of the ELF's D_TM ({d}, "
             f"{elf_bound} bound); below it the design takes the floor",
-            demand, limit("rha_D_TM_min") * value, "m", "min", bound, position))
+            demand, limit("rha_D_TM_min") * value, "m", "floor", bound, position))
     V_b, elf_bound = result.governing("V_b")
     V_s, s_bound = result.governing("V_s")
     key = "rha_V_s_min_regular" if regular else "rha_V_s_min_irregular"
@@ -715,7 +715,7 @@ def _checks(result: ELFResult, peaks: Any, averages: Any, envelope: dict[str, di
             f"V_b of the response history ({d}, average over pairs) not less than "
             f"{limit('rha_V_b_min'):.0%} of the ELF's V_b ({elf_bound} bound); below it the "
             "design forces are scaled up to it",
-            demand, limit("rha_V_b_min") * V_b, "N", "min", bound, position))
+            demand, limit("rha_V_b_min") * V_b, "N", "floor", bound, position))
         demand, bound, position = env(f"storey_shear_{d}")
         checks.append(Check(
             f"rh_V_s_vs_elf_{d}", LIMITS[key].clause,
@@ -723,7 +723,7 @@ def _checks(result: ELFResult, peaks: Any, averages: Any, envelope: dict[str, di
             f"average over pairs) not less than {limit(key):.0%} of the ELF's V_s "
             f"({s_bound} bound; {'regular' if regular else 'irregular'} superstructure); "
             "below it the design forces are scaled up to it",
-            demand / result.R_I, limit(key) * V_s, "N", "min", bound, position))
+            demand / result.R_I, limit(key) * V_s, "N", "floor", bound, position))
     for d in directions:
         demand, bound, position = env(f"max_drift_ratio_{d}")
         if not math.isnan(demand):

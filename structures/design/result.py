@@ -57,8 +57,11 @@ class Check:
         The value found and the value allowed, in ``unit``.
     unit : str
         Unit of demand and limit.
-    kind : {"max", "min"}
-        ``"max"``: the demand must not exceed the limit; ``"min"``: must not fall below it.
+    kind : {"max", "min", "floor"}
+        ``"max"``: the demand must not exceed the limit; ``"min"``: must not fall below it;
+        ``"floor"``: the limit is a lower bound on the design value, not a pass/fail test
+        (17.6.4.3: response-history results below the floors of 17.6.4.1-2 are scaled up to
+        them), so it always passes and says which governs.
     bound, position : str
         Where the governing demand was found (``""`` where it does not apply).
     """
@@ -75,23 +78,46 @@ class Check:
 
     @property
     def passed(self) -> bool:
-        """The demand within the limit."""
+        """The demand within the limit (a floor always passes: it sets the design value)."""
+        if self.kind == "floor":
+            return True
         return self.demand <= self.limit if self.kind == "max" else self.demand >= self.limit
 
     @property
     def margin(self) -> float:
-        """Relative margin [-]: positive passes, e.g. 0.12 = 12 % to spare."""
+        """Relative margin [-]: positive passes, e.g. 0.12 = 12 % to spare; for a floor, how far
+        the demand lies above it (negative: the floor governs)."""
         if self.limit == 0:
             return math.inf if self.passed else -math.inf
         sign = 1.0 if self.kind == "max" else -1.0
         return sign * (self.limit - self.demand) / abs(self.limit)
+
+    @property
+    def floor_governs(self) -> bool:
+        """A floor above the demand: the design takes the floor."""
+        return self.kind == "floor" and self.demand < self.limit
+
+    @property
+    def design_value(self) -> float:
+        """For a floor, the value the design uses, max(demand, limit); else the demand."""
+        return max(self.demand, self.limit) if self.kind == "floor" else self.demand
+
+    @property
+    def scale_up(self) -> float:
+        """For a floor, the factor the response-history results are scaled up by (17.6.4.3),
+        at least 1 [-]; 1 for other checks."""
+        if not self.floor_governs:
+            return 1.0
+        return self.limit / self.demand if self.demand > 0 else math.inf
 
     def to_dict(self) -> dict[str, Any]:
         """For JSON."""
         return {"key": self.key, "clause": self.clause, "description": self.description,
                 "demand": _json(self.demand), "limit": _json(self.limit), "unit": self.unit,
                 "kind": self.kind, "bound": self.bound, "position": self.position,
-                "passed": self.passed, "margin": _json(self.margin)}
+                "passed": self.passed, "margin": _json(self.margin),
+                "floor_governs": self.floor_governs, "design_value": _json(self.design_value),
+                "scale_up": _json(self.scale_up)}
 
 
 @dataclass(frozen=True)

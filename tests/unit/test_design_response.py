@@ -358,8 +358,12 @@ def test_checks_pass_and_fail_with_their_margins(config):
     assert d_tm_x.passed
     v_b = checks["rh_V_b_vs_elf_x"]  # average 1.0 V_b(upper) against 0.9 V_b
     assert v_b.margin == pytest.approx(1.0 / 0.9 - 1.0) and v_b.passed
-    assert not checks["rh_V_b_vs_elf_y"].passed  # 0.5 V_b
-    assert checks["rh_V_b_vs_elf_y"].margin == pytest.approx(0.5 / 0.9 - 1.0)
+    assert not v_b.floor_governs and v_b.scale_up == 1.0 and v_b.design_value == v_b.demand
+    v_b_y = checks["rh_V_b_vs_elf_y"]  # 0.5 V_b: the floor governs, results scaled up (17.6.4.3)
+    assert v_b_y.passed and v_b_y.floor_governs and v_b_y.kind == "floor"
+    assert v_b_y.margin == pytest.approx(0.5 / 0.9 - 1.0)
+    assert v_b_y.scale_up == pytest.approx(0.9 / 0.5)
+    assert v_b_y.design_value == pytest.approx(0.9 * result.upper.V_b)
     v_s = checks["rh_V_s_vs_elf_x"]  # 2 V_s / R_I against 0.8 V_s
     assert v_s.demand == pytest.approx(2.0 * result.upper.V_s / result.R_I)
     drift_x, drift_y = checks["rh_drift_ratio_x"], checks["rh_drift_ratio_y"]
