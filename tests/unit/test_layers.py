@@ -21,6 +21,7 @@ PACKAGES = ("dcfpb", "groundmotions", "isolator", "structures")
 
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("dcfpb.cli",),
+    ("dcfpb.report",),
     ("dcfpb.plotting",),
     ("structures.suites", "structures.diagnosis", "structures.design"),
     ("structures.opensees",),
