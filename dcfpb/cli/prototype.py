@@ -166,6 +166,14 @@ def _run(args: argparse.Namespace) -> int:
         check_real(args.dt, "--dt", _COMMAND, low=0.0, high=1.0, low_open=True)
     config = load_config(args.building)
     inputs = _design_inputs(args, config)
+    capacity = float(config.bearing(args.model).displacement_capacity)
+    if inputs["D_TM"] > capacity:
+        how = ("--displacements" if inputs["source"] == "given" else
+               f"the {inputs['source']} (--site, --lambda or the file's [design])")
+        raise InputError(f"D_TM = {inputs['D_TM']:.4g} m from {how} is beyond the bearing's "
+                         f"displacement capacity {capacity:g} m: the bearing cannot be tested "
+                         "to it. Give a larger displacement_capacity in the building file, or "
+                         "--displacements D_M,D_TM and --period T_M.")
     result = prototype_test(config, inputs["D_M"], inputs["D_TM"], inputs["T_M"],
                             model=args.model, dt=args.dt, S_M1=inputs["S_M1"],
                             S_MS=inputs["S_MS"], B_M=inputs["B_M"],

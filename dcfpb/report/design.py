@@ -135,7 +135,9 @@ def _with_unit(name: str, unit: str) -> str:
 
 def _percent(value: float) -> str:
     if value is None or not math.isfinite(value):
-        return "-" if value is None or math.isnan(value) else ("+inf" if value > 0 else "-inf")
+        if value is None or math.isnan(value):
+            return "-"
+        return "+inf (limit 0)" if value > 0 else "-inf (limit 0)"
     shown = round(100.0 * value, 1)
     return "0.0 %" if shown == 0 else f"{shown:+.1f} %"
 
@@ -424,7 +426,7 @@ body { font-family: system-ui, -apple-system, "Segoe UI", sans-serif; margin: 2e
 h1 { font-size: 1.6em; border-bottom: 2px solid #444; }
 h2 { font-size: 1.3em; border-bottom: 1px solid #bbb; margin-top: 2em; }
 table { border-collapse: collapse; margin: 0.5em 0 0.3em 0; font-size: 0.88em; }
-caption { text-align: left; font-weight: bold; padding: 0.3em 0; }
+h3.table-title { font-size: 0.95em; margin: 1.2em 0 0.2em 0; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.55em; vertical-align: top; }
 th { background: #f0f0f0; text-align: left; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
@@ -463,7 +465,7 @@ def _is_number(text: str) -> bool:
     try:
         float(str(text).replace(" %", "").replace("+", ""))
     except ValueError:
-        return str(text) in ("-", "inf", "-inf", "+inf")
+        return str(text) in ("+inf (limit 0)", "-inf (limit 0)")
     return True
 
 
@@ -497,9 +499,9 @@ def render_html(blocks: Sequence[Block], title: str) -> str:
                         cells.append(f"<td>{_inline(cell)}</td>")
                 rows.append("<tr>" + "".join(cells) + "</tr>")
             head = "".join(f"<th>{html.escape(h)}</th>" for h in block.header)
-            body.append(f'<div class="scroll"><table><caption>{html.escape(block.title)}'
-                        f"</caption><thead><tr>{head}</tr></thead><tbody>{''.join(rows)}"
-                        "</tbody></table></div>")
+            body.append(f'<h3 class="table-title">{html.escape(block.title)}</h3>')
+            body.append(f'<div class="scroll"><table><thead><tr>{head}</tr></thead><tbody>'
+                        f"{''.join(rows)}</tbody></table></div>")
             if block.note:
                 body.append(f'<p class="note">{_inline(block.note)}</p>')
         elif block.kind == "figure":
