@@ -64,12 +64,12 @@ window.addEventListener("load", function () {
              tables: document.querySelectorAll("table").length,
              images: images, anchors: anchors};
   var pre = document.createElement("pre");
-  pre.id = "%s";
+  pre.id = "MARK";
   pre.textContent = JSON.stringify(out);
   document.body.appendChild(pre);
 });
 </script>
-""" % _MARK
+""".replace("MARK", _MARK)
 
 
 class _Links(HTMLParser):

@@ -42,7 +42,7 @@ def test_csv_json_and_the_figure(tmp_path, capsys):
         rows = list(csv.reader(handle))
     assert rows[0][:6] == ["block", "cycle", "D [m]", "EDC [J]", "Q_d [N]", "mu [-]"]
     assert len(rows) == 1 + 4 * 3 + 3 + 10
-    d, edc, q_d, mu = (float(x) for x in rows[1][2:6])
+    d, edc, q_d = (float(x) for x in rows[1][2:5])
     assert q_d == pytest.approx(edc / (4 * d))
     figure = tmp_path / "plots" / "prototype_hysteresis.png"
     assert figure.read_bytes()[:4] == b"\x89PNG"
