@@ -312,3 +312,111 @@ def peaks(result) -> dict[str, Any]:
         "failed_at": float(failed_at) if failed and failed_at is not None else None,
         "failure": str(result.attrs.get("failure", "error" if failed else "")),
     } | _uplift_peaks(result)
+
+
+SLIDING_SPEED = 0.01
+"""Speed of a bearing [m/s] above which it counts as sliding for the friction coefficient's
+range of :func:`design_peaks` (a package convention, not from a standard: below it the slider
+is at a reversal or at rest, where mu of the velocity-dependent models drops toward its static
+value and says nothing of the range seen while sliding)."""
+
+
+DESIGN_PEAKS = (
+    "isolator_displacement", "centre_displacement", "corner_displacement",
+    "corner_centre_ratio", "isolator_displacement_x", "isolator_displacement_y",
+    "base_shear_x", "base_shear_y", "storey_shear_x", "storey_shear_y", "max_drift_ratio_x",
+    "max_drift_ratio_y", "roof_acceleration_x", "roof_acceleration_y", "axial_load_max",
+    "axial_load_min", "max_temperature", "mu_min", "mu_max")
+"""The keys of :func:`design_peaks` besides the per-storey drift ratios (those of
+:data:`structures.design.result.PEAK_UNITS`)."""
+
+
+def design_peaks(result, storey_heights: Any = None) -> dict[str, Any]:
+    """The peaks a design analysis checks (ASCE 7-16 Chapter 17,
+    :mod:`structures.design`), of a run in plan or in one direction [SI units].
+
+    Parameters
+    ----------
+    result : xarray.Dataset
+        A run's result (:func:`run`).
+    storey_heights : float or array_like, optional
+        Storey heights [m], one for all or one per storey: the drift ratios need them (without
+        them those keys are NaN).
+
+    Returns
+    -------
+    dict
+        ``isolator_displacement`` (the largest resultant of any bearing), ``centre_displacement``
+        (the base slab's resultant at the reference point), ``corner_displacement`` (the
+        largest resultant of the bearing farthest from the reference point; of several as
+        far, the one that moved most), ``corner_centre_ratio``,
+        ``isolator_displacement_x``/``_y`` (the largest |u_x|, |u_y| of any bearing),
+        ``base_shear_x``/``_y`` (through the isolation level), ``storey_shear_x``/``_y`` (the
+        first storey), ``max_drift_ratio_x``/``_y`` and ``drift_ratio_x_k``/``drift_ratio_y_k``
+        per storey k = 1..n (storey drift at the reference point / storey height),
+        ``roof_acceleration_x``/``_y`` (absolute), ``axial_load_max`` and ``axial_load_min``
+        (one bearing's, over every bearing: <= 0 is uplift), ``max_temperature`` (contact),
+        ``mu_min`` and ``mu_max`` (the friction coefficient while sliding, faster than
+        :data:`SLIDING_SPEED` and loaded; NaN if never). A run in one direction has NaN for the
+        y keys. The time coordinate is the analysis step's; keys in
+        :data:`structures.design.result.PEAK_UNITS`.
+    """
+    check_dataset(result, "result", "design_peaks")
+    n = result.sizes["storey"]
+    two = result.sizes["direction"] == 2
+    u = result["bearing_displacement"].values
+    reach = _resultant(u).max(axis=0)
+    centre = _resultant(result["displacement"].isel(floor=0).values)
+    distance = np.hypot(result["bearing_x"].values, result["bearing_y"].values)
+    farthest = distance >= distance.max() * (1.0 - 1e-9)  # the corners (ties: the largest)
+    corner = int(np.flatnonzero(farthest)[np.argmax(reach[farthest])])
+    nan = float("nan")
+
+    def per(values: np.ndarray) -> tuple[float, float]:
+        peak = np.abs(values).max(axis=0) if values.size else np.full(2, np.nan)
+        return float(peak[0]), float(peak[1]) if two else nan
+
+    out: dict[str, Any] = {
+        "isolator_displacement": float(reach.max()),
+        "centre_displacement": float(centre.max()),
+        "corner_displacement": float(reach[corner]),
+    }
+    out["corner_centre_ratio"] = (out["corner_displacement"] / out["centre_displacement"]
+                                  if out["centre_displacement"] > 0 else nan)
+    peak_u = np.abs(u).max(axis=(0, 1))
+    out["isolator_displacement_x"] = float(peak_u[0])
+    out["isolator_displacement_y"] = float(peak_u[1]) if two else nan
+    out["base_shear_x"], out["base_shear_y"] = per(result["base_shear"].values)
+    out["storey_shear_x"], out["storey_shear_y"] = per(
+        result["storey_shear"].isel(storey=0).values)
+    drift = np.abs(result["storey_drift"].values).max(axis=0)  # (storey, direction)
+    if storey_heights is None:
+        heights = np.full(n, np.nan)
+    else:
+        heights = np.broadcast_to(np.asarray(storey_heights, dtype=float).ravel(), (n,)) \
+            if np.size(storey_heights) == 1 else np.asarray(storey_heights, dtype=float)
+        if heights.shape != (n,):
+            raise InputError(f"The 'storey_heights' parameter of design_peaks must hold one "
+                             f"value or one per storey ({n}). Got {heights.size} instead.")
+    for d, name in enumerate(("x", "y")):
+        ratios = drift[:, d] / heights if (d == 0 or two) else np.full(n, np.nan)
+        out[f"max_drift_ratio_{name}"] = float(np.max(ratios))
+        for k in range(n):
+            out[f"drift_ratio_{name}_{k + 1}"] = float(ratios[k])
+    out["roof_acceleration_x"], out["roof_acceleration_y"] = per(
+        result["absolute_acceleration"].isel(floor=-1).values)
+    axial = result["axial_load"].values
+    out["axial_load_max"] = float(axial.max())
+    out["axial_load_min"] = float(axial.min())
+    out["max_temperature"] = float(result["temperature"].max())
+    dt = float(result.attrs["dt"])
+    mu = result["mu"].values
+    if u.shape[0] > 1:
+        speed = _resultant(np.diff(u, axis=0)) / dt  # (time - 1, bearing)
+        sliding = (speed > SLIDING_SPEED) & (axial[1:] > 0.0)
+        values = mu[1:][sliding]
+    else:
+        values = np.empty(0)
+    out["mu_min"] = float(values.min()) if values.size else nan
+    out["mu_max"] = float(values.max()) if values.size else nan
+    return out

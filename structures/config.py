@@ -33,7 +33,9 @@ MAX_FILE_BYTES = 10_000_000
 class BuildingConfig:
     """Everything a run needs besides the ground motion: the ``building`` (in plan for a file
     with a ``[plan]`` table), its bearings' number and geometry, their friction parameters, the
-    integrator and the analysis step ``dt`` [s] (None: the record's)."""
+    integrator and the analysis step ``dt`` [s] (None: the record's); and the file's
+    ``[design]`` table as given (None without one: the property modification factors, site and
+    R of an ASCE 7-16 Chapter 17 design, read by :mod:`structures.design`)."""
 
     name: str
     building: ShearBuilding
@@ -42,6 +44,7 @@ class BuildingConfig:
     friction: dict[str, Any]
     integrator: Newmark | HHT
     dt: float | None
+    design: dict[str, Any] | None = None
 
     @property
     def plan(self) -> Plan | None:
@@ -132,7 +135,8 @@ def _build(tables: dict[str, dict], path: Path) -> BuildingConfig:
     hht = analysis.get("integrator", "newmark") == "hht"
     integrator = HHT(alpha=analysis.get("alpha", -0.05)) if hht else Newmark()
     config = BuildingConfig(tables[""].get("name", path.stem), building, count, bearing,
-                            friction, integrator, analysis.get("dt"))
+                            friction, integrator, analysis.get("dt"),
+                            dict(tables["design"]) or None)
     for model in MODELS:  # every model the file may run (--model, suites), checked now
         config.bearing(model)
     return config

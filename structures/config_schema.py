@@ -169,6 +169,18 @@ class Choice:
 
 
 @dataclass(frozen=True)
+class Boolean:
+    """true or false."""
+
+    allowed: str = "true or false"
+
+    def check(self, value: object, where: Where) -> Any:
+        if not isinstance(value, bool):
+            raise where.error(self.allowed, value)
+        return value
+
+
+@dataclass(frozen=True)
 class Text:
     """Any string."""
 
@@ -238,7 +250,8 @@ _TABLE = "a table"
 
 SCHEMA: dict[str, dict[str, Any]] = {
     "": {"name": Text(), "building": _TABLE, "bearing": _TABLE, "friction": _TABLE,
-         "analysis": _TABLE, "plan": _TABLE},  # [plan]: PLAN_SCHEMA below
+         "analysis": _TABLE, "plan": _TABLE,  # [plan]: PLAN_SCHEMA below
+         "design": _TABLE},
     "building": {
         "floor_masses": Array(_MASS, what="kg, first floor up"),
         "storey_stiffnesses": Array(Number(low=0.0, low_open=True, high=1e15),
@@ -270,6 +283,24 @@ SCHEMA: dict[str, dict[str, Any]] = {
         "mu0": Number(low=0.0, low_open=True, high=1.0),
         "design_velocity": Number(low=0.0, high=100.0),
         "initial_temperature": Number(low=-273.15, high=1000.0),
+    },
+    "design": {  # ASCE 7-16 Chapter 17 (structures.design): lambda as overall or as parts
+        "lambda_max": Number(low=1.0, high=10.0),
+        "lambda_min": Number(low=0.0, low_open=True, high=1.0),
+        "ae_max": Number(low=1.0, high=10.0),
+        "ae_min": Number(low=0.0, low_open=True, high=1.0),
+        "test_max": Number(low=1.0, high=10.0),
+        "test_min": Number(low=0.0, low_open=True, high=1.0),
+        "spec_max": Number(low=1.0, high=10.0),
+        "spec_min": Number(low=0.0, low_open=True, high=1.0),
+        "test_includes_heating": Boolean(),
+        "test_heating_max": Number(low=1.0, high=10.0),
+        "test_heating_min": Number(low=0.0, low_open=True, high=1.0),
+        "S_MS": Number(low=0.0, low_open=True, high=5.0),
+        "S_M1": Number(low=0.0, low_open=True, high=5.0),
+        "T_L": Number(low=0.0, low_open=True, high=100.0),
+        "R": Number(low=0.0, low_open=True, high=10.0),
+        "I_e": Number(low=1.0, high=1.5),
     },
     "analysis": {
         "integrator": Choice(INTEGRATORS),
@@ -357,10 +388,32 @@ def _building(b: dict[str, Any], path: Path) -> None:
                               f"kind = \"modal\". Got {_values(len(ratio))} instead.")
 
 
+LAMBDA_PARTS = ("ae_max", "ae_min", "test_max", "test_min", "spec_max", "spec_min")
+"""The ``[design]`` keys of lambda given by its parts (ASCE 7-16 Eq. 17.2-1, 17.2-2)."""
+
+
+def _design(table: dict[str, Any], path: Path) -> None:
+    """The ``[design]`` keys that depend on each other: lambda_max with lambda_min and not
+    with the parts, S_MS with S_M1, T_L only with them."""
+    for first, second in (("lambda_max", "lambda_min"), ("S_MS", "S_M1")):
+        if (first in table) != (second in table):
+            given, missing = (first, second) if first in table else (second, first)
+            raise ConfigError(f"{Where(path, 'design', missing)} must be given with "
+                              f"{given!r}.")
+    parts = [key for key in LAMBDA_PARTS if key in table]
+    if "lambda_max" in table and parts:
+        raise ConfigError(f"{Where(path, 'design', parts[0])} cannot be given with 'lambda_max' "
+                          "and 'lambda_min': give lambda as overall values or as its parts "
+                          "(ae_*, test_*, spec_*), not both.")
+    if "T_L" in table and "S_MS" not in table:
+        raise ConfigError(f"{Where(path, 'design', 'T_L')} needs 'S_MS' and 'S_M1'.")
+
+
 def check_tables(raw: dict[str, Any], path: Path) -> dict[str, dict[str, Any]]:
     """Check a building file's table against :data:`SCHEMA` and the rules between its keys;
     return ``{section: table}`` for ``""``, ``"building"``, ``"building.damping"``,
-    ``"bearing"``, ``"friction"`` and ``"analysis"`` (absent ones empty), values as given.
+    ``"bearing"``, ``"friction"``, ``"analysis"`` and ``"design"`` (absent ones empty), values
+    as given.
 
     Raises
     ------
@@ -375,9 +428,11 @@ def check_tables(raw: dict[str, Any], path: Path) -> dict[str, dict[str, Any]]:
         use.
     """
     tables = {"": _section({"": raw}, "", path)}
-    for section in ("building", "building.damping", "bearing", "friction", "analysis"):
+    for section in ("building", "building.damping", "bearing", "friction", "analysis",
+                    "design"):
         parent = tables[section.rpartition(".")[0]]
         tables[section] = _section(parent, section, path)
+    _design(tables["design"], path)
     _building(tables["building"], path)
     for key in ("effective_radius", "slider_diameter"):
         if key not in tables["bearing"]:
@@ -447,6 +502,9 @@ PLAN_SCHEMA: dict[str, Any] = {
     "storey_heights": Either((Number(low=0.0, low_open=True, high=1000.0),
                               Array(Number(low=0.0, low_open=True, high=1000.0),
                                     what="m, first storey up"))),
+    "load_eccentricity": Pairs(_COORDINATE, "m, the centre the bearings' gravity loads are "
+                               "shared from: one pair for every level or one per level, base "
+                               "slab first"),
 }
 """Key of ``[plan]`` -> what its value must be."""
 
@@ -492,6 +550,11 @@ def check_plan(raw: dict[str, Any], n_storeys: int, bearing: dict[str, Any],
         raise ConfigError(f"{Where(path, 'plan', 'eccentricity')} must be one [e_x, e_y] pair "
                           f"or one per floor ({n_storeys}). Got {len(eccentricity)} pairs "
                           "instead.")
+    loads = table.get("load_eccentricity", [0.0, 0.0])
+    if isinstance(loads[0], list) and len(loads) != n_storeys + 1:
+        raise ConfigError(f"{Where(path, 'plan', 'load_eccentricity')} must be one [x, y] pair "
+                          f"or one per level, base slab first ({n_storeys + 1}). Got "
+                          f"{len(loads)} pairs instead.")
     _plan_geometry(table, path)
     count = len(table["bearing_coordinates"])
     if "count" in bearing and bearing["count"] != count:

@@ -4,11 +4,14 @@ Coordinates x, y [m] are taken from the reference point ``O``, the centre of sti
 storey (all on one vertical line): the bearings stand at ``(x_i, y_i)``, each floor's centre of
 mass at its eccentricity ``(e_x, e_y)`` (the base slab's at ``base_eccentricity``). The rigid
 base on equally stiff bearings shares a vertical resultant and its moments linearly over them
-(:func:`axial_distribution`); the weight's shares are :func:`gravity_shares`.
+(:func:`axial_distribution`); the weight's shares are :func:`gravity_shares`, from the centres of
+mass, or from ``load_eccentricity`` where the masses are moved without their loads (the
+accidental mass eccentricity of a design analysis, :meth:`Plan.shifted`).
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -128,6 +131,14 @@ class Plan:
     storey_heights : float or array_like, optional
         Storey heights, one for all or one per storey [m], in (0, 1000]: the lever arms of the
         overturning (required when it is modelled).
+    load_eccentricity : array_like, optional
+        The centres ``(x, y)`` [m] the bearings' gravity loads are shared from, when they are
+        not those of the masses: one pair for every level, shape (2,), or one per level, base
+        slab first, shape (n+1, 2). None (default): the loads follow the masses (a real
+        offset). Given, the masses sit at ``eccentricity`` and ``base_eccentricity`` (their
+        inertia and torsion) while the loads stay where this says: the accidental mass
+        eccentricity of ASCE 7-16 17.6.2 as a design moves the mass, not the building's weight
+        on its bearings (:meth:`shifted`).
 
     Raises
     ------
@@ -144,6 +155,7 @@ class Plan:
     storey_stiffnesses_y: np.ndarray | None = None
     torsional_stiffnesses: np.ndarray | None = None
     storey_heights: float | np.ndarray | None = None
+    load_eccentricity: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         fields: dict[str, object] = {
@@ -164,6 +176,10 @@ class Plan:
                            ("torsional_stiffnesses", 1e20), ("storey_heights", 1000.0)):
             if getattr(self, name) is not None:
                 fields[name] = _positive(getattr(self, name), name, high)
+        if self.load_eccentricity is not None:
+            load = np.asarray(self.load_eccentricity, dtype=float)
+            fields["load_eccentricity"] = _pairs(load.reshape(1, 2) if load.shape == (2,)
+                                                 else load, "load_eccentricity")
         if self.base_inertia is not None:
             fields["base_inertia"] = check_real(self.base_inertia, "base_inertia", _OWNER,
                                                 low=0.0, low_open=True, high=1e16)
@@ -199,6 +215,37 @@ class Plan:
                              f"pair or one per floor ({n}). Got {self.eccentricity.shape[0]} "
                              "pairs instead.")
         return self.eccentricity
+
+    def load_centres(self, n: int) -> np.ndarray | None:
+        """The centres the gravity loads of the base slab and the ``n`` floors are shared from,
+        (n+1, 2) [m], or None where the loads follow the masses."""
+        if self.load_eccentricity is None:
+            return None
+        if self.load_eccentricity.shape[0] == 1:
+            return np.repeat(self.load_eccentricity, n + 1, axis=0)
+        if self.load_eccentricity.shape[0] != n + 1:
+            raise InputError(f"The 'load_eccentricity' parameter of {_OWNER} must be one (x, y) "
+                             f"pair or one per level, base slab first ({n + 1}). Got "
+                             f"{self.load_eccentricity.shape[0]} pairs instead.")
+        return self.load_eccentricity
+
+    def shifted(self, offset: tuple[float, float], n: int, *, hold_loads: bool = True) -> Plan:
+        """The plan with the centre of mass of every level (base slab and the ``n`` floors)
+        moved by ``offset`` (dx, dy) [m]: with ``hold_loads`` the bearings' gravity loads stay
+        shared from the centres before the move (``load_eccentricity``; those already held are
+        kept), else they follow the masses."""
+        dx, dy = (check_real(v, "offset", f"{_OWNER}.shifted", low=-_LARGEST, high=_LARGEST)
+                  for v in offset)
+        move = np.array([dx, dy])
+        floors = self.floor_eccentricities(n) + move
+        loads = None
+        if hold_loads:
+            held = self.load_centres(n)
+            loads = (np.vstack([self.base_eccentricity, self.floor_eccentricities(n)])
+                     if held is None else held)
+        return dataclasses.replace(self, eccentricity=floors,
+                                   base_eccentricity=self.base_eccentricity + move,
+                                   load_eccentricity=loads)
 
     def inertias(self, floor_masses: np.ndarray, base_mass: float) -> tuple[np.ndarray, float]:
         """Mass moments of inertia about each centre of mass: floors (n,) and base [kg m^2]."""

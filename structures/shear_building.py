@@ -356,11 +356,13 @@ class ShearBuilding:
 
     @cached_property
     def gravity_shares(self) -> np.ndarray:
-        """Each bearing position's share of the weight, (n_b,) [N] (all of it in one direction)."""
+        """Each bearing position's share of the weight, (n_b,) [N] (all of it in one direction):
+        from the levels' centres of mass, or from the plan's ``load_eccentricity`` if given."""
         if self.plan is None:
             return _frozen(np.array([self.weight]))
+        loads = self.plan.load_centres(self.n_storeys)  # held where the masses moved
         return _frozen(gravity_shares(self.plan.bearing_coordinates, self.level_masses,
-                                      self.level_centres))
+                                      self.level_centres if loads is None else loads))
 
     @cached_property
     def axial_distribution(self) -> np.ndarray:

@@ -46,7 +46,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    "ASCE 7-16); --scales then multiplies those factors")
     p.add_argument("--period-range", metavar="TMIN,TMAX",
                    help="period range of the scaling [s] (default 0.75 and 1.25 times the "
-                   "isolated period 2 pi sqrt(R_eff / g))")
+                   "isolated period 2 pi sqrt(R_eff / g); with an asce7-mce: target and a "
+                   "building file whose [design] gives lambda, ASCE 7-16 17.3.3's 0.75 T_M of "
+                   "the upper bound to 1.25 T_M of the lower bound)")
     p.add_argument("--scales", default="1.0", metavar="S1,S2,...",
                    help="scale factors [-] (default 1.0)")
     p.add_argument("--models", default="precise,simplified,constant", metavar="M1,M2,...",
@@ -180,7 +182,24 @@ def target_hook(periods: np.ndarray, sa_g: np.ndarray, period_range: tuple[float
     return hook
 
 
-def _period_range(text: str | None, config) -> tuple[float, float]:
+def chapter17_range(target: str | None, config) -> tuple[float, float] | None:
+    """The period range of ASCE 7-16 17.3.3 [s], 0.75 T_M (upper bound) to 1.25 T_M (lower
+    bound), for an ``asce7-mce:S_DS,S_D1,T_L`` target (S_M1 = 1.5 S_D1) on a building file
+    whose ``[design]`` gives lambda; None otherwise (the target is not Chapter 17's, or the
+    file gives no lambda)."""
+    text = str(target or "")
+    if not text.lower().startswith("asce7-mce:") or not config.design:
+        return None
+    from structures.design.response import building_design, scaling_period_range
+
+    lambda_ = building_design(config)["lambda"]
+    if lambda_ is None:
+        return None
+    s_d1 = float(text.partition(":")[2].split(",")[1])  # read_target checked it
+    return scaling_period_range(config, 1.5 * s_d1, lambda_)
+
+
+def _period_range(text: str | None, config, target: str | None = None) -> tuple[float, float]:
     if text:
         values = _floats(text, "--period-range")
         if len(values) != 2:
@@ -191,6 +210,9 @@ def _period_range(text: str | None, config) -> tuple[float, float]:
             raise InputError(f"--period-range must be TMIN,TMAX with 0 < TMIN < TMAX. "
                              f"Got {text!r}.")
         return low, high
+    chapter17 = chapter17_range(target, config)
+    if chapter17 is not None:
+        return chapter17
     radius = config.bearing_geometry["effective_radius"]
     period = 2.0 * np.pi * np.sqrt(radius / STANDARD_GRAVITY)
     return 0.75 * period, 1.25 * period
@@ -206,7 +228,8 @@ def _check_period_range(period_range: tuple[float, float], periods: np.ndarray,
         return
     given = (f"--period-range {args.period_range}" if args.period_range else
              f"the default --period-range {low:.4g},{high:.4g} s (0.75 and 1.25 times the "
-             f"isolated period of the building file {args.building})")
+             f"isolated period, or T_M of the upper and lower bound, of the building file "
+             f"{args.building})")
     raise InputError(f"{given} is not within the periods of --target {args.target}, "
                      f"{first:g} to {last:g} s: extend the target spectrum to cover it, or "
                      "give a --period-range inside it.")
@@ -276,7 +299,7 @@ def _run(args: argparse.Namespace) -> int:
     target, period_range = None, None
     if args.target:
         target = read_target(args.target)
-        period_range = _period_range(args.period_range, config)
+        period_range = _period_range(args.period_range, config, args.target)
         _check_period_range(period_range, target[0], args)
     suite = _suite(args, config, None if target is None else target_hook(*target, period_range))
     with SuiteLock(args.out, wait=args.wait_lock):  # the plots and tables too

@@ -16,10 +16,17 @@ from typing import TYPE_CHECKING, Any
 
 from dcfpb.common.validation import check_choice, check_int, check_real
 from structures.config import BuildingConfig
-from structures.suites.runs import RunSpec, execute_run
+from structures.suites.runs import RunSpec, execute_run, failure_kind
 from structures.suites.store import RunStore, atomic_write
 from structures.suites.summary import summarize, write_summary
-from structures.suites.tasks import BATCH_SIZE, batches, client_for, compute_and_store, run_batch
+from structures.suites.tasks import (
+    BATCH_SIZE,
+    DESIGN_MARK,
+    batches,
+    client_for,
+    compute_and_store,
+    run_batch,
+)
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -58,23 +65,35 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
                  unreadable: Mapping[Any, str], config: BuildingConfig, store: RunStore, *,
                  n_workers: int | None, scheduler_address: str | None, write: str,
                  progress: bool, run_timeout: float | None, max_steps: int,
-                 ship: bool) -> tuple[dict[str, dict[str, Any]], int, int]:
+                 ship: bool, storage: str = "full", design: bool = False,
+                 keep_failed: Sequence[str] = (),
+                 ) -> tuple[dict[str, dict[str, Any]], int, int]:
     """Compute the runs not complete in ``store`` and store each as it finishes; return the row
     of every run by run id, and the numbers of runs computed now and complete from before.
 
     ``motions`` are those read here, by ``spec.motion`` (sent to the workers when ``ship``,
     else each task reads its own); ``unreadable`` the reason of each motion that could not be
-    read (its runs fail with it); the other keywords are those of ``run_suite``.
+    read (its runs fail with it); ``storage`` and ``design`` as
+    :func:`~structures.suites.runs.execute_run` takes them (a stored run that keeps less, or
+    lacks the design peaks asked, is computed again); a run whose last failure is of a kind
+    in ``keep_failed`` (:data:`~structures.suites.runs.FAILURE_KINDS`, e.g. ``"capacity"``, a
+    deterministic outcome of the model) keeps it instead of running again; the other keywords
+    are those of ``run_suite``.
     """
     from distributed import as_completed
     from tqdm import tqdm
 
     rows: dict[str, dict[str, Any]] = {}
     pending = []
+    mark = DESIGN_MARK if design else ()
     for spec in specs:
-        row = store.completed_row(spec.run_id)
+        row = store.completed_row(spec.run_id, storage, mark)
+        failed = store.failed_row(spec.run_id) if row is None and keep_failed else None
         if row is not None:
             rows[spec.run_id] = row
+        elif failed is not None and failure_kind(failed) in keep_failed and all(
+                key in failed for key in mark):
+            rows[spec.run_id] = failed
         elif spec.motion in unreadable:
             rows[spec.run_id] = store.save_failure(spec.failure(unreadable[spec.motion]))
         else:
@@ -92,9 +111,11 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
                           if needed else {})
                 token = uuid.uuid4().hex[:8]
                 task, extra = ((compute_and_store,
-                                (str(store.root.resolve()), run_timeout, max_steps))
+                                (str(store.root.resolve()), run_timeout, max_steps, storage,
+                                 design))
                                if write == "workers" else (execute_run,
-                                                           (run_timeout, max_steps)))
+                                                           (run_timeout, max_steps, storage,
+                                                            design)))
                 futures = {client.submit(run_batch, task, batch,
                                          shared.get(batch[0].motion), config,
                                          *extra, pure=False,
@@ -109,7 +130,7 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
                         outcomes = future.result()
                     except Exception as error:  # e.g. KilledWorker: a worker kept dying
                         reason = f"{type(error).__name__}: {error}"  # runs it saved are kept
-                        outcomes = [store.completed_row(spec.run_id)
+                        outcomes = [store.completed_row(spec.run_id, storage, mark)
                                     or store.save_failure(spec.failure(reason))
                                     for spec in batch]
                     future.release()
@@ -129,18 +150,21 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
 
 
 def finish(specs: Sequence[RunSpec], rows: dict[str, dict[str, Any]], store: RunStore,
-           computed: int, skipped: int, start: float, columns: Sequence[str]) -> SuiteResult:
+           computed: int, skipped: int, start: float, columns: Sequence[str],
+           extra_columns: Sequence[str] = ()) -> SuiteResult:
     """Write ``peaks.csv`` (``columns``), ``failures.json`` and the summary and return the
-    result; ``start`` is the invocation's ``time.perf_counter()`` [s]."""
+    result, its ``peaks`` with ``extra_columns`` after ``columns``; ``start`` is the
+    invocation's ``time.perf_counter()`` [s]."""
     import pandas as pd
 
     wall = time.perf_counter() - start
-    table = pd.DataFrame([rows[s.run_id] for s in specs], columns=list(columns))
+    full = pd.DataFrame([rows[s.run_id] for s in specs], columns=[*columns, *extra_columns])
+    table = full[list(columns)]
     failures = [{"run": r["run_id"], "reason": r["reason"]}
                 for r in table.to_dict("records") if r["status"] != "done"]
     atomic_write(store.root / "peaks.csv", table.to_csv(index=False).encode())
     atomic_write(store.root / "failures.json", json.dumps(failures, indent=1).encode())
     summary = summarize(table)
     write_summary(summary, store.root)
-    return SuiteResult(table, failures, wall, store.root, computed, skipped, summary,
+    return SuiteResult(full, failures, wall, store.root, computed, skipped, summary,
                        list(specs))

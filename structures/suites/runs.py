@@ -16,6 +16,8 @@ from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
 
+import numpy as np
+
 from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
 from structures.suites.sources import MOTION_COLUMNS, MotionSource
@@ -53,6 +55,11 @@ that kept dying)."""
 
 MODEL_COST = {"precise": 2.0, "simplified": 1.5, "constant": 1.0}
 """Relative cost of a time step per friction model (the order in which runs start)."""
+
+STORAGE = ("full", "float32", "peaks")
+"""What a run keeps of its result, from most to least (:func:`execute_run`): the Dataset as
+netCDF in float64 (``"full"``), the same with every float64 variable as float32 (half the bytes;
+the peaks are computed before the cast), or its peaks row only (no netCDF file)."""
 
 NETCDF_ENGINE = "scipy"
 """xarray engine of the result files: netCDF3 written to bytes in memory with scipy only."""
@@ -97,6 +104,8 @@ def fingerprint(config: BuildingConfig, in_plan: bool = False) -> str:
     if not in_plan:
         return digest
     plan = {f.name: getattr(config.plan, f.name) for f in dataclasses.fields(config.plan)}
+    if plan.get("load_eccentricity") is None:  # added later: absent, the ids stay as they were
+        plan.pop("load_eccentricity", None)
     return _hash({"building": digest,
                   "plan": {k: v.tolist() if hasattr(v, "tolist") else v
                            for k, v in plan.items()}}, 12)
@@ -174,8 +183,24 @@ class RunSpec:
         return int(length / step * MODEL_COST[self.model])
 
 
+def stored_enough(row: dict[str, Any], storage: str) -> bool:
+    """Whether a finished run's ``row`` keeps at least what ``storage`` asks
+    (:data:`STORAGE`: a float64 file serves every request, a float32 one ``"float32"`` and
+    ``"peaks"``, a row alone ``"peaks"``); rows written before storage was recorded are full."""
+    kept = row.get("storage") or "full"
+    return kept in STORAGE and STORAGE.index(kept) <= STORAGE.index(storage)
+
+
+def as_float32(result: Any) -> Any:
+    """The Dataset with its float64 data variables as float32 (coordinates kept)."""
+    return result.assign({name: result[name].astype(np.float32)
+                          for name, var in result.data_vars.items()
+                          if var.dtype == np.float64})
+
+
 def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
                 time_limit: float | None = None, max_steps: int = DEFAULT_MAX_STEPS,
+                storage: str = "full", design: bool = False,
                 ) -> tuple[dict[str, Any], bytes | None]:
     """Compute one run, the work of a Dask task: ``structures.run`` on the record (the building
     in one direction) or the pair (in plan), scaled, truncated, with the friction coefficient
@@ -194,6 +219,11 @@ def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
         ``"timeout after N s: ..."``.
     max_steps : int
         A run of more steps fails with the reason before anything is allocated.
+    storage : {"full", "float32", "peaks"}
+        What is kept of the result (:data:`STORAGE`); recorded in the row as ``storage``.
+    design : bool
+        Add the keys of :func:`structures.analysis.design_peaks` to the row (storey heights
+        from the plan's ``storey_heights``, if given).
 
     Returns
     -------
@@ -203,9 +233,10 @@ def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
         ``reason`` (any exception, or a run that stopped early, its peaks up to then kept), the
         ``failure`` kind and ``failed_at`` [s].
     data : bytes or None
-        The result as netCDF (:data:`NETCDF_ENGINE`); None for a failed run.
+        The result as netCDF (:data:`NETCDF_ENGINE`), empty with ``storage="peaks"``; None
+        for a failed run.
     """
-    from structures.analysis import peaks, run
+    from structures.analysis import design_peaks, peaks, run
 
     start = time.perf_counter()
     row = spec.row() | {"worker": f"{socket.gethostname()}:{os.getpid()}"}
@@ -227,7 +258,10 @@ def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
         result = run(building, bearing, motion, config.integrator,
                      n_bearings=None if in_plan else config.n_bearings, dt=step,
                      time_limit=time_limit, max_steps=max_steps)
-        row.update(peaks(result), dt=float(result.attrs["dt"]))
+        row.update(peaks(result), dt=float(result.attrs["dt"]), storage=storage)
+        if design:
+            plan = building.plan
+            row.update(design_peaks(result, None if plan is None else plan.storey_heights))
         if not result.attrs["success"]:
             row["task_time"] = time.perf_counter() - start
             failure = failure_kind({"failure": row["failure"]})
@@ -242,7 +276,12 @@ def execute_run(spec: RunSpec, motion: Any, config: BuildingConfig,
                             building_fingerprint=spec.settings)
         for name, value in spec.motion.columns().items():  # the run's own "record" kept
             result.attrs.setdefault(name, "" if value is None else value)
-        data = bytes(result.to_netcdf(engine=NETCDF_ENGINE))
+        if storage == "peaks":
+            data = b""
+        else:
+            if storage == "float32":
+                result = as_float32(result)
+            data = bytes(result.to_netcdf(engine=NETCDF_ENGINE))
     except Exception as error:  # any failure is this run's, reported, and the suite goes on
         row["task_time"] = time.perf_counter() - start
         return spec.failure(f"{type(error).__name__}: {error}", row), None

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from dcfpb.common.files import TEMPORARY_PATTERN, atomic_output
+from structures.suites.runs import stored_enough
 
 _TEMPORARY = TEMPORARY_PATTERN
 
@@ -85,11 +86,18 @@ class RunStore:
             return None
         return row if isinstance(row, dict) else None
 
-    def completed_row(self, run_id: str) -> dict[str, Any] | None:
-        """The row of a complete run, or None if the run must be computed (again)."""
+    def completed_row(self, run_id: str, storage: str = "full",
+                      keys: tuple[str, ...] = ()) -> dict[str, Any] | None:
+        """The row of a complete run, or None if the run must be computed (again): done, with
+        at least what ``storage`` asks kept (``structures.suites.runs.STORAGE``; a file of the
+        recorded size unless only the peaks are asked) and every key of ``keys``."""
         row = self._read(self.row_path(run_id))
         if row is None or row.get("run_id") != run_id or row.get("status") != "done":
             return None
+        if not stored_enough(row, storage) or any(key not in row for key in keys):
+            return None
+        if storage == "peaks" and not row.get("result_file"):
+            return row
         try:
             size = self.result_path(run_id).stat().st_size
         except OSError:
@@ -101,11 +109,16 @@ class RunStore:
         return self._read(self.failure_path(run_id))
 
     def save_done(self, row: dict[str, Any], data: bytes) -> dict[str, Any]:
-        """Store a finished run: the netCDF first, then its row; drop an older failure."""
+        """Store a finished run: the netCDF first (none for empty ``data``: peaks only), then
+        its row; drop an older failure."""
         run_id = row["run_id"]
         path = self.result_path(run_id)
-        atomic_write(path, data)
-        row = row | {"result_file": f"runs/{path.name}", "result_bytes": len(data)}
+        if data:
+            atomic_write(path, data)
+            row = row | {"result_file": f"runs/{path.name}", "result_bytes": len(data)}
+        else:  # peaks only: no file (an older one of this run removed)
+            path.unlink(missing_ok=True)
+            row = row | {"result_file": None, "result_bytes": 0}
         atomic_write(self.row_path(run_id), dumps(row))
         self.failure_path(run_id).unlink(missing_ok=True)
         self.log("done", run_id, worker=row.get("worker"))

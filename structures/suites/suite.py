@@ -34,7 +34,7 @@ from isolator.limits import DEFAULT_MAX_STEPS
 from structures.config import BuildingConfig
 from structures.suites.dispatch import SuiteResult, check_run_options, compute_runs, finish
 from structures.suites.lock import SuiteLock
-from structures.suites.runs import COLUMNS, RunSpec, fingerprint
+from structures.suites.runs import COLUMNS, FAILURE_KINDS, STORAGE, RunSpec, fingerprint
 from structures.suites.sources import MotionSource
 from structures.suites.store import RunStore
 
@@ -249,10 +249,23 @@ class Suite:
         return specs, motions, unreadable
 
 
+def design_columns(rows: Any) -> tuple[str, ...]:
+    """The keys of :func:`structures.analysis.design_peaks` in the first row that has them
+    (per-storey drift ratios included), in their order."""
+    from structures.analysis import DESIGN_PEAKS
+
+    for row in rows:
+        if "isolator_displacement" in row:
+            return tuple(k for k in row if k in DESIGN_PEAKS or k.startswith("drift_ratio_"))
+    return DESIGN_PEAKS
+
+
 def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None,
               scheduler_address: str | None = None, write: str = "workers",
               progress: bool = True, run_timeout: float | None = None, lock: bool = True,
-              wait_lock: float = 0.0, max_steps: int = DEFAULT_MAX_STEPS) -> SuiteResult:
+              wait_lock: float = 0.0, max_steps: int = DEFAULT_MAX_STEPS,
+              storage: str = "full", design_peaks: bool = False,
+              keep_failed: Sequence[str] = ()) -> SuiteResult:
     """Compute a suite into ``out_dir``, or finish one that was interrupted.
 
     Parameters
@@ -279,6 +292,16 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
         holds it), and how long to wait for a folder locked by another suite [s] (0: refuse).
     max_steps : int
         A run of more steps fails before anything is allocated (:mod:`isolator.limits`).
+    storage : {"full", "float32", "peaks"}
+        What each run keeps (:data:`structures.suites.runs.STORAGE`): its result as netCDF in
+        float64 (default) or float32, or its peaks row only.
+    design_peaks : bool
+        Add the keys of :func:`structures.analysis.design_peaks` to every run's row and, after
+        the suite's columns, to ``peaks`` (not to ``peaks.csv``).
+    keep_failed : sequence of str
+        Failure kinds (:data:`structures.suites.runs.FAILURE_KINDS`) a stored failed run keeps
+        instead of running again (default none: every failed run is retried), e.g.
+        ``("capacity",)``: past the bearings' capacity the same run fails the same way.
 
     Returns
     -------
@@ -294,6 +317,10 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
     check_instance(suite, "suite", "run_suite", Suite, "a Suite")
     check_path(out_dir, "out_dir", "run_suite")
     check_run_options(write, run_timeout, max_steps, "run_suite")
+    storage = check_choice(storage, "storage", "run_suite", STORAGE)
+    if not isinstance(design_peaks, bool):
+        raise InputTypeError(f"The 'design_peaks' parameter of run_suite must be True or "
+                             f"False. Got {design_peaks!r} instead.")
     with SuiteLock(out_dir, wait=wait_lock) if lock else nullcontext():
         start = time.perf_counter()
         store = RunStore(out_dir)
@@ -303,5 +330,11 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
         rows, computed, skipped = compute_runs(
             specs, motions, unreadable, suite.config, store, n_workers=n_workers,
             scheduler_address=scheduler_address, write=write, progress=progress,
-            run_timeout=run_timeout, max_steps=max_steps, ship=ship)
-        return finish(specs, rows, store, computed, skipped, start, COLUMNS[suite.kind])
+            run_timeout=run_timeout, max_steps=max_steps, ship=ship, storage=storage,
+            design=design_peaks, keep_failed=tuple(
+                check_choice(k, "keep_failed", "run_suite", FAILURE_KINDS)
+                for k in keep_failed))
+        return finish(specs, rows, store, computed, skipped, start, COLUMNS[suite.kind],
+                      extra_columns=tuple(
+                          k for k in design_columns(rows.values())
+                          if k not in COLUMNS[suite.kind]) if design_peaks else ())

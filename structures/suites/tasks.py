@@ -184,20 +184,26 @@ def _receive(sock: Any, size: int) -> bytes:
     return b"".join(chunks)
 
 
+DESIGN_MARK = ("isolator_displacement", "mu_max")
+"""Keys of :func:`structures.analysis.design_peaks` whose presence in a stored row shows that
+the row holds the design peaks (a row without them is computed again when they are asked)."""
+
 BATCH_SIZE = 6
 """Runs of one ground motion handed to a worker as one task (see :func:`run_batch`)."""
 
 
 def compute_and_store(spec: RunSpec, motion: Any, config: BuildingConfig,
                        out_dir: str, time_limit: float | None = None,
-                       max_steps: int = DEFAULT_MAX_STEPS) -> dict[str, Any]:
+                       max_steps: int = DEFAULT_MAX_STEPS, storage: str = "full",
+                       design: bool = False) -> dict[str, Any]:
     """The task of ``write="workers"``: compute a run and write its files where it ran, unless
-    it is complete in the folder already (a batch redone after a lost worker)."""
+    it is complete in the folder already (a batch redone after a lost worker); ``storage`` and
+    ``design`` as :func:`~structures.suites.runs.execute_run` takes them."""
     store = RunStore(out_dir)
-    row = store.completed_row(spec.run_id)
+    row = store.completed_row(spec.run_id, storage, DESIGN_MARK if design else ())
     if row is not None:
         return row
-    row, data = execute_run(spec, motion, config, time_limit, max_steps)
+    row, data = execute_run(spec, motion, config, time_limit, max_steps, storage, design)
     return store.save_failure(row) if data is None else store.save_done(row, data)
 
 

@@ -23,6 +23,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("dcfpb.cli",),
     ("dcfpb.report",),
     ("dcfpb.plotting",),
+    ("structures.design.response",),  # the response history of 17.6 runs suites
     ("structures.suites", "structures.diagnosis", "structures.design"),
     ("structures.opensees",),
     ("structures",),
