@@ -102,11 +102,13 @@ def plot_design_spectra(spectra: Any, path: str | Path, *, title: str = "") -> P
 
 
 def plot_design_displacements(peaks: Any, elf: Any, path: str | Path, *,
-                              column: str = "isolator_displacement", title: str = "") -> Path:
+                              column: str = "isolator_displacement",
+                              capacity: float | None = None, title: str = "") -> Path:
     """The isolator displacement of every run [mm] by pair, one panel per bound, a marker per
-    position of the centre of mass; the average of each position as a short line; the ELF's
-    D_M and largest D_TM of that bound as horizontal lines (``peaks``: the design's peaks
-    table; ``elf``: its :class:`~structures.design.elf.ELFResult`)."""
+    position of the centre of mass (ringed where the run stopped at the bearings' capacity);
+    the average over the pairs of each position as a line across; the ELF's D_M and largest
+    D_TM of that bound and the displacement ``capacity`` [m] as horizontal lines (``peaks``:
+    the design's peaks table; ``elf``: its :class:`~structures.design.elf.ELFResult`)."""
     import numpy as np
 
     plt = pyplot()
@@ -131,12 +133,20 @@ def plot_design_displacements(peaks: Any, elf: Any, path: str | Path, *,
             ax.plot(x, values, ls="none", marker=POSITION_MARKERS.get(position, "o"),
                     color=BOUND_COLOURS.get(bound, "k"), ms=6, alpha=0.85,
                     label=f"mass at {position}")
+            if "failure" in rows:
+                stopped = (rows["failure"] == "capacity").to_numpy()
+                if stopped.any():
+                    ax.plot(x[stopped], values[stopped], ls="none", marker="o", ms=11,
+                            mfc="none", mec="black", mew=1.0,
+                            label="stopped at capacity" if not any(
+                                h.get_label() == "stopped at capacity" for h in ax.lines)
+                            else None)
             if values.size:
                 mean = float(np.nanmean(values))
                 ax.plot([-0.5, len(pairs) - 0.5], [mean, mean], lw=0.8,
                         color=BOUND_COLOURS.get(bound, "k"),
                         ls=POSITION_STYLES.get(position, "-"), alpha=0.6,
-                        label="average over pairs" if k == 0 else None)
+                        label="average over pairs (style: position)" if k == 0 else None)
         result = elf.bounds[bound]
         d_tm = max(d.D_TM for d in result.directions.values())
         highest = max(highest, 1e3 * d_tm)
@@ -144,6 +154,10 @@ def plot_design_displacements(peaks: Any, elf: Any, path: str | Path, *,
                    label=f"ELF D_M = {1e3 * result.D_M:.0f} mm")
         ax.axhline(1e3 * d_tm, color="black", lw=1.6, ls="-",
                    label=f"ELF D_TM = {1e3 * d_tm:.0f} mm")
+        if capacity:
+            ax.axhline(1e3 * capacity, color="0.45", lw=2.2, ls="-", alpha=0.6,
+                       label=f"capacity {1e3 * capacity:.0f} mm")
+            highest = max(highest, 1e3 * capacity)
         ax.set_xticks(range(len(pairs)))
         ax.set_xticklabels(pairs, rotation=35, ha="right", fontsize=8)
         ax.set_xlim(-0.6, len(pairs) - 0.4)
@@ -151,7 +165,7 @@ def plot_design_displacements(peaks: Any, elf: Any, path: str | Path, *,
                      color=BOUND_COLOURS.get(bound, "k"))
         ax.grid(axis="y", alpha=0.3)
         ax.legend(loc="lower right", fontsize=7, ncol=2, framealpha=0.9)
-    axes[0][0].set_ylim(0.0, 1.08 * highest if highest > 0 else 1.0)
+    axes[0][0].set_ylim(0.0, 1.06 * highest if highest > 0 else 1.0)
     axes[0][0].set_ylabel("isolator displacement, largest bearing [mm]")
     return _save(plt, fig, path, title)
 
@@ -256,12 +270,15 @@ def plot_design_drifts(averages: Any, heights: Any, limit: float, path: str | Pa
     margins(fig, left=0.8, right=2.0, bottom=0.6, top=0.6 if title else 0.35, wspace=0.08)
     heights = np.asarray(heights, dtype=float)
     storeys = np.arange(1, heights.size + 1)
+    largest = 0.0
     for ax, direction in zip(axes[0], directions, strict=False):
         for _, row in averages.iterrows():
             columns = [f"drift_ratio_{direction}_{k}" for k in storeys]
             if not all(c in row for c in columns):
                 continue
             values = 100.0 * np.array([row[c] for c in columns], dtype=float)
+            if np.isfinite(values).any():
+                largest = max(largest, float(np.nanmax(values)))
             ax.plot(values, storeys, marker="o", ms=3, lw=1.2,
                     color=BOUND_COLOURS.get(row["bound"], "k"),
                     ls=POSITION_STYLES.get(row["position"], "-"),
@@ -269,13 +286,21 @@ def plot_design_drifts(averages: Any, heights: Any, limit: float, path: str | Pa
         if elf is not None:
             for bound, result in elf.bounds.items():
                 if direction in result.directions:
+                    largest = max(largest, 100.0 * float(
+                        np.max(result.directions[direction].drift_ratio)))
                     ax.plot(100.0 * np.asarray(result.directions[direction].drift_ratio),
                             storeys, color=BOUND_COLOURS.get(bound, "0.5"), alpha=0.45,
                             lw=0.9, ls=(0, (1, 1)), marker="s", ms=3,
                             label=f"ELF, {bound} bound (17.5.6)")
         ax.axvline(100.0 * limit, color="black", lw=1.8, ls="--",
                    label=f"limit {100.0 * limit:g} % (17.6.4.4)")
-        ax.set_xlim(left=0.0)
+    off_scale = largest > 0 and 100.0 * limit > 3.0 * largest
+    for ax in axes[0][:len(directions)]:
+        if off_scale:  # the limit far beyond the data: the profiles shown, the limit named
+            ax.set_xlim(0.0, 1.25 * largest)
+        else:
+            ax.set_xlim(left=0.0)
+    for ax, direction in zip(axes[0], directions, strict=False):
         ax.set_xlabel(f"storey drift ratio {direction} [%]")
         ax.set_title(f"direction {direction}", fontsize=10)
         ax.grid(alpha=0.3)
@@ -283,6 +308,10 @@ def plot_design_drifts(averages: Any, heights: Any, limit: float, path: str | Pa
     axes[0][0].set_yticks(storeys)
     handles, labels = axes[0][0].get_legend_handles_labels()
     seen = dict(zip(labels, handles, strict=True))
+    if off_scale:
+        name = f"limit {100.0 * limit:g} % (17.6.4.4)"
+        seen[f"{name}:\noff the scale, {100.0 * limit / largest:.0f} x the largest"] = \
+            seen.pop(name)
     fig.legend(seen.values(), seen.keys(), loc="center right", fontsize=7, frameon=False)
     return _save(plt, fig, path, title)
 

@@ -248,8 +248,9 @@ def _figures(result: Any, figures: dict[str, Path | None]) -> list[Block]:
         "average and the MCE_R target; the period range of 17.3.3 (0.75 T_M upper bound to "
         "1.25 T_M lower bound) shaded.",
         "displacements.png": "The isolator displacement of every run (the largest resultant "
-        "over the bearings) per pair, bound and position of the centre of mass, with the "
-        "ELF's D_M and D_TM of the bound.",
+        "over the bearings) per pair, bound and position of the centre of mass (ringed: the "
+        "run stopped at the bearings' displacement capacity), with the ELF's D_M and D_TM of "
+        "the bound and the capacity.",
         "orbit.png": "The orbit of the governing run's corner bearing coloured by its contact "
         "temperature, with its displacement capacity and the ELF's D_M and D_TM (lower bound).",
         "hysteresis.png": "The governing run's corner bearing: force against displacement "
@@ -280,6 +281,9 @@ def _figures(result: Any, figures: dict[str, Path | None]) -> list[Block]:
             f"scale factor {_fmt(attrs.get('scale'))}, property modifier "
             f"{_fmt(attrs.get('property_modifier'))}; ELF D_M = {elf.lower.D_M:.4g} m at the "
             f"lower bound."))
+        if not bool(attrs.get("success", True)):
+            blocks.append(_paragraph(f"The governing run stopped early: "
+                                     f"{attrs.get('message') or attrs.get('failure')}"))
     return blocks
 
 
@@ -550,6 +554,12 @@ def _write_text(path: Path, text: str) -> None:
         temporary.write_text(text, encoding="utf-8")
 
 
+def _capacity(run: Any) -> float | None:
+    """The bearings' displacement capacity [m] the governing run records, if any."""
+    value = None if run is None else run.attrs.get("displacement_capacity")
+    return None if value is None else float(value)
+
+
 def draw_figures(result: Any, folder: Path, *, processes: int = 1) -> dict[str, Path | None]:
     """Draw the figures of :data:`FIGURES` that the result has data for into ``folder``; the
     name of each to its path, None for one not drawn."""
@@ -573,7 +583,8 @@ def draw_figures(result: Any, folder: Path, *, processes: int = 1) -> dict[str, 
     d_tm = max(d.D_TM for d in elf.lower.directions.values())
     jobs = [
         ("spectra.png", lambda p: plot_design_spectra(result.spectra, p), 1.0),
-        ("displacements.png", lambda p: plot_design_displacements(result.peaks, elf, p), 1.0),
+        ("displacements.png", lambda p: plot_design_displacements(
+            result.peaks, elf, p, capacity=_capacity(run)), 1.0),
         ("drift_ratios.png", lambda p: plot_design_drifts(result.averages, heights,
                                                           limit("drift_rha"), p, elf=elf), 1.0),
     ]

@@ -63,6 +63,32 @@ def test_four_pairs_are_refused_naming_the_rule(tmp_path, capsys, calls):
     assert not (tmp_path / "out" / "report.md").exists()
 
 
+def test_four_pairs_are_refused_before_the_analysis_starts(tmp_path, capsys, monkeypatch):
+    """The real command (no stand-in): the count is checked before structures.design.design
+    is called, so nothing runs."""
+    import structures.design.response as response
+
+    def never(*args, **kwargs):
+        raise AssertionError("the analysis started")
+
+    monkeypatch.setattr(response, "_run_positions", never)
+    manifest = _manifest(tmp_path)
+    status = main(["design", str(BUILDING), "--pairs", str(manifest), *BASE,
+                   "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert status == 2
+    assert "ASCE/SEI 7-16 17.3.2 asks for at least 7 pairs" in err
+    assert "--synthetic" in err and "--allow-fewer" in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_allow_fewer_reaches_the_analysis(tmp_path, calls):
+    manifest = _manifest(tmp_path)
+    assert main(["design", str(BUILDING), "--pairs", str(manifest), *BASE, "--allow-fewer",
+                 "--out", str(tmp_path / "out")]) == 0
+    assert calls[0]["allow_fewer"] is True and len(calls[0]["pairs"]) == 4
+
+
 def test_a_complete_run_writes_the_report_and_exits_0_with_failed_checks(tmp_path, capsys,
                                                                          calls):
     from dcfpb.report.design import FIGURES, REPORT_FILES
