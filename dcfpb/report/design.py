@@ -199,18 +199,18 @@ def _notes(result: Any) -> list[Block]:
 
 
 def _checks(result: Any) -> list[Block]:
-    header = ("clause", "check", "key", "demand", "limit", "unit", "where", "result",
-              "margin")
+    header = ("clause", "check", "key", "demand", "limit", "unit", "bound, mass at",
+              "result", "margin")
     rows = []
     for c in result.checks:
         unit = _unit(c.unit)[0]
-        where = ", ".join(x for x in (f"{c.bound} bound" if c.bound else "",
-                                      f"mass at {c.position}" if c.position else "") if x)
-        relation = "at most" if c.kind == "max" else "at least"
-        rows.append((c.clause, f"{c.description} ({relation} the limit)", c.key,
-                     _fmt(float(c.demand), c.unit), _fmt(float(c.limit), c.unit), unit or "-",
-                     where or "-", "PASS" if c.passed else "FAIL", _percent(c.margin)))
-    note = ("margin: (limit - demand) / |limit| for an upper limit, (demand - limit) / |limit| "
+        where = ", ".join(x for x in (c.bound, c.position) if x)
+        relation = "≤" if c.kind == "max" else "≥"
+        rows.append((c.clause, c.description, c.key, _fmt(float(c.demand), c.unit),
+                     f"{relation} {_fmt(float(c.limit), c.unit)}", unit or "-", where or "-",
+                     "PASS" if c.passed else "FAIL", _percent(c.margin)))
+    note = ("limit: ≤ the demand may not exceed it, ≥ the demand may not fall below it. "
+            "margin: (limit - demand) / |limit| for an upper limit, (demand - limit) / |limit| "
             "for a lower one; positive passes. The key names the check in design.json.")
     return [_heading("Checks", "checks"),
             _table("Every check of the standard", header, rows, note, status=7)]
@@ -434,6 +434,7 @@ h3.table-title { font-size: 0.95em; margin: 1.2em 0 0.2em 0; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.55em; vertical-align: top; }
 th { background: #f0f0f0; text-align: left; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.short { white-space: nowrap; }
 tr:nth-child(even) td { background: #fafafa; }
 td.pass { color: #0a6b2b; font-weight: bold; background: #e6f4ea !important; }
 td.fail { color: #a50e0e; font-weight: bold; background: #fce8e6 !important; }
@@ -467,7 +468,7 @@ def _verdict(text: str) -> str:
 
 def _is_number(text: str) -> bool:
     try:
-        float(str(text).replace(" %", "").replace("+", ""))
+        float(str(text).replace(" %", "").replace("+", "").lstrip("≤≥ "))
     except ValueError:
         return str(text) in ("+inf (limit 0)", "-inf (limit 0)")
     return True
@@ -499,6 +500,8 @@ def render_html(blocks: Sequence[Block], title: str) -> str:
                         cells.append(f'<td class="{kind}">{html.escape(cell)}</td>')
                     elif _is_number(cell):
                         cells.append(f'<td class="num">{html.escape(cell)}</td>')
+                    elif len(cell) <= 14:
+                        cells.append(f'<td class="short">{_inline(cell)}</td>')
                     else:
                         cells.append(f"<td>{_inline(cell)}</td>")
                 rows.append("<tr>" + "".join(cells) + "</tr>")
