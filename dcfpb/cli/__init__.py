@@ -62,9 +62,9 @@ COMMAND_MODULES: tuple[str, ...] = (
     "dcfpb.cli.spectrum",
     "dcfpb.cli.suite",
     "dcfpb.cli.opensees",
-    "dcfpb.cli.diagnose",
     "dcfpb.cli.design",
     "dcfpb.cli.prototype",
+    "dcfpb.cli.diagnose",
 )
 """Modules with a ``register(subparsers)`` function adding further sub-commands."""
 
