@@ -294,9 +294,13 @@ def _elf(result: Any) -> list[Block]:
 
     rows = []
 
+    extra = {"lambda": "17.2.8.4", "mu": "17.2.8.4 (lambda mu nominal)",
+             "D_TM_over_D_M": "17.5.3.3 (not less than 1.15)", "drift_ratio": "17.5.6"}
+
     def row(label: str, key: str, a: Any, b: Any) -> None:
         unit = UNITS.get(key, "-")
-        rows.append((label, _unit(unit)[0], _fmt(a, unit), _fmt(b, unit), CLAUSES.get(key, "")))
+        rows.append((label, _unit(unit)[0], _fmt(a, unit), _fmt(b, unit),
+                     CLAUSES.get(key, extra.get(key, ""))))
 
     row("lambda", "lambda", up.lambda_, low.lambda_)
     row("mu", "mu", up.mu, low.mu)
@@ -313,7 +317,7 @@ def _elf(result: Any) -> list[Block]:
     for d in elf.directions:
         row(f"largest drift ratio ({d})", "drift_ratio", up.directions[d].max_drift_ratio,
             low.directions[d].max_drift_ratio)
-    blocks = [_heading("Equivalent lateral force procedure (17.5)", "elf"),
+    blocks = [_heading("The ELF procedure in detail (17.5)", "elf"),
               _table("ELF at the upper and lower bound", ("quantity", "unit", "upper", "lower",
                                                           "clause"), rows,
                      f"{elf.model} model, mu nominal {elf.mu_nominal:.4g}; W = "
