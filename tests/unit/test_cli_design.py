@@ -141,6 +141,22 @@ def test_a_failed_run_exits_1_after_the_report(tmp_path, capsys, monkeypatch):
     assert (tmp_path / "out" / "report.html").is_file()
 
 
+def test_runs_stopped_at_the_capacity_are_a_design_outcome(tmp_path, capsys, monkeypatch):
+    result = make_result()
+    result.peaks["failure"] = ""
+    result.peaks.loc[[0, 5], ["status", "failure"]] = ["failed", "capacity"]
+    monkeypatch.setattr(structures.design, "design", lambda *a, **k: result, raising=False)
+    manifest = _manifest(tmp_path, 7)
+    status = main(["design", str(BUILDING), "--pairs", str(manifest), *BASE,
+                   "--out", str(tmp_path / "out")])
+    assert status == 0
+    assert "2 of 56 runs stopped at the bearings' displacement capacity" in \
+        capsys.readouterr().out
+    result.peaks.loc[7, ["status", "failure"]] = ["failed", "timeout"]
+    assert main(["design", str(BUILDING), "--pairs", str(manifest), *BASE,
+                 "--out", str(tmp_path / "out"), "--overwrite"]) == 1
+
+
 @pytest.mark.parametrize(("flags", "named"), [
     (["--site", "1.5"], "--site"),
     (["--site", "150,60"], "--site"),
