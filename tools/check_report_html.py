@@ -138,7 +138,7 @@ def browser_problems(folder: Path, chromium: str, page: str = "report.html",
         done = run_chromium(chromium, ["--dump-dom", probe.as_uri()], work)
         if screenshot is not None:
             shot = run_chromium(chromium, [f"--screenshot={Path(screenshot).resolve()}",
-                                           "--window-size=1280,6000", "--hide-scrollbars",
+                                           "--window-size=1280,24000", "--hide-scrollbars",
                                            (folder / page).resolve().as_uri()], work)
             if shot.returncode != 0 or not Path(screenshot).is_file():
                 raise RuntimeError(f"chromium --screenshot failed ({shot.returncode}): "

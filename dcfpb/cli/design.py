@@ -313,6 +313,10 @@ def _run(args: argparse.Namespace) -> int:
         raise InputError(f"{args.building}: {_COMMAND} runs a building in plan, but the file has "
                          "no [plan] table (bearing_coordinates, dimensions, ...; see README, 'A "
                          "building in plan').")
+    if getattr(config.plan, "dimensions", None) is None:
+        raise InputError(f"{args.building}: {_COMMAND} needs the plan's dimensions ([plan] "
+                         "dimensions = [a, b] in m): the accidental positions of the centre of "
+                         "mass are 5 % of them.")
     _required_from_file(args, config)
     from structures.suites.sources import motion_sources
 

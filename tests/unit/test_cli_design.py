@@ -221,3 +221,14 @@ def test_a_building_without_a_plan_is_refused(tmp_path, capsys, calls):
     status = main(["design", str(planar), "--pairs", str(manifest), *BASE,
                    "--out", str(tmp_path / "out")])
     assert status == 2 and "[plan]" in capsys.readouterr().err
+
+
+def test_a_plan_without_dimensions_is_refused(tmp_path, capsys, calls):
+    manifest = _manifest(tmp_path, 7)
+    text = BUILDING.read_text().replace("dimensions = [24.0, 12.0]", "")
+    building = tmp_path / "no_dimensions.toml"
+    building.write_text(text)
+    status = main(["design", str(building), "--pairs", str(manifest), *BASE,
+                   "--out", str(tmp_path / "out")])
+    assert status == 2 and "dimensions" in capsys.readouterr().err
+    assert calls == []
