@@ -713,14 +713,16 @@ def _checks(result: ELFResult, peaks: Any, averages: Any, envelope: dict[str, di
         checks.append(Check(
             f"rh_V_b_vs_elf_{d}", LIMITS["rha_V_b_min"].clause,
             f"V_b of the response history ({d}, average over pairs) not less than "
-            f"{limit('rha_V_b_min'):.0%} of the ELF's V_b ({elf_bound} bound)",
+            f"{limit('rha_V_b_min'):.0%} of the ELF's V_b ({elf_bound} bound); below it the "
+            "design forces are scaled up to it",
             demand, limit("rha_V_b_min") * V_b, "N", "min", bound, position))
         demand, bound, position = env(f"storey_shear_{d}")
         checks.append(Check(
             f"rh_V_s_vs_elf_{d}", LIMITS[key].clause,
             f"V_s of the response history (first storey shear / R_I = {result.R_I:g}, {d}, "
             f"average over pairs) not less than {limit(key):.0%} of the ELF's V_s "
-            f"({s_bound} bound; {'regular' if regular else 'irregular'} superstructure)",
+            f"({s_bound} bound; {'regular' if regular else 'irregular'} superstructure); "
+            "below it the design forces are scaled up to it",
             demand / result.R_I, limit(key) * V_s, "N", "min", bound, position))
     for d in directions:
         demand, bound, position = env(f"max_drift_ratio_{d}")

@@ -412,3 +412,22 @@ def test_capacity_failures_are_kept_on_request(tmp_path):
     assert again.peaks["isolator_displacement"].tolist() == first.peaks[
         "isolator_displacement"].tolist()
     assert run_suite(suite, tmp_path / "out", **options).computed == 1  # the default retries
+
+
+def test_the_four_accidental_positions(config, tmp_path):
+    from structures.design.response import design_positions
+
+    offsets = design_positions(config)
+    assert offsets == {"+x": (0.05 * 24.0, 0.0), "-x": (-0.05 * 24.0, 0.0),
+                       "+y": (0.0, 0.05 * 12.0), "-y": (0.0, -0.05 * 12.0)}
+    assert design_positions(config, ("nominal",)) == {"nominal": (0.0, 0.0)}
+    for bad, words in ((("+z",), "positions"), (("+x", "+x"), "once")):
+        with pytest.raises(InputError, match=words):
+            design_positions(config, bad)
+    flat = dataclasses.replace(config, building=dataclasses.replace(
+        config.building, plan=dataclasses.replace(config.plan, dimensions=None,
+                                                  floor_inertias=np.full(5, 1e7),
+                                                  base_inertia=1e7,
+                                                  torsional_stiffnesses=np.full(5, 1e10))))
+    with pytest.raises(InputError, match="dimensions"):
+        design_positions(flat)
