@@ -115,12 +115,13 @@ def _design_inputs(args: argparse.Namespace, config) -> dict:
         return {"D_M": d_m, "D_TM": d_tm, "T_M": t_m, "source": "given",
                 "S_MS": None if site is None else site.S_MS,
                 "S_M1": None if site is None else site.S_M1, "B_M": None}
+    from structures.design import building_design
+
+    from_file = building_design(config)  # the [design] table as objects (None: not given)
     if args.site is not None:
         site = parse_site(args.site)
-    elif {"S_MS", "S_M1"} <= set(table):
-        from structures.design import Site
-
-        site = Site(table["S_MS"], table["S_M1"], table.get("T_L"))
+    elif from_file["site"] is not None:
+        site = from_file["site"]
     else:
         raise InputError(f"--site S_MS,S_M1[,T_L] (or --displacements and --period) must be "
                          f"given: the building file {args.building} has no [design] S_MS and "
@@ -131,11 +132,11 @@ def _design_inputs(args: argparse.Namespace, config) -> dict:
             lam = PropertyModification.overall(lam_max, lam_min)
         except InputError as error:
             raise InputError(f"--lambda {args.lambda_}: {error}") from None
-    elif "lambda_max" in table:
-        lam = PropertyModification.overall(table["lambda_max"], table["lambda_min"])
+    elif from_file["lambda"] is not None:
+        lam = from_file["lambda"]
     else:
         lam = PropertyModification.overall(1.0, 1.0)
-    R = args.R if args.R is not None else float(table.get("R") or 2.0)
+    R = args.R if args.R is not None else float(from_file["R"] or table.get("R") or 2.0)
     R = check_real(R, "--R", _COMMAND, low=0.0, high=10.0, low_open=True)
     result = elf(config, site, lam, R=R, model=args.model)
     bound = max(result.bounds.values(), key=lambda b: b.D_M)

@@ -232,3 +232,17 @@ def test_a_plan_without_dimensions_is_refused(tmp_path, capsys, calls):
                    "--out", str(tmp_path / "out")])
     assert status == 2 and "dimensions" in capsys.readouterr().err
     assert calls == []
+
+
+def test_the_building_files_design_table_stands_in_for_the_flags(tmp_path, calls):
+    manifest = _manifest(tmp_path, 7)
+    building = tmp_path / "with_design.toml"
+    building.write_text(BUILDING.read_text() + "\n[design]\nlambda_max = 1.8\n"
+                        "lambda_min = 0.6\nS_MS = 1.5\nS_M1 = 0.6\nR = 2.0\n")
+    assert main(["design", str(building), "--pairs", str(manifest), "--no-progress",
+                 "--out", str(tmp_path / "out")]) == 0
+    assert calls[-1]["site"] is None and calls[-1]["lambda_"] is None
+    assert calls[-1]["R"] is None  # the analysis reads them from the file
+    assert main(["design", str(building), "--pairs", str(manifest), "--no-progress",
+                 "--site", "1.0,0.4", "--out", str(tmp_path / "out2")]) == 0
+    assert calls[-1]["site"].S_MS == 1.0  # the flag overrides the file

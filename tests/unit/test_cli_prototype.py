@@ -80,3 +80,15 @@ def test_json_on_stdout(capsys):
 def test_bad_flags_exit_2_naming_the_flag(capsys, flags, named):
     assert main(["prototype", str(BUILDING), *flags]) == 2
     assert named in capsys.readouterr().err
+
+
+def test_the_building_files_design_table_gives_the_elf(tmp_path, capsys):
+    from dcfpb.common.errors import InputWarning
+
+    building = tmp_path / "with_design.toml"
+    building.write_text(BUILDING.read_text() + "\n[design]\nae_max = 1.2\nae_min = 0.9\n"
+                        "test_max = 1.2\ntest_min = 0.85\nS_MS = 1.5\nS_M1 = 0.6\n")
+    with pytest.warns(InputWarning):  # the parts assemble to within 1.8 / 0.6
+        assert main(["prototype", str(building), "--model", "constant"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("D_M, D_TM, T_M from ELF, lower bound (lambda 0.")
