@@ -23,7 +23,7 @@ import json
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -70,7 +70,6 @@ class Block:
     note: str = ""
     status: int = -1
     file: str = ""
-    extra: dict[str, Any] = field(default_factory=dict)
 
 
 def _heading(text: str, anchor: str, level: int = 2) -> Block:
@@ -261,29 +260,31 @@ def _figures(result: Any, figures: dict[str, Path | None]) -> list[Block]:
         "floor_spectra.png": "The floor spectra of the governing run (every floor and the "
         "ground).",
     }
-    for name in FIGURES:
-        path = figures.get(name)
-        if path is not None:
-            blocks.append(_figure(name, captions[name]))
+    notes: list[Block] = []
     if run is None:
-        blocks.append(_paragraph("No governing run was kept (the analysis was asked for none): "
-                                 "the corner bearing's orbit, its hysteresis and the floor "
-                                 "spectra are not shown."))
-    elif figures.get("floor_spectra.png") is None:
-        blocks.append(_paragraph("The governing run holds no floor spectra (not computed): no "
-                                 "floor spectra figure."))
-    if run is not None:
+        notes.append(_paragraph("No governing run was kept (the analysis was asked for none): "
+                                "the corner bearing's orbit, its hysteresis and the floor "
+                                "spectra are not shown."))
+    else:
         attrs = run.attrs
-        blocks.append(_paragraph(
-            f"The governing run (the largest isolator displacement of the bound and position "
-            f"whose average governs): pair {attrs.get('pair', '?')}, "
+        notes.append(_paragraph(
+            f"The governing run of the orbit, hysteresis and floor spectra below (the largest isolator displacement of the "
+            f"bound and position whose average governs): pair {attrs.get('pair', '?')}, "
             f"{attrs.get('bound', '?')} bound, centre of mass at {attrs.get('position', '?')}, "
             f"scale factor {_fmt(attrs.get('scale'))}, property modifier "
             f"{_fmt(attrs.get('property_modifier'))}; ELF D_M = {elf.lower.D_M:.4g} m at the "
             f"lower bound."))
         if not bool(attrs.get("success", True)):
-            blocks.append(_paragraph(f"The governing run stopped early: "
-                                     f"{attrs.get('message') or attrs.get('failure')}"))
+            notes.append(_paragraph(f"The governing run stopped early: "
+                                    f"{attrs.get('message') or attrs.get('failure')}"))
+        if figures.get("floor_spectra.png") is None:
+            notes.append(_paragraph("The governing run holds no floor spectra (not computed): "
+                                    "no floor spectra figure."))
+    for name in FIGURES:
+        if name == "orbit.png":
+            blocks += notes
+        if figures.get(name) is not None:
+            blocks.append(_figure(name, captions[name]))
     return blocks
 
 
