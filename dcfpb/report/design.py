@@ -269,7 +269,8 @@ def _figures(result: Any, figures: dict[str, Path | None]) -> list[Block]:
         attrs = run.attrs
         notes.append(_paragraph(
             f"The governing run of the orbit, hysteresis and floor spectra below (the largest "
-            f"isolator displacement of the bound and position whose average governs): pair {attrs.get('pair', '?')}, "
+            f"isolator displacement of the bound and position whose average governs): pair "
+            f"{attrs.get('pair', '?')}, "
             f"{attrs.get('bound', '?')} bound, centre of mass at {attrs.get('position', '?')}, "
             f"scale factor {_fmt(attrs.get('scale'))}, property modifier "
             f"{_fmt(attrs.get('property_modifier'))}; ELF D_M = {elf.lower.D_M:.4g} m at the "
