@@ -246,3 +246,34 @@ def test_the_building_files_design_table_stands_in_for_the_flags(tmp_path, calls
     assert main(["design", str(building), "--pairs", str(manifest), "--no-progress",
                  "--site", "1.0,0.4", "--out", str(tmp_path / "out2")]) == 0
     assert calls[-1]["site"].S_MS == 1.0  # the flag overrides the file
+
+
+def test_the_real_analysis_end_to_end_on_two_short_pairs(tmp_path, capsys):
+    """No stand-in: structures.design.design on two 4 s synthetic pairs (--allow-fewer), one
+    mass position, one worker; the report says the suite is not compliant."""
+    from groundmotions import synthetic_pair
+
+    lines = ["name,x,y,dt,units"]
+    for k in range(2):
+        pair = synthetic_pair("kanai-tajimi", 10 + k, duration=4.0, dt=0.01, target_pga=2.0,
+                              ground_frequency=12.0, ground_damping=0.6)
+        for role in ("x", "y"):
+            values = getattr(pair, role).acceleration
+            (tmp_path / f"p{k}-{role}.txt").write_text("\n".join(map(repr, map(float, values))))
+        lines.append(f"pair{k},p{k}-x.txt,p{k}-y.txt,0.01,m/s^2")
+    (tmp_path / "pairs.csv").write_text("\n".join(lines) + "\n")
+    out = tmp_path / "out"
+    status = main(["design", str(BUILDING), "--pairs", str(tmp_path / "pairs.csv"), *BASE,
+                   "--allow-fewer", "--positions", "+x", "--workers", "1", "--out", str(out)])
+    text = capsys.readouterr().out
+    assert status == 0, text
+    assert "suite NOT COMPLIANT with 17.3.2" in text.splitlines()[0]
+    report = (out / "report.md").read_text()
+    assert "NOT COMPLIANT" in report
+    data = json.loads((out / "design.json").read_text())
+    assert data["compliant_suite"] is False and data["passed"] is False
+    suite = next(c for c in data["checks"] if c["key"] == "suite_size")
+    assert suite["clause"] == "17.3.2" and suite["passed"] is False
+    for check in data["checks"]:
+        assert f"| {check['key']} |" in report
+    assert len(data["figures"]) == 6 and (out / "runs").is_dir()
