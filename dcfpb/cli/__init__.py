@@ -4,7 +4,9 @@ One module per sub-command, each with ``register(subparsers)`` and its handler:
 :mod:`~dcfpb.cli.protocol` (a virtual bearing test), :mod:`~dcfpb.cli.run` (a building file
 under a ground motion, and what the other building commands share), :mod:`~dcfpb.cli.demo`
 (the bundled example), :mod:`~dcfpb.cli.spectrum`, :mod:`~dcfpb.cli.suite`,
-:mod:`~dcfpb.cli.opensees` and :mod:`~dcfpb.cli.diagnose`. Parsing one of the light commands
+:mod:`~dcfpb.cli.opensees`, :mod:`~dcfpb.cli.diagnose`, :mod:`~dcfpb.cli.design` (a Chapter 17
+analysis and its report) and :mod:`~dcfpb.cli.prototype` (the virtual prototype test of 17.8).
+Parsing one of the light commands
 (:data:`OWN_COMMANDS`) imports none of the other modules.
 
 Exit status (:data:`EXIT_STATUSES`, also in ``dcfpb --help``):
@@ -60,6 +62,8 @@ COMMAND_MODULES: tuple[str, ...] = (
     "dcfpb.cli.spectrum",
     "dcfpb.cli.suite",
     "dcfpb.cli.opensees",
+    "dcfpb.cli.design",
+    "dcfpb.cli.prototype",
     "dcfpb.cli.diagnose",
 )
 """Modules with a ``register(subparsers)`` function adding further sub-commands."""

@@ -21,6 +21,7 @@ PACKAGES = ("dcfpb", "groundmotions", "isolator", "structures")
 
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("dcfpb.cli",),
+    ("dcfpb.report",),
     ("dcfpb.plotting",),
     ("structures.design.response",),  # the response history of 17.6 runs suites
     ("structures.suites", "structures.diagnosis", "structures.design"),
