@@ -204,13 +204,22 @@ def _checks(result: Any) -> list[Block]:
     for c in result.checks:
         unit = _unit(c.unit)[0]
         where = ", ".join(x for x in (c.bound, c.position) if x)
-        relation = "≤" if c.kind == "max" else "≥"
+        relation = {"max": "≤", "min": "≥", "floor": "floor"}[c.kind]
+        if c.kind != "floor":
+            verdict = "PASS" if c.passed else "FAIL"
+        elif c.floor_governs:
+            verdict = f"FLOOR GOVERNS: results x {c.scale_up:.3g}"
+        else:
+            verdict = "RH GOVERNS"
         rows.append((c.clause, c.description, c.key, _fmt(float(c.demand), c.unit),
                      f"{relation} {_fmt(float(c.limit), c.unit)}", unit or "-", where or "-",
-                     "PASS" if c.passed else "FAIL", _percent(c.margin)))
-    note = ("limit: ≤ the demand may not exceed it, ≥ the demand may not fall below it. "
-            "margin: (limit - demand) / |limit| for an upper limit, (demand - limit) / |limit| "
-            "for a lower one; positive passes. The key names the check in design.json.")
+                     verdict, _percent(c.margin)))
+    note = ("limit: ≤ the demand may not exceed it, ≥ the demand may not fall below it; floor: "
+            "a lower bound on the design value, not a pass/fail test: a response-history (RH) "
+            "value below it is raised to it and every response scaled up by the factor shown "
+            "(17.6.4.3). margin: (limit - demand) / |limit| for an upper limit, (demand - limit) "
+            "/ |limit| for a lower one or a floor; positive passes (a floor: the RH lies above "
+            "it). The key names the check in design.json.")
     return [_heading("Checks", "checks"),
             _table("Every check of the standard", header, rows, note, status=7)]
 
@@ -502,7 +511,7 @@ def render_html(blocks: Sequence[Block], title: str) -> str:
                 cells = []
                 for i, cell in enumerate(row):
                     if i == block.status:
-                        kind = "pass" if cell == "PASS" else "fail"
+                        kind = "fail" if cell == "FAIL" else "pass"
                         cells.append(f'<td class="{kind}">{html.escape(cell)}</td>')
                     elif _is_number(cell):
                         cells.append(f'<td class="num">{html.escape(cell)}</td>')

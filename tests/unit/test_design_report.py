@@ -50,7 +50,10 @@ def _check_rows(text: str, result) -> None:
         line = next((row for row in text.splitlines() if f"| {check.key} |" in row), None)
         assert line is not None, check.key
         assert check.clause in line
-        assert ("PASS" if check.passed else "FAIL") in line
+        if check.kind == "floor":  # a floor on the design value says which governs
+            assert ("FLOOR GOVERNS" if check.floor_governs else "RH GOVERNS") in line
+        else:
+            assert ("PASS" if check.passed else "FAIL") in line
 
 
 def test_every_check_is_one_row_with_its_clause_and_verdict(report, result):
