@@ -80,6 +80,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="write the suite's tables and plots into an --out folder that is not a "
                    "suite folder but holds files of their names (a suite folder is resumed "
                    "without it); never over an input")
+    p.add_argument("--storage", choices=("full", "float32", "peaks"), default="full",
+                   help="what each run keeps in runs/: its result as netCDF in float64 "
+                   "(default) or float32 (about half the size; the peaks are computed before "
+                   "the cast), or its peaks row only")
     p.add_argument("--no-plots", action="store_true", help="do not draw the figures")
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
     p.add_argument("--json", action="store_true", help="print the outcome as JSON")
@@ -307,7 +311,7 @@ def _run(args: argparse.Namespace) -> int:
             result = run_suite(suite, args.out, n_workers=workers,
                                scheduler_address=args.scheduler, progress=not args.no_progress,
                                run_timeout=args.run_timeout, lock=False,
-                               max_steps=args.max_steps)
+                               max_steps=args.max_steps, storage=args.storage)
         except KeyboardInterrupt:
             print(f"interrupted: finished runs are kept in {args.out}; run the same command "
                   "again to finish the suite.")

@@ -30,6 +30,7 @@ QUANTITIES = {
     "peak_storey_drift_x": "m",
     "peak_storey_drift_y": "m",
     "peak_base_rotation": "rad",
+    "max_temperature": "degC",
 }
 """Peak responses summarised, with their units, when among a peaks table's columns: those of
 :func:`structures.analysis.peaks`, in one direction or in plan."""

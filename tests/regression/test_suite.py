@@ -300,6 +300,24 @@ def test_cli_suite_json_summary_and_plots(monkeypatch, capsys, scheduler, tmp_pa
     assert (out / "plots" / "peak_distributions.png").stat().st_size > 0
 
 
+def test_cli_suite_storage_peaks_keeps_no_histories(monkeypatch, capsys, scheduler, tmp_path):
+    """--storage peaks: the same peaks as full storage, no netCDF, the peak temperature in the
+    summary."""
+    shutil.copy(ELCENTRO, tmp_path / "elcentro.at2")
+    tables = {}
+    for storage in ("full", "peaks"):
+        out = tmp_path / storage
+        assert _suite_command(monkeypatch, "--records", str(tmp_path), "--scheduler", scheduler,
+                              "--out", str(out), "--storage", storage, "--no-plots") == 0
+        tables[storage] = pd.read_csv(out / "peaks.csv")
+        summary = pd.read_csv(out / "summary.csv")
+        assert "max_temperature" in set(summary["quantity"])
+        assert bool(list(out.rglob("*.nc"))) == (storage == "full")
+    capsys.readouterr()
+    columns = ["peak_isolator_displacement", "peak_base_shear", "max_temperature"]
+    pd.testing.assert_frame_equal(tables["full"][columns], tables["peaks"][columns])
+
+
 @pytest.mark.parametrize(("args", "message"), [
     (["--period-range", "1,2"], "--target only"),
     (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "not both"),
