@@ -766,11 +766,15 @@ def _run_notes(peaks: Any, config: BuildingConfig) -> list[str]:
     notes = []
     failed = peaks[peaks["status"] != "done"]
     if len(failed):
-        listed = "; ".join(f"{r.pair} ({r.bound}, {r.position}): {r.reason}"
-                           for r in failed.head(6).itertuples())
+        kinds = failed["failure"].fillna("") if "failure" in failed else failed["status"] * 0
+        parts = []
+        for kind, group in failed.groupby(kinds.replace("", "error"), sort=False):
+            first = str(group["reason"].iloc[0]).split(": the ")[0]  # the first clause
+            runs = ", ".join(f"{r.pair} ({r.bound}, {r.position})" for r in group.itertuples())
+            parts.append(f"{len(group)} by {kind} ('{first}'): {runs}")
         notes.append(f"{len(failed)} run(s) did not finish; their peaks are those up to the "
-                     f"failure and enter the averages (which they understate): {listed}"
-                     + (" ..." if len(failed) > 6 else ""))
+                     "failure and enter the averages (which they understate): "
+                     + "; ".join(parts) + " (each run's reason: peaks.csv)")
     lifted = peaks["axial_load_min"].to_numpy(dtype=float) <= 0.0
     if lifted.any():
         notes.append(f"uplift: {int(lifted.sum())} run(s) lifted a bearing off (axial load "
