@@ -572,9 +572,12 @@ def _write_text(path: Path, text: str) -> None:
         temporary.write_text(text, encoding="utf-8")
 
 
-def _capacity(run: Any) -> float | None:
-    """The bearings' displacement capacity [m] the governing run records, if any."""
-    value = None if run is None else run.attrs.get("displacement_capacity")
+def _capacity(result: Any) -> float | None:
+    """The bearings' displacement capacity [m]: the analysis's option, else what the governing
+    run records, if any."""
+    value = (result.options or {}).get("displacement_capacity")
+    if value is None and result.governing_run is not None:
+        value = result.governing_run.attrs.get("displacement_capacity")
     return None if value is None else float(value)
 
 
@@ -602,7 +605,7 @@ def draw_figures(result: Any, folder: Path, *, processes: int = 1) -> dict[str, 
     jobs = [
         ("spectra.png", lambda p: plot_design_spectra(result.spectra, p), 1.0),
         ("displacements.png", lambda p: plot_design_displacements(
-            result.peaks, elf, p, capacity=_capacity(run)), 1.0),
+            result.peaks, elf, p, capacity=_capacity(result)), 1.0),
         ("drift_ratios.png", lambda p: plot_design_drifts(result.averages, heights,
                                                           limit("drift_rha"), p, elf=elf), 1.0),
     ]

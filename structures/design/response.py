@@ -551,6 +551,8 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
         "I_e": float(I_e), "model": model, "positions": list(offsets),
         "position_offsets": {k: list(v) for k, v in offsets.items()},
         "hold_bearing_loads": hold_bearing_loads, "regular": regular, "store": store,
+        "displacement_capacity": float(config.bearing_geometry.get("displacement_capacity",
+                                                                   0.6)),
         "allow_fewer": allow_fewer, "n_recorded": len(sources), "n_synthetic": n_synthetic,
         "synthetic": dict(SYNTHETIC) if n_synthetic else None,
         "period_range": list(prange), "scaling_fraction": limit("rha_scaling_fraction"),
