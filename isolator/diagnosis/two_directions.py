@@ -35,11 +35,14 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
 4. **Stage 2, the friction law, outside the direction-change windows:** ``heating``
    (exp(-a dT / 100 degC), dT from the measured friction power on the 2D heating field
    :class:`isolator.monitor_grid.GridHeating`), ``velocity`` (1 - d exp(-|v| / v_t) on the
-   speed |v|), ``pressure`` ((p / p_mean)^-n), ``wear`` (1 + c (1 - exp(-s / L)), s the path
-   travelled over the campaign) join by forward selection on held-out data
-   (leave-one-test-out, or alternate blocks of one test), u_y and the lag refitted with each
-   model (a pair as one when no single effect qualifies and the sliding phase holds a real
-   gap, as in one direction), a second effect under the stricter ``second_*`` thresholds;
+   speed |v|), ``pressure`` ((p / p_mean)^-n), ``wear``
+   (1 + c g(s / S) / g(1), g(x) = 1 - exp(-x / L), s the path travelled over the campaign, S
+   its total: c the change over the campaign, L a share of S, as in one direction) join by
+   forward selection on held-out data (leave-one-test-out, or alternate blocks of one test),
+   u_y and the lag refitted with each model (a pair as one when no single effect qualifies and
+   the sliding phase holds a real gap, as in one direction), a second effect under the
+   stricter ``second_*`` thresholds and over the first in its flexible monotone form (as in
+   one direction: what a wrong shape leaves cannot name another effect);
    then the kinematic candidates are tried again beside the friction law named. A kinematic
    effect that was significant but closed too little of the excess on its own (a play beside
    heating) is applied provisionally, the law selected beside it, and judged again beside
@@ -85,6 +88,7 @@ from isolator.diagnosis.effects import pressure as pressure_form
 from isolator.diagnosis.effects import velocity as velocity_form
 from isolator.diagnosis.effects import wear as wear_form
 from isolator.diagnosis.features import smoothed_displacement
+from isolator.diagnosis.flexible import knots, ramps
 from isolator.diagnosis.hint_tests import (
     ALPHA,
     block_length,
@@ -273,7 +277,11 @@ def _pressure(theta, d, _=None):
 
 
 def _wear(theta, d, _=None):
-    return wear_form.modulation(theta[0], d.travel, theta[1], per_campaign=False)
+    # as in one direction: the change over the campaign, the travel and its scale as shares of
+    # the campaign's travel (a change "as the path grows large" puts a wear linear in the
+    # travel, L much longer than the campaign, at the bound of that change)
+    total = max(float(d.travel[-1]), 1e-12)
+    return wear_form.modulation(theta[0], d.travel / total, theta[1], per_campaign=True)
 
 
 def _needs_pressure(d) -> str | None:
@@ -320,8 +328,9 @@ LIBRARY_2D = {
                            (Parameter("exponent", 0.1, -1.0, 1.0, unit="-"),), _pressure,
                            _needs_pressure),
     "wear": _on_orbits("wear", "over the path travelled",
-                       (Parameter("change", -0.1, -0.8, 2.0, unit="-"),
-                        Parameter("travel_scale", 5.0, 0.05, 1.0e4, unit="m", edge_ok=True)),
+                       (Parameter("change_over_campaign", -0.1, -0.9, 3.0, unit="-"),
+                        Parameter("travel_scale", 1.0, 0.05, 20.0, unit="campaign travel",
+                                  edge_ok=True)),
                        _wear),
     "backlash": _on_orbits("backlash", "per axis",
                            (Parameter("width_x", 2e-3, 0.0, BACKLASH_MAX, unit="m"),
@@ -334,6 +343,40 @@ LIBRARY_2D = {
 
 def _kinematic(name: str) -> bool:
     return LIBRARY_2D[name].acts_on == "kinematics"
+
+
+_FLEX_STEP = 4.0  # |c_k| bound of a flexible form, as in one direction
+
+
+def _flex_variable(name: str, d) -> np.ndarray:
+    """The variable of a friction-law effect's flexible monotone form: the temperature rise,
+    the speed, the pressure, the share of the campaign's travel."""
+    if name == "heating":
+        return d.temperature_rise
+    if name == "velocity":
+        return d.speed
+    if name == "pressure":
+        return d.pressure
+    return d.travel / max(float(d.travel[-1]), 1e-12)
+
+
+def _flex_form(name: str, theta: np.ndarray, d) -> tuple[str, np.ndarray, bool]:
+    """``name`` (its own form fitted with ``theta``) in flexible monotone form: knots at
+    quantiles of its variable (for wear also at the start of every test after the first: a
+    drop from test to test, as in one direction) and its sense (rising with the variable or
+    not, from the own form's fit)."""
+    x = _flex_variable(name, d)
+    extra = None
+    if name == "wear":
+        extra = np.array([x[d.test == k].min() for k in np.unique(d.test)[1:]], dtype=float)
+    positions = knots(x, extra)
+    if positions.size < 2:
+        positions = np.array([x.min(), x.min() + 1.0])
+    m = LIBRARY_2D[name].factor(theta, d, None)
+    rising = True
+    if np.ptp(x) > 0.0 and np.ptp(m) > 0.0:
+        rising = bool(np.corrcoef(x, m)[0, 1] >= 0.0)
+    return name, positions, rising
 
 
 # --- the campaign's fixed data --------------------------------------------------------------
@@ -454,6 +497,24 @@ class Model2D:
     kinematic: tuple[str, ...] = ()
     fixed_state: tuple | None = None  # (u_b, z) frozen
     free: bool = False  # u_y and the channel lag refitted even without a kinematic effect
+    # friction-law effects in their flexible monotone form (:mod:`.flexible`), by name: the
+    # knot positions in the effect's own variable (:func:`_flex_variable`) and its sense
+    flex: tuple[tuple[str, np.ndarray, bool], ...] = field(default=(), compare=False)
+
+    def _flex(self, name: str) -> tuple[np.ndarray, bool] | None:
+        for other, positions, increasing in self.flex:
+            if other == name:
+                return positions, increasing
+        return None
+
+    def _law_parameters(self, name: str) -> tuple[Parameter, ...]:
+        form = self._flex(name)
+        if form is None:
+            return LIBRARY_2D[name].parameters
+        low, high = (0.0, _FLEX_STEP) if form[1] else (-_FLEX_STEP, 0.0)
+        start = 0.05 if form[1] else -0.05
+        return tuple(Parameter(f"c{k + 1}", start, low, high, edge_ok=True)
+                     for k in range(form[0].size - 1))
 
     @property
     def refits_kinematics(self) -> bool:
@@ -489,7 +550,7 @@ class Model2D:
                         p = Parameter(p.name, 0.0, -span, span, unit="s")
                     out.append(p)
         for name in self.friction:
-            out.extend(LIBRARY_2D[name].parameters)
+            out.extend(self._law_parameters(name))
         return out
 
     def state(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> tuple:
@@ -515,8 +576,12 @@ class Model2D:
         mu = float(theta[0]) * d.mu_shape
         i = self.kinematic_size
         for name in self.friction:
-            size = len(LIBRARY_2D[name].parameters)
-            mu = mu * LIBRARY_2D[name].factor(theta[i:i + size], d, None)
+            form = self._flex(name)
+            size = len(self._law_parameters(name))
+            if form is None:
+                mu = mu * LIBRARY_2D[name].factor(theta[i:i + size], d, None)
+            else:
+                mu = mu * np.exp(ramps(_flex_variable(name, d), form[0]) @ theta[i:i + size])
             i += size
         return mu
 
@@ -1323,6 +1388,9 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         law: list[str] = []
         for _ in range(MAX_FRICTION_EFFECTS):
             trials = {}
+            # a second effect earns its keep over the first in its flexible monotone form
+            # (one direction's rule): what a wrong shape leaves cannot name another effect
+            reference = flexible_reference(cur, law, kinematic) if law else cur
             for k in friction:
                 if k in law:
                     continue
@@ -1337,7 +1405,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 starts = [np.concatenate([cur.theta, s]) for s in _friction_starts(k)]
                 j = problem.judge(model, sliding, start=start, starts=starts)
                 second = bool(law)
-                j = problem.compare(cur, j, sliding,
+                j = problem.compare(reference, j, sliding,
                                     z_min=th.second_z if second else th.z_min,
                                     explained_min=(th.second_explained if second
                                                    else th.explained_min),
@@ -1346,10 +1414,18 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 judged[k] = j
                 beside[k] = tuple(law)
             passing = [k for k, j in trials.items() if j.earns]
-            if not passing and not law:  # a pair when no single qualifies, as in one direction
+            # a pair when no single qualifies, as in one direction, or when the best single
+            # closes too little to be named alone (``name_min``) and the pair fits better
+            # held out (a drift of friction over the travel can mimic part of a pressure
+            # that differs from test to test, and shut out the pair that explains it)
+            pair = None
+            if not law and (not passing
+                            or max(trials[k].explained for k in passing) < th.name_min):
                 pair = _pair(trials, kinematic, cur)
-                if pair is None:
-                    break
+                if pair is not None and passing and (
+                        pair.weighted >= min(trials[k].weighted for k in passing)):
+                    pair = None
+            if pair is not None:
                 law.extend(pair.model.friction)
                 cur = pair
                 for k in law:
@@ -1363,10 +1439,25 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             judged[best] = cur
         return law, cur, law_base
 
+    def flexible_reference(cur: Judged, law: list[str], kinematic: tuple[str, ...]) -> Judged:
+        """``cur`` with its friction-law effects in flexible monotone form (knots in each
+        effect's own variable), if that is better on held-out data."""
+        ks = cur.model.kinematic_size
+        forms, i = [], ks
+        for name in law:
+            size = len(LIBRARY_2D[name].parameters)
+            forms.append(_flex_form(name, cur.theta[i:i + size], d))
+            i += size
+        model = Model2D(friction=tuple(law), kinematic=kinematic, free=True, flex=tuple(forms))
+        start = np.concatenate([cur.theta[:ks], *[
+            np.full(f[1].size - 1, 0.05 if f[2] else -0.05) for f in forms]])
+        flex = problem.judge(model, sliding, start=start)
+        return flex if flex.weighted < cur.weighted else cur
+
     def _pair(trials: dict[str, Judged], kinematic: tuple[str, ...],
               cur: Judged) -> Judged | None:
         """The best pair of friction-law effects that earns its keep over ``cur`` as one (by
-        the first effect's thresholds), each from its own fit alone, when the sliding phase
+        the first effect's thresholds), each from its own fit alone, when the sliding sliding
         holds a real gap (one direction's rule); else None."""
         if not material(problem.score(cur.prediction, sliding),
                         problem.excess_rms(cur.prediction, sliding), th.practical_none, th):
@@ -1614,7 +1705,7 @@ def _friction_starts(name: str) -> list[np.ndarray]:
     if name == "velocity":
         return [np.array([0.3, 0.01]), np.array([0.3, 0.2]), np.array([-0.3, 0.05])]
     if name == "wear":
-        return [np.array([0.2, 50.0]), np.array([-0.2, 0.5])]
+        return [np.array([0.2, 5.0]), np.array([-0.2, 0.1])]
     if name == "heating":
         return [np.array([-0.5])]
     return []

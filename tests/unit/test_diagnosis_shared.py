@@ -105,12 +105,14 @@ def test_effects_on_mu_have_one_form_in_both_directions():
                        (d.pressure / d.mean_pressure) ** -0.2)
     assert np.allclose(pressure.modulation(0.2, d.pressure, d.mean_pressure),
                        (d.pressure / d.mean_pressure) ** -0.2)
-    assert np.allclose(lib["wear"].factor(np.array([-0.1, 5.0]), d),
-                       1.0 - 0.1 * (1.0 - np.exp(-d.travel / 5.0)))
-    # one direction: the change over the campaign, travel and scale as shares of it
+    # in one direction and in two: the change over the campaign, travel and scale as shares
+    # of the campaign's travel (a wear linear in the travel is not at a bound of the change)
     share = d.travel / d.travel[-1]
     per_campaign = wear.modulation(-0.1, share, 0.5, per_campaign=True)
     assert math.isclose(per_campaign[-1], 0.9) and per_campaign[0] == 1.0
+    assert np.allclose(lib["wear"].factor(np.array([-0.1, 0.5]), d), per_campaign)
+    assert np.allclose(lib["wear"].factor(np.array([-0.1, 20.0]), d), 1.0 - 0.1 * share,
+                       atol=3e-3)
 
 
 def test_a_yield_displacement_at_the_top_is_a_finding_in_two_directions():

@@ -21,7 +21,9 @@ case is withheld from the library in turn; the run is right when its verdict say
 (:mod:`validation.diagnosis.bidirectional`, two-direction tests) to FOLDER or a temporary
 folder; its cases are then diagnosed like the others, through ``load_campaign`` /
 ``load_manifest`` and ``diagnose``. A diagnosis in two directions has no reselection
-without a refit, so its leave-one-effect-out runs are reported as not run.
+without a refit, so its leave-one-effect-out runs diagnose the case again from its data with
+the effect withheld (the same held-out evidence as in one direction, at the cost of one more
+diagnosis per true effect; ``--no-loo-2d`` reports them as not run).
 """
 
 from __future__ import annotations
@@ -93,8 +95,11 @@ def exactly_right(verdict: list[str], truth: list[str]) -> bool:
 
 
 def score(diagnoses: dict[str, tuple[Diagnosis, float]], labels: dict,
-          thresholds: Thresholds | None = None) -> list[dict]:
-    """One row per case: verdict, truth, right or not, false names, shrink, leave-one-out."""
+          thresholds: Thresholds | None = None, loo_2d: bool = True) -> list[dict]:
+    """One row per case: verdict, truth, right or not, false names, shrink, leave-one-out.
+
+    A diagnosis in two directions has no reselection without a refit: its leave-one-out runs
+    diagnose the case again with the effect withheld (``loo_2d``; else reported as not run)."""
     rows = []
     for name, (d, seconds) in diagnoses.items():
         truth = list(labels[name]["effects"])
@@ -109,10 +114,14 @@ def score(diagnoses: dict[str, tuple[Diagnosis, float]], labels: dict,
                **_gaps(d, summary),
                "shrink": chosen["shrink"] if chosen else 0.0, "seconds": seconds, "loo": []}
         for effect in truth:
-            if not hasattr(d, "selection"):  # two directions: no reselection without a refit
+            if hasattr(d, "selection"):
+                loo = reselect(d, (effect,), thresholds)
+            elif loo_2d:  # two directions: no reselection without a refit, so diagnosed again
+                loo = diagnose(d.campaign, d.baseline.spec, thresholds=thresholds,
+                               exclude=(*d.excluded, effect))
+            else:
                 row["loo"].append({"withheld": effect, "verdict": None, "right": None})
                 continue
-            loo = reselect(d, (effect,), thresholds)
             row["loo"].append({"withheld": effect, "verdict": list(loo.verdict),
                                "right": ("unexplained" in loo.verdict
                                          and named(loo.verdict) <= set(truth) - {effect})})
@@ -204,6 +213,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--json", help="write the rows and figures here")
     parser.add_argument("--cases", help="comma-separated case folders of the half to score "
                         "(case_49,case_52; default: all of the half)")
+    parser.add_argument("--no-loo-2d", action="store_true",
+                        help="do not run the leave-one-effect-out diagnoses of two-direction "
+                             "cases (one more diagnosis per true effect)")
     args = parser.parse_args(argv)
     half = None if args.half == "all" else args.half
     if args.write:
@@ -216,7 +228,7 @@ def main(argv: list[str] | None = None) -> int:
         names = [n for n in names if n in wanted]
     diagnoses = diagnose_cases(args.panel, names, progress=True)
     labels = json.loads((Path(args.panel) / "labels.json").read_text())  # after diagnosing
-    rows = score(diagnoses, labels)
+    rows = score(diagnoses, labels, loo_2d=not args.no_loo_2d)
     figures = summarize(rows)
     text = markdown(rows, figures, args.half)
     print(text)
