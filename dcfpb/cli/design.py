@@ -217,10 +217,9 @@ def _required_from_file(args: argparse.Namespace, config) -> None:
 
 def _suite_size(n_pairs: int, synthetic: bool | int) -> int:
     """The pairs of the suite: those of --pairs and the synthetic ones added."""
-    from structures.design.limits import limit
+    from structures.design.response import synthetic_count
 
-    minimum = int(limit("min_pairs"))
-    return n_pairs + (max(0, minimum - n_pairs) if synthetic is True else int(synthetic))
+    return n_pairs + synthetic_count(synthetic, n_pairs)
 
 
 def _check_suite_size(args: argparse.Namespace, n_pairs: int, synthetic: bool | int) -> None:

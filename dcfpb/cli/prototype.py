@@ -89,7 +89,7 @@ def _design_inputs(args: argparse.Namespace, config) -> dict:
     """D_M, D_TM, T_M [m, m, s] (and S_MS, S_M1, B_M for the cycles of item 4) of the test: from
     the flags, or from the ELF's lower bound (the largest D_M; D_TM the largest over the bounds
     and directions)."""
-    from dcfpb.cli.design import parse_site
+    from dcfpb.cli.design import parse_lambda, parse_site
     from dcfpb.common.validation import check_real
     from structures.design import PropertyModification, elf
 
@@ -127,11 +127,7 @@ def _design_inputs(args: argparse.Namespace, config) -> dict:
                          f"given: the building file {args.building} has no [design] S_MS and "
                          "S_M1.")
     if args.lambda_ is not None:
-        lam_max, lam_min = _pair(args.lambda_, "--lambda", "MAX,MIN")
-        try:
-            lam = PropertyModification.overall(lam_max, lam_min)
-        except InputError as error:
-            raise InputError(f"--lambda {args.lambda_}: {error}") from None
+        lam = parse_lambda(args.lambda_, None)
     elif from_file["lambda"] is not None:
         lam = from_file["lambda"]
     else:

@@ -163,7 +163,9 @@ def _sources(pairs: Any) -> tuple[MotionSource, ...]:
                          f"{pairs!r:.80} instead.")
 
 
-def _synthetic_count(complete: bool | int, real: int) -> int:
+def synthetic_count(complete: bool | int, real: int) -> int:
+    """The synthetic pairs that complete a suite of ``real`` recorded pairs: True up to the
+    minimum of 17.3.2, an int that many, False or None none."""
     if complete is False or complete is None:
         return 0
     if complete is True:
@@ -429,7 +431,7 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
     from structures.suites.runs import STORAGE
 
     store = check_choice(store, "store", _OWNER, STORAGE)
-    n_synthetic = _synthetic_count(complete_with_synthetic, len(sources))
+    n_synthetic = synthetic_count(complete_with_synthetic, len(sources))
     minimum = int(limit("min_pairs"))
     n_pairs = len(sources) + n_synthetic
     notes: list[str] = []
