@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from dcfpb.common.units import KELVIN_LOOK
 from dcfpb.common.validation import check_choice, check_path
 from isolator.bearing import DCFPBearing
 from isolator.experiments import MODELS, friction_model
@@ -140,11 +141,6 @@ def _build(tables: dict[str, dict], path: Path) -> BuildingConfig:
     for model in MODELS:  # every model the file may run (--model, suites), checked now
         config.bearing(model)
     return config
-
-
-KELVIN_LOOK = (250.0, 400.0)
-"""An initial temperature [degC] in this range looks like kelvin (plates at 250 degC or more
-before a run are implausible), as ``dcfpb diagnose`` takes it."""
 
 
 def _check_not_kelvin(tables: dict, path: Path) -> None:

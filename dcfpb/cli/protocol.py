@@ -132,8 +132,10 @@ def check_sine_flags(args: argparse.Namespace, command: str) -> None:
         if getattr(args, name, None) is not None:
             check_real(getattr(args, name), "--" + name.replace("_", "-"), command, low=low,
                        high=high, low_open=low_open, allow_inf=name == "effective_radius")
+    from dcfpb.common.units import KELVIN_LOOK
+
     temperature = getattr(args, "initial_temperature", None)
-    if temperature is not None and 250.0 <= temperature <= 400.0:
+    if temperature is not None and KELVIN_LOOK[0] <= temperature <= KELVIN_LOOK[1]:
         from dcfpb.common.errors import InputError
 
         raise InputError(f"--initial-temperature {temperature:g} looks like kelvin (plates at "

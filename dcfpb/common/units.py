@@ -21,3 +21,8 @@ M_PER_FOOT = 0.3048
 
 N_PER_KIP = 4448.2216152605
 """Newtons in one kip [N]."""
+
+KELVIN_LOOK = (250.0, 400.0)
+"""Temperatures [degC] that look like kelvin where a plate's or test's starting temperature
+is meant (250 degC or more before a run or a test is implausible): refused as such by building
+files, ``dcfpb protocol`` and the diagnosis's data and manifests."""

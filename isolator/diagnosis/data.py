@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from dcfpb.common.errors import InputError, InputTypeError
+from dcfpb.common.units import KELVIN_LOOK
 from dcfpb.common.validation import check_real
 from isolator.limits import DEFAULT_MAX_STEPS, available_memory
 
@@ -44,7 +45,6 @@ MAX_ROWS = DEFAULT_MAX_STEPS
 VELOCITY_RATIO = (0.8, 1.25)
 """Allowed range of the robust slope of a velocity column on d(displacement)/dt."""
 TEMPERATURE_RANGE = (-60.0, 400.0)  # [degC] a measured temperature outside is refused
-KELVIN_LOOK = (250.0, 400.0)  # [degC] a whole column in this range looks like kelvin
 VELOCITY_UNITS = {"m/s": 1.0, "mm/s": 1.0e-3, "cm/s": 1.0e-2}
 """Units a header may state for ``velocity`` and their factor to m/s."""
 TEMPERATURE_UNITS = ("degc", "°c", "c", "deg c", "celsius")

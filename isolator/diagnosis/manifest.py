@@ -35,8 +35,8 @@ from pathlib import Path
 import numpy as np
 
 from dcfpb.common.errors import InputError, InputWarning
+from dcfpb.common.units import KELVIN_LOOK
 from isolator.diagnosis.data import (
-    KELVIN_LOOK,
     MAX_ROWS,
     Campaign,
     DataError,
