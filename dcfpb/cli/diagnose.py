@@ -70,8 +70,7 @@ def run(args: argparse.Namespace) -> int:
                   inputs={"the test file": list(args.files), "the manifest": args.manifest},
                   writes={"--report": REPORT_FILES})  # before the slow imports
     from isolator.diagnosis import BaselineSpec, DataError, diagnose
-    from isolator.diagnosis.data import MAX_ROWS
-    from isolator.diagnosis.data2d import load_any_campaign
+    from isolator.diagnosis.data import MAX_ROWS, load_any_campaign
     from isolator.diagnosis.manifest import load_manifest
 
     max_rows = MAX_ROWS if args.max_rows is None else args.max_rows

@@ -14,7 +14,7 @@ import pytest
 
 from dcfpb.common.errors import InputError
 from isolator.diagnosis import DataError, read_record
-from isolator.diagnosis.data2d import (
+from isolator.diagnosis.data import (
     Campaign2D,
     load_any_campaign,
     load_campaign_2d,
