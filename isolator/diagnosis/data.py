@@ -31,13 +31,14 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 
 from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.units import KELVIN_LOOK
 from dcfpb.common.validation import check_real
-from isolator.limits import DEFAULT_MAX_STEPS, available_memory
+from isolator.limits import DEFAULT_MAX_STEPS, _size, available_memory
 
 REQUIRED_COLUMNS = ("time", "displacement", "force")
 OPTIONAL_COLUMNS = ("axial_force", "velocity", "temperature")
@@ -84,7 +85,36 @@ class DataError(InputError):
 
 
 @dataclass(frozen=True, eq=False)
-class BearingRecord:
+class _Histories:
+    """The fields of a test record, checked by :func:`check_record` for the record's
+    number of directions."""
+
+    name: str
+    time: np.ndarray
+    displacement: np.ndarray
+    force: np.ndarray
+    axial_force: np.ndarray
+    velocity: np.ndarray | None = None
+    temperature: np.ndarray | None = None
+    initial_temperature: float | None = None
+    rest_before: float | None = None
+    velocity_measured: bool = field(init=False, default=True)
+    _DIRECTIONS: ClassVar[int] = 1
+
+    def __post_init__(self) -> None:
+        check_record(self, self._DIRECTIONS)
+
+    def __len__(self) -> int:
+        return int(self.time.size)
+
+    @property
+    def constant_axial_force(self) -> bool:
+        """Whether the axial force is the same at every sample."""
+        return bool(np.ptp(self.axial_force) == 0.0)
+
+
+@dataclass(frozen=True, eq=False)
+class BearingRecord(_Histories):
     """Histories of one bearing test (SI units, read-only arrays of equal length).
 
     Parameters
@@ -105,31 +135,9 @@ class BearingRecord:
         Rest since the end of the previous test [s]; None: long enough to cool.
     """
 
-    name: str
-    time: np.ndarray
-    displacement: np.ndarray
-    force: np.ndarray
-    axial_force: np.ndarray
-    velocity: np.ndarray | None = None
-    temperature: np.ndarray | None = None
-    initial_temperature: float | None = None
-    rest_before: float | None = None
-    velocity_measured: bool = field(init=False, default=True)
-
-    def __post_init__(self) -> None:
-        check_record(self, 1)
-
-    def __len__(self) -> int:
-        return int(self.time.size)
-
-    @property
-    def constant_axial_force(self) -> bool:
-        """Whether the axial force is the same at every sample."""
-        return bool(np.ptp(self.axial_force) == 0.0)
-
 
 @dataclass(frozen=True, eq=False)
-class BearingRecord2D:
+class BearingRecord2D(_Histories):
     """Histories of one bearing test in two directions (SI units, read-only arrays).
 
     Parameters
@@ -150,22 +158,7 @@ class BearingRecord2D:
         As for :class:`BearingRecord` [degC], [s].
     """
 
-    name: str
-    time: np.ndarray
-    displacement: np.ndarray
-    force: np.ndarray
-    axial_force: np.ndarray
-    velocity: np.ndarray | None = None
-    temperature: np.ndarray | None = None
-    initial_temperature: float | None = None
-    rest_before: float | None = None
-    velocity_measured: bool = field(init=False, default=True)
-
-    def __post_init__(self) -> None:
-        check_record(self, 2)
-
-    def __len__(self) -> int:
-        return int(self.time.size)
+    _DIRECTIONS: ClassVar[int] = 2
 
     @property
     def dimension(self) -> int:
@@ -183,10 +176,18 @@ class BearingRecord2D:
         return np.hypot(self.displacement[:, 0], self.displacement[:, 1])
 
 
-class _Slider:
-    """The contact of a campaign's slider (its ``slider_diameter`` [m])."""
+@dataclass(frozen=True, eq=False)
+class _Tests:
+    """The fields of a campaign, checked by :func:`check_campaign` to hold records of its
+    kind."""
 
+    tests: tuple
+    effective_radius: float
     slider_diameter: float
+    _RECORD: ClassVar[type] = BearingRecord
+
+    def __post_init__(self) -> None:
+        check_campaign(self, self._RECORD)
 
     @property
     def contact_radius(self) -> float:
@@ -200,30 +201,19 @@ class _Slider:
 
 
 @dataclass(frozen=True, eq=False)
-class Campaign(_Slider):
-    """The tests of one bearing, at least one, in the order run (wear accumulates across
-    them), with its effective radius R_eff [m] (``inf`` for a flat slider or a friction
-    damper) and slider diameter [m]."""
-
-    tests: tuple[BearingRecord, ...]
-    effective_radius: float
-    slider_diameter: float
-
-    def __post_init__(self) -> None:
-        check_campaign(self, BearingRecord)
+class Campaign(_Tests):
+    """The tests of one bearing (:class:`BearingRecord`), at least one, in the order run (wear
+    accumulates across them), with its effective radius R_eff [m] (``inf`` for a flat slider
+    or a friction damper) and slider diameter [m]."""
 
 
 @dataclass(frozen=True, eq=False)
-class Campaign2D(_Slider):
-    """The tests in two directions of one bearing, at least one, in the order run, with its
-    effective radius R_eff [m] (``inf`` for a flat slider) and slider diameter [m]."""
+class Campaign2D(_Tests):
+    """The tests in two directions of one bearing (:class:`BearingRecord2D`), at least one, in
+    the order run, with its effective radius R_eff [m] (``inf`` for a flat slider) and slider
+    diameter [m]."""
 
-    tests: tuple[BearingRecord2D, ...]
-    effective_radius: float
-    slider_diameter: float
-
-    def __post_init__(self) -> None:
-        check_campaign(self, BearingRecord2D)
+    _RECORD: ClassVar[type] = BearingRecord2D
 
     @property
     def dimension(self) -> int:
@@ -712,13 +702,6 @@ def _check_max_rows(max_rows: int) -> None:
     if max_rows < 1:
         raise DataError(f"max_rows (--max-rows) must be an integer in [1, inf). Got "
                         f"{max_rows!r}.")
-
-
-def _size(n_bytes: float) -> str:
-    for unit, scale in (("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
-        if n_bytes >= scale:
-            return f"{n_bytes / scale:.3g} {unit}"
-    return f"{n_bytes:.0f} bytes"
 
 
 def estimate_rows(path: str | Path) -> tuple[int, list[str]]:
