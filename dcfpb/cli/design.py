@@ -18,7 +18,7 @@ import shlex
 import warnings
 from pathlib import Path
 
-from dcfpb.common.errors import InputError, InputWarning
+from dcfpb.common.errors import EXIT_OK, EXIT_RUN_FAILED, InputError, InputWarning
 
 _COMMAND = "dcfpb design"
 
@@ -342,7 +342,7 @@ def _summary(result, written: dict[str, Path]) -> int:
     peaks = result.peaks
     stopped = peaks["status"] != "done" if "status" in peaks else None
     if stopped is None or not stopped.any():
-        return 0
+        return EXIT_OK
     kind = peaks.get("failure", None)
     capacity = stopped & (kind == "capacity") if kind is not None else stopped & False
     if capacity.any():
@@ -352,5 +352,5 @@ def _summary(result, written: dict[str, Path]) -> int:
     if bad:
         print(f"run failed: {bad} of {len(peaks)} runs did not finish; the report holds their "
               "peaks up to the failure (see its notes and peaks.csv)")
-        return 1
-    return 0
+        return EXIT_RUN_FAILED
+    return EXIT_OK

@@ -13,7 +13,7 @@ import json
 import math
 from pathlib import Path
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import EXIT_OK, InputError
 
 _COMMAND = "dcfpb prototype"
 
@@ -185,7 +185,7 @@ def _run(args: argparse.Namespace) -> int:
             print(f"table: {args.output}")
         if figure:
             print(f"plot: {figure}")
-    return 0
+    return EXIT_OK
 
 
 def _none(value):

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import EXIT_OK, EXIT_RUN_FAILED, InputError
 from dcfpb.common.units import STANDARD_GRAVITY
 
 
@@ -311,7 +311,7 @@ def _run(args: argparse.Namespace) -> int:
         with writing("--out", args.out):
             plots = [] if args.no_plots else _plots(result, suite, target, period_range)
         _report(result, plots, args.json)
-    return 0 if not result.failures else 1
+    return EXIT_OK if not result.failures else EXIT_RUN_FAILED
 
 
 def cluster_flags(args: argparse.Namespace, command: str) -> int | None:
