@@ -178,8 +178,7 @@ class BearingRecord2D(_Histories):
 
 @dataclass(frozen=True, eq=False)
 class _Tests:
-    """The fields of a campaign, checked by :func:`check_campaign` to hold records of its
-    kind."""
+    """The fields of a campaign, checked to hold records of its kind."""
 
     tests: tuple
     effective_radius: float
@@ -187,7 +186,19 @@ class _Tests:
     _RECORD: ClassVar[type] = BearingRecord
 
     def __post_init__(self) -> None:
-        check_campaign(self, self._RECORD)
+        """Check the fields: ``tests`` made a tuple of records of the campaign's kind, at least
+        one; R_eff [m] > 0 or inf; slider diameter [m] in (0, 10]."""
+        owner = type(self).__name__
+        tests = tuple(self.tests)
+        if not tests or not all(isinstance(t, self._RECORD) for t in tests):
+            raise InputTypeError(f"The 'tests' parameter of {owner} must be one or more "
+                                 f"{self._RECORD.__name__} objects. Got {self.tests!r} "
+                                 "instead.")
+        object.__setattr__(self, "tests", tests)
+        check_real(self.effective_radius, "effective_radius", owner, low=0.0, low_open=True,
+                   allow_inf=True)
+        check_real(self.slider_diameter, "slider_diameter", owner, low=0.0, low_open=True,
+                   high=10.0)
 
     @property
     def contact_radius(self) -> float:
@@ -225,7 +236,8 @@ def check_record(record, dimension: int) -> None:
     """Check a test record's histories (in its ``__post_init__``) and give them to it as
     read-only float arrays: ``time``, ``axial_force`` and ``temperature`` of shape (n,),
     ``displacement``, ``force`` and ``velocity`` (n,) in one direction and (n, 2) in two
-    (``dimension``); a missing velocity is derived (``velocity_measured`` False)."""
+    (``dimension``); a missing velocity is derived (``velocity_measured`` False). And its
+    conditions: ``initial_temperature`` [degC] in [-50, 300], ``rest_before`` [s] >= 0."""
     where = f"test {record.name!r}"
     checked = {}
     for column in ("time", "displacement", "force", "axial_force", "velocity", "temperature"):
@@ -258,12 +270,6 @@ def check_record(record, dimension: int) -> None:
                                np.column_stack([derived_velocity(checked["time"], u[:, j])
                                                 for j in range(u.shape[1])]))
         object.__setattr__(record, "velocity_measured", False)
-    set_columns(record, checked, where)
-
-
-def set_columns(record, checked: dict[str, np.ndarray], where: str) -> None:
-    """Give a test record its checked columns, read-only, and check its conditions:
-    ``initial_temperature`` [degC] in [-50, 300], ``rest_before`` [s] >= 0."""
     for column, arr in checked.items():
         arr.setflags(write=False)
         object.__setattr__(record, column, arr)
@@ -272,23 +278,6 @@ def set_columns(record, checked: dict[str, np.ndarray], where: str) -> None:
                    high=300.0)
     if record.rest_before is not None:
         check_real(record.rest_before, "rest_before", where, low=0.0)
-
-
-def check_campaign(campaign, record_class: type) -> None:
-    """Check a campaign's fields (its ``tests`` made a tuple of ``record_class`` objects, at
-    least one; R_eff [m] > 0 or inf; slider diameter [m] in (0, 10]), in its
-    ``__post_init__``."""
-    owner = type(campaign).__name__
-    tests = tuple(campaign.tests)
-    if not tests or not all(isinstance(t, record_class) for t in tests):
-        raise InputTypeError(f"The 'tests' parameter of {owner} must be one or more "
-                             f"{record_class.__name__} objects. Got {campaign.tests!r} "
-                             "instead.")
-    object.__setattr__(campaign, "tests", tests)
-    check_real(campaign.effective_radius, "effective_radius", owner, low=0.0, low_open=True,
-               allow_inf=True)
-    check_real(campaign.slider_diameter, "slider_diameter", owner, low=0.0, low_open=True,
-               high=10.0)
 
 
 def derived_velocity(time: np.ndarray, displacement: np.ndarray) -> np.ndarray:
