@@ -474,11 +474,11 @@ def _read_tests(paths: Sequence[str | Path], dimension: int, caller: str, *,
     if isinstance(paths, str | Path) or not paths:
         raise DataError(f"{caller} needs a list of one or more CSV files.")
     _check_max_rows(max_rows)
-    if dimension == 2:
-        check_one_kind(paths, max_rows=max_rows)
-    for p in paths:
-        if Path(p).is_file():
-            check_size(Path(p), max_rows=max_rows)
+    existing = [p for p in paths if Path(p).is_file()]  # a missing one: "no such file" below
+    if dimension == 2 and existing:
+        check_one_kind(existing, max_rows=max_rows)
+    for p in existing:
+        check_size(Path(p), max_rows=max_rows)
     read = read_record if dimension == 1 else read_record_2d
     tests = tuple(read(p, axial_load=axial_load, max_rows=max_rows) for p in paths)
     places = [str(p) for p in paths]

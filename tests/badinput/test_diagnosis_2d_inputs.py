@@ -167,3 +167,9 @@ def test_one_reader_checks_both_kinds_alike():
     with pytest.raises(DataError, match=r"'velocity_x' is 1e\+03 times d\(displacement_x\)/dt.*"
                                         r"mm/s.*'velocity_x \[mm/s\]'"):
         BearingRecord2D("orbit", c["time"], u, f, c["axial_force"], velocity=v)
+
+
+def test_a_missing_file_of_a_two_direction_campaign_is_named(tmp_path):
+    two = _write(tmp_path / "orbit.csv", _columns())
+    with pytest.raises(DataError, match=r"gone\.csv: no such file"):
+        load_campaign_2d([two, tmp_path / "gone.csv"], effective_radius=2.0, slider_diameter=0.25)
