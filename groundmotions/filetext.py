@@ -43,9 +43,9 @@ from groundmotions.units import (
     quantity_of,
 )
 
-__all__ = ["RecordUnits", "check_finite", "check_plausible", "check_record_plausible",
-           "check_step", "first_non_number", "line_of_value", "read_lines", "record_units",
-           "timing_problem"]
+__all__ = ["RecordUnits", "agreeing_step", "check_finite", "check_plausible",
+           "check_record_plausible", "check_step", "first_non_number", "line_of_value",
+           "read_lines", "record_units", "timing_problem"]
 
 _OTHER_QUANTITY = re.compile(r"\b(VELOCITY|DISPLACEMENT)\s+TIME\s+(HISTORY|SERIES)", re.IGNORECASE)
 _STATEMENT = re.compile(
@@ -150,11 +150,19 @@ def check_finite(path: Path, values: np.ndarray, line_ends: Sequence[tuple[int, 
 
 
 def check_step(dt: object, owner: str) -> float:
-    """A time step given by the caller [s], > 0 and finite, else `InputError`."""
-    try:
-        return check_real(dt, "dt", owner, low=0.0, low_open=True)
-    except ValueError as error:
-        raise InputError(str(error)) from None
+    """A time step given by the caller [s], > 0 and finite, else `InputError` (`InputTypeError`
+    for one that is not a number)."""
+    return check_real(dt, "dt", owner, low=0.0, low_open=True)
+
+
+def agreeing_step(dt: object, step: float, owner: str, source: str) -> float:
+    """A time step given by the caller [s] (:func:`check_step`) that must agree to 0.1 % with
+    the file's ``step`` [s], which ``source`` names ("the DT of X.AT2 (DT = 0.01 s)")."""
+    given = check_step(dt, owner)
+    if abs(given - step) > 1e-3 * step:
+        raise InputError(f"The 'dt' parameter of {owner} must agree with {source}. Got {dt!r} "
+                         "instead.")
+    return given
 
 
 def _squeezed(line: str) -> str:

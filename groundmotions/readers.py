@@ -7,9 +7,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_path
-from groundmotions.filetext import check_step, read_lines
+from groundmotions.filetext import agreeing_step, read_lines
 from groundmotions.peer import has_npts_line, parse_peer, read_peer_at2
 from groundmotions.records import GroundMotion, PathLike
 from groundmotions.text_records import read_text_record
@@ -58,11 +57,7 @@ def read_record(
     if path.suffix.lower() == ".at2" or has_npts_line(lines):
         motion = parse_peer(path, lines, name, units)
         if dt is not None:
-            given = check_step(dt, "read_record")
-            if abs(given - motion.dt) > 1e-3 * motion.dt:
-                raise InputError(
-                    f"The 'dt' parameter of read_record must agree with the DT of "
-                    f"{path.name} (DT = {motion.dt:g} s). Got {dt!r} instead."
-                )
+            agreeing_step(dt, motion.dt, "read_record",
+                          f"the DT of {path.name} (DT = {motion.dt:g} s)")
         return motion
     return read_text_record(path, dt, units, name=name)

@@ -14,6 +14,7 @@ import numpy as np
 from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_path
 from groundmotions.filetext import (
+    agreeing_step,
     check_finite,
     check_plausible,
     check_record_plausible,
@@ -116,13 +117,8 @@ def _time_step(path: Path, times: np.ndarray, numbers: list[int], dt: float | No
             f"{typical:.6g} s: the record is not uniformly sampled",
         )  # fmt: skip
     if dt is not None:
-        given = check_step(dt, _OWNER)
-        if abs(given - step) > 1e-3 * step:
-            raise InputError(
-                f"The 'dt' parameter of {_OWNER} must agree with the time column of "
-                f"{path.name} (dt = {step:.6g} s). Got {dt!r} instead."
-            )
-        step = given
+        step = agreeing_step(dt, step, _OWNER, f"the time column of {path.name} (dt = "
+                             f"{step:.6g} s)")
     return step
 
 

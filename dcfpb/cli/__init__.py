@@ -46,7 +46,13 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from dcfpb import __version__
-from dcfpb.common.errors import EXIT_INTERNAL_ERROR, InputError, RunFailure
+from dcfpb.common.errors import (
+    EXIT_BAD_INPUT,
+    EXIT_INTERNAL_ERROR,
+    EXIT_RUN_FAILED,
+    InputError,
+    RunFailure,
+)
 
 __all__ = ["build_parser", "console", "main"]
 
@@ -116,16 +122,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         return args.handler(args)
     except RunFailure as error:  # caught first: a CapacityExceeded is a ValueError too
         print(f"dcfpb {args.command}: run failed: {error}", file=sys.stderr)
-        return 1
+        return EXIT_RUN_FAILED
     except InputError as error:
         print(f"dcfpb {args.command}: error: {error}", file=sys.stderr)
-        return 2
+        return EXIT_BAD_INPUT
     except USER_PATH_ERRORS as error:
         message = user_path_message(error, argv, vars(args))
         if message is None:
             return _internal_error(args.command, argv)
         print(f"dcfpb {args.command}: error: {message}", file=sys.stderr)
-        return 2
+        return EXIT_BAD_INPUT
     except Exception:  # every other exception is a bug: reported, logged
         return _internal_error(args.command, argv)
     finally:

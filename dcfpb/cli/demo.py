@@ -23,6 +23,7 @@ import dataclasses
 from pathlib import Path
 
 from dcfpb.cli.run import FIXED_BASE
+from dcfpb.common.errors import EXIT_OK, EXIT_RUN_FAILED
 from dcfpb.common.units import STANDARD_GRAVITY
 
 MODELS = ("precise", "simplified", "constant")
@@ -111,7 +112,7 @@ def run(args: argparse.Namespace) -> int:
                             fixed_base=fixed, processes=2)  # half of the figures in a fork
     print(f"plots written to {Path(args.plot).resolve()}/: "
           + ", ".join(p.name for p in written))
-    return 0 if all(r.attrs["success"] for r in results.values()) else 1
+    return EXIT_OK if all(r.attrs["success"] for r in results.values()) else EXIT_RUN_FAILED
 
 
 def _heading(config, motion, bearing, dt: float, plan: bool) -> str:

@@ -18,7 +18,7 @@ import shlex
 import warnings
 from pathlib import Path
 
-from dcfpb.common.errors import InputError, InputWarning
+from dcfpb.common.errors import EXIT_OK, EXIT_RUN_FAILED, InputError, InputWarning
 
 _COMMAND = "dcfpb design"
 
@@ -192,27 +192,19 @@ def parse_positions(text: str) -> tuple[str, ...]:
     return positions
 
 
-def _file_design(config) -> dict:
-    """The building file's ``[design]`` table (empty where it has none)."""
-    return dict(getattr(config, "design", None) or {})
-
-
-def _required_from_file(args: argparse.Namespace, config) -> None:
-    """Refuse, naming the flag, what neither a flag nor the file's ``[design]`` gives."""
-    table = _file_design(config)
-    if args.site is None and not {"S_MS", "S_M1"} <= set(table):
-        raise InputError(f"--site S_MS,S_M1[,T_L] must be given: the building file "
-                         f"{args.building} has no [design] S_MS and S_M1 (MCE_R spectral "
-                         "accelerations in g, e.g. --site 1.5,0.6,8).")
-    lam_keys = {"lambda_max", "lambda_min", *LAMBDA_FACTORS}
-    if args.lambda_ is None and args.lambda_factors is None and not lam_keys & set(table):
-        raise InputError(f"--lambda MAX,MIN (or --lambda-factors) must be given: the building "
-                         f"file {args.building} has no [design] lambda_max and lambda_min "
-                         "(property modification, 17.2.8.4; e.g. --lambda 1.8,0.6).")
-    if args.R is None and table.get("R") is None:
-        raise InputError(f"--R must be given: the building file {args.building} has no "
-                         "[design] R (the superstructure's response modification "
-                         "coefficient, e.g. --R 2).")
+def _missing_design(building: str) -> dict[str, str]:
+    """The messages of :func:`structures.design.response.design_inputs` for a site, lambda or
+    R given neither by a flag nor by the building file's ``[design]``, naming the flags."""
+    return {
+        "site": (f"--site S_MS,S_M1[,T_L] must be given: the building file {building} has no "
+                 "[design] S_MS and S_M1 (MCE_R spectral accelerations in g, e.g. --site "
+                 "1.5,0.6,8)."),
+        "lambda": (f"--lambda MAX,MIN (or --lambda-factors) must be given: the building file "
+                   f"{building} has no [design] lambda_max and lambda_min (property "
+                   "modification, 17.2.8.4; e.g. --lambda 1.8,0.6)."),
+        "R": (f"--R must be given: the building file {building} has no [design] R (the "
+              "superstructure's response modification coefficient, e.g. --R 2)."),
+    }
 
 
 def _suite_size(n_pairs: int, synthetic: bool | int) -> int:
@@ -224,19 +216,15 @@ def _suite_size(n_pairs: int, synthetic: bool | int) -> int:
 
 def _check_suite_size(args: argparse.Namespace, n_pairs: int, synthetic: bool | int) -> None:
     """Refuse a suite of fewer pairs than 17.3.2 asks without --allow-fewer, before any run
-    (the analysis refuses it too; this message names the flags)."""
-    from structures.design.limits import LIMITS, limit
+    (:func:`structures.design.response.check_suite_size`, this message naming the flags)."""
+    from structures.design.response import check_suite_size
 
-    minimum = int(limit("min_pairs"))
     total = _suite_size(n_pairs, synthetic)
-    if total < minimum and not args.allow_fewer:
-        added = f" and {total - n_pairs} synthetic" if total > n_pairs else ""
-        raise InputError(f"--pairs {args.pairs}: the suite has {n_pairs} pairs{added}, but "
-                         f"ASCE/SEI 7-16 {LIMITS['min_pairs'].clause} asks for at least "
-                         f"{minimum} pairs of ground motions. Give more pairs, complete the "
-                         "suite with synthetic ones (--synthetic auto, or --synthetic N), or "
-                         "give --allow-fewer (the report then says the suite is not "
-                         "compliant).")
+    added = f" and {total - n_pairs} synthetic" if total > n_pairs else ""
+    check_suite_size(total, args.allow_fewer, lambda rule: (
+        f"--pairs {args.pairs}: the suite has {n_pairs} pairs{added}, but {rule}. Give more "
+        "pairs, complete the suite with synthetic ones (--synthetic auto, or --synthetic N), "
+        "or give --allow-fewer (the report then says the suite is not compliant)."))
 
 
 def _unused_flags(args: argparse.Namespace, n_pairs: int, synthetic: bool | int,
@@ -282,6 +270,7 @@ def command_line(args: argparse.Namespace) -> str:
 
 def _run(args: argparse.Namespace) -> int:
     from dcfpb.cli.outputs import check_outputs, writing
+    from dcfpb.cli.suite import cluster_flags
     from dcfpb.common.validation import check_real
     from dcfpb.report.design import report_files, write_report
     from structures.config import load_config
@@ -296,17 +285,7 @@ def _run(args: argparse.Namespace) -> int:
         check_real(args.R, "--R", _COMMAND, low=0.0, high=10.0, low_open=True)
     synthetic = parse_synthetic(args.synthetic)
     positions = parse_positions(args.positions)
-    if args.workers is not None and args.scheduler is not None:
-        raise InputError("give --workers (a local cluster) or --scheduler, not both.")
-    workers = args.workers
-    if args.scheduler is not None:
-        from structures.suites.tasks import check_scheduler
-
-        check_scheduler(args.scheduler, "--scheduler")
-    elif workers is not None:
-        from structures.suites.tasks import capped_workers
-
-        workers = capped_workers(workers, "--workers", _COMMAND)
+    workers = cluster_flags(args, _COMMAND)
     config = load_config(args.building)
     if config.plan is None:
         raise InputError(f"{args.building}: {_COMMAND} runs a building in plan, but the file has "
@@ -316,9 +295,11 @@ def _run(args: argparse.Namespace) -> int:
         raise InputError(f"{args.building}: {_COMMAND} needs the plan's dimensions ([plan] "
                          "dimensions = [a, b] in m): the accidental positions of the centre of "
                          "mass are 5 % of them.")
-    _required_from_file(args, config)
+    from structures.design.response import design_inputs
     from structures.suites.sources import motion_sources
 
+    site, lambda_, R = design_inputs(config, site, lambda_, args.R,
+                                     missing=_missing_design(args.building))
     sources = motion_sources(args.pairs, pairs=True)
     _check_suite_size(args, len(sources), synthetic)
     _unused_flags(args, len(sources), synthetic, positions)
@@ -326,7 +307,7 @@ def _run(args: argparse.Namespace) -> int:
 
     out = Path(args.out)
     try:
-        result = design(config, sources, site, lambda_, R=args.R, model=args.model,
+        result = design(config, sources, site, lambda_, R=R, model=args.model,
                         allow_fewer=args.allow_fewer, complete_with_synthetic=synthetic,
                         positions=positions, hold_bearing_loads=args.loads == "held",
                         out_dir=out / "runs", n_workers=workers,
@@ -361,7 +342,7 @@ def _summary(result, written: dict[str, Path]) -> int:
     peaks = result.peaks
     stopped = peaks["status"] != "done" if "status" in peaks else None
     if stopped is None or not stopped.any():
-        return 0
+        return EXIT_OK
     kind = peaks.get("failure", None)
     capacity = stopped & (kind == "capacity") if kind is not None else stopped & False
     if capacity.any():
@@ -371,5 +352,5 @@ def _summary(result, written: dict[str, Path]) -> int:
     if bad:
         print(f"run failed: {bad} of {len(peaks)} runs did not finish; the report holds their "
               "peaks up to the failure (see its notes and peaks.csv)")
-        return 1
-    return 0
+        return EXIT_RUN_FAILED
+    return EXIT_OK

@@ -15,6 +15,8 @@ from __future__ import annotations
 import argparse
 import json
 
+from dcfpb.common.errors import EXIT_OK
+
 FLAG_NAMES = {"effective_radius": "--effective-radius", "slider_diameter": "--slider-diameter",
               "axial_load": "--axial-load"}
 """The command-line flag of each argument a manifest may also give."""
@@ -70,8 +72,7 @@ def run(args: argparse.Namespace) -> int:
                   inputs={"the test file": list(args.files), "the manifest": args.manifest},
                   writes={"--report": REPORT_FILES})  # before the slow imports
     from isolator.diagnosis import BaselineSpec, DataError, diagnose
-    from isolator.diagnosis.data import MAX_ROWS
-    from isolator.diagnosis.data2d import load_any_campaign
+    from isolator.diagnosis.data import MAX_ROWS, load_any_campaign
     from isolator.diagnosis.manifest import load_manifest
 
     max_rows = MAX_ROWS if args.max_rows is None else args.max_rows
@@ -106,7 +107,7 @@ def run(args: argparse.Namespace) -> int:
             written = write_report(diagnosis, args.report, "\n".join(_lines(summary)))
         summary["report"] = [str(p) for p in written]
     print(json.dumps(summary, indent=2) if args.json else "\n".join(_lines(summary)))
-    return 0
+    return EXIT_OK
 
 
 def _check_flags(args: argparse.Namespace) -> None:

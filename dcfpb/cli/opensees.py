@@ -13,6 +13,7 @@ import math
 from typing import Any
 
 from dcfpb.cli.run import add_max_steps, add_pair_options, add_record_options
+from dcfpb.common.errors import EXIT_BAD_INPUT, EXIT_OK, EXIT_RUN_FAILED
 
 MODELS = ("constant", "velocity", "ptv")
 _ELEMENT = {"constant": "coulomb", "velocity": "velocity", "ptv": "ptv"}
@@ -83,7 +84,7 @@ def _import_error(command: str, error: ImportError) -> int:
     import sys
 
     print(f"dcfpb {command}: error: {error}", file=sys.stderr)
-    return 2
+    return EXIT_BAD_INPUT
 
 
 def _inputs(args: argparse.Namespace, command: str):
@@ -155,7 +156,7 @@ def run_building(args: argparse.Namespace) -> int:
     for side in ("ours", "opensees"):
         report_failure("compare-opensees", summary[side], f"{side}: {summary[side]['message']}")
     ok = summary["ours"]["success"] and summary["opensees"]["success"]
-    return 0 if ok else 1
+    return EXIT_OK if ok else EXIT_RUN_FAILED
 
 
 def print_differences(summary: dict[str, Any]) -> None:
@@ -239,7 +240,7 @@ def run_bearing(args: argparse.Namespace) -> int:
     summary = bearing_summary(result.ours, result.opensees)
     if args.json:
         print(json.dumps(summary, indent=2))
-        return 0
+        return EXIT_OK
     d = summary["difference"]
     print(f"{history.name}, {args.model} model; OpenSees: {result.opensees.name.split(':')[0]}")
     print(f"{'':10s} {'peak force':>11s} {'T max':>7s} {'wall':>7s}")
@@ -253,4 +254,4 @@ def run_bearing(args: argparse.Namespace) -> int:
     print(f"OpenSees against ours: peak force {100 * d['peak_force']:.3f} %, force NRMSE "
           f"{100 * d['nrmse_force']:.3f} %, largest EDC gap {100 * d['edc']:.3f} %{gap}; "
           f"wall-time ratio ours/OpenSees {summary['wall_time_ratio']:.3g}")
-    return 0
+    return EXIT_OK

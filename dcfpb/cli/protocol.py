@@ -13,6 +13,8 @@ import argparse
 import json
 import math
 
+from dcfpb.common.errors import EXIT_OK
+
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add ``dcfpb protocol`` to the sub-commands."""
@@ -217,22 +219,21 @@ def _run_protocol(args: argparse.Namespace) -> int:
         print(json.dumps(summary, indent=2))
     else:
         _print(summary)
-    return 0
+    return EXIT_OK
 
 
-FRICTION_FLAGS = {"refinement": ("simplified",), "mu0": ("constant",),
-                  "mu_t0": ("precise", "simplified")}
-"""The friction flags of ``dcfpb protocol`` and the ``--model`` choices each applies to."""
-
-
-def friction_flags(args: argparse.Namespace, uses: dict = FRICTION_FLAGS) -> dict[str, float]:
-    """The friction flags of ``uses`` (flag: the models it applies to) as given for
-    ``--model``: one the model does not use (checked already) is dropped with an
+def friction_flags(args: argparse.Namespace, uses: dict | None = None) -> dict[str, float]:
+    """The friction flags of ``uses`` (flag: the models it applies to; default those of
+    ``dcfpb protocol``, the parameters of :func:`isolator.experiments.protocol_bearing`)
+    as given for ``--model``: one the model does not use (checked already) is dropped with an
     :class:`~dcfpb.common.errors.InputWarning` naming the flag, the model and that it has no
     effect."""
     import warnings
 
     from dcfpb.common.errors import InputWarning
+    from isolator.experiments import _USES
+
+    uses = _USES if uses is None else uses
 
     given = {}
     for name, models in uses.items():

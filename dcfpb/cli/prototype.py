@@ -13,7 +13,7 @@ import json
 import math
 from pathlib import Path
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import EXIT_OK, InputError
 
 _COMMAND = "dcfpb prototype"
 
@@ -96,7 +96,6 @@ def _design_inputs(args: argparse.Namespace, config) -> dict:
     if (args.displacements is None) != (args.period is None):
         raise InputError("--displacements D_M,D_TM and --period T_M go together: give both, or "
                          "neither (then the ELF gives them).")
-    table = dict(getattr(config, "design", None) or {})
     if args.displacements is not None:
         d_m, d_tm = _pair(args.displacements, "--displacements", "D_M,D_TM in m")
         check_real(d_m, "--displacements D_M", _COMMAND, low=0.0, low_open=True, high=5.0)
@@ -115,25 +114,16 @@ def _design_inputs(args: argparse.Namespace, config) -> dict:
         return {"D_M": d_m, "D_TM": d_tm, "T_M": t_m, "source": "given",
                 "S_MS": None if site is None else site.S_MS,
                 "S_M1": None if site is None else site.S_M1, "B_M": None}
-    from structures.design import building_design
+    from structures.design.response import design_inputs
 
-    from_file = building_design(config)  # the [design] table as objects (None: not given)
-    if args.site is not None:
-        site = parse_site(args.site)
-    elif from_file["site"] is not None:
-        site = from_file["site"]
-    else:
-        raise InputError(f"--site S_MS,S_M1[,T_L] (or --displacements and --period) must be "
-                         f"given: the building file {args.building} has no [design] S_MS and "
-                         "S_M1.")
-    if args.lambda_ is not None:
-        lam = parse_lambda(args.lambda_, None)
-    elif from_file["lambda"] is not None:
-        lam = from_file["lambda"]
-    else:
-        lam = PropertyModification.overall(1.0, 1.0)
-    R = args.R if args.R is not None else float(from_file["R"] or table.get("R") or 2.0)
-    R = check_real(R, "--R", _COMMAND, low=0.0, high=10.0, low_open=True)
+    missing = {"site": f"--site S_MS,S_M1[,T_L] (or --displacements and --period) must be "
+                       f"given: the building file {args.building} has no [design] S_MS and "
+                       "S_M1."}
+    site, lam, R = design_inputs(
+        config, parse_site(args.site) if args.site is not None else None,
+        parse_lambda(args.lambda_, None), args.R, missing=missing,
+        defaults={"lambda": PropertyModification.overall(1.0, 1.0), "R": 2.0})
+    R = check_real(float(R), "--R", _COMMAND, low=0.0, high=10.0, low_open=True)
     result = elf(config, site, lam, R=R, model=args.model)
     bound = max(result.bounds.values(), key=lambda b: b.D_M)
     d_tm = max(d.D_TM for b in result.bounds.values() for d in b.directions.values())
@@ -195,7 +185,7 @@ def _run(args: argparse.Namespace) -> int:
             print(f"table: {args.output}")
         if figure:
             print(f"plot: {figure}")
-    return 0
+    return EXIT_OK
 
 
 def _none(value):

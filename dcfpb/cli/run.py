@@ -11,7 +11,7 @@ import json
 import re
 from pathlib import Path
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import EXIT_OK, EXIT_RUN_FAILED, InputError
 
 FIXED_BASE = "fixed base"
 """The label of the fixed-base building in tables and plots."""
@@ -292,7 +292,7 @@ def _run_building(args: argparse.Namespace) -> int:
         print_ratios({model: ratios}, fixed, float(abs(fixed["ground_acceleration"]).max()))
         print_failure(summary, result.attrs["message"])
     report_failure("run", summary, result.attrs["message"])
-    return 0 if result.attrs["success"] else 1
+    return EXIT_OK if result.attrs["success"] else EXIT_RUN_FAILED
 
 
 RUN_FORMATS = {".nc": "netCDF"}

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from dcfpb.cli.run import add_record_options, read_record_from_args
+from dcfpb.common.errors import EXIT_OK
 from dcfpb.common.units import STANDARD_GRAVITY
 
 STANDARD_PERIODS = (0.0, 0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0)
@@ -96,7 +97,7 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(summary, indent=2))
     else:
         print_summary(summary)
-    return 0
+    return EXIT_OK
 
 
 def print_summary(summary: dict[str, Any]) -> None:

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dcfpb.common.errors import InputError
+from dcfpb.common.errors import EXIT_OK, EXIT_RUN_FAILED, InputError
 from dcfpb.common.units import STANDARD_GRAVITY
 
 
@@ -288,17 +288,7 @@ def _run(args: argparse.Namespace) -> int:
         check_real(scale, "--scales", "dcfpb suite", low=0.0, low_open=True)
     if args.period_range and not args.target:
         raise InputError("--period-range applies to --target only.")
-    if args.workers is not None and args.scheduler is not None:
-        raise InputError("give --workers (a local cluster) or --scheduler, not both.")
-    workers = args.workers
-    if args.scheduler is not None:
-        from structures.suites.tasks import check_scheduler
-
-        check_scheduler(args.scheduler, "--scheduler")
-    elif workers is not None:
-        from structures.suites.tasks import capped_workers
-
-        workers = capped_workers(workers, "--workers", "dcfpb suite")
+    workers = cluster_flags(args, "dcfpb suite")
     config = load_config(args.building)
     target, period_range = None, None
     if args.target:
@@ -321,7 +311,21 @@ def _run(args: argparse.Namespace) -> int:
         with writing("--out", args.out):
             plots = [] if args.no_plots else _plots(result, suite, target, period_range)
         _report(result, plots, args.json)
-    return 0 if not result.failures else 1
+    return EXIT_OK if not result.failures else EXIT_RUN_FAILED
+
+
+def cluster_flags(args: argparse.Namespace, command: str) -> int | None:
+    """The local workers of ``--workers`` (capped at the cores) or None, after checking that
+    ``--workers`` and ``--scheduler`` are not both given and that the scheduler answers."""
+    from structures.suites.tasks import capped_workers, check_scheduler
+
+    if args.workers is not None and args.scheduler is not None:
+        raise InputError("give --workers (a local cluster) or --scheduler, not both.")
+    if args.scheduler is not None:
+        check_scheduler(args.scheduler, "--scheduler")
+    elif args.workers is not None:
+        return capped_workers(args.workers, "--workers", command)
+    return args.workers
 
 
 def _plots(result, suite, target, period_range) -> list[Path]:

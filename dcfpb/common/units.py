@@ -19,9 +19,6 @@ M_PER_INCH = 0.0254
 M_PER_FOOT = 0.3048
 """Metres in one international foot (exact; not ``12 * M_PER_INCH``, which rounds) [m]."""
 
-N_PER_KIP = 4448.2216152605
-"""Newtons in one kip [N]."""
-
 KELVIN_LOOK = (250.0, 400.0)
 """Temperatures [degC] that look like kelvin where a plate's or test's starting temperature
 is meant (250 degC or more before a run or a test is implausible): refused as such by building

@@ -1,8 +1,8 @@
 """The sim-to-real gap of a bearing model: where it lies, which effect explains it, how far
 it shrinks.
 
-:func:`diagnose` takes measured tests (:mod:`.data`; tests in two directions :mod:`.data2d`,
-diagnosed by :mod:`.two_directions`) and a baseline (:mod:`.baseline`); its steps are in
+:func:`diagnose` takes measured tests (:mod:`.data`, in one direction or in two; tests in two
+directions diagnosed by :mod:`.two_directions`) and a baseline (:mod:`.baseline`); its steps are in
 :mod:`.pipeline`, the method for users in ``docs/diagnosis.md``. :func:`load_campaign` here
 reads tests in one direction or in two, told apart by their headers.
 """
@@ -10,12 +10,13 @@ reads tests in one direction or in two, told apart by their headers.
 from isolator.diagnosis.baseline import BASELINE_MODELS, REMOVABLE_EFFECTS, BaselineSpec
 from isolator.diagnosis.data import (
     BearingRecord,
+    BearingRecord2D,
     Campaign,
+    Campaign2D,
     DataError,
     read_record,
 )
-from isolator.diagnosis.data2d import BearingRecord2D, Campaign2D
-from isolator.diagnosis.data2d import load_any_campaign as load_campaign
+from isolator.diagnosis.data import load_any_campaign as load_campaign
 from isolator.diagnosis.effects import EFFECT_NAMES, LIBRARY
 from isolator.diagnosis.pipeline import Diagnosis, diagnose, reselect
 

@@ -13,6 +13,13 @@ increase, a non-positive axial force, a displacement in mm, a velocity column th
 derivative of the displacement (:func:`velocity_ratio`), a temperature in kelvin or out of
 range, and levels that betray a unit mistake or a wrong R_eff or axial load
 (:func:`check_plausible`).
+
+A test in two directions (an orbit) has the columns ``time`` [s], ``displacement_x``,
+``displacement_y`` [m], ``force_x``, ``force_y`` [N] and optionally ``axial_force`` [N],
+``velocity_x``, ``velocity_y`` [m/s] and ``temperature`` [degC]; it is read and checked by the
+same code (:func:`read_record_2d`, a :class:`BearingRecord2D`), every message naming the axis.
+A campaign holds tests of one kind only: all in one direction or all in two
+(:func:`check_one_kind`, :func:`load_any_campaign`).
 """
 
 from __future__ import annotations
@@ -24,18 +31,38 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 
 from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.units import KELVIN_LOOK
 from dcfpb.common.validation import check_real
-from isolator.limits import DEFAULT_MAX_STEPS, available_memory
+from isolator.limits import DEFAULT_MAX_STEPS, _size, available_memory
 
 REQUIRED_COLUMNS = ("time", "displacement", "force")
 OPTIONAL_COLUMNS = ("axial_force", "velocity", "temperature")
 UNITS = {"time": "s", "displacement": "m", "force": "N", "axial_force": "N",
          "velocity": "m/s", "temperature": "degC"}
+AXES = ("x", "y")
+REQUIRED_COLUMNS_2D = ("time", "displacement_x", "displacement_y", "force_x", "force_y")
+OPTIONAL_COLUMNS_2D = ("axial_force", "velocity_x", "velocity_y", "temperature")
+UNITS_2D = {"time": "s", "displacement_x": "m", "displacement_y": "m", "force_x": "N",
+            "force_y": "N", "axial_force": "N", "velocity_x": "m/s", "velocity_y": "m/s",
+            "temperature": "degC"}
+TWO_DIRECTION_MARKERS = ("displacement_x", "displacement_y", "force_x", "force_y")
+"""Columns whose presence marks a test in two directions."""
+VECTORS = ("displacement", "force", "velocity")
+"""Channels of a test with one column per direction: (n,) in one direction, (n, 2) in two."""
+_COLUMNS = {1: (REQUIRED_COLUMNS, OPTIONAL_COLUMNS, UNITS),
+            2: (REQUIRED_COLUMNS_2D, OPTIONAL_COLUMNS_2D, UNITS_2D)}
+_NEEDS = {
+    1: ("A test needs time [s], displacement [m] and force [N], and optionally axial_force "
+        "[N], velocity [m/s], temperature [degC]."),
+    2: ("A test in two directions needs time [s], displacement_x, displacement_y [m], "
+        "force_x, force_y [N], and optionally axial_force [N], velocity_x, velocity_y [m/s], "
+        "temperature [degC]; a test in one direction has displacement and force."),
+}
 MIN_SAMPLES = 20
 MAX_DISPLACEMENT = 5.0  # [m] a larger relative displacement is taken for a unit mistake
 _DERIVATIVE_WINDOW = 0.04  # [s] span of the smoothing derivative for a missing velocity
@@ -58,7 +85,36 @@ class DataError(InputError):
 
 
 @dataclass(frozen=True, eq=False)
-class BearingRecord:
+class _Histories:
+    """The fields of a test record, checked by :func:`check_record` for the record's
+    number of directions."""
+
+    name: str
+    time: np.ndarray
+    displacement: np.ndarray
+    force: np.ndarray
+    axial_force: np.ndarray
+    velocity: np.ndarray | None = None
+    temperature: np.ndarray | None = None
+    initial_temperature: float | None = None
+    rest_before: float | None = None
+    velocity_measured: bool = field(init=False, default=True)
+    _DIRECTIONS: ClassVar[int] = 1
+
+    def __post_init__(self) -> None:
+        check_record(self, self._DIRECTIONS)
+
+    def __len__(self) -> int:
+        return int(self.time.size)
+
+    @property
+    def constant_axial_force(self) -> bool:
+        """Whether the axial force is the same at every sample."""
+        return bool(np.ptp(self.axial_force) == 0.0)
+
+
+@dataclass(frozen=True, eq=False)
+class BearingRecord(_Histories):
     """Histories of one bearing test (SI units, read-only arrays of equal length).
 
     Parameters
@@ -79,66 +135,70 @@ class BearingRecord:
         Rest since the end of the previous test [s]; None: long enough to cool.
     """
 
-    name: str
-    time: np.ndarray
-    displacement: np.ndarray
-    force: np.ndarray
-    axial_force: np.ndarray
-    velocity: np.ndarray | None = None
-    temperature: np.ndarray | None = None
-    initial_temperature: float | None = None
-    rest_before: float | None = None
-    velocity_measured: bool = field(init=False, default=True)
 
-    def __post_init__(self) -> None:
-        where = f"test {self.name!r}"
-        arrays = {"time": self.time, "displacement": self.displacement, "force": self.force,
-                  "axial_force": self.axial_force, "velocity": self.velocity,
-                  "temperature": self.temperature}
-        checked = {}
-        for column, values in arrays.items():
-            if values is None:
-                continue
-            arr = np.array(values, dtype=float)
-            if arr.ndim != 1:
-                raise DataError(f"{where}: column {column!r} must be 1-d. Got shape {arr.shape}.")
-            checked[column] = arr
-        n = checked["time"].size
-        for column, arr in checked.items():
-            if arr.size != n:
-                raise DataError(f"{where}: column {column!r} has {arr.size} values but 'time' "
-                                f"has {n}; all columns must have the same length.")
-            _check_finite(arr, column, where, first_row=0)
-        if n < MIN_SAMPLES:
-            raise DataError(f"{where}: needs at least {MIN_SAMPLES} samples. Got {n}.")
-        _check_increasing(checked["time"], where, first_row=0)
-        _check_values(checked, where, first_row=0)
-        if "velocity" not in checked:
-            checked["velocity"] = derived_velocity(checked["time"], checked["displacement"])
-            object.__setattr__(self, "velocity_measured", False)
-        set_columns(self, checked, where)
+@dataclass(frozen=True, eq=False)
+class BearingRecord2D(_Histories):
+    """Histories of one bearing test in two directions (SI units, read-only arrays).
 
-    def __len__(self) -> int:
-        return int(self.time.size)
+    Parameters
+    ----------
+    name : str
+        Name of the test (the file name for a CSV).
+    time : array_like, shape (n,)
+        Strictly increasing sample times [s].
+    displacement, force : array_like, shape (n, 2)
+        Relative displacement of the plates (x, y) [m] and horizontal force (x, y) [N].
+    axial_force : array_like, shape (n,)
+        Compressive axial load [N] > 0.
+    velocity : array_like, shape (n, 2), or None
+        Relative velocity (x, y) [m/s]; None derives it per axis (:func:`derived_velocity`).
+    temperature : array_like, shape (n,), or None
+        Measured temperature [degC], if any.
+    initial_temperature, rest_before : float or None
+        As for :class:`BearingRecord` [degC], [s].
+    """
+
+    _DIRECTIONS: ClassVar[int] = 2
 
     @property
-    def constant_axial_force(self) -> bool:
-        """Whether the axial force is the same at every sample."""
-        return bool(np.ptp(self.axial_force) == 0.0)
+    def dimension(self) -> int:
+        """2: a test in two directions."""
+        return 2
+
+    @property
+    def speed(self) -> np.ndarray:
+        """The sliding speed |v| [m/s]."""
+        return np.hypot(self.velocity[:, 0], self.velocity[:, 1])
+
+    @property
+    def radius(self) -> np.ndarray:
+        """The distance |u| of the plates from the centred position [m]."""
+        return np.hypot(self.displacement[:, 0], self.displacement[:, 1])
 
 
 @dataclass(frozen=True, eq=False)
-class Campaign:
-    """The tests of one bearing, at least one, in the order run (wear accumulates across
-    them), with its effective radius R_eff [m] (``inf`` for a flat slider or a friction
-    damper) and slider diameter [m]."""
+class _Tests:
+    """The fields of a campaign, checked to hold records of its kind."""
 
-    tests: tuple[BearingRecord, ...]
+    tests: tuple
     effective_radius: float
     slider_diameter: float
+    _RECORD: ClassVar[type] = BearingRecord
 
     def __post_init__(self) -> None:
-        check_campaign(self, BearingRecord)
+        """Check the fields: ``tests`` made a tuple of records of the campaign's kind, at least
+        one; R_eff [m] > 0 or inf; slider diameter [m] in (0, 10]."""
+        owner = type(self).__name__
+        tests = tuple(self.tests)
+        if not tests or not all(isinstance(t, self._RECORD) for t in tests):
+            raise InputTypeError(f"The 'tests' parameter of {owner} must be one or more "
+                                 f"{self._RECORD.__name__} objects. Got {self.tests!r} "
+                                 "instead.")
+        object.__setattr__(self, "tests", tests)
+        check_real(self.effective_radius, "effective_radius", owner, low=0.0, low_open=True,
+                   allow_inf=True)
+        check_real(self.slider_diameter, "slider_diameter", owner, low=0.0, low_open=True,
+                   high=10.0)
 
     @property
     def contact_radius(self) -> float:
@@ -151,9 +211,65 @@ class Campaign:
         return math.pi * self.contact_radius**2
 
 
-def set_columns(record, checked: dict[str, np.ndarray], where: str) -> None:
-    """Give a test record (in its ``__post_init__``) its checked columns, read-only, and check
-    its conditions: ``initial_temperature`` [degC] in [-50, 300], ``rest_before`` [s] >= 0."""
+@dataclass(frozen=True, eq=False)
+class Campaign(_Tests):
+    """The tests of one bearing (:class:`BearingRecord`), at least one, in the order run (wear
+    accumulates across them), with its effective radius R_eff [m] (``inf`` for a flat slider
+    or a friction damper) and slider diameter [m]."""
+
+
+@dataclass(frozen=True, eq=False)
+class Campaign2D(_Tests):
+    """The tests in two directions of one bearing (:class:`BearingRecord2D`), at least one, in
+    the order run, with its effective radius R_eff [m] (``inf`` for a flat slider) and slider
+    diameter [m]."""
+
+    _RECORD: ClassVar[type] = BearingRecord2D
+
+    @property
+    def dimension(self) -> int:
+        """2: tests in two directions."""
+        return 2
+
+
+def check_record(record, dimension: int) -> None:
+    """Check a test record's histories (in its ``__post_init__``) and give them to it as
+    read-only float arrays: ``time``, ``axial_force`` and ``temperature`` of shape (n,),
+    ``displacement``, ``force`` and ``velocity`` (n,) in one direction and (n, 2) in two
+    (``dimension``); a missing velocity is derived (``velocity_measured`` False). And its
+    conditions: ``initial_temperature`` [degC] in [-50, 300], ``rest_before`` [s] >= 0."""
+    where = f"test {record.name!r}"
+    checked = {}
+    for column in ("time", "displacement", "force", "axial_force", "velocity", "temperature"):
+        values = getattr(record, column)
+        if values is None:
+            continue
+        arr = np.array(values, dtype=float)
+        if dimension == 1 or column == "time":
+            if arr.ndim != 1:
+                raise DataError(f"{where}: column {column!r} must be 1-d. Got shape {arr.shape}.")
+        else:
+            shape = (checked["time"].size, 2) if column in VECTORS else checked["time"].shape
+            if arr.shape != shape:
+                raise DataError(f"{where}: {column!r} must have the shape {shape} (one row per "
+                                f"time). Got {arr.shape}.")
+        checked[column] = arr
+    n = checked["time"].size
+    for column, arr in checked.items():
+        if arr.shape[0] != n:
+            raise DataError(f"{where}: column {column!r} has {arr.size} values but 'time' "
+                            f"has {n}; all columns must have the same length.")
+        _check_finite(arr, column, where, first_row=0)
+    if n < MIN_SAMPLES:
+        raise DataError(f"{where}: needs at least {MIN_SAMPLES} samples. Got {n}.")
+    _check_increasing(checked["time"], where, first_row=0)
+    _check_values(checked, where, first_row=0)
+    if "velocity" not in checked:
+        u = checked["displacement"]
+        checked["velocity"] = (derived_velocity(checked["time"], u) if u.ndim == 1 else
+                               np.column_stack([derived_velocity(checked["time"], u[:, j])
+                                                for j in range(u.shape[1])]))
+        object.__setattr__(record, "velocity_measured", False)
     for column, arr in checked.items():
         arr.setflags(write=False)
         object.__setattr__(record, column, arr)
@@ -162,23 +278,6 @@ def set_columns(record, checked: dict[str, np.ndarray], where: str) -> None:
                    high=300.0)
     if record.rest_before is not None:
         check_real(record.rest_before, "rest_before", where, low=0.0)
-
-
-def check_campaign(campaign, record_class: type) -> None:
-    """Check a campaign's fields (its ``tests`` made a tuple of ``record_class`` objects, at
-    least one; R_eff [m] > 0 or inf; slider diameter [m] in (0, 10]), in its
-    ``__post_init__``."""
-    owner = type(campaign).__name__
-    tests = tuple(campaign.tests)
-    if not tests or not all(isinstance(t, record_class) for t in tests):
-        raise InputTypeError(f"The 'tests' parameter of {owner} must be one or more "
-                             f"{record_class.__name__} objects. Got {campaign.tests!r} "
-                             "instead.")
-    object.__setattr__(campaign, "tests", tests)
-    check_real(campaign.effective_radius, "effective_radius", owner, low=0.0, low_open=True,
-               allow_inf=True)
-    check_real(campaign.slider_diameter, "slider_diameter", owner, low=0.0, low_open=True,
-               high=10.0)
 
 
 def derived_velocity(time: np.ndarray, displacement: np.ndarray) -> np.ndarray:
@@ -221,6 +320,48 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
     DataError
         Naming the file, the column and the row of the first problem.
     """
+    columns = read_columns(path, 1, axial_load=axial_load, caller="read_record",
+                           max_rows=max_rows)
+    return BearingRecord(_test_name(path), **columns,
+                         initial_temperature=initial_temperature, rest_before=rest_before)
+
+
+def read_record_2d(path: str | Path, *, axial_load: float | None = None,
+                   initial_temperature: float | None = None,
+                   rest_before: float | None = None,
+                   max_rows: int = MAX_ROWS) -> BearingRecord2D:
+    """Read one test in two directions from a CSV file (columns: the module docstring).
+
+    ``axial_load`` [N] serves a file without an ``axial_force`` column (only then);
+    ``initial_temperature``, ``rest_before`` and ``max_rows`` as for :func:`read_record`.
+
+    Raises
+    ------
+    DataError
+        Naming the file, the column and the row of the first problem.
+    """
+    columns = read_columns(path, 2, axial_load=axial_load, caller="read_record_2d",
+                           max_rows=max_rows)
+    return BearingRecord2D(_test_name(path), **columns,
+                           initial_temperature=initial_temperature, rest_before=rest_before)
+
+
+def _test_name(path: str | Path) -> str:
+    return Path(path).name.removesuffix(".gz").removesuffix(".csv")
+
+
+def read_columns(path: str | Path, dimension: int, *, axial_load: float | None,
+                 caller: str, max_rows: int = MAX_ROWS) -> dict[str, np.ndarray]:
+    """The checked histories of a test file in one direction or two (``dimension``), SI units,
+    keyed as the fields of :class:`BearingRecord`: ``displacement``, ``force`` and
+    ``velocity`` (if measured) (n,) in one direction, (n, 2) in two; ``axial_force`` [N] from
+    its column or the constant ``axial_load``; ``caller`` is named for a bad ``axial_load``.
+
+    Raises
+    ------
+    DataError
+        Naming the file, the column and the row of the first problem.
+    """
     import pandas as pd
 
     path = Path(path)
@@ -230,8 +371,9 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
         raise DataError(f"{path}: not a regular file (a device or a pipe); give the CSV file.")
     if not path.is_file():
         raise DataError(f"{path}: no such file.")
+    required, optional, known = _COLUMNS[dimension]
     header = check_size(path, max_rows=max_rows)
-    units = _header_units(header, path)
+    units = _header_units(header, path, known)
     try:
         frame = pd.read_csv(path, dtype=str, keep_default_na=False, skipinitialspace=True)
     except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as error:
@@ -245,45 +387,48 @@ def read_record(path: str | Path, *, axial_load: float | None = None,
         raise DataError(f"{path}: the header line has {len(header)} column(s) but the CSV "
                         f"reader found {len(frame.columns)}; check the header line.")
     frame.columns = [_column_name(c)[0] for c in header]
-    missing = [c for c in REQUIRED_COLUMNS if c not in frame.columns]
-    if missing and {"displacement_x", "force_x"} <= set(frame.columns):
+    missing = [c for c in required if c not in frame.columns]
+    if dimension == 1 and missing and {"displacement_x", "force_x"} <= set(frame.columns):
         raise DataError(f"{path}: a test in two directions (columns displacement_x, "
                         "displacement_y, force_x, force_y); read it with "
-                        "isolator.diagnosis.data2d.read_record_2d (isolator.diagnosis."
+                        "isolator.diagnosis.data.read_record_2d (isolator.diagnosis."
                         "load_campaign, load_manifest and dcfpb diagnose read such tests "
                         "themselves).")
     if missing:
-        raise DataError(
-            f"{path}: missing column(s) {missing}; found {list(frame.columns)}. A test needs "
-            "time [s], displacement [m] and force [N], and optionally axial_force [N], "
-            "velocity [m/s], temperature [degC]."
-        )
+        raise DataError(f"{path}: missing column(s) {missing}; found {list(frame.columns)}. "
+                        f"{_NEEDS[dimension]}")
+    if dimension == 2 and ("velocity_x" in frame.columns) != ("velocity_y" in frame.columns):
+        raise DataError(f"{path}: give both velocity_x and velocity_y, or neither (the "
+                        "velocity is then derived from the displacement).")
     if "axial_force" in frame.columns and axial_load is not None:
         raise DataError(f"{path}: has an 'axial_force' column and an axial load "
                         f"{axial_load!r} N was given as well; give one of the two.")
     if "axial_force" not in frame.columns and axial_load is None:
         raise DataError(f"{path}: no 'axial_force' column; give the constant axial load "
                         "[N] (--axial-load).")
-    columns = {}
-    for column in (*REQUIRED_COLUMNS, *OPTIONAL_COLUMNS):
-        if column in frame.columns:
-            columns[column] = _numeric_column(frame[column].to_numpy(), column, path)
+    columns = {c: _numeric_column(frame[c].to_numpy(), c, path)
+               for c in (*required, *optional) if c in frame.columns}
     n = len(frame)
     for column, arr in columns.items():
         _check_finite(arr, column, str(path), first_row=2, total=n)
-    if "velocity" in columns and units.get("velocity"):
-        columns["velocity"] = columns["velocity"] * VELOCITY_UNITS[units["velocity"]]
+    for column, unit in units.items():
+        if column.startswith("velocity") and unit:
+            columns[column] = columns[column] * VELOCITY_UNITS[unit]
     if n < MIN_SAMPLES:
         raise DataError(f"{path}: needs at least {MIN_SAMPLES} data rows. Got {n}.")
     _check_increasing(columns["time"], str(path), first_row=2)
     if "axial_force" not in columns:
-        check_real(axial_load, "axial_load", "read_record", low=0.0, low_open=True)
+        check_real(axial_load, "axial_load", caller, low=0.0, low_open=True)
         columns["axial_force"] = np.full(n, float(axial_load))
+    if dimension == 2:  # one (n, 2) array a channel
+        for channel in VECTORS:
+            if f"{channel}_x" in columns:
+                columns[channel] = np.column_stack([columns.pop(f"{channel}_{axis}")
+                                                    for axis in AXES])
     _check_values(columns, str(path), first_row=2)
     if "temperature" in columns and not units.get("temperature"):
         _check_kelvin(columns["temperature"], str(path))
-    return BearingRecord(path.name.removesuffix(".gz").removesuffix(".csv"), **columns,
-                         initial_temperature=initial_temperature, rest_before=rest_before)
+    return columns
 
 
 def load_campaign(
@@ -296,21 +441,96 @@ def load_campaign(
 ) -> Campaign:
     """Read the tests of a campaign, in the order run (``axial_load``, ``max_rows``: see
     :func:`read_record`), and check them (:func:`check_consistent_units`,
-    :func:`check_plausible`). Tests in two directions:
-    :func:`isolator.diagnosis.data2d.load_campaign_2d` (or ``load_any_campaign`` there)."""
-    if isinstance(paths, str | Path) or not paths:
-        raise DataError("load_campaign needs a list of one or more CSV files.")
-    _check_max_rows(max_rows)
-    for p in paths:  # every file's size before the first is read
-        if Path(p).is_file():
-            check_size(Path(p), max_rows=max_rows)
-    tests = tuple(read_record(p, axial_load=axial_load, max_rows=max_rows) for p in paths)
-    places = [str(p) for p in paths]
-    check_consistent_units(tests, places)
+    :func:`check_plausible`). Tests in two directions: :func:`load_campaign_2d` (or
+    :func:`load_any_campaign`)."""
+    tests, places = _read_tests(paths, 1, "load_campaign", axial_load=axial_load,
+                                max_rows=max_rows)
     campaign = Campaign(tests, effective_radius, slider_diameter)
     source = "column 'axial_force'" if axial_load is None else "the axial load given"
     check_plausible(campaign, places, [source] * len(tests))
     return campaign
+
+
+def load_campaign_2d(
+    paths: Sequence[str | Path],
+    *,
+    effective_radius: float,
+    slider_diameter: float,
+    axial_load: float | None = None,
+    max_rows: int = MAX_ROWS,
+) -> Campaign2D:
+    """Read the tests in two directions of a campaign, in the order run, and check that they
+    are of one kind and in one set of units (:func:`check_consistent_units`)."""
+    tests, _ = _read_tests(paths, 2, "load_campaign_2d", axial_load=axial_load,
+                           max_rows=max_rows)
+    return Campaign2D(tests, effective_radius, slider_diameter)
+
+
+def _read_tests(paths: Sequence[str | Path], dimension: int, caller: str, *,
+                axial_load: float | None, max_rows: int) -> tuple[tuple, list[str]]:
+    """The tests of ``paths`` read in one direction or two (``dimension``), every file's
+    size checked before the first is read (in two directions, their kind too:
+    :func:`check_one_kind`), and their units checked to agree; and the places to name."""
+    if isinstance(paths, str | Path) or not paths:
+        raise DataError(f"{caller} needs a list of one or more CSV files.")
+    _check_max_rows(max_rows)
+    existing = [p for p in paths if Path(p).is_file()]  # a missing one: "no such file" below
+    if dimension == 2 and existing:
+        check_one_kind(existing, max_rows=max_rows)
+    for p in existing:
+        check_size(Path(p), max_rows=max_rows)
+    read = read_record if dimension == 1 else read_record_2d
+    tests = tuple(read(p, axial_load=axial_load, max_rows=max_rows) for p in paths)
+    places = [str(p) for p in paths]
+    check_consistent_units(tests, places)
+    return tests, places
+
+
+def load_any_campaign(
+    paths: Sequence[str | Path],
+    *,
+    effective_radius: float,
+    slider_diameter: float,
+    axial_load: float | None = None,
+    max_rows: int = MAX_ROWS,
+) -> Campaign | Campaign2D:
+    """The campaign of ``paths``, tests in one direction (:func:`load_campaign`) or in two
+    (:func:`load_campaign_2d`), told apart by their headers; a campaign mixing the two kinds
+    is refused."""
+    if isinstance(paths, str | Path) or not paths:
+        raise DataError("load_any_campaign needs a list of one or more CSV files.")
+    options = {"effective_radius": effective_radius, "slider_diameter": slider_diameter,
+               "axial_load": axial_load, "max_rows": max_rows}
+    if all(Path(p).is_file() for p in paths) and check_one_kind(paths, max_rows=max_rows) == 2:
+        return load_campaign_2d(paths, **options)
+    return load_campaign(paths, **options)
+
+
+def header_dimension(header: Sequence[str]) -> int:
+    """2 when a header (cells as written) names a column of a test in two directions, else 1."""
+    names = {_column_name(cell)[0] for cell in header}
+    return 2 if names & set(TWO_DIRECTION_MARKERS) else 1
+
+
+def file_dimension(path: str | Path, *, max_rows: int = MAX_ROWS) -> int:
+    """:func:`header_dimension` of a test file's header (its size checked first)."""
+    return header_dimension(check_size(Path(path), max_rows=max_rows))
+
+
+def check_one_kind(paths: Sequence[str | Path], *, max_rows: int = MAX_ROWS,
+                   where: Sequence[str] | None = None) -> int:
+    """The dimension shared by every test file of ``paths`` (1 or 2); a campaign mixing tests
+    in one and in two directions raises a ``DataError`` naming a file of each kind."""
+    kinds = [file_dimension(p, max_rows=max_rows) for p in paths]
+    if len(set(kinds)) > 1:
+        names = list(where) if where else [str(p) for p in paths]
+        one = names[kinds.index(1)]
+        two = names[kinds.index(2)]
+        raise DataError(f"the campaign mixes tests in one direction ({one}: columns "
+                        f"displacement, force) and in two ({two}: columns displacement_x, "
+                        "displacement_y, force_x, force_y); a campaign holds tests of one kind "
+                        "only. Diagnose them as two campaigns.")
+    return kinds[0]
 
 
 def check_plausible(campaign: Campaign, where: Sequence[str] | None = None,
@@ -393,6 +613,8 @@ def _numeric_column(values: np.ndarray, column: str, path: Path) -> np.ndarray:
 def _check_finite(arr: np.ndarray, column: str, where: str, *, first_row: int,
                   total: int | None = None) -> None:
     bad = ~np.isfinite(arr)
+    if bad.ndim == 2:  # a row of a channel in two directions
+        bad = bad.any(axis=1)
     if not bad.any():
         return
     first = int(np.argmax(bad))
@@ -400,7 +622,7 @@ def _check_finite(arr: np.ndarray, column: str, where: str, *, first_row: int,
         raise DataError(f"{where}: column {column!r} has {first} values but the file has "
                         f"{total} rows; all columns must have the same length (row "
                         f"{first + first_row} onwards is empty).")
-    kind = "NaN or empty" if np.isnan(arr[first]) else "infinite"
+    kind = "NaN or empty" if np.isnan(arr[first]).any() else "infinite"
     raise DataError(f"{where}: column {column!r} has {int(bad.sum())} {kind} value(s), the "
                     f"first at row {first + first_row}.")
 
@@ -419,15 +641,33 @@ def _check_values(columns: dict[str, np.ndarray], where: str, *, first_row: int)
         i = int(np.argmax(axial <= 0.0))
         raise DataError(f"{where}: 'axial_force' must be positive (compression) [N]; row "
                         f"{i + first_row} has {float(axial[i])!r}.")
-    peak = float(np.max(np.abs(columns["displacement"])))
-    if peak > MAX_DISPLACEMENT:
-        raise DataError(f"{where}: 'displacement' reaches {peak:g}; it must be in metres "
-                        f"(at most {MAX_DISPLACEMENT:g} m). Was it written in millimetres?")
-    if np.ptp(columns["displacement"]) == 0.0:
-        raise DataError(f"{where}: 'displacement' never changes; there is nothing to diagnose.")
+    u = _axes(columns["displacement"])
+    for suffix, values in u.items():
+        peak = float(np.max(np.abs(values)))
+        if peak > MAX_DISPLACEMENT:
+            raise DataError(f"{where}: 'displacement{suffix}' reaches {peak:g}; it must be in "
+                            f"metres (at most {MAX_DISPLACEMENT:g} m). Was it written in "
+                            "millimetres?")
+    if all(np.ptp(values) == 0.0 for values in u.values()):
+        named = " and ".join(f"'displacement{suffix}'" for suffix in u)
+        raise DataError(f"{where}: {named} never change{'s' if len(u) == 1 else ''}; there "
+                        "is nothing to diagnose.")
     _check_temperature_range(columns.get("temperature"), where, first_row=first_row)
-    if columns.get("velocity") is not None:
-        _check_velocity(columns, where)
+    if columns.get("velocity") is None:
+        return
+    for (suffix, displacement), velocity in zip(u.items(),
+                                                _axes(columns["velocity"]).values(),
+                                                strict=True):
+        if np.ptp(displacement) > 0.0:
+            _check_velocity(columns["time"], displacement, velocity, where, suffix)
+
+
+def _axes(values: np.ndarray) -> dict[str, np.ndarray]:
+    """A channel's columns by the suffix of their names: ``{"": x}`` for (n,) values,
+    ``{"_x": x, "_y": y}`` for (n, 2) values."""
+    if values.ndim == 1:
+        return {"": values}
+    return {f"_{axis}": values[:, j] for j, axis in enumerate(AXES)}
 
 
 def _check_temperature_range(temperature: np.ndarray | None, where: str, *,
@@ -451,13 +691,6 @@ def _check_max_rows(max_rows: int) -> None:
     if max_rows < 1:
         raise DataError(f"max_rows (--max-rows) must be an integer in [1, inf). Got "
                         f"{max_rows!r}.")
-
-
-def _size(n_bytes: float) -> str:
-    for unit, scale in (("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
-        if n_bytes >= scale:
-            return f"{n_bytes / scale:.3g} {unit}"
-    return f"{n_bytes:.0f} bytes"
 
 
 def estimate_rows(path: str | Path) -> tuple[int, list[str]]:
@@ -620,8 +853,12 @@ def velocity_ratio(time: np.ndarray, displacement: np.ndarray,
     return slope
 
 
-def _check_velocity(columns: dict[str, np.ndarray], where: str) -> None:
-    ratio = velocity_ratio(columns["time"], columns["displacement"], columns["velocity"])
+def _check_velocity(time: np.ndarray, displacement: np.ndarray, velocity: np.ndarray,
+                    where: str, suffix: str = "") -> None:
+    """Refuse a velocity column [m/s] (``velocity`` + ``suffix``, the axis's in two
+    directions) whose :func:`velocity_ratio` is out of :data:`VELOCITY_RATIO`, naming the
+    likely cause."""
+    ratio = velocity_ratio(time, displacement, velocity)
     low, high = VELOCITY_RATIO
     if ratio is None or low <= ratio <= high:
         return
@@ -632,15 +869,15 @@ def _check_velocity(columns: dict[str, np.ndarray], where: str) -> None:
                  "grows. Multiply it by -1")
     elif 300.0 <= size <= 3000.0:
         cause = (f"it looks like mm/s{sign}: divide it by 1000, or state the unit in the "
-                 "header ('velocity [mm/s]')")
+                 f"header ('velocity{suffix} [mm/s]')")
     elif 30.0 <= size <= 300.0:
         cause = (f"it looks like cm/s{sign}: divide it by 100, or state the unit in the "
-                 "header ('velocity [cm/s]')")
+                 f"header ('velocity{suffix} [cm/s]')")
     else:
-        cause = ("check its units (m/s, or state 'velocity [mm/s]' in the header), its sign "
-                 "convention (positive when the displacement grows) and that it is the "
+        cause = (f"check its units (m/s, or state 'velocity{suffix} [mm/s]' in the header), "
+                 "its sign convention (positive when the displacement grows) and that it is the "
                  "velocity of this displacement; or leave the column out and the velocity is "
                  "derived from the displacement")
     raise DataError(
-        f"{where}: column 'velocity' is {ratio:.3g} times d(displacement)/dt (a robust fit over "
-        f"the moving samples; allowed {low:g}-{high:g}); {cause}.")
+        f"{where}: column 'velocity{suffix}' is {ratio:.3g} times d(displacement{suffix})/dt (a "
+        f"robust fit over the moving samples; allowed {low:g}-{high:g}); {cause}.")

@@ -39,12 +39,16 @@ from dcfpb.common.units import KELVIN_LOOK
 from isolator.diagnosis.data import (
     MAX_ROWS,
     Campaign,
+    Campaign2D,
     DataError,
     _column_name,
     check_consistent_units,
+    check_one_kind,
     check_plausible,
     check_size,
+    file_dimension,
     read_record,
+    read_record_2d,
 )
 
 COLUMNS = ("file", "axial_load", "initial_temperature", "rest_before")
@@ -189,8 +193,6 @@ def load_manifest(
             check_size(file, max_rows=max_rows)
         except DataError as error:
             raise DataError(f"{where}: {error}") from None
-    from isolator.diagnosis.data2d import check_one_kind
-
     files = [(path.parent / row["file"]).resolve() for row in rows]
     two = check_one_kind(files, max_rows=max_rows, where=places) == 2
     used_flag = False
@@ -225,8 +227,6 @@ def load_manifest(
                       InputWarning, stacklevel=2)
     check_consistent_units(tests, places)
     if two:  # tests in two directions
-        from isolator.diagnosis.data2d import Campaign2D
-
         return Campaign2D(tuple(tests), float(radius), float(diameter))
     campaign = Campaign(tuple(tests), float(radius), float(diameter))
     check_plausible(campaign, places, sources)
@@ -234,10 +234,8 @@ def load_manifest(
 
 
 def _read(where: str, file: Path, **options):
-    """:func:`read_record` (or :func:`~isolator.diagnosis.data2d.read_record_2d` for a test in
+    """:func:`read_record` (or :func:`read_record_2d` for a test in
     two directions) of a manifest's test; its errors name the manifest and the test."""
-    from isolator.diagnosis.data2d import file_dimension, read_record_2d
-
     try:
         if file_dimension(file, max_rows=options.get("max_rows", MAX_ROWS)) == 2:
             return read_record_2d(file, **options)

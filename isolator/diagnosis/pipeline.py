@@ -22,7 +22,7 @@ from isolator.diagnosis.baseline import (
     calibrate,
     nuisance_edges,
 )
-from isolator.diagnosis.data import Campaign
+from isolator.diagnosis.data import Campaign, Campaign2D
 from isolator.diagnosis.decision import Problem
 from isolator.diagnosis.effects import EFFECT_NAMES, Context, effects_named
 from isolator.diagnosis.features import kinematic_features, with_baseline
@@ -63,8 +63,6 @@ def diagnose(
     thresholds : Thresholds, optional
         The decision thresholds (default: :func:`isolator.diagnosis.thresholds.current`).
     """
-    from isolator.diagnosis.data2d import Campaign2D
-
     if isinstance(campaign, Campaign2D):  # tests in two directions
         from isolator.diagnosis.two_directions import diagnose_2d
 

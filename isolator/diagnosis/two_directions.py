@@ -80,7 +80,7 @@ from isolator.diagnosis.baseline import (
     BaselineSpec,
     edges_of,
 )
-from isolator.diagnosis.data2d import Campaign2D
+from isolator.diagnosis.data import Campaign2D
 from isolator.diagnosis.decision import LAG_PLAUSIBLE_MAX, grid_minima, lag_reason
 from isolator.diagnosis.effects import Effect, Parameter, effects_named
 from isolator.diagnosis.effects import heating as heating_form

@@ -36,7 +36,7 @@ import math
 import tempfile
 import time
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from contextlib import ExitStack
 from pathlib import Path
 from typing import Any
@@ -266,34 +266,63 @@ def scaling_period_range(config: BuildingConfig, S_M1: float, lambda_: PropertyM
             limit("period_range_high") * periods["lower"])
 
 
-def _lambda_from(config: BuildingConfig, lambda_: Any) -> PropertyModification:
-    if lambda_ is None:
-        lambda_ = building_design(config)["lambda"]
-        if lambda_ is None:
-            raise InputError(f"The 'lambda_' parameter of {_OWNER} must be given (a "
-                             "PropertyModification) when the building file has no [design] "
-                             "lambda: the analysis runs at the upper and lower bound "
-                             "(17.2.8.4). Got None instead.")
+_MISSING = {
+    "site": (f"The 'site' parameter of {_OWNER} must be given (Site or (S_MS, S_M1[, T_L])) "
+             "when the building file has no [design] S_MS and S_M1. Got None instead."),
+    "lambda": (f"The 'lambda_' parameter of {_OWNER} must be given (a PropertyModification) "
+               "when the building file has no [design] lambda: the analysis runs at the upper "
+               "and lower bound (17.2.8.4). Got None instead."),
+    "R": (f"The 'R' parameter of {_OWNER} must be given when the building file has no "
+          "[design] R. Got None instead."),
+}
+
+
+def design_inputs(config: BuildingConfig, site: Any = None, lambda_: Any = None,
+                  R: float | None = None, *, missing: dict[str, str] | None = None,
+                  defaults: dict[str, Any] | None = None
+                  ) -> tuple[Site, PropertyModification, float]:
+    """The site [g, g, s], the property modification and R [-] of an analysis (as
+    :func:`design` takes them): each as given, else the building file's ``[design]``
+    (:func:`building_design`), else ``defaults[name]`` (names ``"site"``, ``"lambda"``,
+    ``"R"``); one given nowhere raises an InputError with ``missing[name]`` (default: naming
+    the parameter of :func:`design`; the command line names its flags)."""
+    from_file = building_design(config)
+    given = {"site": site, "lambda": lambda_, "R": R}
+    for name, value in given.items():
+        if value is None:
+            value = from_file[name]
+        if value is None and defaults and name in defaults:
+            value = defaults[name]
+        if value is None:
+            raise InputError({**_MISSING, **(missing or {})}[name])
+        given[name] = value
+    site, lambda_ = given["site"], given["lambda"]
+    if isinstance(site, tuple | list) and len(site) in (2, 3):
+        site = Site(*site)
+    if not isinstance(site, Site):
+        raise InputTypeError(f"The 'site' parameter of {_OWNER} must be a Site or (S_MS, S_M1[, "
+                             f"T_L]). Got {site!r} instead.")
     if isinstance(lambda_, tuple | list) and len(lambda_) == 2:
         lambda_ = PropertyModification.overall(*lambda_)
     check_instance(lambda_, "lambda_", _OWNER, PropertyModification,
                    "a PropertyModification or (lambda_max, lambda_min)")
-    return lambda_
+    return site, lambda_, given["R"]
 
 
-def _site_from(config: BuildingConfig, site: Any) -> Site:
-    if site is None:
-        site = building_design(config)["site"]
-        if site is None:
-            raise InputError(f"The 'site' parameter of {_OWNER} must be given (Site or (S_MS, "
-                             "S_M1[, T_L])) when the building file has no [design] S_MS and "
-                             "S_M1. Got None instead.")
-    if isinstance(site, Site):
-        return site
-    if isinstance(site, tuple | list) and len(site) in (2, 3):
-        return Site(*site)
-    raise InputTypeError(f"The 'site' parameter of {_OWNER} must be a Site or (S_MS, S_M1[, "
-                         f"T_L]). Got {site!r} instead.")
+def check_suite_size(n_pairs: int, allow_fewer: bool,
+                     refusal: Callable[[str], str]) -> str | None:
+    """The rule of 17.3.2 on a suite of ``n_pairs`` pairs (synthetic ones included): None
+    when it has at least ``min_pairs``; the rule ("ASCE/SEI 7-16 17.3.2 asks for at least 7
+    pairs of ground motions") when it has fewer and ``allow_fewer``; else an InputError
+    ``refusal(rule)``, in the caller's words (its flags or its parameters)."""
+    minimum = int(limit("min_pairs"))
+    if n_pairs >= minimum:
+        return None
+    rule = (f"ASCE/SEI 7-16 {LIMITS['min_pairs'].clause} asks for at least {minimum} pairs "
+            "of ground motions")
+    if not allow_fewer:
+        raise InputError(refusal(rule))
+    return rule
 
 
 def _spectra(motions: Sequence[Any], report: Any, site: Site, t_l: float,
@@ -432,27 +461,18 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
 
     store = check_choice(store, "store", _OWNER, STORAGE)
     n_synthetic = synthetic_count(complete_with_synthetic, len(sources))
-    minimum = int(limit("min_pairs"))
     n_pairs = len(sources) + n_synthetic
     notes: list[str] = []
-    compliant = n_pairs >= minimum
+    rule = check_suite_size(n_pairs, allow_fewer, lambda rule: (
+        f"{rule}; the suite has {n_pairs}. Give more pairs, complete the suite with synthetic "
+        "pairs (complete_with_synthetic), or allow fewer (allow_fewer, --allow-fewer: the "
+        "result is then not compliant)."))
+    compliant = rule is None
     if not compliant:
-        rule = (f"ASCE/SEI 7-16 {LIMITS['min_pairs'].clause} asks for at least {minimum} pairs "
-                f"of ground motions; the suite has {n_pairs}")
-        if not allow_fewer:
-            raise InputError(f"{rule}. Give more pairs, complete the suite with synthetic "
-                             "pairs (complete_with_synthetic), or allow fewer (allow_fewer, "
-                             "--allow-fewer: the result is then not compliant).")
-        notes.append(f"NOT COMPLIANT: {rule} (allowed by allow_fewer); the averages over "
-                     f"{n_pairs} pairs are not the design values of 17.6.3.4, which rest on "
-                     f"at least {minimum}.")
-    site = _site_from(config, site)
-    lambda_ = _lambda_from(config, lambda_)
-    if R is None:
-        R = building_design(config)["R"]
-        if R is None:
-            raise InputError(f"The 'R' parameter of {_OWNER} must be given when the building "
-                             "file has no [design] R. Got None instead.")
+        notes.append(f"NOT COMPLIANT: {rule}; the suite has {n_pairs} (allowed by allow_fewer); "
+                     f"the averages over {n_pairs} pairs are not the design values of 17.6.3.4, "
+                     f"which rest on at least {int(limit('min_pairs'))}.")
+    site, lambda_, R = design_inputs(config, site, lambda_, R)
     if I_e is None:
         I_e = building_design(config)["I_e"] or 1.0
     model = model or config.friction["model"]

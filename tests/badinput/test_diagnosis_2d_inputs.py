@@ -14,7 +14,7 @@ import pytest
 
 from dcfpb.common.errors import InputError
 from isolator.diagnosis import DataError, read_record
-from isolator.diagnosis.data2d import (
+from isolator.diagnosis.data import (
     Campaign2D,
     load_any_campaign,
     load_campaign_2d,
@@ -148,3 +148,28 @@ def test_the_command_line_refuses_a_mixed_campaign_naming_both(tmp_path, capsys)
     assert status == 2
     err = capsys.readouterr().err
     assert "orbit.csv" in err and "line.csv" in err and "one kind" in err
+
+
+def test_one_reader_checks_both_kinds_alike():
+    """The record check is the one of a test in one direction: a non-finite value on either
+    axis is named with its row (an -inf on y beside a finite x included), and a velocity in
+    mm/s is told as such with the axis's header to write."""
+    from isolator.diagnosis.data import BearingRecord2D
+
+    c = _columns()
+    u = np.column_stack([c["displacement_x"], c["displacement_y"]])
+    f = np.column_stack([c["force_x"], c["force_y"]])
+    f[7, 1] = -np.inf
+    with pytest.raises(DataError, match=r"'force' has 1 infinite value\(s\), the first at row 7"):
+        BearingRecord2D("orbit", c["time"], u, f, c["axial_force"])
+    f[7, 1] = 0.0
+    v = 1000.0 * np.gradient(u, c["time"], axis=0)
+    with pytest.raises(DataError, match=r"'velocity_x' is 1e\+03 times d\(displacement_x\)/dt.*"
+                                        r"mm/s.*'velocity_x \[mm/s\]'"):
+        BearingRecord2D("orbit", c["time"], u, f, c["axial_force"], velocity=v)
+
+
+def test_a_missing_file_of_a_two_direction_campaign_is_named(tmp_path):
+    two = _write(tmp_path / "orbit.csv", _columns())
+    with pytest.raises(DataError, match=r"gone\.csv: no such file"):
+        load_campaign_2d([two, tmp_path / "gone.csv"], effective_radius=2.0, slider_diameter=0.25)

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from isolator.diagnosis.data2d import BearingRecord2D, Campaign2D
+from isolator.diagnosis.data import BearingRecord2D, Campaign2D
 from isolator.diagnosis.two_directions import diagnose_2d
 
 pytestmark = pytest.mark.slow

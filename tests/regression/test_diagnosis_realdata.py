@@ -23,23 +23,13 @@ from __future__ import annotations
 
 import pytest
 
-from isolator.diagnosis import diagnose, load_campaign
-
 pytestmark = pytest.mark.shared
-
-NOMINAL_AXIAL_LOAD = 1.0e5  # [N] a friction damper has none; mu is then force / 100 kN
-NOMINAL_DIAMETER = 0.05  # [m]
 
 
 @pytest.fixture(scope="module")
-def summary(shared_dir):
-    folder = shared_dir / "realdata" / "friction-damper" / "compact"
-    files = sorted(folder.glob("dataset-2_*.csv.gz"))
-    if len(files) < 3:
-        pytest.skip(f"the compact friction-damper files are absent from {folder}")
-    campaign = load_campaign(files, effective_radius=float("inf"),
-                             slider_diameter=NOMINAL_DIAMETER, axial_load=NOMINAL_AXIAL_LOAD)
-    return diagnose(campaign, "constant").to_json()
+def summary(friction_damper_diagnosis):
+    """The diagnosis of the files (tests/regression/conftest.py) as JSON."""
+    return friction_damper_diagnosis.to_json()
 
 
 def test_the_play_is_named_with_its_width(summary):

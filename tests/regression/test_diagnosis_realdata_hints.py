@@ -18,7 +18,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from isolator.diagnosis import diagnose, load_campaign
 from isolator.diagnosis.hint_tests import (
     ALPHA,
     block_length,
@@ -29,19 +28,11 @@ from isolator.diagnosis.hint_tests import (
 
 pytestmark = pytest.mark.shared
 
-NOMINAL_AXIAL_LOAD = 1.0e5  # [N] as in test_diagnosis_realdata.py
-NOMINAL_DIAMETER = 0.05  # [m]
-
-
 @pytest.fixture(scope="module")
-def diagnosis(shared_dir):
-    folder = shared_dir / "realdata" / "friction-damper" / "compact"
-    files = sorted(folder.glob("dataset-2_*.csv.gz"))
-    if len(files) < 3:
-        pytest.skip(f"the compact friction-damper files are absent from {folder}")
-    campaign = load_campaign(files, effective_radius=float("inf"),
-                             slider_diameter=NOMINAL_DIAMETER, axial_load=NOMINAL_AXIAL_LOAD)
-    return diagnose(campaign, "constant")
+def diagnosis(friction_damper_diagnosis):
+    """The diagnosis of the files (tests/regression/conftest.py), as test_diagnosis_realdata.py
+    reads it."""
+    return friction_damper_diagnosis
 
 
 def _residual(d) -> np.ndarray:

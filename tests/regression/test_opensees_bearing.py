@@ -74,14 +74,6 @@ OPENSEES_PI = 22.0 / 7.0
 
 
 @pytest.fixture(scope="module")
-def ops():
-    try:
-        return import_opensees()
-    except ImportError as error:
-        pytest.skip(f"openseespy cannot be imported: {error}")
-
-
-@pytest.fixture(scope="module")
 def history():
     return sine(AMPLITUDE, PERIOD, CYCLES, DT)
 

@@ -53,21 +53,12 @@ from structures.config import load_config
 from structures.integrators import HHT
 from structures.opensees.building import run_opensees
 from structures.opensees.comparison import compare, comparison_bearing, run_comparison
-from structures.opensees.runtime import import_opensees
 from structures.opensees.singlefp import run_singlefp_normal
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "five_storey.toml"
 
 PTV_DURATION = 15.0  # [s] of El Centro for FPBearingPTV (its cost grows as steps^2)
 OPENSEES_PI = 22.0 / 7.0
-
-
-@pytest.fixture(scope="module")
-def ops():
-    try:
-        return import_opensees()
-    except ImportError as error:
-        pytest.skip(f"openseespy cannot be imported: {error}")
 
 
 @pytest.fixture(scope="module")

@@ -55,7 +55,6 @@ from structures.opensees.elements import (
     fpbearingptv_restoring,
     singlefp_restoring,
 )
-from structures.opensees.runtime import import_opensees
 
 SLIDER_DIAMETER = 0.3
 PRESSURE = 60.0e6
@@ -68,14 +67,6 @@ ORBITS = {
     "circle": lambda: circle(AMPLITUDE, PERIOD, 2, DT),
     "figure8": lambda: figure_eight(AMPLITUDE, PERIOD, 2, DT),
 }
-
-
-@pytest.fixture(scope="module")
-def ops():
-    try:
-        return import_opensees()
-    except ImportError as error:
-        pytest.skip(f"openseespy cannot be imported: {error}")
 
 
 def _coulomb(radius=EFFECTIVE_RADIUS):

@@ -48,20 +48,11 @@ from structures.opensees.building import run_opensees
 from structures.opensees.comparison import compare, run_comparison
 from structures.opensees.elements import singlefp_restoring
 from structures.opensees.model import build_model, level_heights
-from structures.opensees.runtime import import_opensees
 from structures.opensees.singlefp import run_singlefp_normal
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "five_storey_plan.toml"
 SHARED_PAIRS = Path(__file__).resolve().parents[3] / "shared" / "groundmotions" / "pairs"
 DT = 0.005
-
-
-@pytest.fixture(scope="module")
-def ops():
-    try:
-        return import_opensees()
-    except ImportError as error:
-        pytest.skip(f"openseespy cannot be imported: {error}")
 
 
 @pytest.fixture(scope="module")

@@ -52,7 +52,6 @@ from isolator.experiments import friction_model
 from structures.analysis import run
 from structures.opensees.building import run_opensees
 from structures.opensees.comparison import compare, run_comparison
-from structures.opensees.runtime import import_opensees
 from structures.opensees.singlefp import run_singlefp_normal
 from structures.plan import Plan
 from structures.shear_building import ModalDamping, ShearBuilding
@@ -65,14 +64,6 @@ PEAKS = ("peak_isolator_displacement", "peak_corner_displacement", "peak_centre_
          "peak_base_shear")
 NRMSES = ("nrmse_isolator_displacement_x", "nrmse_isolator_displacement_y",
           "nrmse_centre_displacement_x", "nrmse_centre_displacement_y")
-
-
-@pytest.fixture(scope="module")
-def ops():
-    try:
-        return import_opensees()
-    except ImportError as error:
-        pytest.skip(f"openseespy cannot be imported: {error}")
 
 
 @functools.cache

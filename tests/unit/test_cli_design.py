@@ -241,8 +241,8 @@ def test_the_building_files_design_table_stands_in_for_the_flags(tmp_path, calls
                         "lambda_min = 0.6\nS_MS = 1.5\nS_M1 = 0.6\nR = 2.0\n")
     assert main(["design", str(building), "--pairs", str(manifest), "--no-progress",
                  "--out", str(tmp_path / "out")]) == 0
-    assert calls[-1]["site"] is None and calls[-1]["lambda_"] is None
-    assert calls[-1]["R"] is None  # the analysis reads them from the file
+    assert calls[-1]["site"].S_MS == 1.5 and calls[-1]["lambda_"].lambda_max == 1.8
+    assert calls[-1]["R"] == 2.0  # the file's [design], resolved as the analysis does
     assert main(["design", str(building), "--pairs", str(manifest), "--no-progress",
                  "--site", "1.0,0.4", "--out", str(tmp_path / "out2")]) == 0
     assert calls[-1]["site"].S_MS == 1.0  # the flag overrides the file

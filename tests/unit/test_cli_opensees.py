@@ -5,23 +5,11 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-import pytest
-
 from dcfpb.cli import main
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "examples" / "five_storey.toml"
 RECORD = REPO / "groundmotions" / "data" / "elcentro_1940_ns.at2"
-
-
-@pytest.fixture(scope="module")
-def ops():
-    from structures.opensees.runtime import import_opensees
-
-    try:
-        return import_opensees()
-    except ImportError as error:
-        pytest.skip(f"openseespy cannot be imported: {error}")
 
 
 def test_compare_opensees_json(ops, capsys):

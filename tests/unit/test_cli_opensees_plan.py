@@ -36,16 +36,6 @@ ONE_DIRECTION_FILE = PLAN_FILE.split("[plan]")[0].replace("[bearing]\n", "[beari
 
 
 @pytest.fixture(scope="module")
-def ops():
-    from structures.opensees.runtime import import_opensees
-
-    try:
-        return import_opensees()
-    except ImportError as error:
-        pytest.skip(f"openseespy cannot be imported: {error}")
-
-
-@pytest.fixture(scope="module")
 def files(tmp_path_factory):
     """The building files and a 2 s synthetic pair with a vertical, as text records."""
     from groundmotions.synthetic import synthetic_pair
