@@ -19,7 +19,14 @@ threshold is tried *provisionally*: the friction law is selected with it applied
 or lag is judged again beside the law so found; both are named only if both earn their keep
 (the play beside the law by the ``kinematic_*`` thresholds, or the pair as one by
 ``kinematic_z`` over the baseline with the play still closing ``kinematic_explained`` of what
-the law leaves, as stage 2 judges a pair).
+the law leaves, as stage 2 judges a pair). When still no friction law is named (a play named
+alone, or nothing), the kinematic effect (the one named, else each partly supported one) and
+each effect on mu or the force are fitted *jointly on every sample* and judged together
+(:meth:`Problem._joint_pair`, the rule of two directions too,
+:func:`~isolator.diagnosis.selection.joint_pair_earns`): the pair is named when it earns its
+keep over the baseline by the ``kinematic_*`` thresholds and each member earns its keep
+against the other held out (``z_min``, ``practical_gain``, closing ``name_min`` of what the
+other leaves).
 
 A lag is named only as a channel can have it: the force recorded *after* the displacement
 (a force leading the displacement is a speed effect's phase, not a channel), by at most
@@ -59,6 +66,7 @@ from isolator.diagnosis.selection import (
     Workspace,
     assess,
     improvement,
+    joint_pair_earns,
     material,
     on_samples,
     qualifies,
@@ -272,6 +280,52 @@ class Problem:
             return candidate
         return None
 
+    def _joint_pair(self, kinematic: Assessment | None, exclude: tuple[str, ...],
+                    th: Thresholds) -> tuple[Assessment, str] | None:
+        """(the kinematic effect alone, the friction-law effect's name) of the best pair of a
+        kinematic effect and one effect on mu or the force, fitted jointly on every sample,
+        that :func:`~isolator.diagnosis.selection.joint_pair_earns` (over the baseline, over
+        the kinematic effect alone and over the law alone, held out), when no friction law
+        is named and a real gap remains on every sample; the kinematic effect is the one
+        named, else each partly supported one (z or share reaching its bar, of a nameable
+        size, within its range). None when no pair does."""
+        if kinematic is not None:
+            if len(kinematic.model.effects) != 1:
+                return None
+            tried = [kinematic]
+        else:
+            tried = [a for n, a in self.kinematic.items()
+                     if n not in exclude and a.untestable is None and a.z_score > 0.0
+                     and (a.z_score >= th.kinematic_z or a.explained >= th.kinematic_explained)
+                     and self._kinematic_size_ok(a, th) and plausible(a)]
+        plain = self.stage(None)
+        best = None
+        for alone in tried:
+            left = alone.prediction
+            if not material(self.all.score(left), self.all.excess_rms(left),
+                            th.practical_remain, th):
+                continue
+            for name, single in plain.singles.items():
+                if name in exclude or single.untestable is not None:
+                    continue
+                law = (single.model.effects[-1],)
+                key = ("law", *(e.name for e in law))
+                if key not in self.all.cache:
+                    self.all.cache[key] = assess(self.all, Model(law), None)
+                law_alone = self.all.cache[key]
+                pair = self._extended(self.all, law_alone, (alone,))
+                scores = []
+                for reference in (self.all_baseline, alone, law_alone):
+                    z, gain = improvement(self.all, reference, pair)
+                    scores.append((z, gain, self.all.gain_rms(reference.prediction,
+                                                              pair.prediction)))
+                if not (joint_pair_earns(*scores, th) and plausible(pair)
+                        and self._kinematic_size_ok(pair, th)):
+                    continue
+                if best is None or pair.weighted < best[0].weighted:
+                    best = (pair, alone, name)
+        return None if best is None else (best[1], best[2])
+
     def _stage_one(self, exclude: tuple[str, ...], th: Thresholds,
                    law: tuple[Effect, ...] = ()) -> Assessment | None:
         """The kinematic effects that earn their keep on every sample, over the baseline
@@ -416,13 +470,30 @@ class Problem:
                 kinematic, stage, testable, noise_like, current, named, form = self._pass(
                     kinematic, exclude, th, retry=False)
                 break
+        joint = None
+        if not named:
+            # a play and a friction law fitted jointly on every sample and judged together
+            # (each partly supported, neither reaching its own bar beside the other)
+            joint = self._joint_pair(kinematic, exclude, th)
+        if joint is not None:
+            kinematic, law_name = joint
+            stage = self.stage(kinematic)
+            work, base = stage.work, stage.baseline
+            pool = {n: a for n, a in stage.singles.items() if n not in exclude}
+            testable = sorted((a for a in pool.values() if a.untestable is None),
+                              key=lambda a: a.weighted)
+            noise_like = not material(base.score, work.excess_rms(base.prediction),
+                                      th.practical_none, th)
+            named = [law_name]
+            current, form = self._reported_form(work, stage.singles[law_name],
+                                                len(base.model.effects), th)
         work, base = stage.work, stage.baseline
         excess = base.weighted - work.weighted_noise
         explained = (base.weighted - current.weighted) / excess if excess > 0.0 else 0.0
         left = work.excess_rms(current.prediction)
         real_gap = material(current.score, left, th.practical_remain, th)
         kin_names = [] if kinematic is None else list(kinematic.model.names)
-        if named and explained < th.name_min:  # stand-ins, not named: the model is the base
+        if named and explained < th.name_min and joint is None:  # stand-ins, not named
             named, real_gap, current, form, explained = [], True, base, {}, 0.0
         findings: list[str] = []
         if real_gap and not noise_like:

@@ -191,6 +191,30 @@ def qualifies(work: Workspace, current: Assessment, extended: Assessment, z_min:
     return z >= z_min and gain >= explained_min and size >= practical
 
 
+def joint_pair_earns(over_baseline: tuple[float, float, float],
+                     over_kinematic: tuple[float, float, float],
+                     over_law: tuple[float, float, float], th: Thresholds) -> bool:
+    """Whether a kinematic effect and a friction-law effect, fitted jointly on every sample,
+    are named together (one direction and two): the pair earns its keep over the baseline as
+    stage 1 judges a kinematic effect (``kinematic_z``, ``kinematic_explained``,
+    ``kinematic_practical``), and each member earns its keep against the other held out by
+    ``z_min`` and ``practical_gain`` and closes ``name_min`` of what the other leaves (would be
+    named beside it): the pair over the kinematic effect alone (``over_kinematic``: dropping
+    the law loses materially) and over the law alone (``over_law``: dropping the play does).
+    A share of ``explained_min`` is not enough: a law closing a third of what a play's model
+    leaves can be standing in for the play's wrong shape.
+
+    Each argument is (held-out z [-], share of the reference's excess closed [-], RMS force
+    changed over the RMS force [-]) of the pair against that reference.
+    """
+    z, gain, size = over_baseline
+    if not (z >= th.kinematic_z and gain >= th.kinematic_explained
+            and size >= th.kinematic_practical):
+        return False
+    return all(z >= th.z_min and gain >= th.name_min and size >= th.practical_gain
+               for z, gain, size in (over_kinematic, over_law))
+
+
 def untestable(model: Model, reason: str) -> Assessment:
     """An assessment for an effect the data cannot show."""
     return Assessment(model, None, None, np.inf, np.inf, untestable=reason)

@@ -31,7 +31,11 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    (:func:`~isolator.diagnosis.decision.lag_reason`): the force after the displacement by
    ``lag_min_samples`` up to ``LAG_PLAUSIBLE_MAX``, the lags fitted test by test agreeing (a
    lag that changes with the test is a speed effect); a play from ``backlash_min`` on either
-   axis.
+   axis. While an axis's gap is open the bearing stands still on it; the share s of static
+   friction holding it there (z_j = -u_b,j s / (R mu(t)), the loaded axis sliding with what
+   the friction circle leaves) is fitted from 0 to 1 with the widths (an edge allowed: a
+   model choice, not a nuisance): a load train whose open axis carries nothing but the play
+   fits s = 0, a bearing held by its friction s = 1.
 4. **Stage 2, the friction law, outside the direction-change windows:** ``heating``
    (exp(-a dT / 100 degC), dT from the measured friction power on the 2D heating field
    :class:`isolator.monitor_grid.GridHeating`), ``velocity`` (1 - d exp(-|v| / v_t) on the
@@ -46,7 +50,11 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    then the kinematic candidates are tried again beside the friction law named. A kinematic
    effect that was significant but closed too little of the excess on its own (a play beside
    heating) is applied provisionally, the law selected beside it, and judged again beside
-   that law.
+   that law. When still no law is named, the kinematic effect and each friction-law effect
+   are fitted jointly on every sample and judged together, as in one direction
+   (:func:`_joint_pair`); a pair of friction-law effects is taken only when each member
+   earns its keep against the other held out too (by a single effect's ``z_min``,
+   ``explained_min`` and ``practical_gain``).
 5. **Verdict**: ``none``, the named effects, ``unexplained`` (where it lies, ``findings``, and
    what it looks like, :func:`looks_like_2d`), by one direction's rule
    (:func:`~isolator.diagnosis.selection.material`,
@@ -96,7 +104,7 @@ from isolator.diagnosis.hint_tests import (
     loading_frequency,
 )
 from isolator.diagnosis.kinematics import noise_std, shifted
-from isolator.diagnosis.selection import block_z, material, verdict_of
+from isolator.diagnosis.selection import block_z, joint_pair_earns, material, verdict_of
 from isolator.diagnosis.signatures import (
     drift_hint,
     offset_hint,
@@ -155,8 +163,7 @@ def return_map_2d(ux, uy, yield_displacement):
     return zx, zy
 
 
-@jit
-def play_return_map_2d(ux, uy, half_x, half_y, yield_displacement):
+def play_return_map_2d(ux, uy, half_x, half_y, yield_displacement, static_ratio=0.0):
     """The isotropic return map behind a play per axis, as one direction's
     :func:`isolator.diagnosis.kinematics.play_return_map` on each axis: (u_b, z, engaged),
     each (n, 2).
@@ -167,7 +174,23 @@ def play_return_map_2d(ux, uy, half_x, half_y, yield_displacement):
     axis and no force transmitted on it (``engaged`` 0), then loads the spring the other way
     through the isotropic return map (z* = z + du / u_y, normalised when |z*| > 1). An axis
     without a gap follows the plain return map (:func:`return_map_2d`).
+
+    While an axis's gap is open the bearing stands still on it. With ``static_ratio`` > 0
+    (s / (R mu), s the share of static friction, :data:`LIBRARY_2D`'s ``static_share``),
+    friction holds the restoring force there, z_j = -u_b,j ``static_ratio`` (clipped to
+    [-1, 1]), and the loaded axis slides with what the friction circle leaves,
+    |z_k| <= sqrt(1 - z_j^2); the gap closed, the force rebuilds from that z_j. With
+    ``static_ratio`` 0 the open axis's z is 0 (the force on it is zero either way, through
+    ``engaged``). ``static_ratio`` [1/m] is one value or one per sample (s / (R mu(t))).
     """
+    ratio = np.broadcast_to(np.asarray(static_ratio, dtype=float), np.shape(ux))
+    return _play_kernel_2d(ux, uy, half_x, half_y, yield_displacement,
+                           np.ascontiguousarray(ratio))
+
+
+@jit
+def _play_kernel_2d(ux, uy, half_x, half_y, yield_displacement, ratio):
+    """:func:`play_return_map_2d` with the static ratio given per sample [1/m]."""
     n = ux.size
     ub = np.empty((n, 2))
     z = np.zeros((n, 2))
@@ -179,13 +202,19 @@ def play_return_map_2d(ux, uy, half_x, half_y, yield_displacement):
     half = np.array([half_x, half_y])
     load = np.zeros(2)
     crossing = np.zeros(2, dtype=np.bool_)
+    held = np.zeros(2, dtype=np.bool_)  # an axis open at the last step, z_j held by statics
     for i in range(1, n):
+        static_ratio = ratio[i]
         for j in range(2):
             u_now = ux[i] if j == 0 else uy[i]
             u_then = ux[i - 1] if j == 0 else uy[i - 1]
             r = u_now - u_then
+            held[j] = crossing[j] and static_ratio != 0.0
             crossing[j] = False
             if half[j] > 0.0:
+                keep = zs[j]
+                if held[j]:  # still in the gap: the statics' z_j is no spring to unload
+                    zs[j] = 0.0
                 if zs[j] * r < 0.0:  # unload the spring towards zero force
                     dz = r / yield_displacement
                     if abs(dz) <= abs(zs[j]):
@@ -204,13 +233,32 @@ def play_return_map_2d(ux, uy, half_x, half_y, yield_displacement):
                     else:
                         p[j] = target
                         r -= distance
+                if held[j] and not crossing[j]:  # closed: the force rebuilds from statics
+                    zs[j] = keep
             load[j] = r
+        if static_ratio != 0.0:  # an open axis: static friction balances F_r on it
+            for j in range(2):
+                if crossing[j]:
+                    u_now = ux[i] if j == 0 else uy[i]
+                    zs[j] = min(1.0, max(-1.0, -(u_now - p[j]) * static_ratio))
         ax = zs[0] + load[0] / yield_displacement
         ay = zs[1] + load[1] / yield_displacement
-        size = math.sqrt(ax * ax + ay * ay)
-        if size > 1.0:
-            ax /= size
-            ay /= size
+        if static_ratio != 0.0 and (crossing[0] or crossing[1]):
+            j = 0 if crossing[0] else 1
+            fixed = ax if j == 0 else ay
+            other = ay if j == 0 else ax
+            room = math.sqrt(max(1.0 - fixed * fixed, 0.0))
+            if not (crossing[0] and crossing[1]) and abs(other) > room:
+                other = math.copysign(room, other)
+            if j == 0:
+                ay = other
+            else:
+                ax = other
+        else:
+            size = math.sqrt(ax * ax + ay * ay)
+            if size > 1.0:
+                ax /= size
+                ay /= size
         zs[0] = ax
         zs[1] = ay
         ub[i, 0] = ux[i] - p[0]
@@ -334,7 +382,13 @@ LIBRARY_2D = {
                        _wear),
     "backlash": _on_orbits("backlash", "per axis",
                            (Parameter("width_x", 2e-3, 0.0, BACKLASH_MAX, unit="m"),
-                            Parameter("width_y", 2e-3, 0.0, BACKLASH_MAX, unit="m"))),
+                            Parameter("width_y", 2e-3, 0.0, BACKLASH_MAX, unit="m"),
+                            # the share of static friction holding an open axis (0: no
+                            # force there but the play's; 1: friction balances the restoring
+                            # force, as a bearing standing still on that axis does): a model
+                            # choice the data make, an edge allowed
+                            Parameter("static_share", 0.5, 0.0, 1.0, unit="-",
+                                      edge_ok=True))),
     "lag": _on_orbits("lag", "one lag for the campaign",
                       (Parameter("lag", 0.0, -1.0, 1.0, unit="s"),)),
 }
@@ -461,21 +515,27 @@ def _prepare(campaign: Campaign2D, smooth: bool = True) -> Data2D:
 
 
 def kinematic_state(d: Data2D, yield_displacement: float, lag: float = 0.0,
-                    widths: tuple[float, float] = (0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
+                    widths: tuple[float, float] = (0.0, 0.0),
+                    static_ratio: float | np.ndarray = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """The displacement reaching the bearing u_b (n, 2) [m] and the return map's z (n, 2)
     [-] for a yield displacement [m], a force-channel ``lag`` [s] and a play per axis
     ``widths`` [m], over every test of ``d``. Behind a play (:func:`play_return_map_2d`)
     both are zero on an axis while its gap is open, so that the force N (u_b / R + mu z)
-    they give is zero there, as one direction's play (the force times ``engaged``)."""
+    they give is zero there, as one direction's play (the force times ``engaged``); the
+    loaded axis shares the friction circle with the static friction of an open one by
+    ``static_ratio`` [1/m] (:func:`static_ratio`: one value, or one per sample of ``d``)."""
     ub, z = [], []
     gap = widths[0] > 0.0 or widths[1] > 0.0
+    ratio = np.broadcast_to(np.asarray(static_ratio, dtype=float), (d.n,))
+    first = 0
     for t, u in zip(d.time, d.play_paths() if gap else d.displacement, strict=True):
         cols = [np.ascontiguousarray(lagged(t, u[:, j], lag) if lag else u[:, j])
                 for j in range(2)]
+        first, last = first + t.size, first
         if gap:
             b, zz, engaged = play_return_map_2d(cols[0], cols[1], 0.5 * float(widths[0]),
                                                 0.5 * float(widths[1]),
-                                                float(yield_displacement))
+                                                float(yield_displacement), ratio[last:first])
             ub.append(b * engaged)
             z.append(zz * engaged)
             continue
@@ -483,6 +543,15 @@ def kinematic_state(d: Data2D, yield_displacement: float, lag: float = 0.0,
         ub.append(np.column_stack(cols))
         z.append(np.column_stack([zx, zy]))
     return np.vstack(ub), np.vstack(z)
+
+
+def static_ratio(d: Data2D, share: float, mu: float | np.ndarray) -> float | np.ndarray:
+    """s / (R mu) [1/m]: the static friction holding an open axis of a play, z_j = -u_b,j
+    s / (R mu), for a share ``share`` (s) of it and the friction coefficient ``mu`` (one
+    value, or mu(t) at every sample of ``d``); 0 on a flat slider."""
+    if math.isinf(d.radius) or share <= 0.0:
+        return 0.0
+    return share / (d.radius * np.maximum(mu, 1e-6))
 
 
 # --- models ---------------------------------------------------------------------------------
@@ -553,13 +622,16 @@ class Model2D:
             out.extend(self._law_parameters(name))
         return out
 
-    def state(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> tuple:
+    def state(self, theta: np.ndarray, d: Data2D, base: Baseline2D,
+              mu: np.ndarray | None = None) -> tuple:
+        """(u_b, z), each (n, 2); a play's static friction with ``mu`` (the model's mu(t),
+        :meth:`mu`, when not given)."""
         if self.fixed_state is not None:
             return self.fixed_state
         if not self.refits_kinematics:
             return base.ub, base.z
         i = 2
-        lag, widths = base.lag, (0.0, 0.0)
+        lag, widths, ratio = base.lag, (0.0, 0.0), 0.0
         if "lag" not in self.kinematic:
             lag = float(theta[2])
             i = 3
@@ -569,8 +641,12 @@ class Model2D:
                 i += 1
             else:
                 widths = (float(theta[i]), float(theta[i + 1]))
-                i += 2
-        return kinematic_state(d, 10.0 ** float(theta[1]), lag, widths)
+                share = float(theta[i + 2])
+                if share > 0.0:
+                    ratio = static_ratio(d, share, self.mu(theta, d, base) if mu is None
+                                         else mu)
+                i += 3
+        return kinematic_state(d, 10.0 ** float(theta[1]), lag, widths, ratio)
 
     def mu(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> np.ndarray:
         mu = float(theta[0]) * d.mu_shape
@@ -586,8 +662,8 @@ class Model2D:
         return mu
 
     def force(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> np.ndarray:
-        ub, z = self.state(theta, d, base)
         mu = self.mu(theta, d, base)
+        ub, z = self.state(theta, d, base, mu)
         inverse = 0.0 if math.isinf(d.radius) else 1.0 / d.radius
         return d.axial[:, None] * (ub * inverse + mu[:, None] * z)
 
@@ -753,6 +829,14 @@ class Problem2D:
         new.earns = (z >= z_min and explained >= explained_min and practical >= practical_min
                      and not new.at_bound)
         return new
+
+    def scores(self, current: Judged, new: Judged,
+               mask: np.ndarray) -> tuple[float, float, float]:
+        """(z, share of the excess closed, practical size) of ``new`` over ``current`` on the
+        samples of ``mask`` (:meth:`compare`, ``new`` left as it was)."""
+        judged = self.compare(current, replace(new), mask, z_min=0.0, explained_min=0.0,
+                              practical_min=0.0)
+        return judged.z, judged.explained, judged.practical
 
     def confidence(self, reference: Judged, new: Judged, mask: np.ndarray,
                    share: float) -> float:
@@ -1468,9 +1552,14 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             own = [trials[k].theta[len(trials[k].theta) - len(LIBRARY_2D[k].parameters):]
                    for k in (a, b)]
             j = problem.judge(model, sliding, start=np.concatenate([cur.theta, *own]))
+            # each member earns its keep against the other held out (dropping either loses
+            # materially), as a play and a law judged together (:func:`_joint_pair`)
+            members = [problem.scores(trials[k], j, sliding) for k in (b, a)]
             j = problem.compare(cur, j, sliding, z_min=th.z_min, explained_min=th.explained_min,
                                 practical_min=th.practical_gain)
-            if j.earns and (best is None or j.weighted < best.weighted):
+            keeps = all(z >= th.z_min and gain >= th.explained_min and size >= th.practical_gain
+                        for z, gain, size in members)
+            if j.earns and keeps and (best is None or j.weighted < best.weighted):
                 best = j
         return best
 
@@ -1533,6 +1622,19 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 reference = j  # the next candidate is judged beside this one too
                 notes.append(f"{k} found beside the friction law ({', '.join(law)})")
 
+    # a play (or lag) and a friction law fitted jointly on every sample and judged together,
+    # when no law was found beside it (each partly supported, neither reaching its own bar)
+    if not law:
+        pair = _joint_pair(problem, judged, named_kin, kin, friction, base_all, every, th, d,
+                           notes)
+        if pair is not None:
+            k, f = pair.model.kinematic[0], pair.model.friction[0]
+            named_kin, law, cur = [k], [f], pair
+            kin_model = Model2D(kinematic=(k,), free=True)
+            law_base = problem.judge(kin_model, sliding, start=judged[k].theta)
+            judged[k] = judged[f] = pair
+            beside[f] = (k,)
+
     # the final model on every sample, and the verdict
     named = [*named_kin, *law]
     chosen = None
@@ -1584,6 +1686,58 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
     return result
 
 
+def _joint_pair(problem: Problem2D, judged: dict[str, Judged], named_kin: list[str],
+                kin: Sequence[str], friction: Sequence[str], base_all: Judged,
+                every: np.ndarray, th: Thresholds, d: Data2D, notes: list[str]) -> Judged | None:
+    """The best pair of a kinematic effect (the one named, else each hidden one:
+    :func:`_hidden`) and one friction-law effect, fitted jointly on every sample, that
+    :func:`~isolator.diagnosis.selection.joint_pair_earns` (over the baseline, over the
+    kinematic effect alone and over the law alone, held out), its play of a nameable size
+    and no parameter at a bound, when the kinematic effect alone leaves a real gap on every
+    sample (one direction's :meth:`~isolator.diagnosis.decision.Problem._joint_pair`); else
+    None. A note says what the pair taken closes."""
+    if named_kin:
+        tried = [k for k in named_kin[:1] if len(named_kin) == 1]
+    else:
+        tried = [k for k in kin if k in judged and _hidden(judged[k], k, th, d)]
+    best, said = None, ""
+    for k in tried:
+        alone = judged[k]
+        if alone.model != Model2D(kinematic=(k,)) or not material(
+                problem.score(alone.prediction, every),
+                problem.excess_rms(alone.prediction, every), th.practical_remain, th):
+            continue
+        for f in friction:
+            if LIBRARY_2D[f].untestable(d):
+                continue
+            own = [np.array([p.initial for p in LIBRARY_2D[f].parameters]),
+                   *_friction_starts(f)]
+            model = Model2D(friction=(f,), kinematic=(k,), free=True)
+            pair = problem.judge(model, every, start=np.concatenate([alone.theta, own[0]]),
+                                 starts=[np.concatenate([alone.theta, o]) for o in own[1:]])
+            law_model = Model2D(friction=(f,), free=True)
+            law_start = _start(law_model, base_all, problem.base, d)
+            law = problem.judge(law_model, every, start=law_start,
+                                starts=[np.concatenate([law_start[:3], o]) for o in own[1:]])
+            scores = [problem.scores(reference, pair, every)
+                      for reference in (base_all, alone, law)]
+            if not (joint_pair_earns(*scores, th) and not pair.at_bound
+                    and _size_ok(pair, k, th, d, [])):
+                continue
+            if best is None or pair.weighted < best.weighted:
+                best = pair
+                said = (f"{k} and {f} fitted jointly on every sample and judged together: the "
+                        f"pair closes {100 * scores[0][1]:.0f} % of the excess (z = "
+                        f"{scores[0][0]:.1f}); {f} closes {100 * scores[1][1]:.0f} % of what "
+                        f"{k} leaves (z = {scores[1][0]:.1f}), {k} {100 * scores[2][1]:.0f} % "
+                        f"of what {f} leaves (z = {scores[2][0]:.1f})")
+    if best is not None:
+        problem.compare(base_all, best, every, z_min=0.0, explained_min=0.0, practical_min=0.0)
+        best.earns = True
+        notes.append(said)
+    return best
+
+
 def _yield_at_top(base: Baseline2D, chosen: Judged | None, named: Sequence[str]) -> bool:
     """Whether the baseline's u_y sits at the top of its range (a play or a soft transition
     it stands in for: a finding, as in one direction) and neither a play is named nor the
@@ -1632,9 +1786,10 @@ def _start(model: Model2D, current: Judged, base: Baseline2D, d: Data2D) -> np.n
 
 def _kin_starts(model: Model2D, current: Judged, base: Baseline2D,
                 d: Data2D) -> list[np.ndarray]:
-    """Further starts of a kinematic model: plays of 1, 5 and 10 mm, lags of +-8 samples,
-    each with a u_y of 0.1 mm and 1 mm as well as the baseline's; for a play also the best
-    points of a grid over the two widths and u_y (:func:`_play_grid`)."""
+    """Further starts of a kinematic model: plays of 1, 5 and 10 mm (no static friction on
+    an open axis), lags of +-8 samples, each with a u_y of 0.1 mm and 1 mm as well as the
+    baseline's; for a play also the best points of a grid over the two widths, u_y and the
+    static share 0 and 1 (:func:`_play_grid`)."""
     x = _start(model, current, base, d)
     names = [p.name for p in model.layout(d, base.yield_displacement)]
     variants = [x]
@@ -1645,13 +1800,14 @@ def _kin_starts(model: Model2D, current: Judged, base: Baseline2D,
         for w in (1e-3, 5e-3, 1e-2):
             s = x.copy()
             s[i] = s[i + 1] = w
+            s[i + 2] = 0.0
             variants.append(s)
         at = names.index("lag") if "lag" in names else (
             names.index("channel_lag") if "channel_lag" in names else None)
         lags = {0.0, float(x[at]) if at is not None else base.lag}
-        for mu, uy, lag, wx, wy in _play_grid(d, sorted(lags)):
+        for mu, uy, lag, wx, wy, share in _play_grid(d, sorted(lags), base.mu):
             s = x.copy()
-            s[0], s[1], s[i], s[i + 1] = mu, math.log10(uy), wx, wy
+            s[0], s[1], s[i], s[i + 1], s[i + 2] = mu, math.log10(uy), wx, wy, share
             if at is not None:
                 s[at] = lag
             gridded.append(s)
@@ -1677,28 +1833,35 @@ def _kin_starts(model: Model2D, current: Judged, base: Baseline2D,
 _PLAY_GRID = np.concatenate([[0.0], np.geomspace(5e-4, BACKLASH_MAX, 11)])
 
 
-def _play_grid(d: Data2D, lags: Sequence[float],
-               keep: int = 2) -> list[tuple[float, float, float, float, float]]:
-    """The ``keep`` best (mu, u_y, lag, width_x, width_y) of a grid (plays of 0 and 0.5-20 mm
-    per axis, u_y from 0.1 to 1 mm, the channel ``lags`` [s]) with mu by least squares: starts
-    for the play's fit, whose cost is rough in the widths (a gap opens and closes at whole
-    samples), and whose baseline's u_y and lag the play has pulled."""
+def _play_grid(d: Data2D, lags: Sequence[float], mu: float,
+               keep: int = 2) -> list[tuple[float, float, float, float, float, float]]:
+    """The ``keep`` best (mu, u_y, lag, width_x, width_y, static share) of a grid for each
+    static share, 0 and 1 (plays of 0 and 0.5-20 mm per axis, u_y from 0.1 to 1 mm, the
+    channel ``lags`` [s]; the static friction with the baseline's ``mu``) with mu by least
+    squares: starts for the play's fit, whose cost is rough in the widths (a gap opens and
+    closes at whole samples), and whose baseline's u_y and lag the play has pulled."""
     inverse = 0.0 if math.isinf(d.radius) else 1.0 / d.radius
-    costs = []
-    for lag in lags:
-        for uy in (1e-4, 3e-4, 1e-3):
-            for wx in _PLAY_GRID:
-                for wy in _PLAY_GRID:
-                    if wx == 0.0 and wy == 0.0:
-                        continue
-                    ub, z = kinematic_state(d, uy, lag, (float(wx), float(wy)))
-                    friction = d.force - d.axial[:, None] * ub * inverse
-                    basis = d.axial[:, None] * d.mu_shape[:, None] * z
-                    mu = float(np.sum(basis * friction) / max(np.sum(basis**2), 1e-300))
-                    cost = float(np.mean((friction - mu * basis) ** 2))
-                    costs.append((cost, mu, uy, float(lag), float(wx), float(wy)))
-    costs.sort()
-    return [c[1:] for c in costs[:keep]]
+    out = []
+    for share in (0.0, 1.0):
+        ratio = static_ratio(d, share, mu * d.mu_shape)
+        if share > 0.0 and np.isscalar(ratio):  # a flat slider: no static share
+            continue
+        costs = []
+        for lag in lags:
+            for uy in (1e-4, 3e-4, 1e-3):
+                for wx in _PLAY_GRID:
+                    for wy in _PLAY_GRID:
+                        if wx == 0.0 and wy == 0.0:
+                            continue
+                        ub, z = kinematic_state(d, uy, lag, (float(wx), float(wy)), ratio)
+                        friction = d.force - d.axial[:, None] * ub * inverse
+                        basis = d.axial[:, None] * d.mu_shape[:, None] * z
+                        m = float(np.sum(basis * friction) / max(np.sum(basis**2), 1e-300))
+                        cost = float(np.mean((friction - m * basis) ** 2))
+                        costs.append((cost, m, uy, float(lag), float(wx), float(wy), share))
+        costs.sort()
+        out += [c[1:] for c in costs[:keep]]
+    return out
 
 
 def _friction_starts(name: str) -> list[np.ndarray]:
@@ -1720,11 +1883,14 @@ def per_test_lags(d: Data2D, j: Judged) -> np.ndarray:
     uy = 10.0 ** float(j.theta[1])
     widths = ((float(j.theta[params.index("width_x")]), float(j.theta[params.index("width_y")]))
               if "width_x" in params else (0.0, 0.0))
+    ratio = (static_ratio(d, float(j.theta[params.index("static_share")]),
+                          j.model.mu(j.theta, d, None))
+             if "static_share" in params else 0.0)
     inverse = 0.0 if math.isinf(d.radius) else 1.0 / d.radius
     grid = campaign_lag + d.dt * np.arange(-10.0, 10.25, 0.5)
     costs = np.empty((grid.size, len(d.campaign.tests)))
     for i, lag in enumerate(grid):
-        ub, z = kinematic_state(d, uy, float(lag), widths)
+        ub, z = kinematic_state(d, uy, float(lag), widths, ratio)
         friction = d.force - d.axial[:, None] * ub * inverse
         basis = d.axial[:, None] * d.mu_shape[:, None] * z
         for k in range(len(d.campaign.tests)):

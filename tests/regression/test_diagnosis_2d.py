@@ -128,7 +128,18 @@ def test_play_per_axis_is_named_with_its_widths(example):
     widths = summary["chosen"]["parameters"]["backlash"]
     assert math.isclose(widths["width_x"], example.PLAY[0], rel_tol=0.25)
     assert math.isclose(widths["width_y"], example.PLAY[1], rel_tol=0.25)
+    # the example's play is made without static friction on an open axis: the data choose
+    # that model (the validation truth's plays, held by friction, fit a share near 1)
+    assert widths["static_share"] < 0.3
     assert summary["chosen"]["shrink"] > 0.6
+
+
+def test_a_play_beside_heating_names_both(example):
+    """Issue 21: a play beside a friction law, each partly supported, named together."""
+    summary = _summary(example, "heating+backlash", seed=5)
+    assert [n for n in summary["verdict"] if n != "unexplained"] == ["backlash", "heating"]
+    widths = summary["chosen"]["parameters"]["backlash"]
+    assert math.isclose(widths["width_x"], example.PLAY[0], rel_tol=0.25)
 
 
 def test_lag_named_through_the_command_line(example, tmp_path, capsys):
