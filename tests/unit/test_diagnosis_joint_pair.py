@@ -17,7 +17,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from isolator.diagnosis.data2d import BearingRecord2D, Campaign2D
+from isolator.diagnosis.data import BearingRecord2D, Campaign2D
 from isolator.diagnosis.selection import joint_pair_earns
 from isolator.diagnosis.thresholds import Thresholds
 from isolator.diagnosis.two_directions import (
