@@ -270,6 +270,8 @@ def _parts(stage: str) -> list:
     ``"trials"`` the bearings' trials, ``"linear"`` the Newton matrix's pieces, ``"solve"``
     the first sample's solve and the plate field, ``"commit"`` the commit, ``"loop"`` the
     loop's own pieces and the loop (:func:`_loop_parts`)."""
+    if stage == "loop":
+        return _loop_parts()
     from isolator.compiled import kernels, plate
     from structures.compiled import lapack, linear
 
@@ -306,8 +308,7 @@ def _parts(stage: str) -> list:
                                         heat.weights, heat.states[0], heat.stamps[0],
                                         heat.accumulators[0], vector))],
         "commit": [(plate.advance_window, (vector, vector, square, 1.0)),
-                   (E.commit_trials, (parameters, states, states, *heat))],
-        "loop": []}[stage] if stage != "loop" else _loop_parts()
+                   (E.commit_trials, (parameters, states, states, *heat))]}[stage]
 
 
 def _separate_calls() -> list:
