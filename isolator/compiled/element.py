@@ -23,7 +23,8 @@ import numpy as np
 
 from isolator.compiled import layout as L
 from isolator.compiled import plate as P
-from isolator.compiled.kernels import heated_window, initial_friction, jit_unmanaged, ptv_friction
+from isolator.compiled.kernels import heated_window, initial_friction, jit_inner, ptv_friction
+from isolator.compiled.linking import separately
 from isolator.friction import REFERENCE_PRESSURE
 
 # Layout of a row of the ``parameters`` array (one row per bearing; floats).
@@ -59,8 +60,16 @@ MOTION_SIZE = 5
 # Status codes of a trial (and of a run).
 SUCCESS, NOT_CONVERGED, LEFT_MONITOR_LINE, STEP_BELOW_MIN_LAG, BEYOND_RADIUS = range(5)
 
+# The friction and the window's moves, called as code of their own (isolator.compiled.linking;
+# calls that LLVM did not inline anyway): the trials and the commit compile without them, and
+# a process binds them before it compiles or loads those (structures.compiled.engine).
+INITIAL_FRICTION = separately(initial_friction, lambda types: types.UniTuple(types.float64, 3))
+PTV_FRICTION = separately(ptv_friction, lambda types: types.UniTuple(types.float64, 4))
+MOVE_WINDOW = separately(P.move_window, lambda types: types.none)
+REANCHOR_WINDOW = separately(P.reanchor_window, lambda types: types.none)
 
-@jit_unmanaged
+
+@jit_inner
 def set_trials(time, motion, parameters, ptv, committed, trial, rates, weights, states, stamps,
                marks, pending, accumulators, offsets, cache_keys, cache_values, cache_state,
                scalars, factors, decays, slots, table, windows):
@@ -103,7 +112,7 @@ def set_trials(time, motion, parameters, ptv, committed, trial, rates, weights, 
             mu, dmu_dspeed, flux = row[CONSTANT_MU], 0.0, 0.0
             temperature = row[INITIAL_TEMPERATURE]
         elif model == COLD_PTV or dt <= 0.0:
-            mu, dmu_dspeed, temperature = initial_friction(constants, pressure, speed)
+            mu, dmu_dspeed, temperature = INITIAL_FRICTION(constants, pressure, speed)
             flux = mu * pressure * speed / constants[L.SURFACES]
         else:
             if dt == table[P.PREPARED_STEP]:
@@ -167,7 +176,7 @@ def set_trials(time, motion, parameters, ptv, committed, trial, rates, weights, 
                     rise = plate[P.RISE]  # Newton's trials of a step mostly share it
                 else:  # the trial's window becomes the one held as a group
                     if i_lo != held[0] or i_hi != held[1] or k_lo != held[2] or k_hi != held[3]:
-                        P.move_window(b, n_across, held, window, plate[P.HEAT_TIME], rates,
+                        MOVE_WINDOW(b, n_across, held, window, plate[P.HEAT_TIME], rates,
                                       states[b], stamps[b], accumulators[b], offsets[b],
                                       cache_keys, cache_values, cache_state, marks[b], pending[b])
                         held[0], held[1], held[2], held[3] = i_lo, i_hi, k_lo, k_hi
@@ -175,7 +184,7 @@ def set_trials(time, motion, parameters, ptv, committed, trial, rates, weights, 
                     rise = P.window_history(accumulators[b], offsets[b], decays[slot], points)
                     plate[P.RISE], plate[P.RISE_VALID], plate[P.RISE_STEP] = rise, 1.0, dt
                 heated = i_hi > i_lo and k_hi > k_lo
-            mu, dmu_dspeed, temperature, flux = ptv_friction(
+            mu, dmu_dspeed, temperature, flux = PTV_FRICTION(
                 rise, heated, constants, slots[slot, P.SLOT_NEWEST], pressure, speed)
             t[PENDING_DT], t[PENDING] = dt, 1.0
 
@@ -216,7 +225,7 @@ def set_trials(time, motion, parameters, ptv, committed, trial, rates, weights, 
     return SUCCESS, -1
 
 
-@jit_unmanaged
+@jit_inner
 def commit_trials(parameters, committed, trial, rates, weights, states, stamps, marks, pending,
                   accumulators, offsets, cache_keys, cache_values, cache_state, scalars,
                   factors, decays, slots, table, windows):
@@ -250,7 +259,7 @@ def commit_trials(parameters, committed, trial, rates, weights, states, stamps, 
                             t[AXIS_Y]
                     if (window[0] != held[0] or window[1] != held[1] or window[2] != held[2]
                             or window[3] != held[3]):
-                        P.move_window(b, n_across, held, window, plate[P.HEAT_TIME], rates,
+                        MOVE_WINDOW(b, n_across, held, window, plate[P.HEAT_TIME], rates,
                                       states[b], stamps[b], accumulators[b], offsets[b],
                                       cache_keys, cache_values, cache_state, marks[b], pending[b])
                         held[0], held[1], held[2], held[3] = window[0], window[1], window[2], \
@@ -273,7 +282,7 @@ def commit_trials(parameters, committed, trial, rates, weights, states, stamps, 
                 if plate[P.FRAME_FIXED] != 0.0:
                     plate[P.ANCHORED_AGO] += 1.0
                     if plate[P.ANCHORED_AGO] >= P.REANCHOR_EVERY:
-                        P.reanchor_window(b, n_across, held, plate[P.HEAT_TIME], rates,
+                        REANCHOR_WINDOW(b, n_across, held, plate[P.HEAT_TIME], rates,
                                           states[b], stamps[b], offsets[b], cache_keys,
                                           cache_values, cache_state)
                         plate[P.ANCHORED_AGO] = 0.0

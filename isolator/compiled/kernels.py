@@ -41,6 +41,14 @@ try:  # pragma: no cover - exercised by whichever environment runs the tests
         nothing and only touch arrays their caller keeps alive: no counting to compile or run."""
         return numba.njit(cache=True, nogil=True, no_cfunc_wrapper=True, _nrt=False)(function)
 
+    def jit_inner(function):
+        """:func:`jit_unmanaged` without the wrapper that Python calls, for a function that only
+        compiled code calls, through :func:`isolator.compiled.linking.separately` (whose
+        stand-in, called from Python, compiles a twin with the wrapper). Called from Python
+        itself, the compiled function crashes the process: only its stand-in may call it."""
+        return numba.njit(cache=True, nogil=True, no_cfunc_wrapper=True, _nrt=False,
+                          no_cpython_wrapper=True)(function)
+
 except ImportError:  # pragma: no cover
     COMPILED = False
 
@@ -49,7 +57,7 @@ except ImportError:  # pragma: no cover
         function.py_func = function
         return function
 
-    jit_unmanaged = jit
+    jit_unmanaged = jit_inner = jit
 
 
 _paper_pressure = jit(paper_pressure_raw)

@@ -2,18 +2,19 @@
 
 Compiling on a cold numba cache takes most of a first run's time and is pure Python work, which
 a thread cannot overlap with the caller's work; a process can, on a second core.
-:func:`compile_ahead` starts ``python -m structures.compiled.ahead``, which compiles the engine
-and writes numba's disk cache (:func:`structures.compiled.engine.warm_up_late`, then ``warm_up``)
-while the caller compiles the bearings' trials (:meth:`CompileAhead.help`), does its own work
-and waits (:meth:`CompileAhead.wait`) before its first engine call, which then loads the same
-code it would have compiled. Neither process compiles what the other one does: the caller
-reports how far its share has come in a stage file (1: the window's move that the trials share
-with the commit, 2: the trials), and the second process waits for it before the commit and
-before the engine's loop, which call them (without a helping caller it waits for nothing); the
-second process compiles the step's factors first, which the trials reach only later.
-Nothing is started when the cache holds the engine, without numba (or with
-``DCFPB_DISABLE_NUMBA=1``), or with ``DCFPB_COMPILE_AHEAD=0``; if the second process fails,
-the caller compiles itself."""
+:func:`compile_ahead` starts ``python -m structures.compiled.ahead``, which compiles the
+engine's loop and its entry from Python, the Newton matrix's pieces and the step's factors, and
+writes them to numba's disk cache (:func:`structures.compiled.engine.warm_up_late`), while the
+caller compiles the window's moves, the friction, the bearings' trials and commit and the loop's
+start (:meth:`CompileAhead.help`), does its own work and waits (:meth:`CompileAhead.wait`)
+before its first engine call, which then loads the rest. The two shares do not wait for each
+other: the engine calls what the other share compiles as code of its own
+(:mod:`isolator.compiled.linking`), bound in the second process to placeholders it never runs.
+The caller's stage file (0 started, 1 the window's moves, 2 its share done) tells the second
+process that it is helped; without one (no helping caller, or it failed) the second process
+compiles the caller's share too. Nothing is started when the cache holds the engine, without
+numba (or with ``DCFPB_DISABLE_NUMBA=1``), or with ``DCFPB_COMPILE_AHEAD=0``; if the second
+process fails, the caller compiles itself."""
 
 from __future__ import annotations
 
@@ -66,9 +67,10 @@ class CompileAhead:
         return self.process is not None
 
     def help(self) -> float:
-        """Compile the bearings' trials here (:func:`structures.compiled.engine.warm_up_early`)
-        for the second process to find in the cache; the time spent [s] (0 when no process
-        runs). Call it right after :func:`compile_ahead`, before this process's own work."""
+        """Compile the caller's share of the engine here
+        (:func:`structures.compiled.engine.warm_up_early`); the time spent [s] (0 when no
+        process runs). Call it right after :func:`compile_ahead`, before this process's own
+        work."""
         if self.process is None or self.process.poll() is not None:
             return 0.0
         stage = self.stage
@@ -153,8 +155,8 @@ def compile_ahead() -> CompileAhead:
 
 
 def write_stage(stage: Path, value: int) -> None:
-    """Write how far the caller's share has come (0 started, 1 the window's move, 2 the
-    trials: in the cache) to the file ``stage``, replacing it whole."""
+    """Write how far the caller's share has come (0 started, 1 the window's moves, 2 all of
+    it: in the cache) to the file ``stage``, replacing it whole."""
     partial = stage.with_name(stage.name + ".partial")
     partial.write_text(str(value))
     os.replace(partial, stage)
@@ -182,12 +184,12 @@ if __name__ == "__main__":  # the second process
 
     gc.set_threshold(50_000, 20, 20)  # fewer collections while numba compiles
 
-    from structures.compiled.engine import warm_up, warm_up_late
+    from structures.compiled.engine import warm_up_early, warm_up_late
 
     STAGE = Path(os.environ[STAGE_VARIABLE]) if os.environ.get(STAGE_VARIABLE) else None
-    # while the first process compiles the window's move and the bearings' trials
-    warm_up_late(lambda: wait_for_stage(STAGE, 1))
-    wait_for_stage(STAGE, 2)
-    warm_up()
+    # the loop while the first process compiles the window's moves, the friction, the trials
+    warm_up_late()
+    if STAGE is None or not STAGE.exists():  # nobody helps (or it failed): the rest too
+        warm_up_early()
     # the cache is written: skip the teardown the first process would otherwise wait for
     os._exit(0)

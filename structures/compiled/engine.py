@@ -183,6 +183,38 @@ def compiled_run(view: EngineView, acceleration: np.ndarray, step: float,
         For a (sub-)step shorter than the heating kernel's shortest lag, as the reference.
     """
     acceleration = np.array(acceleration, dtype=float, order="C")  # writable: one type
+    arguments, bearings = _loop_arguments(view, acceleration, step, method, tolerance,
+                                          max_iterations, max_subdivisions)
+    function = compiled.run
+    if python:  # its callees compiled: bound here, as they are for the compiled loop
+        function = getattr(compiled.integrate, "py_func", compiled.integrate)
+        bind_callees(*_separate_calls()[:-1])
+    compile_time = 0.0 if python else compile_engine()
+    start = _time.perf_counter()
+    time, outputs = arguments[1].time, arguments[-1]
+    u, v, a, record, restoring = outputs[:5]
+    iterations, subdivisions, info = outputs[5:]
+    timed_out = run_in_chunks(function, arguments, time.shape[0], start, time_limit, warm_up)
+    wall = _time.perf_counter() - start
+    last, success, failure, failed_at, message = run_outcome(
+        info, time, timed_out, time_limit, tolerance, lambda: _model_error(info, view))
+    kept = slice(0, last + 1)
+    absolute = a[kept] + acceleration[kept] @ np.asarray(view.influence, dtype=float).T
+    arrays = [time[kept], u[kept], v[kept], a[kept], absolute, iterations[:last],
+              subdivisions[:last]]
+    for array in arrays:
+        array.setflags(write=False)
+    result = IntegrationResult(*arrays[:5], success, message, *arrays[5:], method=method,
+                               failure=failure, failed_at=failed_at)
+    return CompiledRun(result, record[kept], restoring[kept], wall, compile_time,
+                       plate_field(bearings) if with_plate else None)
+
+
+def _loop_arguments(view: EngineView, acceleration: np.ndarray, step: float,
+                    method: Newmark | HHT, tolerance: float, max_iterations: int,
+                    max_subdivisions: int) -> tuple[tuple, object]:
+    """The loop's groups for a run of :func:`compiled_run` from rest, ``(model, motion,
+    settings, state, outputs)``, and the packed bearings (``acceleration``: C-ordered)."""
     nt, n = acceleration.shape[0], view.mass.shape[0]
     time = step * np.arange(nt)
     bearings = pack_bearings(view.bearing, view.elements, view.positions, view.multiplicity,
@@ -197,31 +229,12 @@ def compiled_run(view: EngineView, acceleration: np.ndarray, step: float,
     iterations, subdivisions = np.zeros((2, nt - 1), dtype=np.int64)
     info = np.zeros(W.INFO_SIZE)
     outputs = W.Outputs(u, v, a, record, restoring, iterations, subdivisions, info)
-    function = compiled.integrate
-    if python:
-        function = getattr(function, "py_func", function)
-    compile_time = 0.0 if python else compile_engine()
-    start = _time.perf_counter()
     workspace = W.new_workspace(n, acceleration.shape[1], n_b, max_subdivisions)
     workspace[W.COMMITTED][:] = bearings.committed
     state = W.State(bearings.heat, workspace)
     settings = W.Settings(method_array, bearings.parameters, bearings.ptv, flags)
-    timed_out = run_in_chunks(function, (_model_group(view), W.Motion(acceleration, time),
-                                         settings, state, outputs), nt, start, time_limit,
-                              warm_up)
-    wall = _time.perf_counter() - start
-    last, success, failure, failed_at, message = run_outcome(
-        info, time, timed_out, time_limit, tolerance, lambda: _model_error(info, view))
-    kept = slice(0, last + 1)
-    absolute = a[kept] + acceleration[kept] @ np.asarray(view.influence, dtype=float).T
-    arrays = [time[kept], u[kept], v[kept], a[kept], absolute, iterations[:last],
-              subdivisions[:last]]
-    for array in arrays:
-        array.setflags(write=False)
-    result = IntegrationResult(*arrays[:5], success, message, *arrays[5:], method=method,
-                               failure=failure, failed_at=failed_at)
-    return CompiledRun(result, record[kept], restoring[kept], wall, compile_time,
-                       plate_field(bearings) if with_plate else None)
+    return (_model_group(view), W.Motion(acceleration, time), settings, state,
+            outputs), bearings
 
 
 def compiled_history(model, acceleration: np.ndarray, dt: float, method: Newmark | HHT, *,
@@ -244,18 +257,22 @@ _WARMING_UP = False  # set while warm_up runs its own small model through the en
 def compile_engine() -> float:
     """Compile the engine (or load it from numba's disk cache) unless this process has it;
     the time [s], 0.0 with nothing to do. A run calls it before starting its clock."""
-    function = compiled.integrate
+    function = compiled.run
     if _WARMING_UP or not hasattr(function, "signatures") or function.signatures:
         return 0.0  # warming up already, plain Python (no numba), or compiled in this process
     return warm_up()
 
 
 def _parts(stage: str) -> list:
-    """The engine's callees as (function, example arguments of the engine's types), by
-    ``stage``: ``"window"`` and ``"step"`` the plate functions the bearings' trials and their
-    commit both call (the window's move, the step's factors), ``"trials"`` the trials,
-    ``"linear"`` the Newton matrix's pieces and the plate field, ``"commit"`` the commit."""
-    from isolator.compiled import plate
+    """The engine's compiled functions as (function, example arguments of the engine's types)
+    by ``stage``: ``"window"`` the plate's window moves, ``"friction"`` the friction of a
+    trial, ``"step"`` the step's factors (which the trials and the commit both inline),
+    ``"trials"`` the bearings' trials, ``"linear"`` the Newton matrix's pieces, ``"solve"``
+    the first sample's solve and the plate field, ``"commit"`` the commit, ``"loop"`` the
+    loop's own pieces and the loop (:func:`_loop_parts`)."""
+    if stage == "loop":
+        return _loop_parts()
+    from isolator.compiled import kernels, plate
     from structures.compiled import lapack, linear
 
     heat = plate.new_plate_heating(1, 1, np.ones(1), np.zeros(1))
@@ -264,13 +281,18 @@ def _parts(stage: str) -> list:
     pivots, vector = np.zeros(1, dtype=np.int32), np.zeros(1)
     window = heat.windows[0, plate.HELD]
     return {
-        "step": [(plate.prepare_step, (1.0, 1.0, 1.0, heat.rates, heat.weights, heat.factors,
-                                       heat.decays, heat.slots, heat.table))],
         "window": [
             (plate.move_window, (0, 1, window, window, 0.0, heat.rates, heat.states[0],
                                  heat.stamps[0], heat.accumulators[0], heat.offsets[0],
                                  heat.cache_keys, heat.cache_values, heat.cache_state,
-                                 heat.marks[0], heat.pending[0]))],
+                                 heat.marks[0], heat.pending[0])),
+            (plate.reanchor_window, (0, 1, window, 0.0, heat.rates, heat.states[0],
+                                     heat.stamps[0], heat.offsets[0], heat.cache_keys,
+                                     heat.cache_values, heat.cache_state))],
+        "friction": [(kernels.initial_friction, (parameters[0], 1.0, 1.0)),
+                     (kernels.ptv_friction, (0.0, True, parameters[0], 0.0, 1.0, 1.0))],
+        "step": [(plate.prepare_step, (1.0, 1.0, 1.0, heat.rates, heat.weights, heat.factors,
+                                       heat.decays, heat.slots, heat.table))],
         "trials": [(E.set_trials, (0.0, np.zeros((1, E.MOTION_SIZE)), parameters, parameters,
                                    states, states, *heat))],
         "linear": [
@@ -278,13 +300,65 @@ def _parts(stage: str) -> list:
             (linear.effective_inverse, (1.0, square, square, square, 1.0, 1.0, 1.0, square,
                                         square, square, pivots)),
             (linear.add_block, (rows, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0)),
-            (linear.interpolate, (1.0, vector, vector)),
+            (linear.interpolate, (1.0, vector, vector))],
+        "solve": [
             (lapack.solve, (square, vector, vector, square, pivots)),
             (plate.field_temperatures, (np.zeros(1, dtype=np.int64),
                                         np.zeros(1, dtype=np.bool_), 1.0, 1.0, 1.0, heat.rates,
                                         heat.weights, heat.states[0], heat.stamps[0],
                                         heat.accumulators[0], vector))],
-        "commit": [(E.commit_trials, (parameters, states, states, *heat))]}[stage]
+        "commit": [(plate.advance_window, (vector, vector, square, 1.0)),
+                   (E.commit_trials, (parameters, states, states, *heat))]}[stage]
+
+
+def _separate_calls() -> list:
+    """The functions the engine calls as code of their own (:mod:`isolator.compiled.linking`),
+    as their stand-ins, each after those it calls."""
+    return [E.MOVE_WINDOW, E.REANCHOR_WINDOW, E.INITIAL_FRICTION, E.PTV_FRICTION,
+            compiled.WOODBURY, compiled.EFFECTIVE_INVERSE, compiled.SOLVE, compiled.SET_TRIALS,
+            compiled.COMMIT_TRIALS, compiled.START, compiled.REPORT_FAILURE, compiled.INTEGRATE]
+
+
+def _loop_parts() -> list:
+    """The loop's own pieces as :func:`_parts` gives the others (its start and failure
+    report), with the loop's arguments."""
+    view, acceleration, step, method = _warm_up_run(constant=True)
+    (model, motion, settings, state, outputs), _ = _loop_arguments(
+        view, np.array(acceleration, dtype=float, order="C"), step, method, 1e-8, 25, 2)
+    ws = state.workspace
+    dofs = ws[W.DOFS]
+    return [
+        (compiled.start, (1, 1, model.mass, model.influence, motion.ground,
+                          ws[W.MASS_INFLUENCE], dofs[W.P_C], dofs[W.Q_C], dofs[W.LOAD],
+                          dofs[W.A_C], ws[W.LAPACK_WORK], ws[W.PIVOTS])),
+        (compiled.report_failure, (outputs.info, ws[W.TRIAL], 1, 1, 1.0, 1.0, 1, 1, 1.0, 1.0)),
+        (compiled.integrate, (model, motion, settings, state, outputs,
+                              np.zeros(2, dtype=np.int64)))]
+
+
+def _argument_types(function) -> tuple:
+    """numba's types of ``function``'s arguments in the engine (from :func:`_parts`)."""
+    for stage in ("window", "friction", "step", "trials", "linear", "solve", "commit", "loop"):
+        for candidate, arguments in _parts(stage):
+            if candidate is function:
+                return tuple(_typeof(argument) for argument in arguments)
+    raise KeyError(function)
+
+
+def bind_callees(*calls, placeholder: bool = False) -> float:
+    """Bind the functions that the engine calls as code of their own (default: all of them,
+    :func:`_separate_calls`, each after those it calls): compiled or loaded, as a process must
+    before it compiles or loads their callers; the time [s]. ``placeholder``: stand-ins that
+    end the process when called, for those not bound yet, so that a process that compiles for
+    numba's cache only need not compile them (it must not run the engine afterwards)."""
+    from isolator.compiled.linking import bind, bind_placeholder
+
+    start = _time.perf_counter()
+    for call in calls or _separate_calls():
+        if hasattr(call, "function"):  # without numba: nothing to bind
+            (bind_placeholder if placeholder else bind)(call,
+                                                        _argument_types(call.function))
+    return _time.perf_counter() - start
 
 
 def _compile_parts(*stages: str) -> float:
@@ -299,30 +373,32 @@ def _compile_parts(*stages: str) -> float:
 
 
 def warm_up_early(shared_done: Callable[[], None] | None = None) -> float:
-    """Compile (or load) the bearings' trials (:func:`isolator.compiled.element.set_trials`
-    and its callees) for the engine's argument types, the window's move that the commit shares
-    with them first (``shared_done()`` is called once it is in the cache); the time [s]. See
-    :mod:`structures.compiled.ahead`: the second process meanwhile compiles the step's factors
-    (:func:`warm_up_late`), which the trials call only later."""
+    """The caller's share of a cold engine (:mod:`structures.compiled.ahead`), compiled (or
+    loaded) and bound in this process: the window's moves (then ``shared_done()``), the trial's
+    friction, the bearings' trials (:func:`isolator.compiled.element.set_trials`), their
+    commit, the first sample's solve and the loop's start and failure report; the time [s]."""
     start = _time.perf_counter()
-    _compile_parts("window")
+    bind_callees(E.MOVE_WINDOW)
     if shared_done is not None:
         shared_done()
-    _compile_parts("trials")
+    bind_callees(E.INITIAL_FRICTION, E.PTV_FRICTION, compiled.SET_TRIALS, E.REANCHOR_WINDOW)
+    _compile_parts("commit")
+    bind_callees(compiled.COMMIT_TRIALS, compiled.SOLVE, compiled.START,
+                 compiled.REPORT_FAILURE)
+    _compile_parts("solve")
     return _time.perf_counter() - start
 
 
-def warm_up_late(before_commit: Callable[[], None] | None = None) -> float:
-    """Compile (or load) the engine's callees other than the bearings' trials, the step's
-    factors first; the time [s]. ``before_commit()`` is called before the commit
-    (:func:`isolator.compiled.element.commit_trials`), whose window's move
-    :func:`warm_up_early` compiles first: a second process waits there for it to be in the
-    cache rather than compile it too."""
+def warm_up_late() -> float:
+    """The second process's share of a cold engine, for numba's cache only (this process must
+    not run the engine afterwards): the step's factors first (the trials inline them), the
+    Newton matrix's pieces and the loop with its entry from Python (:func:`compile_loop`:
+    what it calls from the caller's share is bound to placeholders here); the time [s]."""
     start = _time.perf_counter()
-    _compile_parts("step", "linear")
-    if before_commit is not None:
-        before_commit()
-    _compile_parts("commit")
+    _compile_parts("step")
+    bind_callees(compiled.WOODBURY, compiled.EFFECTIVE_INVERSE)
+    _compile_parts("linear")
+    compile_loop()
     return _time.perf_counter() - start
 
 
@@ -330,29 +406,56 @@ def _typeof(value):
     """numba's type of an argument as compiled code passes it (integers as int64)."""
     from numba import typeof, types
 
+    if isinstance(value, bool):
+        return types.boolean
     if isinstance(value, int):
         return types.int64
     return typeof(value)
 
 
-def warm_up() -> float:
-    """Compile (or load from the disk cache) the engine and the kernels; return the time [s]."""
+def _warm_up_run(constant: bool = False) -> tuple:
+    """The warm-up's model and record: ``compiled_run``'s arguments (the engine's argument types
+    are the same for every model and friction; without heating no heat kernel is fitted,
+    scipy's nnls, before the compilation can start; ``constant``: with constant friction,
+    whose packing calls no compiled friction)."""
     from isolator.bearing import DCFPBearing
-    from isolator.friction import PTVFriction
+    from isolator.friction import ConstantFriction, PTVFriction
     from structures.isolated_building import IsolatedShearBuilding
     from structures.shear_building import ModalDamping, ShearBuilding
 
+    building = ShearBuilding(np.array([1.0e5]), np.array([1.0e8]), 1.0e5, ModalDamping())
+    friction = ConstantFriction() if constant else PTVFriction(heating=None)
+    bearing = DCFPBearing(2.0, 0.3, None, friction)
+    model = IsolatedShearBuilding(building, bearing)
+    return engine_view(model), np.array([[0.0], [1.0], [0.0]]), 0.01, Newmark()
+
+
+def compile_loop() -> float:
+    """Compile the engine's loop (:func:`structures.compiled.integrator.integrate`) and its
+    entry from Python (``run``) for their argument types and write them to numba's cache,
+    without running them and without the functions the loop calls as code of their own: those
+    this process has not bound yet are bound to placeholders (:func:`bind_callees`), so this
+    process must not run the engine afterwards (:mod:`structures.compiled.ahead`); the time
+    [s]."""
+    start = _time.perf_counter()
+    if hasattr(compiled.integrate, "compile"):
+        types = _argument_types(compiled.integrate)
+        bind_callees(*_separate_calls()[:-1], placeholder=True)
+        compiled.integrate.compile(types)
+        bind_callees(compiled.INTEGRATE)
+        compiled.run.compile(types)
+    return _time.perf_counter() - start
+
+
+def warm_up() -> float:
+    """Compile (or load from the disk cache) the engine and the kernels; return the time [s]."""
     global _WARMING_UP
     start = _time.perf_counter()
-    building = ShearBuilding(np.array([1.0e5]), np.array([1.0e8]), 1.0e5, ModalDamping())
-    # The engine's argument types are the same for every model and friction; without heating
-    # no heat kernel is fitted (scipy's nnls) before the compilation can start.
-    bearing = DCFPBearing(2.0, 0.3, None, PTVFriction(heating=None))
-    model = IsolatedShearBuilding(building, bearing)
+    view, acceleration, step, method = _warm_up_run()
+    bind_callees()
     _WARMING_UP = True
     try:
-        compiled_run(engine_view(model), np.array([[0.0], [1.0], [0.0]]), 0.01, Newmark(),
-                     tolerance=1e-8, max_subdivisions=2)
+        compiled_run(view, acceleration, step, method, tolerance=1e-8, max_subdivisions=2)
     finally:
         _WARMING_UP = False
     return _time.perf_counter() - start

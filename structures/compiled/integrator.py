@@ -25,15 +25,70 @@ import numpy as np
 
 from dcfpb.common.units import STANDARD_GRAVITY
 from isolator.compiled import element as E
-from isolator.compiled.kernels import jit_unmanaged
+from isolator.compiled.kernels import jit_inner, jit_unmanaged
+from isolator.compiled.linking import separately
 from structures.compiled import workspace as W
 from structures.compiled.lapack import solve
 from structures.compiled.linear import add_block, effective_inverse, interpolate, woodbury
 
-__all__ = ["integrate"]
+__all__ = ["COMMIT_TRIALS", "EFFECTIVE_INVERSE", "INTEGRATE", "SET_TRIALS", "SOLVE", "WOODBURY",
+           "integrate", "report_failure", "run", "start"]
+
+# The bearings' trials and commit and the Newton matrix's solves, called as code of their own
+# (isolator.compiled.linking): the loop compiles without them (at the same time, in another
+# process), and a process binds them before it compiles or loads the loop.
+WOODBURY = separately(woodbury, lambda types: types.boolean)
+EFFECTIVE_INVERSE = separately(effective_inverse, lambda types: types.none)
+SOLVE = separately(solve, lambda types: types.int32)
+SET_TRIALS = separately(E.set_trials, lambda types: types.UniTuple(types.int64, 2))
+COMMIT_TRIALS = separately(E.commit_trials, lambda types: types.none)
 
 
-@jit_unmanaged
+@jit_inner
+def start(first, end, mass, influence, ground, mass_influence, p_committed, q_committed,
+          load_row, a_committed, work, pivots):
+    """The loop's start: M r into ``mass_influence``; from rest (``first <= 1``) the committed
+    load and acceleration of the first sample. Returns the first step to take."""
+    n, components = mass.shape[0], ground.shape[1]
+    for i in range(n):  # M r
+        for c in range(components):
+            total = 0.0
+            for j in range(n):
+                total += mass[i, j] * influence[j, c]
+            mass_influence[i, c] = total
+    if first <= 1:
+        first = 1
+        for i in range(n):  # from rest: f = 0, q = 0; the load row holds p - q for the solve
+            total = 0.0
+            for c in range(components):
+                total += mass_influence[i, c] * ground[0, c]
+            p_committed[i] = -total
+            load_row[i] = p_committed[i] - q_committed[i]
+        SOLVE(mass, load_row, a_committed, work, pivots)
+    return first
+
+
+@jit_inner
+def report_failure(info, trial, status, k, t_end, h, depth, spent, r_norm, reference):
+    """Write a failed (sub-)step into ``info``: the trial's failure (``status`` not SUCCESS)
+    or Newton's, at step ``k``."""
+    info[W.STATUS], info[W.LAST_STEP] = E.NOT_CONVERGED, k - 1
+    if status != E.SUCCESS:
+        b = int(info[W.FAIL_BEARING])
+        info[W.STATUS] = status
+        info[W.FAIL_VALUE] = trial[b, E.PENDING_DT]
+        info[W.FAIL_UX], info[W.FAIL_UY] = trial[b, E.UX], trial[b, E.UY]
+        info[W.FAIL_E1X], info[W.FAIL_E1Y] = trial[b, E.AXIS_X], trial[b, E.AXIS_Y]
+    info[W.FAIL_TIME], info[W.FAIL_SUBSTEP], info[W.FAIL_DEPTH] = t_end, h, depth
+    info[W.FAIL_ITERATIONS], info[W.FAIL_RESIDUAL] = spent, r_norm
+    info[W.FAIL_REFERENCE] = reference
+
+
+START = separately(start, lambda types: types.int64)
+REPORT_FAILURE = separately(report_failure, lambda types: types.none)
+
+
+@jit_inner
 def integrate(model, motion, settings, state, outputs, steps):
     """Integrate the isolated building through the record, from rest; fill the outputs.
 
@@ -86,22 +141,8 @@ def integrate(model, motion, settings, state, outputs, steps):
     weight = 1.0 + alpha
     n, n_bearings, nt = mass.shape[0], committed.shape[0], ground.shape[0]
     components = ground.shape[1]
-    for i in range(n):  # M r
-        for c in range(components):
-            total = 0.0
-            for j in range(n):
-                total += mass[i, j] * influence[j, c]
-            mass_influence[i, c] = total
-    first, end = steps[0], steps[1]
-    if first <= 1:
-        first = 1
-        for i in range(n):  # from rest: f = 0, q = 0; the load row holds p - q for the solve
-            total = 0.0
-            for c in range(components):
-                total += mass_influence[i, c] * ground[0, c]
-            p_committed[i] = -total
-            load_row[i] = p_committed[i] - q_committed[i]
-        solve(mass, load_row, a_committed, work, pivots)
+    first, end = START(steps[0], steps[1], mass, influence, ground, mass_influence, p_committed,
+                       q_committed, load_row, a_committed, work, pivots), steps[1]
     end = min(end, nt)
     info[W.STATUS], info[W.LAST_STEP] = E.SUCCESS, end - 1
     t_committed = time[first - 1]
@@ -132,7 +173,7 @@ def integrate(model, motion, settings, state, outputs, steps):
                 h = (s1 - s0) * span
                 inverse = inverses[depth]
                 if abs(h - inverse_steps[depth]) > 1e-9 * h:
-                    effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse,
+                    EFFECTIVE_INVERSE(h, mass, damping, stiffness, gamma, beta, alpha, inverse,
                                       tangent, work, pivots)
                     inverse_steps[depth] = h
                 # the predictor and the norms of the committed state
@@ -194,7 +235,7 @@ def integrate(model, motion, settings, state, outputs, steps):
                                 extra += overturning_matrix[b, j] * storey_row[j]
                             load = load + extra
                         row[E.MOTION_LOAD] = load
-                    status, failed = E.set_trials(
+                    status, failed = SET_TRIALS(
                         t_end, motion_rows, parameters, ptv, committed, trial, rates, weights,
                         states, stamps, marks, pending, accumulators, offsets, cache_keys,
                         cache_values, cache_state, scalars, factors, decays, slots, table,
@@ -248,7 +289,7 @@ def integrate(model, motion, settings, state, outputs, steps):
                     reference = max(previous, math.sqrt(inertia_squared),
                                     math.sqrt(q_squared), p_norm)
                     spent = iteration
-                    if not woodbury(inverse, top_k, top_c, columns, weight, c1,
+                    if not WOODBURY(inverse, top_k, top_c, columns, weight, c1,
                                     residual_row, du_row, update):
                         break
                     du_squared = u_squared = 0.0
@@ -274,7 +315,7 @@ def integrate(model, motion, settings, state, outputs, steps):
                         a_trial[i] += c0 * du_row[i]
                 step_iterations += spent
                 if converged:
-                    E.commit_trials(parameters, committed, trial, rates, weights, states, stamps,
+                    COMMIT_TRIALS(parameters, committed, trial, rates, weights, states, stamps,
                                     marks, pending, accumulators, offsets, cache_keys,
                                     cache_values, cache_state, scalars, factors, decays, slots,
                                     table, windows)
@@ -285,17 +326,8 @@ def integrate(model, motion, settings, state, outputs, steps):
                 for b in range(n_bearings):  # revert: drop the trials and their heat
                     trial[b, E.PENDING] = 0.0
                 if status != E.SUCCESS or depth >= max_subdivisions:
-                    info[W.STATUS], info[W.LAST_STEP] = E.NOT_CONVERGED, k - 1
-                    if status != E.SUCCESS:
-                        b = int(info[W.FAIL_BEARING])
-                        info[W.STATUS] = status
-                        info[W.FAIL_VALUE] = trial[b, E.PENDING_DT]
-                        info[W.FAIL_UX], info[W.FAIL_UY] = trial[b, E.UX], trial[b, E.UY]
-                        info[W.FAIL_E1X], info[W.FAIL_E1Y] = trial[b, E.AXIS_X], \
-                            trial[b, E.AXIS_Y]
-                    info[W.FAIL_TIME], info[W.FAIL_SUBSTEP], info[W.FAIL_DEPTH] = t_end, h, depth
-                    info[W.FAIL_ITERATIONS], info[W.FAIL_RESIDUAL] = spent, r_norm
-                    info[W.FAIL_REFERENCE] = reference
+                    REPORT_FAILURE(info, trial, status, k, t_end, h, depth, spent, r_norm,
+                                   reference)
                     iterations[k - 1] = step_iterations
                     subdivisions[k - 1] = step_subdivisions
                     return
@@ -329,3 +361,14 @@ def integrate(model, motion, settings, state, outputs, steps):
         if columns == 3:
             restoring[k, 1] += sy
             restoring[k, 2] += sz
+
+
+INTEGRATE = separately(integrate, lambda types: types.none)
+
+
+@jit_unmanaged
+def run(model, motion, settings, state, outputs, steps):
+    """:func:`integrate`, called from Python: the loop itself is compiled without the wrapper
+    that unboxes its arguments from Python objects, which this function has (and compiles
+    apart from the loop); a process binds the loop before it compiles or loads this."""
+    INTEGRATE(model, motion, settings, state, outputs, steps)

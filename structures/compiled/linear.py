@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from isolator.compiled.kernels import jit_unmanaged
+from isolator.compiled.kernels import jit_inner, jit_unmanaged
 from structures.compiled.lapack import invert
 
 __all__ = ["add_block", "effective_inverse", "interpolate", "woodbury"]
@@ -51,7 +51,7 @@ def add_block(top, kxx, kxy, kyx, kyy, x, y):
     top[2, 2] += rx * -y + ry * x
 
 
-@jit_unmanaged
+@jit_inner
 def effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse, matrix, work,
                       pivots):
     """inverse <- (c0 M + (1 + alpha)(c1 C + K))^-1 for a step ``h`` [s]: the Newton matrix
@@ -66,7 +66,7 @@ def effective_inverse(h, mass, damping, stiffness, gamma, beta, alpha, inverse, 
     invert(matrix, inverse, work, pivots)
 
 
-@jit_unmanaged
+@jit_inner
 def woodbury(inverse, top_k, top_c, columns, weight, c1, residual, du, update):
     """du <- (A + E X)^-1 residual, A^-1 = ``inverse``, E the first ``columns`` (1 or 3) unit
     columns, X = (1 + alpha)(c1 top_c + top_k) the base slab's rows the bearings add, by
