@@ -14,6 +14,7 @@ import math
 from pathlib import Path
 
 from dcfpb.common.errors import EXIT_OK, InputError
+from dcfpb.common.files import json_safe
 from dcfpb.common.validation import parse_floats
 
 _COMMAND = "dcfpb prototype"
@@ -194,22 +195,12 @@ def _comparison(result, lambda_test: tuple[float, float] | None) -> dict:
     return {"assumed": {"max": high, "min": low}, "within": within, "lines": [line]}
 
 
-def _clean(value):
-    if isinstance(value, dict):
-        return {k: _clean(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_clean(v) for v in value]
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def _data(result, inputs: dict, comparison: dict) -> dict:
     data = result.to_dict()
     data["inputs"] = dict(inputs)
     data["lambda_test_assumed"] = comparison["assumed"]
     data["lambda_test_within"] = comparison["within"]
-    return _clean(data)
+    return json_safe(data)
 
 
 def _write_output(result, inputs: dict, comparison: dict, path: Path) -> None:
