@@ -21,7 +21,8 @@ MIN_AXIAL_LOAD = 1.0e4
 """Smallest axial load a bearing test may impose [N]: 10 kN (a value below is almost surely one
 meant in kN)."""
 
-_USES = {"mu0": ("constant",), "refinement": ("simplified",), "mu_t0": ("precise", "simplified")}
+PARAMETER_MODELS = {"mu0": ("constant",), "refinement": ("simplified",),
+                    "mu_t0": ("precise", "simplified")}
 """The friction parameters of a bearing test and the models that use them."""
 
 
@@ -144,9 +145,10 @@ def protocol_bearing(
         if value is None:
             continue
         check_real(value, name, owner, low=0.0, low_open=True, high=high)
-        if model not in _USES[name]:
+        models = PARAMETER_MODELS[name]
+        if model not in models:
             warnings.warn(f"The {name!r} parameter of {owner} applies to the "
-                          f"{' and '.join(_USES[name])} model{'s' * (len(_USES[name]) > 1)} "
+                          f"{' and '.join(models)} model{'s' * (len(models) > 1)} "
                           f"only; it has no effect with the {model} model.", InputWarning,
                           stacklevel=2)
     friction = friction_model(
