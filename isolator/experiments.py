@@ -3,12 +3,11 @@ and ``constant`` mapped onto friction models and a bearing, in one place."""
 
 from __future__ import annotations
 
-import math
 import warnings
 
 from dcfpb.common.errors import InputError, InputWarning
 from dcfpb.common.validation import check_choice, check_real
-from isolator.bearing import DCFPBearing
+from isolator.bearing import DCFPBearing, slider_contact_area
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
 
@@ -133,7 +132,7 @@ def protocol_bearing(
     """
     owner = "protocol_bearing"
     check_real(slider_diameter, "slider_diameter", owner, low=0.0, low_open=True, high=10.0)
-    area = math.pi * (0.5 * slider_diameter) ** 2
+    area = slider_contact_area(slider_diameter)
     if pressure is not None and axial_load is not None:
         raise InputError(f"{owner}: give either 'pressure' or 'axial_load', not both.")
     check_test_load(pressure, axial_load, owner)
