@@ -128,6 +128,27 @@ def compile_kernels() -> float:
     return 0.0
 
 
+def check_motion(building: ShearBuilding, motion: GroundMotion | GroundMotionPair,
+                 owner: str) -> bool:
+    """Whether ``motion`` is a pair, checked to suit ``building``: a building in plan runs under
+    a pair of records, a building in one direction under one record. ``owner`` (the function
+    checking) is named when ``building`` is no ``ShearBuilding`` or ``motion`` neither kind."""
+    pair = isinstance(motion, GroundMotionPair)
+    if not isinstance(building, ShearBuilding):
+        raise InputTypeError(f"The 'building' parameter of {owner} must be a ShearBuilding. Got "
+                             f"{building!r} instead.")
+    if not pair and not isinstance(motion, GroundMotion):
+        raise InputTypeError(f"The 'motion' parameter of {owner} must be a GroundMotion or a "
+                             f"GroundMotionPair. Got {motion!r} instead.")
+    if pair != (building.plan is not None):
+        has = "has a" if building.plan is not None else "has no"
+        raise InputError(
+            "A building in plan runs under a pair of records (GroundMotionPair) and a building "
+            f"in one direction under one record: the building {has} plan and the motion is "
+            f"{'a pair' if pair else 'one record'}.")
+    return pair
+
+
 def run(
     building: ShearBuilding,
     bearing: DCFPBearing,
@@ -195,19 +216,7 @@ def run(
         model's monitor points, no convergence, the ``time_limit``) ends there, for every
         friction model and both engines: see the Notes of ``response_dataset``.
     """
-    pair = isinstance(motion, GroundMotionPair)
-    if not isinstance(building, ShearBuilding):
-        raise InputTypeError(f"The 'building' parameter of run must be a ShearBuilding. Got "
-                             f"{building!r} instead.")
-    if not pair and not isinstance(motion, GroundMotion):
-        raise InputTypeError(f"The 'motion' parameter of run must be a GroundMotion or a "
-                             f"GroundMotionPair. Got {motion!r} instead.")
-    if pair != (building.plan is not None):
-        has = "has a" if building.plan is not None else "has no"
-        raise InputError(
-            "A building in plan runs under a pair of records (GroundMotionPair) and a building "
-            f"in one direction under one record: the building {has} plan and the motion is "
-            f"{'a pair' if pair else 'one record'}.")
+    pair = check_motion(building, motion, "run")
     first = motion.x if pair else motion
     if dt is not None:
         check_real(dt, "dt", "run", low=0.0, low_open=True)
