@@ -417,13 +417,8 @@ class Problem:
         effect is named yet, stage 1 again beside that law (``retry``)."""
         for _ in range(2):
             stage = self.stage(kinematic)
-            work, base = stage.work, stage.baseline
-            pool = {n: a for n, a in stage.singles.items() if n not in exclude}
-            testable = sorted((a for a in pool.values() if a.untestable is None),
-                              key=lambda a: a.weighted)
-            noise_like = not material(base.score, work.excess_rms(base.prediction),
-                                      th.practical_none, th)
-            current, named, form = base, [], {}
+            testable, noise_like = _screened(stage, exclude, th)
+            current, named, form = stage.baseline, [], {}
             if not noise_like:
                 current, named, form = self._forward(stage, testable, th)
             if not retry or kinematic is not None or not named:
@@ -478,15 +473,10 @@ class Problem:
         if joint is not None:
             kinematic, law_name = joint
             stage = self.stage(kinematic)
-            work, base = stage.work, stage.baseline
-            pool = {n: a for n, a in stage.singles.items() if n not in exclude}
-            testable = sorted((a for a in pool.values() if a.untestable is None),
-                              key=lambda a: a.weighted)
-            noise_like = not material(base.score, work.excess_rms(base.prediction),
-                                      th.practical_none, th)
+            testable, noise_like = _screened(stage, exclude, th)
             named = [law_name]
-            current, form = self._reported_form(work, stage.singles[law_name],
-                                                len(base.model.effects), th)
+            current, form = self._reported_form(stage.work, stage.singles[law_name],
+                                                len(stage.baseline.model.effects), th)
         work, base = stage.work, stage.baseline
         excess = base.weighted - work.weighted_noise
         explained = (base.weighted - current.weighted) / excess if excess > 0.0 else 0.0
@@ -628,6 +618,17 @@ class Problem:
             prediction, _ = work.holdout.predict(model, work.context, start=full.theta)
             work.cache[key] = work.judge(model, full, prediction)
         return work.cache[key]
+
+
+def _screened(stage: Stage, exclude: tuple[str, ...],
+              th: Thresholds) -> tuple[list[Assessment], bool]:
+    """The testable single effects of ``stage`` not in ``exclude``, the weakest first, and
+    whether its baseline leaves only noise (no material excess under ``th.practical_none``)."""
+    work, base = stage.work, stage.baseline
+    testable = sorted((a for n, a in stage.singles.items()
+                       if n not in exclude and a.untestable is None), key=lambda a: a.weighted)
+    return testable, not material(base.score, work.excess_rms(base.prediction),
+                                  th.practical_none, th)
 
 
 def _own_forms(law: tuple[Effect, ...], singles: dict[str, Assessment]) -> tuple[Effect, ...]:
