@@ -28,7 +28,7 @@ from structures.limits import DEFAULT_MAX_STEPS, building_fields, check_run
 from structures.results import (
     BEARING_RECORD,
     EngineHistory,
-    response_dataset,
+    history_dataset,
     temperature_fields,
     uplift_record,
 )
@@ -234,17 +234,7 @@ def run(
         history = compiled_history(model, acceleration, step, method, **options)
     else:
         history = reference_history(model, acceleration, step, method, **options)
-    result = history.result
-    dataset = response_dataset(
-        model, motion, step, acceleration[:result.time.size], result.displacement,
-        result.velocity, result.absolute_acceleration, history.bearings,
-        integrator=repr(result.method), success=result.success, message=result.message,
-        failure=result.failure, failed_at=result.failed_at, restoring=history.restoring,
-        plate=history.plate,
-        attrs={"newton_iterations": int(result.iterations.sum()),
-               "subdivisions": int(result.subdivisions.sum()),
-               "wall_time": history.wall_time, "compile_time": history.compile_time,
-               "engine": history.engine})
+    dataset = history_dataset(model, motion, step, acceleration, history)
     if floor_spectra:
         from structures.floor_spectra import with_floor_spectra
 

@@ -75,7 +75,7 @@ def uplift_record(axial_load: np.ndarray, step: float) -> dict[str, list]:
 
 
 class EngineHistory(NamedTuple):
-    """What an engine hands to :func:`response_dataset`: the integration ``result``, the
+    """What an engine hands to :func:`history_dataset`: the integration ``result``, the
     ``bearings`` record (:data:`BEARING_RECORD` at every committed step), the total ``restoring``
     force of storeys and bearings, shape (nt, n_dof) [N, N m], the ``wall_time`` of the
     integration and the ``compile_time`` before it (0.0 if compiled already) [s], the
@@ -331,6 +331,25 @@ def response_dataset(
     if failed_at is not None:
         common["failed_at"] = float(failed_at)
     return xr.Dataset(data, coords=coords, attrs=common | attrs)
+
+
+def history_dataset(model: IsolatedShearBuilding, motion: GroundMotion | GroundMotionPair,
+                    step: float, acceleration: np.ndarray, history: EngineHistory, **attrs: Any):
+    """:func:`response_dataset` of an engine's ``history`` of ``model`` under ``motion`` at
+    ``step`` [s] (``acceleration``: the ground samples run [m/s^2], cut to the steps kept): its
+    Newton iterations, subdivisions, wall and compile times [s] and engine as attributes, which
+    ``attrs`` extends or overrides."""
+    result = history.result
+    return response_dataset(
+        model, motion, step, acceleration[:result.time.size], result.displacement,
+        result.velocity, result.absolute_acceleration, history.bearings,
+        integrator=repr(result.method), success=result.success, message=result.message,
+        failure=result.failure, failed_at=result.failed_at, restoring=history.restoring,
+        plate=history.plate,
+        attrs={"newton_iterations": int(result.iterations.sum()),
+               "subdivisions": int(result.subdivisions.sum()),
+               "wall_time": history.wall_time, "compile_time": history.compile_time,
+               "engine": history.engine, **attrs})
 
 
 def write_netcdf(result: Any, path: str | os.PathLike) -> Path:
