@@ -260,16 +260,21 @@ class Problem:
                 out.append(a)
         return sorted(out, key=lambda a: a.weighted)
 
+    def _assessed(self, kind: str, effects: tuple[Effect, ...]) -> Assessment:
+        """A model of ``effects`` alone assessed on every sample, kept in the cache under
+        ``kind`` (``"law"`` or ``"kinematic"``) and the effects' names."""
+        key = (kind, *(e.name for e in effects))
+        if key not in self.all.cache:
+            self.all.cache[key] = assess(self.all, Model(effects), None)
+        return self.all.cache[key]
+
     def _jointly(self, candidate: Assessment, law: tuple[Effect, ...],
                  th: Thresholds) -> Assessment | None:
         """``candidate`` (one kinematic effect) when, as a pair with the friction-law effects
         ``law``, it earns its keep over the baseline on every sample by ``kinematic_z`` (a pair
         is judged as one, as in stage 2) and, beside the law, still closes its share
         (``kinematic_explained``) by a practical force (``kinematic_practical``)."""
-        key = ("law", *(e.name for e in law))
-        if key not in self.all.cache:
-            self.all.cache[key] = assess(self.all, Model(law), None)
-        current = self.all.cache[key]
+        current = self._assessed("law", law)
         judged = self._extended(self.all, current, (candidate,))
         z, _ = improvement(self.all, self.all_baseline, judged)
         _, beside = improvement(self.all, current, judged)
@@ -308,11 +313,7 @@ class Problem:
             for name, single in plain.singles.items():
                 if name in exclude or single.untestable is not None:
                     continue
-                law = (single.model.effects[-1],)
-                key = ("law", *(e.name for e in law))
-                if key not in self.all.cache:
-                    self.all.cache[key] = assess(self.all, Model(law), None)
-                law_alone = self.all.cache[key]
+                law_alone = self._assessed("law", (single.model.effects[-1],))
                 pair = self._extended(self.all, law_alone, (alone,))
                 scores = []
                 for reference in (self.all_baseline, alone, law_alone):
@@ -334,10 +335,7 @@ class Problem:
                 if n not in exclude and a.untestable is None]
         current = self.all_baseline
         if law:
-            key = ("law", *(e.name for e in law))
-            if key not in self.all.cache:
-                self.all.cache[key] = assess(self.all, Model(law), None)
-            current = self.all.cache[key]
+            current = self._assessed("law", law)
         first = len(law)
         while len(current.model.effects) - first < MAX_KINEMATIC:
             options = []
@@ -361,10 +359,7 @@ class Problem:
             names = tuple(e.name for e in kinematic)
             if len(names) == 1:
                 return self.kinematic[names[0]]
-            key = ("kinematic", *names)
-            if key not in self.all.cache:
-                self.all.cache[key] = assess(self.all, Model(kinematic), None)
-            return self.all.cache[key]
+            return self._assessed("kinematic", kinematic)
         return current
 
     # -- stage 2 -----------------------------------------------------------------------------
