@@ -29,6 +29,7 @@ from structures.results import (
     BEARING_RECORD,
     EngineHistory,
     history_dataset,
+    resultant,
     temperature_fields,
     uplift_record,
 )
@@ -242,12 +243,6 @@ def run(
     return dataset
 
 
-def _resultant(values: np.ndarray) -> np.ndarray:
-    """The length of the vectors along the last axis (the value itself for one direction)."""
-    return np.abs(values[..., 0]) if values.shape[-1] == 1 else np.hypot(values[..., 0],
-                                                                          values[..., 1])
-
-
 def _uplift_peaks(result) -> dict[str, Any]:
     """The lift-off keys of :func:`peaks`, from the Dataset's ``axial_load`` (time, bearing)."""
     record = uplift_record(result["axial_load"].values, float(result.attrs["dt"]))
@@ -280,18 +275,18 @@ def peaks(result) -> dict[str, Any]:
         [s] (the longest lift-off).
     """
     check_dataset(result, "result", "peaks")
-    reach = _resultant(result["bearing_displacement"].values).max(axis=0)
+    reach = resultant(result["bearing_displacement"].values).max(axis=0)
     roof = np.abs(result["absolute_acceleration"].isel(floor=-1).values).max(axis=0)
     drift = np.abs(result["storey_drift"].values).max(axis=(0, 1))
     values: dict[str, Any] = {"peak_isolator_displacement": float(reach.max())}
-    base_shear = float(_resultant(result["base_shear"].values).max())
+    base_shear = float(resultant(result["base_shear"].values).max())
     if result.sizes["direction"] == 1:
         values |= {"peak_base_shear": base_shear, "peak_roof_acceleration": float(roof[0]),
                    "peak_storey_drift": float(drift[0])}
     else:
         values |= {
             "peak_centre_displacement": float(
-                _resultant(result["displacement"].isel(floor=0).values).max()),
+                resultant(result["displacement"].isel(floor=0).values).max()),
             "corner_bearing": int(np.argmax(reach)),
             "peak_base_shear": base_shear,
             "peak_roof_acceleration_x": float(roof[0]),
@@ -364,8 +359,8 @@ def design_peaks(result, storey_heights: Any = None) -> dict[str, Any]:
     n = result.sizes["storey"]
     two = result.sizes["direction"] == 2
     u = result["bearing_displacement"].values
-    reach = _resultant(u).max(axis=0)
-    centre = _resultant(result["displacement"].isel(floor=0).values)
+    reach = resultant(u).max(axis=0)
+    centre = resultant(result["displacement"].isel(floor=0).values)
     distance = np.hypot(result["bearing_x"].values, result["bearing_y"].values)
     farthest = distance >= distance.max() * (1.0 - 1e-9)  # the corners (ties: the largest)
     corner = int(np.flatnonzero(farthest)[np.argmax(reach[farthest])])
@@ -411,7 +406,7 @@ def design_peaks(result, storey_heights: Any = None) -> dict[str, Any]:
     dt = float(result.attrs["dt"])
     mu = result["mu"].values
     if u.shape[0] > 1:
-        speed = _resultant(np.diff(u, axis=0)) / dt  # (time - 1, bearing)
+        speed = resultant(np.diff(u, axis=0)) / dt  # (time - 1, bearing)
         sliding = (speed > SLIDING_SPEED) & (axial[1:] > 0.0)
         values = mu[1:][sliding]
     else:

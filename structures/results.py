@@ -91,6 +91,13 @@ class EngineHistory(NamedTuple):
     plate: tuple[np.ndarray, np.ndarray] | None = None
 
 
+def resultant(values: np.ndarray) -> np.ndarray:
+    """The length of the vectors along the last axis, of one or two directions (for one, the
+    absolute value) [the values' unit]."""
+    return np.abs(values[..., 0]) if values.shape[-1] == 1 else np.hypot(values[..., 0],
+                                                                          values[..., 1])
+
+
 def temperature_fields(model: IsolatedShearBuilding) -> tuple[np.ndarray, np.ndarray] | None:
     """Each bearing's monitor-point temperature field after the last commit (None for the models
     without): positions (n_b, m, 2) [m] and temperatures (n_b, m) [degC], NaN-padded."""
@@ -217,7 +224,7 @@ def response_dataset(
     building, bearing = model.building, model.bearing
     directions = building.directions
     components, dofs = len(directions), model.level_dofs
-    reach = np.hypot(bearings["displacement"][..., 0], bearings["displacement"][..., 1])
+    reach = resultant(bearings["displacement"])
     kept, beyond = _capacity(reach.max(axis=1), bearing.displacement_capacity, step)
     if beyond:
         success, message, failure, failed_at = False, beyond, "capacity", step * (kept - 1)
