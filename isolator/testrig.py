@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_array, check_instance
 from isolator.bearing import DCFPBearing
+from isolator.characteristics import path_integral
 from isolator.orbits import Orbit
 
 AXES = ("x", "y")
@@ -27,13 +28,6 @@ UNITS = {
     "z": "-", "mu": "-", "temperature": "degC", "heat_flux": "W/m^2", "axial_load": "N",
 }
 _VECTORS = ("displacement", "velocity", "force", "friction_force", "z")
-
-
-def path_integral(displacement: np.ndarray, force: np.ndarray) -> float:
-    """Integral of F . du along a path by the trapezoid rule [J], for a displacement [m] and a
-    force [N] of shape (n,) or (n, 2)."""
-    du = np.diff(displacement, axis=0)
-    return float(np.sum(0.5 * (force[1:] + force[:-1]) * du))
 
 
 @dataclass(frozen=True)
