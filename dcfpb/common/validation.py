@@ -134,8 +134,9 @@ def check_array(
     return arr
 
 
-def parse_floats(text: object, flag: str, form: str = "", *, count: int | None = None
-                 ) -> tuple[float, ...]:
+def parse_floats(
+    text: object, flag: str, form: str = "", *, count: int | None = None
+) -> tuple[float, ...]:
     """The finite numbers of a comma-separated command-line value such as ``--scales 1,1.5``
     (blank items skipped).
 
