@@ -170,6 +170,11 @@ def _crossing_value(values: np.ndarray, excursion: np.ndarray, i: int, at_level:
     return float(values[i - 1] + s * (values[i] - values[i - 1]))
 
 
+def magnitude(values: np.ndarray) -> np.ndarray:
+    """|x| of (n,) values, |(x, y)| of (n, 2) values, in their unit."""
+    return np.abs(values) if values.ndim == 1 else np.hypot(values[:, 0], values[:, 1])
+
+
 def path_integral(displacement: np.ndarray, force: np.ndarray) -> float:
     """Integral of F . du along a path by the trapezoid rule [J], for a displacement [m] and a
     force [N] of shape (n,) or (n, 2) (the EDC of a closed loop)."""

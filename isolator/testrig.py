@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_array, check_instance
 from isolator.bearing import DCFPBearing
-from isolator.characteristics import path_integral
+from isolator.characteristics import magnitude, path_integral
 from isolator.orbits import Orbit
 
 AXES = ("x", "y")
@@ -109,8 +109,7 @@ class BearingTestResult:
             power = surfaces * self.heat_flux[samples][1:] * self.bearing.contact_area
         else:
             velocity = self.velocity[samples][1:]
-            speed = np.abs(velocity) if self.dimension == 1 else np.hypot(*velocity.T)
-            power = self.mu[samples][1:] * self.axial_load[samples][1:] * speed
+            power = self.mu[samples][1:] * self.axial_load[samples][1:] * magnitude(velocity)
         return float(np.sum(power * np.diff(t)))
 
     def columns(self) -> dict[str, np.ndarray]:
@@ -203,7 +202,7 @@ def run_test(
     owner = "run_test"
     check_instance(bearing, "bearing", owner, DCFPBearing, "a DCFPBearing")
     t, u, v = imposed_history(time, displacement, velocity, owner)
-    reach = np.abs(u) if u.ndim == 1 else np.hypot(u[:, 0], u[:, 1])
+    reach = magnitude(u)
     capacity = bearing.displacement_capacity
     if np.max(reach) > capacity:
         raise InputError(

@@ -39,6 +39,7 @@ from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.units import KELVIN_LOOK
 from dcfpb.common.validation import check_real
 from isolator.bearing import SliderContact
+from isolator.characteristics import magnitude
 from isolator.limits import DEFAULT_MAX_STEPS, _size, available_memory
 
 REQUIRED_COLUMNS = ("time", "displacement", "force")
@@ -759,10 +760,8 @@ _UNIT = re.compile(r"^(?P<name>[^\[\(]*?)\s*(?:[\[\(](?P<unit>[^\]\)]*)[\]\)])?\
 
 
 def _peak(values: np.ndarray) -> float:
-    """The peak magnitude of a channel: |x| of (n,) values, |(x, y)| of (n, 2) values."""
-    if values.ndim == 1:
-        return float(np.max(np.abs(values)))
-    return float(np.max(np.hypot(values[:, 0], values[:, 1])))
+    """The peak magnitude of a channel (:func:`~isolator.characteristics.magnitude`)."""
+    return float(np.max(magnitude(values)))
 
 
 def _column_name(text: str) -> tuple[str, str | None]:
