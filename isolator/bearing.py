@@ -96,8 +96,29 @@ def isotropic_return_map(zx: float, zy: float, dux: float, duy: float,
     return px, py, elastic, 0.0, 0.0, elastic
 
 
+def slider_contact_area(slider_diameter: float) -> float:
+    """Contact area pi r^2 [m^2] of a slider of ``slider_diameter`` [m], r = half of it."""
+    return math.pi * (0.5 * slider_diameter) ** 2
+
+
+class SliderContact:
+    """The contact of the slider of a class with a ``slider_diameter`` [m]: a bearing
+    (:class:`DCFPBearing`) or the bearing of a test campaign
+    (:class:`isolator.diagnosis.data.Campaign`)."""
+
+    @property
+    def contact_radius(self) -> float:
+        """Contact radius r = half the slider diameter [m]."""
+        return 0.5 * self.slider_diameter
+
+    @property
+    def contact_area(self) -> float:
+        """Contact area pi r^2 [m^2]."""
+        return slider_contact_area(self.slider_diameter)
+
+
 @dataclass(frozen=True)
-class DCFPBearing:
+class DCFPBearing(SliderContact):
     """Parameters of a double concave friction pendulum bearing.
 
     Parameters
@@ -157,16 +178,6 @@ class DCFPBearing:
                 f"effective radius {self.effective_radius:g} m for the spherical law. "
                 f"Got {self.displacement_capacity!r} instead."
             )
-
-    @property
-    def contact_radius(self) -> float:
-        """Contact radius r = slider radius [m]."""
-        return 0.5 * self.slider_diameter
-
-    @property
-    def contact_area(self) -> float:
-        """Contact area pi r^2 [m^2]."""
-        return math.pi * self.contact_radius**2
 
     def axial_load_at(self, time: float) -> float:
         """Axial load N at ``time`` [N]."""

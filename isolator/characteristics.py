@@ -170,9 +170,16 @@ def _crossing_value(values: np.ndarray, excursion: np.ndarray, i: int, at_level:
     return float(values[i - 1] + s * (values[i] - values[i - 1]))
 
 
-def loop_integral(displacement: np.ndarray, force: np.ndarray) -> float:
-    """Integral of F du along a path by the trapezoid rule [J] (the EDC of a closed loop)."""
-    return float(np.sum(0.5 * (force[1:] + force[:-1]) * np.diff(displacement)))
+def magnitude(values: np.ndarray) -> np.ndarray:
+    """|x| of (n,) values, |(x, y)| of (n, 2) values, in their unit."""
+    return np.abs(values) if values.ndim == 1 else np.hypot(values[:, 0], values[:, 1])
+
+
+def path_integral(displacement: np.ndarray, force: np.ndarray) -> float:
+    """Integral of F . du along a path by the trapezoid rule [J], for a displacement [m] and a
+    force [N] of shape (n,) or (n, 2) (the EDC of a closed loop)."""
+    du = np.diff(displacement, axis=0)
+    return float(np.sum(0.5 * (force[1:] + force[:-1]) * du))
 
 
 def least_squares_slope(displacement: np.ndarray, force: np.ndarray) -> float:
@@ -267,7 +274,7 @@ def cycle_characteristics(
         path_f = np.concatenate(
             [[_crossing_value(f, e, start, at_level)], fc, [_crossing_value(f, e, stop, at_level)]]
         )
-        edc = loop_integral(path_u, path_f)
+        edc = path_integral(path_u, path_f)
         i_max, i_min = int(np.argmax(uc)), int(np.argmin(uc))
         d_max, d_min = float(uc[i_max]), float(uc[i_min])
         f_max, f_min = float(fc.max()), float(fc.min())

@@ -3,12 +3,11 @@ and ``constant`` mapped onto friction models and a bearing, in one place."""
 
 from __future__ import annotations
 
-import math
 import warnings
 
 from dcfpb.common.errors import InputError, InputWarning
 from dcfpb.common.validation import check_choice, check_real
-from isolator.bearing import DCFPBearing
+from isolator.bearing import DCFPBearing, slider_contact_area
 from isolator.friction import ConstantFriction, PTVFriction
 from isolator.heating import CentrePoint, MonitorLine, ThermalProperties
 
@@ -21,7 +20,8 @@ MIN_AXIAL_LOAD = 1.0e4
 """Smallest axial load a bearing test may impose [N]: 10 kN (a value below is almost surely one
 meant in kN)."""
 
-_USES = {"mu0": ("constant",), "refinement": ("simplified",), "mu_t0": ("precise", "simplified")}
+PARAMETER_MODELS = {"mu0": ("constant",), "refinement": ("simplified",),
+                    "mu_t0": ("precise", "simplified")}
 """The friction parameters of a bearing test and the models that use them."""
 
 
@@ -132,7 +132,7 @@ def protocol_bearing(
     """
     owner = "protocol_bearing"
     check_real(slider_diameter, "slider_diameter", owner, low=0.0, low_open=True, high=10.0)
-    area = math.pi * (0.5 * slider_diameter) ** 2
+    area = slider_contact_area(slider_diameter)
     if pressure is not None and axial_load is not None:
         raise InputError(f"{owner}: give either 'pressure' or 'axial_load', not both.")
     check_test_load(pressure, axial_load, owner)
@@ -144,9 +144,10 @@ def protocol_bearing(
         if value is None:
             continue
         check_real(value, name, owner, low=0.0, low_open=True, high=high)
-        if model not in _USES[name]:
+        models = PARAMETER_MODELS[name]
+        if model not in models:
             warnings.warn(f"The {name!r} parameter of {owner} applies to the "
-                          f"{' and '.join(_USES[name])} model{'s' * (len(_USES[name]) > 1)} "
+                          f"{' and '.join(models)} model{'s' * (len(models) > 1)} "
                           f"only; it has no effect with the {model} model.", InputWarning,
                           stacklevel=2)
     friction = friction_model(

@@ -13,18 +13,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
-from dcfpb.common.errors import InputError
-from dcfpb.common.validation import check_array, check_choice, check_int, check_real
+from dcfpb.common.validation import check_choice, check_int, check_real
 from isolator.limits import DEFAULT_MAX_STEPS, HISTORY_FIELDS, check_steps
-from isolator.protocols import LabelledBlocks, sine
+from isolator.protocols import STEPS_PER_PERIOD_MIN, LabelledBlocks, sine
 
 ORBITS = ("circle", "figure8", "square", "line")
 """Names of the orbits :func:`orbit` makes."""
-
-_STEPS_PER_PERIOD_MIN = 20  # as for the sine of isolator.protocols: dt <= period / 20
 
 
 @dataclass(frozen=True, eq=False)
@@ -34,25 +32,7 @@ class Orbit(LabelledBlocks):
     and the analytic ``velocity`` (n, 2) [m/s] at each, a ``name`` (e.g. ``"circle"``) and the
     labelled blocks ``segments`` ``(label, start, stop)``, both end samples included."""
 
-    time: np.ndarray
-    displacement: np.ndarray
-    velocity: np.ndarray
-    name: str
-    segments: tuple[tuple[str, int, int], ...] = ()
-
-    def __post_init__(self) -> None:
-        owner = "Orbit"
-        time = check_array(self.time, "time", owner, min_length=2, increasing=True).copy()
-        time.setflags(write=False)
-        object.__setattr__(self, "time", time)
-        for name in ("displacement", "velocity"):
-            arr = check_array(getattr(self, name), name, owner, ndim=2, min_length=2).copy()
-            if arr.shape != (time.size, 2):
-                raise InputError(f"The {name!r} parameter of {owner} must have the shape "
-                                 f"({time.size}, 2). Got {arr.shape} instead.")
-            arr.setflags(write=False)
-            object.__setattr__(self, name, arr)
-        self._set_segments(owner)
+    _DIMENSION: ClassVar[int] = 2
 
     @property
     def path_length(self) -> float:
@@ -72,7 +52,7 @@ def _check(owner: str, size: float, size_name: str, period: float, cycles: int, 
     period = check_real(period, "period", owner, low=0.0, low_open=True)
     cycles = check_int(cycles, "cycles", owner, low=1)
     dt = check_real(dt, "dt", owner, low=0.0, low_open=True,
-                    high=period / _STEPS_PER_PERIOD_MIN)
+                    high=period / STEPS_PER_PERIOD_MIN)
     angle = check_real(angle, "angle", owner, low=-360.0, high=360.0)
     return size, period, cycles, dt, angle
 

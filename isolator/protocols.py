@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
@@ -20,14 +21,44 @@ from isolator.limits import DEFAULT_MAX_STEPS, history_steps
 WIND_PEAK_VELOCITY = 0.015
 """Peak velocity of the paper's wind-load test T02 [m/s] (about 15 mm/s)."""
 
-_STEPS_PER_PERIOD_MIN = 20  # dt <= period / 20: a sine is resolved by at least 20 steps
+STEPS_PER_PERIOD_MIN = 20
+"""Fewest time steps a period of a sine or an orbit: ``dt`` at most period / 20."""
+
 _ROUNDING = 1e-9  # relative slack when deciding how many steps of dt fill a duration
 
 
+@dataclass(frozen=True, eq=False)
 class LabelledBlocks:
-    """What an imposed history and an orbit (:class:`isolator.orbits.Orbit`) share: samples at
-    ``time`` [s] cut into ``segments``, labelled blocks ``(label, start, stop)`` with both end
-    samples included."""
+    """What an imposed history in one direction (:class:`ImposedHistory`) and an orbit in two
+    (:class:`isolator.orbits.Orbit`) share: the strictly increasing sample ``time`` (n,) [s],
+    the imposed ``displacement`` [m] and its analytic ``velocity`` [m/s], (n,) in one direction
+    and (n, 2) in two (``_DIMENSION``; read-only copies), a ``name`` and the labelled blocks
+    ``segments`` ``(label, start, stop)``, both end samples included."""
+
+    time: np.ndarray
+    displacement: np.ndarray
+    velocity: np.ndarray
+    name: str
+    segments: tuple[tuple[str, int, int], ...] = ()
+    _DIMENSION: ClassVar[int] = 1
+
+    def __post_init__(self) -> None:
+        owner = type(self).__name__
+        n = check_array(self.time, "time", owner, min_length=2, increasing=True).size
+        for name in ("time", "displacement", "velocity"):
+            if name == "time" or self._DIMENSION == 1:
+                arr = check_array(getattr(self, name), name, owner, min_length=2,
+                                  length_of=("time", n))
+            else:
+                arr = check_array(getattr(self, name), name, owner, ndim=2, min_length=2)
+                if arr.shape != (n, 2):
+                    raise InputError(f"The {name!r} parameter of {owner} must have the shape "
+                                     f"({n}, 2). Got {arr.shape} instead.")
+            arr = arr.copy()
+            arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
+        check_instance(self.name, "name", owner, str, "a str")
+        self._set_segments(owner)
 
     def _set_segments(self, owner: str) -> None:
         """Check ``segments`` against the samples and store them as (str, int, int)."""
@@ -71,23 +102,6 @@ class ImposedHistory(LabelledBlocks):
         block, both end samples included; consecutive blocks share their joining sample.
     """
 
-    time: np.ndarray
-    displacement: np.ndarray
-    velocity: np.ndarray
-    name: str
-    segments: tuple[tuple[str, int, int], ...] = ()
-
-    def __post_init__(self) -> None:
-        owner = "ImposedHistory"
-        time = check_array(self.time, "time", owner, min_length=2, increasing=True)
-        for name in ("time", "displacement", "velocity"):
-            arr = check_array(getattr(self, name), name, owner, min_length=2,
-                              length_of=("time", time.size)).copy()
-            arr.setflags(write=False)
-            object.__setattr__(self, name, arr)
-        check_instance(self.name, "name", owner, str, "a str")
-        self._set_segments(owner)
-
     @property
     def duration(self) -> float:
         """Time from the first to the last sample [s]."""
@@ -113,7 +127,7 @@ def sine(
     amplitude = check_real(amplitude, "amplitude", owner, low=0.0, low_open=True)
     period = check_real(period, "period", owner, low=0.0, low_open=True)
     cycles = check_int(cycles, "cycles", owner, low=1)
-    dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=period / _STEPS_PER_PERIOD_MIN)
+    dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=period / STEPS_PER_PERIOD_MIN)
     start_time = check_real(start_time, "start_time", owner)
     n = history_steps(cycles * period, dt, max_steps=max_steps)
     k = np.arange(n + 1)
@@ -144,7 +158,7 @@ def wind_cycles(
     period = 2.0 * np.pi * amplitude / peak_velocity
     if dt is None:
         dt = period / 100.0
-    dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=period / _STEPS_PER_PERIOD_MIN)
+    dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=period / STEPS_PER_PERIOD_MIN)
     return _labelled(sine(amplitude, period, cycles, dt), "wind")
 
 
@@ -298,7 +312,7 @@ def asce7_prototype_sequence(
     rest_time = check_real(rest, "rest", owner, low=0.0)
     item2 = check_choice(item2, "item2", owner, ("a", "b"))
     shortest = period if d_w == 0.0 else min(period, 2.0 * np.pi * d_w / v_w)
-    dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=shortest / _STEPS_PER_PERIOD_MIN)
+    dt = check_real(dt, "dt", owner, low=0.0, low_open=True, high=shortest / STEPS_PER_PERIOD_MIN)
 
     def block(amplitude: float, label: str, cycles: int) -> ImposedHistory:
         return _labelled(sine(amplitude, period, cycles, dt), label)

@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 from dcfpb.common.errors import InputError
 from dcfpb.common.validation import check_array, check_instance
 from isolator.bearing import DCFPBearing
+from isolator.characteristics import magnitude, path_integral
 from isolator.orbits import Orbit
 
 AXES = ("x", "y")
@@ -27,13 +28,6 @@ UNITS = {
     "z": "-", "mu": "-", "temperature": "degC", "heat_flux": "W/m^2", "axial_load": "N",
 }
 _VECTORS = ("displacement", "velocity", "force", "friction_force", "z")
-
-
-def path_integral(displacement: np.ndarray, force: np.ndarray) -> float:
-    """Integral of F . du along a path by the trapezoid rule [J], for a displacement [m] and a
-    force [N] of shape (n,) or (n, 2)."""
-    du = np.diff(displacement, axis=0)
-    return float(np.sum(0.5 * (force[1:] + force[:-1]) * du))
 
 
 @dataclass(frozen=True)
@@ -115,8 +109,7 @@ class BearingTestResult:
             power = surfaces * self.heat_flux[samples][1:] * self.bearing.contact_area
         else:
             velocity = self.velocity[samples][1:]
-            speed = np.abs(velocity) if self.dimension == 1 else np.hypot(*velocity.T)
-            power = self.mu[samples][1:] * self.axial_load[samples][1:] * speed
+            power = self.mu[samples][1:] * self.axial_load[samples][1:] * magnitude(velocity)
         return float(np.sum(power * np.diff(t)))
 
     def columns(self) -> dict[str, np.ndarray]:
@@ -209,7 +202,7 @@ def run_test(
     owner = "run_test"
     check_instance(bearing, "bearing", owner, DCFPBearing, "a DCFPBearing")
     t, u, v = imposed_history(time, displacement, velocity, owner)
-    reach = np.abs(u) if u.ndim == 1 else np.hypot(u[:, 0], u[:, 1])
+    reach = magnitude(u)
     capacity = bearing.displacement_capacity
     if np.max(reach) > capacity:
         raise InputError(

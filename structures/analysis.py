@@ -28,7 +28,8 @@ from structures.limits import DEFAULT_MAX_STEPS, building_fields, check_run
 from structures.results import (
     BEARING_RECORD,
     EngineHistory,
-    response_dataset,
+    history_dataset,
+    resultant,
     temperature_fields,
     uplift_record,
 )
@@ -128,6 +129,27 @@ def compile_kernels() -> float:
     return 0.0
 
 
+def check_motion(building: ShearBuilding, motion: GroundMotion | GroundMotionPair,
+                 owner: str) -> bool:
+    """Whether ``motion`` is a pair, checked to suit ``building``: a building in plan runs under
+    a pair of records, a building in one direction under one record. ``owner`` (the function
+    checking) is named when ``building`` is no ``ShearBuilding`` or ``motion`` neither kind."""
+    pair = isinstance(motion, GroundMotionPair)
+    if not isinstance(building, ShearBuilding):
+        raise InputTypeError(f"The 'building' parameter of {owner} must be a ShearBuilding. Got "
+                             f"{building!r} instead.")
+    if not pair and not isinstance(motion, GroundMotion):
+        raise InputTypeError(f"The 'motion' parameter of {owner} must be a GroundMotion or a "
+                             f"GroundMotionPair. Got {motion!r} instead.")
+    if pair != (building.plan is not None):
+        has = "has a" if building.plan is not None else "has no"
+        raise InputError(
+            "A building in plan runs under a pair of records (GroundMotionPair) and a building "
+            f"in one direction under one record: the building {has} plan and the motion is "
+            f"{'a pair' if pair else 'one record'}.")
+    return pair
+
+
 def run(
     building: ShearBuilding,
     bearing: DCFPBearing,
@@ -195,19 +217,7 @@ def run(
         model's monitor points, no convergence, the ``time_limit``) ends there, for every
         friction model and both engines: see the Notes of ``response_dataset``.
     """
-    pair = isinstance(motion, GroundMotionPair)
-    if not isinstance(building, ShearBuilding):
-        raise InputTypeError(f"The 'building' parameter of run must be a ShearBuilding. Got "
-                             f"{building!r} instead.")
-    if not pair and not isinstance(motion, GroundMotion):
-        raise InputTypeError(f"The 'motion' parameter of run must be a GroundMotion or a "
-                             f"GroundMotionPair. Got {motion!r} instead.")
-    if pair != (building.plan is not None):
-        has = "has a" if building.plan is not None else "has no"
-        raise InputError(
-            "A building in plan runs under a pair of records (GroundMotionPair) and a building "
-            f"in one direction under one record: the building {has} plan and the motion is "
-            f"{'a pair' if pair else 'one record'}.")
+    pair = check_motion(building, motion, "run")
     first = motion.x if pair else motion
     if dt is not None:
         check_real(dt, "dt", "run", low=0.0, low_open=True)
@@ -225,28 +235,12 @@ def run(
         history = compiled_history(model, acceleration, step, method, **options)
     else:
         history = reference_history(model, acceleration, step, method, **options)
-    result = history.result
-    dataset = response_dataset(
-        model, motion, step, acceleration[:result.time.size], result.displacement,
-        result.velocity, result.absolute_acceleration, history.bearings,
-        integrator=repr(result.method), success=result.success, message=result.message,
-        failure=result.failure, failed_at=result.failed_at, restoring=history.restoring,
-        plate=history.plate,
-        attrs={"newton_iterations": int(result.iterations.sum()),
-               "subdivisions": int(result.subdivisions.sum()),
-               "wall_time": history.wall_time, "compile_time": history.compile_time,
-               "engine": history.engine})
+    dataset = history_dataset(model, motion, step, acceleration, history)
     if floor_spectra:
         from structures.floor_spectra import with_floor_spectra
 
         dataset = with_floor_spectra(dataset, motion)
     return dataset
-
-
-def _resultant(values: np.ndarray) -> np.ndarray:
-    """The length of the vectors along the last axis (the value itself for one direction)."""
-    return np.abs(values[..., 0]) if values.shape[-1] == 1 else np.hypot(values[..., 0],
-                                                                          values[..., 1])
 
 
 def _uplift_peaks(result) -> dict[str, Any]:
@@ -281,18 +275,18 @@ def peaks(result) -> dict[str, Any]:
         [s] (the longest lift-off).
     """
     check_dataset(result, "result", "peaks")
-    reach = _resultant(result["bearing_displacement"].values).max(axis=0)
+    reach = resultant(result["bearing_displacement"].values).max(axis=0)
     roof = np.abs(result["absolute_acceleration"].isel(floor=-1).values).max(axis=0)
     drift = np.abs(result["storey_drift"].values).max(axis=(0, 1))
     values: dict[str, Any] = {"peak_isolator_displacement": float(reach.max())}
-    base_shear = float(_resultant(result["base_shear"].values).max())
+    base_shear = float(resultant(result["base_shear"].values).max())
     if result.sizes["direction"] == 1:
         values |= {"peak_base_shear": base_shear, "peak_roof_acceleration": float(roof[0]),
                    "peak_storey_drift": float(drift[0])}
     else:
         values |= {
             "peak_centre_displacement": float(
-                _resultant(result["displacement"].isel(floor=0).values).max()),
+                resultant(result["displacement"].isel(floor=0).values).max()),
             "corner_bearing": int(np.argmax(reach)),
             "peak_base_shear": base_shear,
             "peak_roof_acceleration_x": float(roof[0]),
@@ -365,8 +359,8 @@ def design_peaks(result, storey_heights: Any = None) -> dict[str, Any]:
     n = result.sizes["storey"]
     two = result.sizes["direction"] == 2
     u = result["bearing_displacement"].values
-    reach = _resultant(u).max(axis=0)
-    centre = _resultant(result["displacement"].isel(floor=0).values)
+    reach = resultant(u).max(axis=0)
+    centre = resultant(result["displacement"].isel(floor=0).values)
     distance = np.hypot(result["bearing_x"].values, result["bearing_y"].values)
     farthest = distance >= distance.max() * (1.0 - 1e-9)  # the corners (ties: the largest)
     corner = int(np.flatnonzero(farthest)[np.argmax(reach[farthest])])
@@ -412,7 +406,7 @@ def design_peaks(result, storey_heights: Any = None) -> dict[str, Any]:
     dt = float(result.attrs["dt"])
     mu = result["mu"].values
     if u.shape[0] > 1:
-        speed = _resultant(np.diff(u, axis=0)) / dt  # (time - 1, bearing)
+        speed = resultant(np.diff(u, axis=0)) / dt  # (time - 1, bearing)
         sliding = (speed > SLIDING_SPEED) & (axial[1:] > 0.0)
         values = mu[1:][sliding]
     else:

@@ -6,7 +6,6 @@ place every workflow (single runs, suites, the OpenSees comparison) builds its m
 from __future__ import annotations
 
 import codecs
-import math
 import re
 import tomllib
 from dataclasses import dataclass
@@ -17,7 +16,7 @@ import numpy as np
 
 from dcfpb.common.units import KELVIN_LOOK
 from dcfpb.common.validation import check_choice, check_path
-from isolator.bearing import DCFPBearing
+from isolator.bearing import DCFPBearing, slider_contact_area
 from isolator.experiments import MODELS, friction_model
 from structures.config_schema import ConfigError, ConfigWarning, check_plan, check_tables
 from structures.integrators import HHT, Newmark
@@ -56,7 +55,7 @@ class BuildingConfig:
         """One bearing with the friction ``model`` (default: the file's), loaded by W / n [N]."""
         model = check_choice(model or self.friction["model"], "model", "BuildingConfig", MODELS)
         load = self.building.weight / self.n_bearings
-        area = math.pi * (0.5 * self.bearing_geometry["slider_diameter"]) ** 2
+        area = slider_contact_area(self.bearing_geometry["slider_diameter"])
         friction = friction_model(
             model,
             slider_diameter=self.bearing_geometry["slider_diameter"],

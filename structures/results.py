@@ -75,7 +75,7 @@ def uplift_record(axial_load: np.ndarray, step: float) -> dict[str, list]:
 
 
 class EngineHistory(NamedTuple):
-    """What an engine hands to :func:`response_dataset`: the integration ``result``, the
+    """What an engine hands to :func:`history_dataset`: the integration ``result``, the
     ``bearings`` record (:data:`BEARING_RECORD` at every committed step), the total ``restoring``
     force of storeys and bearings, shape (nt, n_dof) [N, N m], the ``wall_time`` of the
     integration and the ``compile_time`` before it (0.0 if compiled already) [s], the
@@ -89,6 +89,13 @@ class EngineHistory(NamedTuple):
     engine: str
     compile_time: float = 0.0
     plate: tuple[np.ndarray, np.ndarray] | None = None
+
+
+def resultant(values: np.ndarray) -> np.ndarray:
+    """The length of the vectors along the last axis, of one or two directions (for one, the
+    absolute value) [the values' unit]."""
+    return np.abs(values[..., 0]) if values.shape[-1] == 1 else np.hypot(values[..., 0],
+                                                                          values[..., 1])
 
 
 def temperature_fields(model: IsolatedShearBuilding) -> tuple[np.ndarray, np.ndarray] | None:
@@ -217,7 +224,7 @@ def response_dataset(
     building, bearing = model.building, model.bearing
     directions = building.directions
     components, dofs = len(directions), model.level_dofs
-    reach = np.hypot(bearings["displacement"][..., 0], bearings["displacement"][..., 1])
+    reach = resultant(bearings["displacement"])
     kept, beyond = _capacity(reach.max(axis=1), bearing.displacement_capacity, step)
     if beyond:
         success, message, failure, failed_at = False, beyond, "capacity", step * (kept - 1)
@@ -331,6 +338,25 @@ def response_dataset(
     if failed_at is not None:
         common["failed_at"] = float(failed_at)
     return xr.Dataset(data, coords=coords, attrs=common | attrs)
+
+
+def history_dataset(model: IsolatedShearBuilding, motion: GroundMotion | GroundMotionPair,
+                    step: float, acceleration: np.ndarray, history: EngineHistory, **attrs: Any):
+    """:func:`response_dataset` of an engine's ``history`` of ``model`` under ``motion`` at
+    ``step`` [s] (``acceleration``: the ground samples run [m/s^2], cut to the steps kept): its
+    Newton iterations, subdivisions, wall and compile times [s] and engine as attributes, which
+    ``attrs`` extends or overrides."""
+    result = history.result
+    return response_dataset(
+        model, motion, step, acceleration[:result.time.size], result.displacement,
+        result.velocity, result.absolute_acceleration, history.bearings,
+        integrator=repr(result.method), success=result.success, message=result.message,
+        failure=result.failure, failed_at=result.failed_at, restoring=history.restoring,
+        plate=history.plate,
+        attrs={"newton_iterations": int(result.iterations.sum()),
+               "subdivisions": int(result.subdivisions.sum()),
+               "wall_time": history.wall_time, "compile_time": history.compile_time,
+               "engine": history.engine, **attrs})
 
 
 def write_netcdf(result: Any, path: str | os.PathLike) -> Path:

@@ -19,6 +19,7 @@ import warnings
 from pathlib import Path
 
 from dcfpb.common.errors import EXIT_OK, EXIT_RUN_FAILED, InputError, InputWarning
+from dcfpb.common.validation import parse_floats
 
 _COMMAND = "dcfpb design"
 
@@ -97,20 +98,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(handler=_run)
 
 
-def _floats(text: str, flag: str, form: str) -> tuple[float, ...]:
-    try:
-        values = tuple(float(x) for x in str(text).split(","))
-    except ValueError:
-        raise InputError(f"{flag} must be {form}, numbers separated by commas. Got "
-                         f"{text!r}.") from None
-    return values
-
-
 def parse_site(text: str):
     """``--site S_MS,S_M1[,T_L]`` as a :class:`structures.design.Site`."""
     from structures.design import Site
 
-    values = _floats(text, "--site", "S_MS,S_M1[,T_L]")
+    values = parse_floats(text, "--site", "S_MS,S_M1[,T_L]")
     if len(values) not in (2, 3):
         raise InputError(f"--site must be S_MS,S_M1[,T_L] (S_MS and S_M1 in g in (0, 5], T_L "
                          f"in s in (0, 100]). Got {len(values)} values in {text!r}.")
@@ -127,7 +119,7 @@ def parse_lambda(overall: str | None, factors: str | None):
     from structures.design import PropertyModification
 
     if overall is not None:
-        values = _floats(overall, "--lambda", "MAX,MIN")
+        values = parse_floats(overall, "--lambda", "MAX,MIN")
         if len(values) != 2:
             raise InputError(f"--lambda must be MAX,MIN (lambda_max >= 1, lambda_min in "
                              f"(0, 1]). Got {len(values)} values in {overall!r}.")

@@ -12,7 +12,12 @@ import json
 import math
 from typing import Any
 
-from dcfpb.cli.run import add_max_steps, add_pair_options, add_record_options
+from dcfpb.cli.run import (
+    add_integration_flags,
+    add_max_steps,
+    add_pair_options,
+    add_record_options,
+)
 from dcfpb.common.errors import EXIT_BAD_INPUT, EXIT_OK, EXIT_RUN_FAILED
 
 MODELS = ("constant", "velocity", "ptv")
@@ -43,12 +48,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="OpenSees pendulum: singleFPBearing (its normal force is W + F u/R) or "
                    "flatSliderBearing plus a linear spring W/R (N = W, as ours) "
                    "(default: singlefp)")
-    p.add_argument("--integrator", choices=("newmark", "hht"),
-                   help="time integration (default: the building file's)")
-    p.add_argument("--alpha", type=float, help="HHT alpha in [-1/3, 0] (OpenSees: 1 + alpha)")
-    p.add_argument("--dt", type=float, help="analysis time step [s], in (0, 1] and at most "
-                   "the record's (default: the file's, else the record's in parts of at most "
-                   "5 ms)")
+    add_integration_flags(p, " (OpenSees: 1 + alpha)")
     add_max_steps(p, "each run")
     add_record_options(p)
     add_pair_options(p)

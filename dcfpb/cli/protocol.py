@@ -231,9 +231,9 @@ def friction_flags(args: argparse.Namespace, uses: dict | None = None) -> dict[s
     import warnings
 
     from dcfpb.common.errors import InputWarning
-    from isolator.experiments import _USES
+    from isolator.experiments import PARAMETER_MODELS
 
-    uses = _USES if uses is None else uses
+    uses = PARAMETER_MODELS if uses is None else uses
 
     given = {}
     for name, models in uses.items():

@@ -14,6 +14,8 @@ import math
 from pathlib import Path
 
 from dcfpb.common.errors import EXIT_OK, InputError
+from dcfpb.common.files import json_safe
+from dcfpb.common.validation import parse_floats
 
 _COMMAND = "dcfpb prototype"
 
@@ -74,17 +76,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(handler=_run)
 
 
-def _pair(text: str, flag: str, form: str) -> tuple[float, float]:
-    try:
-        values = tuple(float(x) for x in str(text).split(","))
-    except ValueError:
-        values = ()
-    if len(values) != 2 or not all(math.isfinite(v) for v in values):
-        raise InputError(f"{flag} must be {form}, two numbers separated by a comma. Got "
-                         f"{text!r}.")
-    return values
-
-
 def _design_inputs(args: argparse.Namespace, config) -> dict:
     """D_M, D_TM, T_M [m, m, s] (and S_MS, S_M1, B_M for the cycles of item 4) of the test: from
     the flags, or from the ELF's lower bound (the largest D_M; D_TM the largest over the bounds
@@ -97,7 +88,8 @@ def _design_inputs(args: argparse.Namespace, config) -> dict:
         raise InputError("--displacements D_M,D_TM and --period T_M go together: give both, or "
                          "neither (then the ELF gives them).")
     if args.displacements is not None:
-        d_m, d_tm = _pair(args.displacements, "--displacements", "D_M,D_TM in m")
+        d_m, d_tm = parse_floats(args.displacements, "--displacements", "D_M,D_TM in m",
+                                 count=2)
         check_real(d_m, "--displacements D_M", _COMMAND, low=0.0, low_open=True, high=5.0)
         check_real(d_tm, "--displacements D_TM", _COMMAND, low=d_m, high=5.0)
         t_m = check_real(args.period, "--period", _COMMAND, low=0.0, high=20.0, low_open=True)
@@ -144,7 +136,7 @@ def _run(args: argparse.Namespace) -> int:
                   writes={"--plot": (FIGURE,)})
     lambda_test = None
     if args.lambda_test is not None:
-        lambda_test = _pair(args.lambda_test, "--lambda-test", "MAX,MIN")
+        lambda_test = parse_floats(args.lambda_test, "--lambda-test", "MAX,MIN", count=2)
         check_real(lambda_test[0], "--lambda-test MAX", _COMMAND, low=1.0, high=10.0)
         check_real(lambda_test[1], "--lambda-test MIN", _COMMAND, low=0.0, high=1.0,
                    low_open=True)
@@ -203,22 +195,12 @@ def _comparison(result, lambda_test: tuple[float, float] | None) -> dict:
     return {"assumed": {"max": high, "min": low}, "within": within, "lines": [line]}
 
 
-def _clean(value):
-    if isinstance(value, dict):
-        return {k: _clean(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_clean(v) for v in value]
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def _data(result, inputs: dict, comparison: dict) -> dict:
     data = result.to_dict()
     data["inputs"] = dict(inputs)
     data["lambda_test_assumed"] = comparison["assumed"]
     data["lambda_test_within"] = comparison["within"]
-    return _clean(data)
+    return json_safe(data)
 
 
 def _write_output(result, inputs: dict, comparison: dict, path: Path) -> None:

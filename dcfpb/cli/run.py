@@ -33,12 +33,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--scale", type=float, default=1.0, help="amplitude scale factor [-]")
     p.add_argument("--model", choices=("precise", "simplified", "constant"),
                    help="friction model (default: the building file's)")
-    p.add_argument("--integrator", choices=("newmark", "hht"),
-                   help="time integration (default: the building file's)")
-    p.add_argument("--alpha", type=float, help="HHT alpha in [-1/3, 0]")
-    p.add_argument("--dt", type=float, help="analysis time step [s], in (0, 1] and at most "
-                   "the record's (default: the file's, else the record's in parts of at most "
-                   "5 ms)")
+    add_integration_flags(p)
     add_max_steps(p)
     add_record_options(p)
     p.add_argument("--json", action="store_true", help="print the peaks as JSON")
@@ -101,6 +96,17 @@ def record_dt_named(error: Exception, path: str, record_dt: float | None) -> Exc
                           "time step of its own: give it with --record-dt [s] (e.g. "
                           "--record-dt 0.01).")
     return InputError(_RECORD_DT.sub("--record-dt", text, count=1))
+
+
+def add_integration_flags(p: argparse.ArgumentParser, alpha_note: str = "") -> None:
+    """Add ``--integrator``, ``--alpha`` (its help ending in ``alpha_note``) and ``--dt``, the
+    time integration of a building run (:func:`building_run_inputs` reads them)."""
+    p.add_argument("--integrator", choices=("newmark", "hht"),
+                   help="time integration (default: the building file's)")
+    p.add_argument("--alpha", type=float, help="HHT alpha in [-1/3, 0]" + alpha_note)
+    p.add_argument("--dt", type=float, help="analysis time step [s], in (0, 1] and at most "
+                   "the record's (default: the file's, else the record's in parts of at most "
+                   "5 ms)")
 
 
 def add_max_steps(p: argparse.ArgumentParser, what: str = "the run") -> None:

@@ -17,6 +17,7 @@ import numpy as np
 
 from dcfpb.common.errors import EXIT_OK, EXIT_RUN_FAILED, InputError
 from dcfpb.common.units import STANDARD_GRAVITY
+from dcfpb.common.validation import parse_floats
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -88,16 +89,6 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
     p.add_argument("--json", action="store_true", help="print the outcome as JSON")
     p.set_defaults(handler=_run)
-
-
-def _floats(text: str, option: str) -> tuple[float, ...]:
-    try:
-        values = tuple(float(x) for x in text.split(",") if x.strip())
-    except ValueError:
-        raise InputError(f"{option} must be numbers separated by commas. Got {text!r}.") from None
-    if not values:
-        raise InputError(f"{option} needs at least one value. Got {text!r}.")
-    return values
 
 
 MAX_TARGET_BYTES = 10 * 2**20
@@ -205,7 +196,7 @@ def chapter17_range(target: str | None, config) -> tuple[float, float] | None:
 
 def _period_range(text: str | None, config, target: str | None = None) -> tuple[float, float]:
     if text:
-        values = _floats(text, "--period-range")
+        values = parse_floats(text, "--period-range")
         if len(values) != 2:
             raise InputError(f"--period-range must be two periods TMIN,TMAX [s] with "
                              f"0 < TMIN < TMAX. Got {text!r}.")
@@ -250,12 +241,12 @@ def _suite(args: argparse.Namespace, config, factors):
                          f"{args.building!r} has no [plan] table (bearing_coordinates, "
                          "eccentricity, ...; see README, 'A building in plan'). Give --records "
                          "to run it in one direction under single records.")
-    check_modifiers(config, args.models.split(","), _floats(args.modifiers, "--modifiers"),
+    check_modifiers(config, args.models.split(","), parse_floats(args.modifiers, "--modifiers"),
                     name="--modifiers", owner="dcfpb suite")
     motions = motion_sources(args.pairs or args.records, pairs=args.pairs is not None)
     return Suite(config, motions, models=args.models.split(","),
-                 scales=_floats(args.scales, "--scales"),
-                 property_modifiers=_floats(args.modifiers, "--modifiers"), factors=factors,
+                 scales=parse_floats(args.scales, "--scales"),
+                 property_modifiers=parse_floats(args.modifiers, "--modifiers"), factors=factors,
                  duration=args.duration, dt=args.dt)
 
 
@@ -284,7 +275,7 @@ def _run(args: argparse.Namespace) -> int:
         if model not in SUITE_MODELS:
             raise InputError(f"--models must be a comma-separated list of "
                              f"{', '.join(SUITE_MODELS)}. Got {model!r} in {args.models!r}.")
-    for scale in _floats(args.scales, "--scales"):
+    for scale in parse_floats(args.scales, "--scales"):
         check_real(scale, "--scales", "dcfpb suite", low=0.0, low_open=True)
     if args.period_range and not args.target:
         raise InputError("--period-range applies to --target only.")

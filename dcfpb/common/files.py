@@ -4,18 +4,22 @@
 netCDF, CSV and JSON files, the figures, the diagnosis report, the suites' files): an interrupted
 or failed write leaves the file that was there before whole, and no temporary file behind. The
 rename (``os.replace``) is atomic on a POSIX file system, since the temporary file lies in the
-same folder. Files are not fsynced.
+same folder. Files are not fsynced. :func:`json_safe` makes the data of the JSON files JSON
+(no NaN, no numpy numbers).
 """
 
 from __future__ import annotations
 
+import math
 import os
 import uuid
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
-__all__ = ["MEMINFO", "TEMPORARY_PATTERN", "atomic_output", "available_memory", "temporary_name"]
+__all__ = ["MEMINFO", "TEMPORARY_PATTERN", "atomic_output", "available_memory", "json_safe",
+           "temporary_name"]
 
 MEMINFO = Path("/proc/meminfo")
 
@@ -77,3 +81,23 @@ def atomic_output(path: str | os.PathLike) -> Iterator[Path]:
     except BaseException:
         temporary.unlink(missing_ok=True)
         raise
+
+
+def json_safe(value: Any) -> Any:
+    """``value`` as JSON data for the JSON files and prints of the package: NaN and infinities
+    as None (JSON has neither), numpy scalars and arrays as Python numbers and lists, dict keys
+    as str, tuples as lists (through dicts and lists at any depth)."""
+    if isinstance(value, dict):
+        return {str(k): json_safe(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [json_safe(v) for v in value]
+    if getattr(value, "ndim", 0) and hasattr(value, "tolist"):
+        return json_safe(value.tolist())
+    if hasattr(value, "item") and not isinstance(value, str | bytes):
+        try:
+            value = value.item()
+        except (ValueError, AttributeError):
+            return value
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value

@@ -134,6 +134,32 @@ def check_array(
     return arr
 
 
+def parse_floats(
+    text: object, flag: str, form: str = "", *, count: int | None = None
+) -> tuple[float, ...]:
+    """The finite numbers of a comma-separated command-line value such as ``--scales 1,1.5``
+    (blank items skipped).
+
+    ``flag`` and ``form`` (e.g. ``"MAX,MIN"``) name the value in the message; ``count`` is the
+    number of values required (None: any, at least one). Anything else raises
+    :class:`~dcfpb.common.errors.InputError`:
+
+        --lambda-test must be MAX,MIN, two numbers separated by a comma. Got '1.2'.
+    """
+    try:
+        values = tuple(float(x) for x in str(text).split(",") if x.strip())
+    except ValueError:
+        values = None
+    if values == () and count is None:
+        raise InputError(f"{flag} needs at least one value. Got {text!r}.")
+    if values is None or (count is not None and len(values) != count) or not all(
+            math.isfinite(v) for v in values):
+        numbers = ("two numbers separated by a comma" if count == 2
+                   else "numbers separated by commas")
+        raise InputError(f"{flag} must be {form + ', ' if form else ''}{numbers}. Got {text!r}.")
+    return values
+
+
 def _shown(value: object, limit: int = 80) -> str:
     """``repr(value)``, cut to ``limit`` characters."""
     text = repr(value)

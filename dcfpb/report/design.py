@@ -27,6 +27,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from dcfpb.common.files import json_safe
+
 __all__ = ["FIGURES", "REPORT_FILES", "Block", "build_document", "render_html",
            "render_markdown", "report_files", "write_report"]
 
@@ -539,22 +541,6 @@ def render_html(blocks: Sequence[Block], title: str) -> str:
 
 # --- writing -----------------------------------------------------------------------------------
 
-def _clean(value: Any) -> Any:
-    """NaN and infinity anywhere in the JSON data as None (JSON has neither)."""
-    if isinstance(value, dict):
-        return {str(k): _clean(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_clean(v) for v in value]
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    if hasattr(value, "item") and not isinstance(value, str | bytes):
-        try:
-            return _clean(value.item())
-        except (ValueError, AttributeError):
-            return value
-    return value
-
-
 def _json_default(value: Any) -> Any:
     if hasattr(value, "item"):
         return value.item()
@@ -642,7 +628,7 @@ def write_report(result: Any, folder: str | os.PathLike, *, command: str | None 
     data["figures"] = [name for name in FIGURES if figures.get(name) is not None]
     data["files"] = [*REPORT_FILES, *data["figures"]]
     data["display_units"] = {k: v[0] for k, v in _DISPLAY_UNITS.items()}
-    _write_text(folder / "design.json", json.dumps(_clean(data), indent=1, default=_json_default,
+    _write_text(folder / "design.json", json.dumps(json_safe(data), indent=1, default=_json_default,
                                                    allow_nan=False) + "\n")
     from dcfpb.common.files import atomic_output
 

@@ -38,6 +38,8 @@ import numpy as np
 from dcfpb.common.errors import InputError, InputTypeError
 from dcfpb.common.units import KELVIN_LOOK
 from dcfpb.common.validation import check_real
+from isolator.bearing import SliderContact
+from isolator.characteristics import magnitude
 from isolator.limits import DEFAULT_MAX_STEPS, _size, available_memory
 
 REQUIRED_COLUMNS = ("time", "displacement", "force")
@@ -177,7 +179,7 @@ class BearingRecord2D(_Histories):
 
 
 @dataclass(frozen=True, eq=False)
-class _Tests:
+class _Tests(SliderContact):
     """The fields of a campaign, checked to hold records of its kind."""
 
     tests: tuple
@@ -199,17 +201,6 @@ class _Tests:
                    allow_inf=True)
         check_real(self.slider_diameter, "slider_diameter", owner, low=0.0, low_open=True,
                    high=10.0)
-
-    @property
-    def contact_radius(self) -> float:
-        """Contact radius r = half the slider diameter [m]."""
-        return 0.5 * self.slider_diameter
-
-    @property
-    def contact_area(self) -> float:
-        """Contact area pi r^2 [m^2]."""
-        return math.pi * self.contact_radius**2
-
 
 @dataclass(frozen=True, eq=False)
 class Campaign(_Tests):
@@ -769,10 +760,8 @@ _UNIT = re.compile(r"^(?P<name>[^\[\(]*?)\s*(?:[\[\(](?P<unit>[^\]\)]*)[\]\)])?\
 
 
 def _peak(values: np.ndarray) -> float:
-    """The peak magnitude of a channel: |x| of (n,) values, |(x, y)| of (n, 2) values."""
-    if values.ndim == 1:
-        return float(np.max(np.abs(values)))
-    return float(np.max(np.hypot(values[:, 0], values[:, 1])))
+    """The peak magnitude of a channel (:func:`~isolator.characteristics.magnitude`)."""
+    return float(np.max(magnitude(values)))
 
 
 def _column_name(text: str) -> tuple[str, str | None]:

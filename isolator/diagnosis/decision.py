@@ -260,16 +260,21 @@ class Problem:
                 out.append(a)
         return sorted(out, key=lambda a: a.weighted)
 
+    def _assessed(self, kind: str, effects: tuple[Effect, ...]) -> Assessment:
+        """A model of ``effects`` alone assessed on every sample, kept in the cache under
+        ``kind`` (``"law"`` or ``"kinematic"``) and the effects' names."""
+        key = (kind, *(e.name for e in effects))
+        if key not in self.all.cache:
+            self.all.cache[key] = assess(self.all, Model(effects), None)
+        return self.all.cache[key]
+
     def _jointly(self, candidate: Assessment, law: tuple[Effect, ...],
                  th: Thresholds) -> Assessment | None:
         """``candidate`` (one kinematic effect) when, as a pair with the friction-law effects
         ``law``, it earns its keep over the baseline on every sample by ``kinematic_z`` (a pair
         is judged as one, as in stage 2) and, beside the law, still closes its share
         (``kinematic_explained``) by a practical force (``kinematic_practical``)."""
-        key = ("law", *(e.name for e in law))
-        if key not in self.all.cache:
-            self.all.cache[key] = assess(self.all, Model(law), None)
-        current = self.all.cache[key]
+        current = self._assessed("law", law)
         judged = self._extended(self.all, current, (candidate,))
         z, _ = improvement(self.all, self.all_baseline, judged)
         _, beside = improvement(self.all, current, judged)
@@ -308,11 +313,7 @@ class Problem:
             for name, single in plain.singles.items():
                 if name in exclude or single.untestable is not None:
                     continue
-                law = (single.model.effects[-1],)
-                key = ("law", *(e.name for e in law))
-                if key not in self.all.cache:
-                    self.all.cache[key] = assess(self.all, Model(law), None)
-                law_alone = self.all.cache[key]
+                law_alone = self._assessed("law", (single.model.effects[-1],))
                 pair = self._extended(self.all, law_alone, (alone,))
                 scores = []
                 for reference in (self.all_baseline, alone, law_alone):
@@ -334,10 +335,7 @@ class Problem:
                 if n not in exclude and a.untestable is None]
         current = self.all_baseline
         if law:
-            key = ("law", *(e.name for e in law))
-            if key not in self.all.cache:
-                self.all.cache[key] = assess(self.all, Model(law), None)
-            current = self.all.cache[key]
+            current = self._assessed("law", law)
         first = len(law)
         while len(current.model.effects) - first < MAX_KINEMATIC:
             options = []
@@ -361,10 +359,7 @@ class Problem:
             names = tuple(e.name for e in kinematic)
             if len(names) == 1:
                 return self.kinematic[names[0]]
-            key = ("kinematic", *names)
-            if key not in self.all.cache:
-                self.all.cache[key] = assess(self.all, Model(kinematic), None)
-            return self.all.cache[key]
+            return self._assessed("kinematic", kinematic)
         return current
 
     # -- stage 2 -----------------------------------------------------------------------------
@@ -417,13 +412,8 @@ class Problem:
         effect is named yet, stage 1 again beside that law (``retry``)."""
         for _ in range(2):
             stage = self.stage(kinematic)
-            work, base = stage.work, stage.baseline
-            pool = {n: a for n, a in stage.singles.items() if n not in exclude}
-            testable = sorted((a for a in pool.values() if a.untestable is None),
-                              key=lambda a: a.weighted)
-            noise_like = not material(base.score, work.excess_rms(base.prediction),
-                                      th.practical_none, th)
-            current, named, form = base, [], {}
+            testable, noise_like = _screened(stage, exclude, th)
+            current, named, form = stage.baseline, [], {}
             if not noise_like:
                 current, named, form = self._forward(stage, testable, th)
             if not retry or kinematic is not None or not named:
@@ -478,15 +468,10 @@ class Problem:
         if joint is not None:
             kinematic, law_name = joint
             stage = self.stage(kinematic)
-            work, base = stage.work, stage.baseline
-            pool = {n: a for n, a in stage.singles.items() if n not in exclude}
-            testable = sorted((a for a in pool.values() if a.untestable is None),
-                              key=lambda a: a.weighted)
-            noise_like = not material(base.score, work.excess_rms(base.prediction),
-                                      th.practical_none, th)
+            testable, noise_like = _screened(stage, exclude, th)
             named = [law_name]
-            current, form = self._reported_form(work, stage.singles[law_name],
-                                                len(base.model.effects), th)
+            current, form = self._reported_form(stage.work, stage.singles[law_name],
+                                                len(stage.baseline.model.effects), th)
         work, base = stage.work, stage.baseline
         excess = base.weighted - work.weighted_noise
         explained = (base.weighted - current.weighted) / excess if excess > 0.0 else 0.0
@@ -628,6 +613,17 @@ class Problem:
             prediction, _ = work.holdout.predict(model, work.context, start=full.theta)
             work.cache[key] = work.judge(model, full, prediction)
         return work.cache[key]
+
+
+def _screened(stage: Stage, exclude: tuple[str, ...],
+              th: Thresholds) -> tuple[list[Assessment], bool]:
+    """The testable single effects of ``stage`` not in ``exclude``, the weakest first, and
+    whether its baseline leaves only noise (no material excess under ``th.practical_none``)."""
+    work, base = stage.work, stage.baseline
+    testable = sorted((a for n, a in stage.singles.items()
+                       if n not in exclude and a.untestable is None), key=lambda a: a.weighted)
+    return testable, not material(base.score, work.excess_rms(base.prediction),
+                                  th.practical_none, th)
 
 
 def _own_forms(law: tuple[Effect, ...], singles: dict[str, Assessment]) -> tuple[Effect, ...]:

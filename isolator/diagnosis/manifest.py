@@ -46,6 +46,7 @@ from isolator.diagnosis.data import (
     check_one_kind,
     check_plausible,
     check_size,
+    estimate_rows,
     file_dimension,
     read_record,
     read_record_2d,
@@ -253,9 +254,6 @@ def _same(manifest: float, given: float, where: str, source: str, unit: str) -> 
 
 
 def _has_axial_column(file: Path) -> bool:
-    import gzip
-
-    opener = gzip.open if file.suffix == ".gz" else open
-    with opener(file, "rt", encoding="utf-8", errors="replace") as handle:
-        header = handle.readline()
-    return "axial_force" in [_column_name(c)[0] for c in header.split(",")]
+    """Whether a test file's header (read by :func:`estimate_rows`) names an ``axial_force``
+    column."""
+    return "axial_force" in {_column_name(c)[0] for c in estimate_rows(file)[1]}

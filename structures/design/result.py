@@ -14,6 +14,8 @@ from typing import Any
 
 import numpy as np
 
+from dcfpb.common.files import json_safe
+
 __all__ = ["PEAK_UNITS", "Check", "DesignResult", "PairInfo", "ScaledSpectra", "Table"]
 
 PEAK_UNITS: dict[str, str] = {
@@ -113,11 +115,11 @@ class Check:
     def to_dict(self) -> dict[str, Any]:
         """For JSON."""
         return {"key": self.key, "clause": self.clause, "description": self.description,
-                "demand": _json(self.demand), "limit": _json(self.limit), "unit": self.unit,
+                "demand": json_safe(self.demand), "limit": json_safe(self.limit), "unit": self.unit,
                 "kind": self.kind, "bound": self.bound, "position": self.position,
-                "passed": self.passed, "margin": _json(self.margin),
-                "floor_governs": self.floor_governs, "design_value": _json(self.design_value),
-                "scale_up": _json(self.scale_up)}
+                "passed": self.passed, "margin": json_safe(self.margin),
+                "floor_governs": self.floor_governs, "design_value": json_safe(self.design_value),
+                "scale_up": json_safe(self.scale_up)}
 
 
 @dataclass(frozen=True)
@@ -134,7 +136,7 @@ class Table:
     def to_dict(self) -> dict[str, Any]:
         """For JSON."""
         return {"title": self.title, "clause": self.clause, "columns": list(self.columns),
-                "units": list(self.units), "rows": [[_json(v) for v in r] for r in self.rows],
+                "units": list(self.units), "rows": [[json_safe(v) for v in r] for r in self.rows],
                 "note": self.note}
 
 
@@ -192,8 +194,8 @@ class ScaledSpectra:
 
     def to_dict(self) -> dict[str, Any]:
         """For JSON."""
-        return {"periods": _json(self.periods), "target": _json(self.target),
-                "pairs": {k: _json(v) for k, v in self.pairs.items()},
+        return {"periods": json_safe(self.periods), "target": json_safe(self.target),
+                "pairs": {k: json_safe(v) for k, v in self.pairs.items()},
                 "period_range": list(self.period_range), "unit": "g"}
 
 
@@ -259,26 +261,11 @@ class DesignResult:
         """Every number of the report, keyed (``design.json``)."""
         return {
             "name": self.name, "passed": self.passed, "compliant_suite": self.compliant_suite,
-            "options": {k: _json(v) for k, v in self.options.items()},
+            "options": {k: json_safe(v) for k, v in self.options.items()},
             "elf": self.elf.to_dict(), "pairs": [p.to_dict() for p in self.pairs],
             "spectra": self.spectra.to_dict(),
-            "averages": _json(self.averages.to_dict(orient="records")),
-            "envelope": _json(self.envelope), "checks": [c.to_dict() for c in self.checks],
+            "averages": json_safe(self.averages.to_dict(orient="records")),
+            "envelope": json_safe(self.envelope), "checks": [c.to_dict() for c in self.checks],
             "tables": [t.to_dict() for t in self.tables], "notes": list(self.notes),
             "units": dict(PEAK_UNITS),
         }
-
-
-def _json(value: Any) -> Any:
-    """NaN and infinity as None, numpy scalars and arrays as Python numbers and lists."""
-    if isinstance(value, dict):
-        return {str(k): _json(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_json(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return _json(value.tolist())
-    if isinstance(value, np.generic):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value

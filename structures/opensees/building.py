@@ -17,7 +17,7 @@ from dcfpb.common.validation import check_int, check_real
 from groundmotions.pairs import GroundMotionPair
 from groundmotions.records import GroundMotion
 from isolator.bearing import DCFPBearing
-from structures.analysis import ground_record
+from structures.analysis import check_motion, ground_record
 from structures.integrators import HHT, METHODS, Newmark, as_method
 from structures.isolated_building import IsolatedShearBuilding
 from structures.opensees.elements import element_kind
@@ -93,12 +93,7 @@ def run_opensees(
     here (HHT with FPBearingPTV among them).
     """
     owner = "run_opensees"
-    pair = isinstance(motion, GroundMotionPair)
-    if pair != (building.plan is not None):
-        raise InputError(f"The 'motion' parameter of {owner} must be a GroundMotionPair for a "
-                         "building in plan and one GroundMotion for a building in one "
-                         f"direction. Got {type(motion).__name__} for a building "
-                         f"{'in plan' if building.plan is not None else 'in one direction'}.")
+    pair = check_motion(building, motion, owner)
     check_real(tolerance, "tolerance", owner, low=0.0, low_open=True)
     check_int(max_subdivisions, "max_subdivisions", owner, low=0)
     arguments = opensees_integrator(integrator)

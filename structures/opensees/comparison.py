@@ -27,6 +27,7 @@ from structures.opensees.bearing import run_opensees_test
 from structures.opensees.building import run_opensees
 from structures.opensees.elements import ELEMENTS, element_kind, fpbearingptv_equivalent
 from structures.opensees.singlefp import singlefp_normal_force
+from structures.results import resultant
 
 __all__ = ["MODELS", "Comparison", "axial_load_summary", "bearing_summary", "closed_blocks",
            "compare", "compare_tests", "comparison_bearing", "nrmse", "outline_bearings",
@@ -101,7 +102,7 @@ def _peaks(ds, corner: int | None) -> dict[str, Any]:
     ``corner`` (``peak_corner_displacement`` [m]), and the run's success and message."""
     out = peaks(ds)
     if corner is not None:
-        reach = np.hypot(*np.moveaxis(ds["bearing_displacement"].values[:, corner], -1, 0))
+        reach = resultant(ds["bearing_displacement"].values[:, corner])
         out["peak_corner_displacement"] = float(reach.max())
     out["success"], out["message"] = bool(ds.attrs["success"]), str(ds.attrs["message"])
     return out
@@ -269,11 +270,6 @@ def closed_blocks(history) -> list[slice]:
     return blocks or [slice(None)]
 
 
-def _resultant(values: np.ndarray) -> np.ndarray:
-    return np.abs(values[:, 0]) if values.shape[1] == 1 else np.hypot(values[:, 0],
-                                                                       values[:, 1])
-
-
 def compare_tests(ours: BearingTestResult, opensees: BearingTestResult,
                   cycles: list[slice] | None = None) -> dict[str, Any]:
     """Peaks, energies and differences of two bearing tests on the same samples (JSON-ready):
@@ -295,16 +291,16 @@ def compare_tests(ours: BearingTestResult, opensees: BearingTestResult,
     size = ours.time.size
     forces = {side: np.reshape(r.force, (size, -1)) for side, r in (("ours", ours),
                                                                       ("opensees", opensees))}
-    resultant = {side: _resultant(force) for side, force in forces.items()}
-    peak = float(np.max(resultant["ours"]))
+    length = {side: resultant(force) for side, force in forces.items()}
+    peak = float(np.max(length["ours"]))
     gap = forces["opensees"] - forces["ours"]
     difference: dict[str, Any] = {
-        "peak_resultant_force": float(np.max(resultant["opensees"])) / peak - 1.0}
+        "peak_resultant_force": float(np.max(length["opensees"])) / peak - 1.0}
     for i, axis in enumerate("xy"[:gap.shape[1]]):
         scale = float(np.max(np.abs(forces["ours"][:, i])))
         scale = scale if scale > _ZERO_COMPONENT * peak else peak
         difference[f"nrmse_force_{axis}"] = float(np.sqrt(np.mean(gap[:, i] ** 2))) / scale
-    difference["largest_force_gap"] = float(np.max(_resultant(gap))) / peak
+    difference["largest_force_gap"] = float(np.max(resultant(gap))) / peak
     energy = {side: sum(path_integral(r.displacement[s], r.force[s]) for s in cycles)
               for side, r in (("ours", ours), ("opensees", opensees))}
     difference["energy"] = energy["opensees"] / energy["ours"] - 1.0
@@ -317,7 +313,7 @@ def compare_tests(ours: BearingTestResult, opensees: BearingTestResult,
         else None)
     summary: dict[str, Any] = {"difference": difference}
     for side, r in (("ours", ours), ("opensees", opensees)):
-        summary[side] = {"name": r.name, "peak_resultant_force": float(np.max(resultant[side])),
+        summary[side] = {"name": r.name, "peak_resultant_force": float(np.max(length[side])),
                          "energy": energy[side],
                          "peak_temperature": (float(np.nanmax(r.temperature)) if heated
                                               else None)}

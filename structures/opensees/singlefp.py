@@ -22,7 +22,7 @@ from structures.integrators import HHT, Newmark, as_method
 from structures.isolated_building import IsolatedShearBuilding
 from structures.model import RestoringForce
 from structures.opensees.elements import constant_axial_load, singlefp_restoring
-from structures.results import response_dataset
+from structures.results import history_dataset
 from structures.shear_building import ShearBuilding
 
 __all__ = ["SingleFPNormalForce", "run_singlefp_normal", "singlefp_normal_force"]
@@ -142,12 +142,5 @@ def run_singlefp_normal(building: ShearBuilding, bearing: DCFPBearing,
     acceleration, step = ground_record(motion, dt)
     history = reference_history(model, acceleration, step, as_method(integrator),
                                 tolerance=tolerance, max_subdivisions=max_subdivisions)
-    result = history.result
-    return response_dataset(
-        model, motion, step, acceleration[:result.time.size], result.displacement,
-        result.velocity, result.absolute_acceleration, history.bearings,
-        integrator=repr(result.method), success=result.success, message=result.message,
-        failure=result.failure, failed_at=result.failed_at, restoring=history.restoring,
-        attrs={"newton_iterations": int(result.iterations.sum()),
-               "subdivisions": int(result.subdivisions.sum()), "wall_time": history.wall_time,
-               "engine": "reference, singleFPBearing N"})
+    return history_dataset(model, motion, step, acceleration, history,
+                           engine="reference, singleFPBearing N")

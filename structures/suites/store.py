@@ -18,12 +18,11 @@ between processes on a local POSIX file system.
 from __future__ import annotations
 
 import json
-import math
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
-from dcfpb.common.files import TEMPORARY_PATTERN, atomic_output
+from dcfpb.common.files import TEMPORARY_PATTERN, atomic_output, json_safe
 from structures.suites.runs import stored_enough
 
 _TEMPORARY = TEMPORARY_PATTERN
@@ -36,18 +35,9 @@ def atomic_write(path: Path, data: bytes) -> None:
         handle.write(data)
 
 
-def _json_safe(value: Any) -> Any:
-    """NaN and infinities as None (not JSON numbers), numpy scalars as Python numbers."""
-    if hasattr(value, "item") and not isinstance(value, str | bytes):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def dumps(row: dict[str, Any]) -> bytes:
     """A row as JSON (floats round-trip exactly: Python writes their shortest repr)."""
-    return json.dumps({k: _json_safe(v) for k, v in row.items()}, indent=1,
+    return json.dumps(json_safe(row), indent=1,
                       allow_nan=False).encode()
 
 
