@@ -497,7 +497,7 @@ class Problem:
         order = [n for n in verdict if n not in ("unexplained", "none")]
         rest = sorted((a for a in [*self.kinematic.values(), *testable]
                        if a.untestable is None and a.model.names[-1] not in order),
-                      key=lambda a: work.nrmse(_predictionon_samples(a, self.features, work)))
+                      key=lambda a: work.nrmse(_prediction_on_samples(a, self.features, work)))
         order += [a.model.names[-1] for a in rest if a.model.names[-1] not in exclude]
         order += [n for n, a in {**self.kinematic, **stage.singles}.items()
                   if a.untestable is not None and n not in exclude and n not in order]
@@ -641,7 +641,7 @@ def plausible(a: Assessment, first: int = 0) -> bool:
     return True
 
 
-def _predictionon_samples(a: Assessment, features: Features, work: Workspace) -> np.ndarray:
+def _prediction_on_samples(a: Assessment, features: Features, work: Workspace) -> np.ndarray:
     if a.prediction.size == len(work.features):
         return a.prediction
     return on_samples(a.prediction, features.sample, work.features.sample)
