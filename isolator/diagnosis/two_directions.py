@@ -80,6 +80,7 @@ from dataclasses import dataclass, field, replace
 from itertools import combinations
 
 import numpy as np
+from scipy.optimize import minimize
 
 from isolator.compiled.kernels import jit
 from isolator.diagnosis.baseline import (
@@ -132,6 +133,9 @@ SMOOTH_NOISE = 0.1  # displacement noise over u_y beyond which the displacement 
 _YIELD_GRID = np.geomspace(RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_MAX, 14)
 _LAG_GRID = np.arange(-NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES + 0.25, 0.5)
 _REPLICATES = 6
+REFINE_XATOL = 2e-3  # log10 u_y and lag [samples]: the refined baseline's resolution
+REFINE_FTOL = 1e-6  # of the grid's best cost
+REFINE_EVALUATIONS = 80  # the refinement's budget of baseline fits
 AXIS_GAIN_MIN = 0.01  # a relative gain of the y force channel from 1 % ...
 AXIS_GAIN_MAX = 0.05  # ... to 5 % in every test is corrected as the load cells' calibration
 AXIS_GAIN_SPREAD = 0.3  # ... when the tests' gains agree within this share of their mean
@@ -853,21 +857,71 @@ class Problem2D:
 
 # --- the steps --------------------------------------------------------------------------------
 
-def _grid_fit(d: Data2D, grid_uy, lags=_LAG_GRID) -> tuple:
-    """The best (cost, mu, u_y, lag, u_b, z, force) over the u_y and nuisance-lag grids."""
+def _fit_at(d: Data2D, yield_displacement: float, lag_samples: float) -> tuple:
+    """(cost [N^2], mu, u_y [m], lag [s], u_b, z, force) of the baseline at one u_y and
+    channel lag [samples], mu its least-squares factor."""
     inverse = 0.0 if math.isinf(d.radius) else 1.0 / d.radius
-    best = None
-    for uy in grid_uy:
-        for lag_samples in lags:
-            ub, z = kinematic_state(d, uy, lag_samples * d.dt)
-            friction = d.force - d.axial[:, None] * ub * inverse
-            basis = d.axial[:, None] * d.mu_shape[:, None] * z
-            mu = float(np.sum(basis * friction) / max(np.sum(basis**2), 1e-300))
-            force = d.axial[:, None] * (ub * inverse + mu * d.mu_shape[:, None] * z)
-            cost = float(np.mean((d.force - force) ** 2))
-            if best is None or cost < best[0]:
-                best = (cost, mu, uy, lag_samples * d.dt, ub, z, force)
-    return best
+    ub, z = kinematic_state(d, yield_displacement, lag_samples * d.dt)
+    friction = d.force - d.axial[:, None] * ub * inverse
+    basis = d.axial[:, None] * d.mu_shape[:, None] * z
+    mu = float(np.sum(basis * friction) / max(np.sum(basis**2), 1e-300))
+    force = d.axial[:, None] * (ub * inverse + mu * d.mu_shape[:, None] * z)
+    cost = float(np.mean((d.force - force) ** 2))
+    return (cost, mu, float(yield_displacement), lag_samples * d.dt, ub, z, force)
+
+
+def _grid_fit(d: Data2D, grid_uy, lags=_LAG_GRID) -> tuple:
+    """The best (cost, mu, u_y, lag, u_b, z, force) over the u_y and nuisance-lag grids,
+    refined continuously (:func:`_refine`)."""
+    best, at = None, (0, 0)
+    for a, uy in enumerate(grid_uy):
+        for b, lag_samples in enumerate(lags):
+            fit = _fit_at(d, uy, float(lag_samples))
+            if best is None or fit[0] < best[0]:
+                best, at = fit, (a, b)
+    return _refine(d, best, np.asarray(grid_uy, float), np.asarray(lags, float), at)
+
+
+def _refine(d: Data2D, best: tuple, grid_uy: np.ndarray, lags: np.ndarray,
+            at: tuple[int, int]) -> tuple:
+    """The grid's best fit refined continuously: log10 u_y and the lag [samples] within the
+    grids' ranges, by a bounded Nelder-Mead search from the grid's best point with a first
+    step of one grid cell (u_y and the lag trade off along a narrow valley, so that the best
+    grid point's neighbours need not bracket the optimum), the grid's best kept unless
+    beaten. A u_y or lag on a grid leaves a misfit at every direction change that the
+    transition rule reports as a gap (issue 21)."""
+    free = []  # (index in x, low, high, the grid's step there)
+    x0 = [math.log10(best[2]), best[3] / d.dt]
+    for k, (grid, i) in enumerate(((np.log10(grid_uy), at[0]), (lags, at[1]))):
+        if grid.size > 1:
+            step = float(grid[min(i + 1, grid.size - 1)] - grid[max(i - 1, 0)]) / (
+                min(i + 1, grid.size - 1) - max(i - 1, 0))
+            free.append((k, float(grid[0]), float(grid[-1]), step))
+    if not free:
+        return best
+
+    def point(y: np.ndarray) -> tuple[float, float]:
+        x = [best[2], x0[1]]
+        for (k, *_), value in zip(free, y, strict=True):
+            x[k] = 10.0 ** float(value) if k == 0 else float(value)
+        return x[0], x[1]
+
+    def cost(y: np.ndarray) -> float:
+        return _fit_at(d, *point(y))[0]
+
+    start = np.array([x0[k] for k, *_ in free])
+    bounds = [(lo, hi) for _, lo, hi, _ in free]
+    simplex = [start]
+    for m, (_, _lo, hi, step) in enumerate(free):
+        vertex = start.copy()
+        vertex[m] = start[m] + step if start[m] + step <= hi else start[m] - step
+        simplex.append(vertex)
+    found = minimize(cost, start, method="Nelder-Mead", bounds=bounds,
+                     options={"initial_simplex": np.array(simplex), "xatol": REFINE_XATOL,
+                              "fatol": REFINE_FTOL * best[0], "maxfev": REFINE_EVALUATIONS})
+    if not found.fun < best[0]:
+        return best
+    return _fit_at(d, *point(found.x))
 
 
 def _axis_gain(d: Data2D, base: Baseline2D) -> float | None:
