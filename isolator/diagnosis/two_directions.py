@@ -11,8 +11,9 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
 :mod:`isolator.diagnosis.thresholds` (the same ``thresholds.json``):
 
 1. **Baseline.** mu (or mu_t0 of the element's friction model), u_y on a grid from 10 um to
-   2.5 mm and a channel lag of up to two samples, on all samples; a u_y or lag at the edge of
-   its range is reported as a finding. The displacement is used as measured, or smoothed as
+   2.5 mm and a channel lag of up to two samples, on all samples, both then refined
+   continuously from the grid's best (:func:`_refine`); a u_y or lag at the edge of its range
+   is reported as a finding. The displacement is used as measured, or smoothed as
    in one direction when the sensors' noise exceeds a tenth of u_y (smoothing bends the
    corners and stops of an orbit). A relative gain of the y force channel of 1-5 %, the same
    in every test, is corrected as the load cells' calibration (:func:`_axis_gain`); the
