@@ -31,9 +31,6 @@ __all__ = ["CompileAhead", "compile_ahead", "engine_in_cache"]
 
 WAIT_LIMIT = 600.0
 """Longest wait for the second process [s]; past it, it is stopped and the caller compiles."""
-STAGE_LIMIT = 120.0
-"""Longest wait of the second process for a stage of the caller's share [s]; past it, it
-compiles that share itself."""
 STAGE_VARIABLE = "DCFPB_AHEAD_STAGE"  # the stage file's path, for the second process
 
 _PACKAGE_ROOT = Path(__file__).resolve().parents[2]
@@ -160,23 +157,6 @@ def write_stage(stage: Path, value: int) -> None:
     partial = stage.with_name(stage.name + ".partial")
     partial.write_text(str(value))
     os.replace(partial, stage)
-
-
-def wait_for_stage(stage: Path | None, value: int, limit: float = STAGE_LIMIT) -> bool:
-    """In the second process: wait until the caller's share has reached ``value``; False at
-    once when no caller helps (no stage file: none started, or it failed), or after ``limit``
-    [s] (this process then compiles that share itself)."""
-    if stage is None:
-        return False
-    deadline = time.perf_counter() + limit
-    while time.perf_counter() < deadline:
-        try:
-            if int(stage.read_text() or "0") >= value:
-                return True
-        except (OSError, ValueError):
-            return False  # no stage file: nobody is helping
-        time.sleep(0.005)
-    return False
 
 
 if __name__ == "__main__":  # the second process
