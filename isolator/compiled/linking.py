@@ -129,13 +129,12 @@ if COMPILED:
         symbol = symbol_name(call.function, tuple(argument_types), call.return_type)
         if symbol in _BOUND:
             return
+        import ctypes
+
         if not _PLACEHOLDER:
-            import ctypes
             import os
 
             _PLACEHOLDER.append(ctypes.CFUNCTYPE(None)(lambda: os._exit(70)))
-        import ctypes
-
         _llvm.add_symbol(symbol, ctypes.cast(_PLACEHOLDER[0], ctypes.c_void_p).value)
         _BOUND[symbol] = -1
 

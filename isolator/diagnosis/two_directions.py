@@ -532,15 +532,15 @@ def kinematic_state(d: Data2D, yield_displacement: float, lag: float = 0.0,
     ub, z = [], []
     gap = widths[0] > 0.0 or widths[1] > 0.0
     ratio = np.broadcast_to(np.asarray(static_ratio, dtype=float), (d.n,))
-    first = 0
+    end = 0  # the test's samples are ratio[start:end]
     for t, u in zip(d.time, d.play_paths() if gap else d.displacement, strict=True):
         cols = [np.ascontiguousarray(lagged(t, u[:, j], lag) if lag else u[:, j])
                 for j in range(2)]
-        first, last = first + t.size, first
+        start, end = end, end + t.size
         if gap:
             b, zz, engaged = play_return_map_2d(cols[0], cols[1], 0.5 * float(widths[0]),
                                                 0.5 * float(widths[1]),
-                                                float(yield_displacement), ratio[last:first])
+                                                float(yield_displacement), ratio[start:end])
             ub.append(b * engaged)
             z.append(zz * engaged)
             continue
