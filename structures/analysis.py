@@ -150,6 +150,26 @@ def check_motion(building: ShearBuilding, motion: GroundMotion | GroundMotionPai
     return pair
 
 
+def check_length(
+    building: ShearBuilding,
+    motion: GroundMotion | GroundMotionPair,
+    dt: float | None = None,
+    *,
+    max_steps: int = DEFAULT_MAX_STEPS,
+    raise_with: str = "the max_steps argument of structures.analysis.run",
+    owner: str = "run",
+) -> int:
+    """Refuse a run of ``building`` under ``motion`` at the analysis step ``dt`` [s] (None:
+    :func:`default_step`) past ``max_steps`` time steps or the memory available, before any work;
+    return its steps. ``raise_with`` and ``owner`` name how to raise the limit and who checks
+    ``dt`` in the messages (:func:`structures.limits.check_run`)."""
+    first = motion.x if isinstance(motion, GroundMotionPair) else motion
+    fields = building_fields(building.n_storeys, building.level_dofs,
+                             len(building.bearing_positions))
+    return check_run(first, default_step(first.dt) if dt is None else dt, fields,
+                     max_steps=max_steps, raise_with=raise_with, owner=owner)
+
+
 def run(
     building: ShearBuilding,
     bearing: DCFPBearing,
@@ -218,12 +238,9 @@ def run(
         friction model and both engines: see the Notes of ``response_dataset``.
     """
     pair = check_motion(building, motion, "run")
-    first = motion.x if pair else motion
     if dt is not None:
         check_real(dt, "dt", "run", low=0.0, low_open=True)
-    fields = building_fields(building.n_storeys, building.level_dofs,
-                             len(building.bearing_positions))
-    check_run(first, default_step(first.dt) if dt is None else dt, fields, max_steps=max_steps)
+    check_length(building, motion, dt, max_steps=max_steps)
     model = IsolatedShearBuilding(building, bearing, n_bearings, overturning=overturning,
                                   vertical=motion.z if pair else None,
                                   grid_orientation=grid_orientation)

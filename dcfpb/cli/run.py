@@ -129,18 +129,10 @@ def analysis_dt(args: argparse.Namespace, config, motion=None) -> float | None:
 
 def check_run_length(args: argparse.Namespace, config, motion, command: str) -> None:
     """Refuse a building run past ``--max-steps`` or the memory available, before any work."""
-    from groundmotions.pairs import GroundMotionPair
-    from structures.analysis import default_step
-    from structures.limits import building_fields, check_run
+    from structures.analysis import check_length
 
-    dt = analysis_dt(args, config, motion)
-    pair = isinstance(motion, GroundMotionPair)
-    first = motion.x if pair else motion
-    building = config.building
-    fields = building_fields(building.n_storeys, building.level_dofs if pair else 1,
-                             len(building.bearing_positions) if pair else 1)
-    check_run(first, default_step(first.dt) if dt is None else dt, fields,
-              max_steps=args.max_steps, raise_with="--max-steps", owner=command)
+    check_length(config.building, motion, analysis_dt(args, config, motion),
+                 max_steps=args.max_steps, raise_with="--max-steps", owner=command)
 
 
 def integrator_from_args(config, kind: str | None, alpha: float | None):
