@@ -624,7 +624,8 @@ def _run_positions(config: BuildingConfig, sources: Sequence[MotionSource],
     for position, (suite, folder) in suites.items():
         result = run_suite(suite, folder, scheduler_address=scheduler_address,
                            progress=progress, run_timeout=run_timeout, storage=store,
-                           design_peaks=True, keep_failed=KEPT_FAILURES)
+                           design_peaks=True, keep_failed=KEPT_FAILURES,
+                           label=f"position {position}")
         for row in result.peaks.to_dict("records"):
             for bound, modifier in by_bound.items():
                 if row["modifier"] == modifier:

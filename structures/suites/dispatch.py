@@ -66,7 +66,7 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
                  n_workers: int | None, scheduler_address: str | None, write: str,
                  progress: bool, run_timeout: float | None, max_steps: int,
                  ship: bool, storage: str = "full", design: bool = False,
-                 keep_failed: Sequence[str] = (),
+                 keep_failed: Sequence[str] = (), label: str = "suite",
                  ) -> tuple[dict[str, dict[str, Any]], int, int]:
     """Compute the runs not complete in ``store`` and store each as it finishes; return the row
     of every run by run id, and the numbers of runs computed now and complete from before.
@@ -77,8 +77,8 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
     :func:`~structures.suites.runs.execute_run` takes them (a stored run that keeps less, or
     lacks the design peaks asked, is computed again); a run whose last failure is of a kind
     in ``keep_failed`` (:data:`~structures.suites.runs.FAILURE_KINDS`, e.g. ``"capacity"``, a
-    deterministic outcome of the model) keeps it instead of running again; the other keywords
-    are those of ``run_suite``.
+    deterministic outcome of the model) keeps it instead of running again; ``label`` names the
+    progress bar; the other keywords are those of ``run_suite``.
     """
     from distributed import as_completed
     from tqdm import tqdm
@@ -101,7 +101,7 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
     skipped = sum(row["status"] == "done" for row in rows.values())
     counts = {"done": skipped, "failed": len(rows) - skipped}
     bar = tqdm(total=len(specs), initial=len(rows), unit="run", disable=not progress,
-               file=sys.stderr, desc="suite", postfix=counts)
+               file=sys.stderr, desc=label, postfix=counts)
     try:
         if pending:
             with client_for(n_workers, scheduler_address) as client:

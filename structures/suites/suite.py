@@ -265,7 +265,7 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
               progress: bool = True, run_timeout: float | None = None, lock: bool = True,
               wait_lock: float = 0.0, max_steps: int = DEFAULT_MAX_STEPS,
               storage: str = "full", design_peaks: bool = False,
-              keep_failed: Sequence[str] = ()) -> SuiteResult:
+              keep_failed: Sequence[str] = (), label: str = "suite") -> SuiteResult:
     """Compute a suite into ``out_dir``, or finish one that was interrupted.
 
     Parameters
@@ -284,6 +284,8 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
         every worker), or this process, serially (any cluster, no shared file system).
     progress : bool
         Show a progress bar (runs done, failed, ETA) on stderr.
+    label : str
+        The progress bar's name (default ``"suite"``).
     run_timeout : float, optional
         Wall-clock limit of each run's integration [s] (``structures.analysis.run(time_limit=)``):
         a run past it fails, ``"timeout after N s"``, with its peaks up to then.
@@ -333,7 +335,7 @@ def run_suite(suite: Suite, out_dir: str | Path, *, n_workers: int | None = None
             run_timeout=run_timeout, max_steps=max_steps, ship=ship, storage=storage,
             design=design_peaks, keep_failed=tuple(
                 check_choice(k, "keep_failed", "run_suite", FAILURE_KINDS)
-                for k in keep_failed))
+                for k in keep_failed), label=label)
         return finish(specs, rows, store, computed, skipped, start, COLUMNS[suite.kind],
                       extra_columns=tuple(
                           k for k in design_columns(rows.values())

@@ -398,7 +398,7 @@ def test_load_eccentricity_in_a_building_file(tmp_path):
         load_config(path)
 
 
-def test_capacity_failures_are_kept_on_request(tmp_path):
+def test_capacity_failures_are_kept_on_request(tmp_path, capsys):
     from structures.suites.suite import Suite, run_suite
 
     text = PLAN_FILE.read_text().replace("displacement_capacity = 0.6",
@@ -415,7 +415,10 @@ def test_capacity_failures_are_kept_on_request(tmp_path):
     assert again.computed == 0
     assert again.peaks["isolator_displacement"].tolist() == first.peaks[
         "isolator_displacement"].tolist()
-    assert run_suite(suite, tmp_path / "out", **options).computed == 1  # the default retries
+    options["progress"] = True
+    assert run_suite(suite, tmp_path / "out", label="position +x",
+                     **options).computed == 1  # the default retries
+    assert "position +x" in capsys.readouterr().err  # the progress bar says which suite
 
 
 def test_the_four_accidental_positions(config, tmp_path):
