@@ -19,7 +19,7 @@ import warnings
 from pathlib import Path
 
 from dcfpb.common.errors import EXIT_OK, EXIT_RUN_FAILED, InputError, InputWarning
-from dcfpb.common.validation import parse_floats
+from dcfpb.common.validation import check_real, parse_floats
 
 _COMMAND = "dcfpb design"
 
@@ -113,9 +113,18 @@ def parse_site(text: str):
                          "s).") from None
 
 
-def parse_lambda(overall: str | None, factors: str | None):
+def _check_factor(value: float, name: str, command: str) -> float:
+    """A property modification factor given by flag: a maximum (``name`` ends in ``MAX`` or
+    ``_max``) in [1, 10], a minimum in (0, 1]."""
+    if name.lower().endswith("max"):
+        return check_real(value, name, command, low=1.0, high=10.0)
+    return check_real(value, name, command, low=0.0, high=1.0, low_open=True)
+
+
+def parse_lambda(overall: str | None, factors: str | None, command: str = "dcfpb design"):
     """``--lambda MAX,MIN`` or ``--lambda-factors KEY=VALUE,...`` as a
-    :class:`structures.design.PropertyModification`; None when neither is given."""
+    :class:`structures.design.PropertyModification`; None when neither is given. ``command``
+    is named in the messages."""
     from structures.design import PropertyModification
 
     if overall is not None:
@@ -123,6 +132,8 @@ def parse_lambda(overall: str | None, factors: str | None):
         if len(values) != 2:
             raise InputError(f"--lambda must be MAX,MIN (lambda_max >= 1, lambda_min in "
                              f"(0, 1]). Got {len(values)} values in {overall!r}.")
+        for value, name in zip(values, ("--lambda MAX", "--lambda MIN"), strict=True):
+            _check_factor(value, name, command)
         try:
             return PropertyModification.overall(*values)
         except InputError as error:
@@ -149,6 +160,7 @@ def parse_lambda(overall: str | None, factors: str | None):
             parts[key] = float(value)
         except ValueError:
             raise InputError(f"--lambda-factors {key} must be a number. Got {value!r}.") from None
+        _check_factor(parts[key], f"--lambda-factors {key}", command)
     try:
         return PropertyModification(**parts)
     except InputError as error:
@@ -263,7 +275,6 @@ def command_line(args: argparse.Namespace) -> str:
 def _run(args: argparse.Namespace) -> int:
     from dcfpb.cli.outputs import check_outputs, writing
     from dcfpb.cli.suite import cluster_flags
-    from dcfpb.common.validation import check_real
     from dcfpb.report.design import report_files, write_report
     from structures.config import load_config
 

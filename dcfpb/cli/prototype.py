@@ -113,7 +113,7 @@ def _design_inputs(args: argparse.Namespace, config) -> dict:
                        "S_M1."}
     site, lam, R = design_inputs(
         config, parse_site(args.site) if args.site is not None else None,
-        parse_lambda(args.lambda_, None), args.R, missing=missing,
+        parse_lambda(args.lambda_, None, _COMMAND), args.R, missing=missing,
         defaults={"lambda": PropertyModification.overall(1.0, 1.0), "R": 2.0})
     R = check_real(float(R), "--R", _COMMAND, low=0.0, high=10.0, low_open=True)
     result = elf(config, site, lam, R=R, model=args.model)

@@ -173,19 +173,36 @@ def synthetic_count(complete: bool | int, real: int) -> int:
     return check_int(complete, "complete_with_synthetic", _OWNER, low=0, high=100)
 
 
+def _synthetic_name(k: int) -> str:
+    """The name of the ``k``-th synthetic pair (from 0): ``synthetic-1``, ..."""
+    return f"synthetic-{k + 1}"
+
+
+def _read_pair(source: MotionSource):
+    """The pair of ``source``; an unreadable one is an InputError naming the pair."""
+    try:
+        return source.read()
+    except InputError:
+        raise
+    except Exception as error:
+        raise InputError(f"The pair {source.name!r} of {_OWNER} cannot be read: "
+                         f"{type(error).__name__}: {error}") from error
+
+
 def _write_synthetic(count: int, folder: Path, dt: float, site: Site
                      ) -> tuple[list[MotionSource], dict[str, tuple[str, ...]]]:
     """``count`` synthetic pairs as one-column text files (exact to the last digit) in
     ``folder``: their sources and, by name, the generator and seed that made them."""
     from groundmotions import synthetic_pair
 
-    folder.mkdir(parents=True, exist_ok=True)
+    if count:
+        folder.mkdir(parents=True, exist_ok=True)
     spec = SYNTHETIC
     pga = spec["pga_over_S_MS"] * site.S_MS * G
     sources, labels = [], {}
     for k in range(count):
         seed = spec["seed"] + k * spec["seed_step"]
-        name = f"synthetic-{k + 1}"
+        name = _synthetic_name(k)
         pair = synthetic_pair(spec["generator"], seed, duration=spec["duration"], dt=dt,
                               name=name, ground_frequency=spec["ground_frequency"],
                               ground_damping=spec["ground_damping"],
@@ -491,6 +508,14 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
     prange = period_range(result_elf)
     timings["elf"] = time.perf_counter() - start
 
+    names = [s.name for s in sources] + [_synthetic_name(k) for k in range(n_synthetic)]
+    if len(set(names)) != len(names):
+        raise InputError(f"The 'pairs' parameter of {_OWNER} must name each pair once "
+                         f"(the synthetic ones are synthetic-1, ...). Got {names}.")
+    mark = time.perf_counter()
+    motions = [_read_pair(source) for source in sources]  # before any folder is made
+    timings["read"] = time.perf_counter() - mark
+
     temporary = out_dir is None
     with ExitStack() as stack:
         if temporary:
@@ -501,21 +526,7 @@ def design(config: BuildingConfig, pairs: Any, site: Site | tuple[float, ...] | 
         synthetic_sources, labels = _write_synthetic(n_synthetic, root / "synthetic", step,
                                                      site)
         all_sources = (*sources, *synthetic_sources)
-        names = [s.name for s in all_sources]
-        if len(set(names)) != len(names):
-            raise InputError(f"The 'pairs' parameter of {_OWNER} must name each pair once "
-                             f"(the synthetic ones are synthetic-1, ...). Got {names}.")
-        mark = time.perf_counter()
-        motions = []
-        for source in all_sources:
-            try:
-                motions.append(source.read())
-            except InputError:
-                raise
-            except Exception as error:
-                raise InputError(f"The pair {source.name!r} of {_OWNER} cannot be read: "
-                                 f"{type(error).__name__}: {error}") from error
-        timings["read"] = time.perf_counter() - mark
+        motions += [_read_pair(source) for source in synthetic_sources]
         mark = time.perf_counter()
         report, t_l = _scale(motions, site, prange, n_periods)
         factors = {name: float(k) for name, k in zip(names, report.scale_factors, strict=True)}
