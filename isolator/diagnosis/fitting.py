@@ -215,15 +215,42 @@ def fit(
         return (model.force(theta, f, context) - f.force) * weight
 
     best = None
-    for start in starts or [model.initial()]:
-        result = levenberg_marquardt(residual, _clip_start(np.asarray(start, float), model),
-                                     low, high)
+    starts = [_clip_start(np.asarray(s, float), model) for s in (starts or [model.initial()])]
+    for start in [*starts, *_scanned(model, residual, starts)]:
+        result = levenberg_marquardt(residual, start, low, high)
         if best is None or result.cost < best.cost:
             best = result
     stderr = np.full(model.size, np.nan)
     if uncertainty:
         stderr = _standard_errors(best.jacobian, best.residual, f)
     return Fit(best.x, stderr, best.cost, len(f))
+
+
+def _scanned(model: Model, residual, starts: list[np.ndarray]) -> list[np.ndarray]:
+    """Further starts: each of ``starts`` with each parameter that has a ``scan`` step set to
+    the best point of a grid over its range (the others held), where that beats the start;
+    a parameter whose effect moves in whole samples has a zero finite-difference gradient,
+    so the least-squares search cannot move it (:class:`~isolator.diagnosis.effects.Parameter`)."""
+    low, high = model.bounds()
+    scanned = [(i, p.scan) for i, p in enumerate(
+        (p for e in model.effects for p in e.parameters), start=1) if p.scan > 0.0]
+    out: list[np.ndarray] = []
+    for start in starts:
+        for i, step in scanned:
+            grid = np.arange(low[i], high[i] + 0.5 * step, step)
+            costs = []
+            for value in grid:
+                theta = start.copy()
+                theta[i] = value
+                costs.append(float(np.sum(residual(theta) ** 2)))
+            j = int(np.argmin(costs))
+            if costs[j] < float(np.sum(residual(start) ** 2)):
+                theta = start.copy()
+                theta[i] = grid[j]
+                theta = _clip_start(theta, model)
+                if not any(np.array_equal(theta, o) for o in out):
+                    out.append(theta)
+    return out
 
 
 def _standard_errors(jac: np.ndarray, res: np.ndarray, f: Features) -> np.ndarray:
