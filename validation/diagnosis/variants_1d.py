@@ -12,7 +12,10 @@ with the outside panel's truth sources, records, noise and files
 
 Every case is labelled ``half: "tune"`` (``design.variant`` says which kind): these are tune
 data, designed from the tune designs of the two panels and the physics, never from the outside
-panel's test half. The case numbers are a seeded shuffle, as in the panels.
+panel's test half. The case numbers are a seeded shuffle, as in the panels. The design record's
+"independent precise vs package precise" share compares the independent precise truth with the
+package's Eq. 2; for a variant whose velocity law is another (VA2-VA4) that share is the law's
+own difference and the label-rule warning says so; the labelled effect is the law.
 
     python -m validation.diagnosis.variants_1d FOLDER [--seed 2026] [--kinds A,B]
     python -m validation.diagnosis.score FOLDER --half tune [--cases case_03]
