@@ -20,8 +20,9 @@ or lag is judged again beside the law so found; both are named only if both earn
 (the play beside the law by the ``kinematic_*`` thresholds, or the pair as one by
 ``kinematic_z`` over the baseline with the play still closing ``kinematic_explained`` of what
 the law leaves, as stage 2 judges a pair). When still no friction law is named (a play named
-alone, or nothing), the kinematic effect (the one named, else each partly supported one) and
-each effect on mu or the force are fitted *jointly on every sample* and judged together
+alone, or nothing), the kinematic effect (the one named, else each of a nameable size that
+improves on the baseline at all: a heating can hide most of a play) and each effect on mu or
+the force are fitted *jointly on every sample* and judged together
 (:meth:`Problem._joint_pair`, the rule of two directions too,
 :func:`~isolator.diagnosis.selection.joint_pair_earns`): the pair is named when it earns its
 keep over the baseline by the ``kinematic_*`` thresholds and each member earns its keep
@@ -300,8 +301,9 @@ class Problem:
         that :func:`~isolator.diagnosis.selection.joint_pair_earns` (over the baseline, over
         the kinematic effect alone and over the law alone, held out), when no friction law
         is named and a real gap remains on every sample; the kinematic effect is the one
-        named, else each partly supported one (z or share reaching its bar, of a nameable
-        size, within its range). None when no pair does."""
+        named, else each that improves on the baseline held out (z > 0), of a nameable size,
+        within its range: a friction law can hide most of a play, so its own z and share
+        need not reach their bars; the pair's rule judges. None when no pair does."""
         if kinematic is not None:
             if len(kinematic.model.effects) != 1:
                 return None
@@ -309,7 +311,6 @@ class Problem:
         else:
             tried = [a for n, a in self.kinematic.items()
                      if n not in exclude and a.untestable is None and a.z_score > 0.0
-                     and (a.z_score >= th.kinematic_z or a.explained >= th.kinematic_explained)
                      and self._kinematic_size_ok(a, th) and plausible(a)]
         plain = self.stage(None)
         best = None
@@ -471,7 +472,7 @@ class Problem:
         joint = None
         if not named:
             # a play and a friction law fitted jointly on every sample and judged together
-            # (each partly supported, neither reaching its own bar beside the other)
+            # (neither reaching its own bar alone or beside the other)
             joint = self._joint_pair(kinematic, exclude, th)
         if joint is not None:
             kinematic, law_name = joint
