@@ -20,8 +20,9 @@ or lag is judged again beside the law so found; both are named only if both earn
 (the play beside the law by the ``kinematic_*`` thresholds, or the pair as one by
 ``kinematic_z`` over the baseline with the play still closing ``kinematic_explained`` of what
 the law leaves, as stage 2 judges a pair). When still no friction law is named (a play named
-alone, or nothing), the kinematic effect (the one named, else each partly supported one) and
-each effect on mu or the force are fitted *jointly on every sample* and judged together
+alone, or nothing), the kinematic effect (the one named, else each of a nameable size that
+improves on the baseline at all: a heating can hide most of a play) and each effect on mu or
+the force are fitted *jointly on every sample* and judged together
 (:meth:`Problem._joint_pair`, the rule of two directions too,
 :func:`~isolator.diagnosis.selection.joint_pair_earns`): the pair is named when it earns its
 keep over the baseline by the ``kinematic_*`` thresholds and each member earns its keep
@@ -56,6 +57,7 @@ from isolator.diagnosis.effects import Context, Effect
 from isolator.diagnosis.features import Features, return_map, with_baseline
 from isolator.diagnosis.fitting import Fit, HoldOut, Model, fit, kinematic_change
 from isolator.diagnosis.flexible import direction, flexible
+from isolator.diagnosis.implied import ImpliedHeat
 from isolator.diagnosis.selection import (
     MAX_EFFECTS,
     MAX_KINEMATIC,
@@ -135,15 +137,22 @@ class Problem:
         The baseline's nuisance parameters fitted at an edge of their range
         (:func:`isolator.diagnosis.baseline.nuisance_edges`), e.g.
         ``{"yield_displacement": "top"}``.
+    implied : callable, optional
+        For a baseline that heats, the change of its log temperature factor at every sample
+        when its friction power is multiplied by a factor on mu
+        (:func:`isolator.diagnosis.implied.implied_heat`); a second effect on mu must earn its
+        keep over the named law with that heat too (:meth:`_implied_reference`).
     """
 
     def __init__(self, features: Features, context: Context, effects: tuple[Effect, ...],
-                 thresholds: Thresholds, edges: dict[str, str] | None = None) -> None:
+                 thresholds: Thresholds, edges: dict[str, str] | None = None,
+                 implied: ImpliedHeat | None = None) -> None:
         self.features = features
         self.context = context
         self.effects = effects
         self.thresholds = thresholds
         self.edges = dict(edges or {})
+        self.implied = implied
         self.window = in_transition(features, context.yield_displacement)
         self.all = Workspace(features, HoldOut.of(features), context)
         self.all_baseline = assess(self.all, Model(), None, [np.array([1.0])])
@@ -292,8 +301,9 @@ class Problem:
         that :func:`~isolator.diagnosis.selection.joint_pair_earns` (over the baseline, over
         the kinematic effect alone and over the law alone, held out), when no friction law
         is named and a real gap remains on every sample; the kinematic effect is the one
-        named, else each partly supported one (z or share reaching its bar, of a nameable
-        size, within its range). None when no pair does."""
+        named, else each that improves on the baseline held out (z > 0), of a nameable size,
+        within its range: a friction law can hide most of a play, so its own z and share
+        need not reach their bars; the pair's rule judges. None when no pair does."""
         if kinematic is not None:
             if len(kinematic.model.effects) != 1:
                 return None
@@ -301,7 +311,6 @@ class Problem:
         else:
             tried = [a for n, a in self.kinematic.items()
                      if n not in exclude and a.untestable is None and a.z_score > 0.0
-                     and (a.z_score >= th.kinematic_z or a.explained >= th.kinematic_explained)
                      and self._kinematic_size_ok(a, th) and plausible(a)]
         plain = self.stage(None)
         best = None
@@ -463,7 +472,7 @@ class Problem:
         joint = None
         if not named:
             # a play and a friction law fitted jointly on every sample and judged together
-            # (each partly supported, neither reaching its own bar beside the other)
+            # (neither reaching its own bar alone or beside the other)
             joint = self._joint_pair(kinematic, exclude, th)
         if joint is not None:
             kinematic, law_name = joint
@@ -523,7 +532,8 @@ class Problem:
             else:
                 reference = self._flexible_reference(work, current, frozen)
                 step = self._best(work, reference, [(a,) for a in free], th.second_z,
-                                  th.second_explained, th.practical_gain)
+                                  th.second_explained, th.practical_gain,
+                                  also=self._implied_reference(work, current, frozen))
             if step is None:
                 break
             current = step
@@ -573,17 +583,53 @@ class Problem:
 
     def _best(self, work: Workspace, current: Assessment,
               additions: list[tuple[Assessment, ...]], z_min: float, explained_min: float,
-              practical: float) -> Assessment | None:
-        """The best qualifying extension of ``current`` (screened in-sample)."""
+              practical: float, also: Assessment | None = None) -> Assessment | None:
+        """The best qualifying extension of ``current`` (screened in-sample), qualifying over
+        ``also`` too when given (the named law with the heat it implies)."""
         fitted = [self._extended_fit(work, current, add) for add in additions]
         fitted.sort(key=lambda item: item[1].sse)
         options = []
         for model, full in fitted[:SCREENED]:
             judged = self._judged(work, model, full)
             if (qualifies(work, current, judged, z_min, explained_min, practical)
+                    and (also is None
+                         or qualifies(work, also, judged, z_min, explained_min, practical))
                     and plausible(judged, len(current.model.effects))):
                 options.append(judged)
         return min(options, key=lambda a: a.weighted) if options else None
+
+    def _implied_reference(self, work: Workspace, current: Assessment,
+                           frozen: int) -> Assessment | None:
+        """``current`` with the heat its named laws on mu imply for a baseline that heats
+        (:mod:`isolator.diagnosis.implied`: the baseline's temperature factor recomputed with
+        the named laws' friction power, held fixed; the other parameters refitted), judged
+        held out; None when the baseline does not heat or no law on mu other than
+        ``heating`` is named. A second effect on mu must earn its keep over it too: what a
+        baseline's heat computed with the wrong mu leaves is not a second effect."""
+        if self.implied is None:
+            return None
+        parts = [(e, part) for i, (e, part) in enumerate(zip(current.model.effects,
+                                                             current.model.slices(),
+                                                             strict=True))
+                 if i >= frozen and e.acts_on == "mu" and e.factor is not None
+                 and e.name != "heating"]
+        if not parts:
+            return None
+        key = ("implied", *current.model.names, *map(float, current.fit.theta))
+        if key not in work.cache:
+            m = np.full(len(self.features), float(current.fit.theta[0]))  # mu's scale
+            for effect, part in parts:
+                m = m * effect.factor(current.fit.theta[part], self.features, self.context)
+            log_change = self.implied(m)
+            samples = self.features.sample
+            effect = Effect("implied heat", "the baseline's heat with the named law's mu",
+                            "the baseline's own temperature factor, its heat input computed "
+                            "with the named law's friction power", (), "mu",
+                            factor=lambda _t, f, _c: np.exp(on_samples(log_change, samples,
+                                                                       f.sample)))
+            model = Model((*current.model.effects, effect))
+            work.cache[key] = assess(work, model, None, [np.array(current.fit.theta)])
+        return work.cache[key]
 
     def _extended(self, work: Workspace, current: Assessment,
                   additions: tuple[Assessment, ...]) -> Assessment:

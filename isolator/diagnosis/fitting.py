@@ -215,15 +215,49 @@ def fit(
         return (model.force(theta, f, context) - f.force) * weight
 
     best = None
-    for start in starts or [model.initial()]:
-        result = levenberg_marquardt(residual, _clip_start(np.asarray(start, float), model),
-                                     low, high)
+    starts = [_clip_start(np.asarray(s, float), model) for s in (starts or [model.initial()])]
+    for start in [*starts, *_scanned(model, residual, starts)]:
+        result = levenberg_marquardt(residual, start, low, high)
         if best is None or result.cost < best.cost:
             best = result
     stderr = np.full(model.size, np.nan)
     if uncertainty:
         stderr = _standard_errors(best.jacobian, best.residual, f)
     return Fit(best.x, stderr, best.cost, len(f))
+
+
+SCAN_COARSE = 4  # a scanned parameter's coarse grid: this many of its steps
+
+
+def _scanned(model: Model, residual, starts: list[np.ndarray]) -> list[np.ndarray]:
+    """Further starts: each of ``starts`` with each parameter that has a ``scan`` step set to
+    the best point of a grid over its range (the others held), where that beats the start;
+    a parameter whose effect moves in whole samples has a zero finite-difference gradient,
+    so the least-squares search cannot move it (:class:`~isolator.diagnosis.effects.Parameter`)."""
+    low, high = model.bounds()
+    scanned = [(i, p.scan) for i, p in enumerate(
+        (p for e in model.effects for p in e.parameters), start=1) if p.scan > 0.0]
+    def cost(theta: np.ndarray, i: int, value: float) -> float:
+        theta = theta.copy()
+        theta[i] = value
+        return float(np.sum(residual(theta) ** 2))
+
+    out: list[np.ndarray] = []
+    for start in starts:
+        for i, step in scanned:
+            # a coarse grid of SCAN_COARSE steps over the range, then the step around its best
+            coarse = np.arange(low[i], high[i] + 0.5 * step, SCAN_COARSE * step)
+            best = coarse[int(np.argmin([cost(start, i, v) for v in coarse]))]
+            fine = np.clip(best + step * np.arange(-SCAN_COARSE + 1, SCAN_COARSE), low[i], high[i])
+            costs = [cost(start, i, v) for v in fine]
+            j = int(np.argmin(costs))
+            if costs[j] < float(np.sum(residual(start) ** 2)):
+                theta = start.copy()
+                theta[i] = fine[j]
+                theta = _clip_start(theta, model)
+                if not any(np.array_equal(theta, o) for o in out):
+                    out.append(theta)
+    return out
 
 
 def _standard_errors(jac: np.ndarray, res: np.ndarray, f: Features) -> np.ndarray:

@@ -27,6 +27,7 @@ from isolator.diagnosis.decision import Problem
 from isolator.diagnosis.effects import EFFECT_NAMES, Context, effects_named
 from isolator.diagnosis.features import kinematic_features, with_baseline
 from isolator.diagnosis.fitting import Kinematics
+from isolator.diagnosis.implied import implied_heat
 from isolator.diagnosis.noise import sample_noise_variance
 from isolator.diagnosis.selection import Selection
 from isolator.diagnosis.signatures import signature
@@ -94,7 +95,8 @@ def diagnose(
                          yield_displacement=u_y, nominal_mu=float(np.mean(f.mu_base)),
                          tests=len(campaign.tests), channel_lag=fitted.lag,
                          kinematics=kinematics)
-    problem = Problem(f, context, effects, th, nuisance_edges(fitted))
+    problem = Problem(f, context, effects, th, nuisance_edges(fitted),
+                      implied_heat(campaign, f, spec))
     selection = problem.select(tuple(exclude), th)
     return _finish(campaign, fitted, problem, selection, tuple(exclude), start,
                    uncertainty=True)

@@ -41,6 +41,11 @@ class Parameter:
     unit : str
         Unit of the value on the fitting scale (the parameters of tests in two directions
         are read as fitted).
+    scan : float
+        For a parameter whose effect moves in whole samples (a play's width: the force
+        changes only when a gap's edge crosses a sample, so a finite-difference gradient is
+        zero), the step of a grid over its range on which each start of a fit is scanned
+        first, on its fitting scale (0: not scanned; :func:`isolator.diagnosis.fitting.fit`).
     """
 
     name: str
@@ -51,6 +56,7 @@ class Parameter:
     starts: tuple[float, ...] = ()
     edge_ok: bool = False
     unit: str = "-"
+    scan: float = 0.0
 
     def at_bound(self, value: float) -> bool:
         """Whether ``value`` (fitting scale) sits at a bound (within 0.5 % of the range)."""
