@@ -8,7 +8,8 @@ declares (and the tune designs use), never from the test half's designs:
 - campaign: 2-3 tests in run order, rests of 300-1800 s; each test's orbit a circle (radius
   0.08-0.2 m, period 2-20 s), a figure-eight (0.08-0.2 by 0.05-0.2 m, period 2.5-10 s), a
   square (half side 0.06-0.12 m, 0.02-0.25 m/s) or an earthquake orbit (one of the shared
-  pairs, peak 0.1-0.25 m); at most about 8000 samples a test;
+  pairs, peak 0.1-0.25 m); the cycles cut to about 8000 samples a test, at least one
+  cycle (a slow circle at 500 Hz is longer, an earthquake orbit is its 20 s window);
 - axial load: constant at 60 N/mm^2, different per test (30-90 N/mm^2), or varying in time by
   30-45 % over 1.5-2.5 s (then with an axial-force column);
 - nuisance: sampling 100, 200, 250 or 500 Hz; force noise 0.5-1.2 % of mu0 W, white, AR(1)
@@ -50,7 +51,6 @@ from validation.diagnosis.bidirectional.write import (
     SOURCE,
     _write_case,
     design_record,
-    make_orbit,
 )
 
 __all__ = ["MAX_SAMPLES", "draw_case", "parse_effects", "write_variants"]
@@ -100,6 +100,18 @@ def _orbit(rng: np.random.Generator, kind: str, dt: float, slow: bool, peak: flo
         return ("square", round(a, 3), round(speed, 3), cycles)
     pair = str(rng.choice(sorted(PAIR_FILES)))
     return ("quake", pair, round(rng.uniform(0.1, min(0.25, peak)), 3))
+
+
+def _orbit_name(spec: tuple) -> str:
+    """A short name of an orbit spec (without making the orbit)."""
+    kind, *args = spec
+    if kind == "circular":
+        return f"circle {args[0]:g} m T={args[1]:g} s"
+    if kind == "eight":
+        return f"figure-eight {args[0]:g} x {args[1]:g} m T={args[2]:g} s"
+    if kind == "square":
+        return f"square {args[0]:g} m at {args[1]:g} m/s"
+    return f"earthquake {args[0]} peak {args[1]:g} m"
 
 
 def _campaign(rng: np.random.Generator, dt: float, effects: tuple[str, ...],
@@ -198,7 +210,7 @@ def draw_case(rng: np.random.Generator, effects: tuple[str, ...] | None = None,
         "axial_column": axial == "varying" or bool(rng.random() < 0.3),
         "gzip": bool(rng.random() < 0.2)}
     words = [", ".join(effects) or "no effect", transition,
-             " / ".join(make_orbit(r.orbit).name for r in tests),
+             " / ".join(_orbit_name(r.orbit) for r in tests),
              f"{1.0 / dt:g} Hz", f"{kind} noise {100 * nuisance['noise']:.2g} %"]
     if gain:
         words.append(f"gain {gain[1]:+.3f} on {gain[0]}")
@@ -225,8 +237,9 @@ def write_variants(folder: str | Path, count: int, *, seed: int = 1,
     count : int
         Number of variants.
     seed : int
-        Seed of the draws and of the measurement noise (variant k draws from
-        ``default_rng([seed, k])``).
+        Seed of the draws and of the measurement noise (the variant written as case number
+        m draws from ``default_rng([seed, m - 1])``, so one variant can be written again
+        alone with ``first`` = m).
     effects : tuple of str or None
         The labelled effects of every variant (``()``: no effect; None: drawn per variant).
     first : int
@@ -242,22 +255,23 @@ def write_variants(folder: str | Path, count: int, *, seed: int = 1,
     labels = json.loads(path.read_text()) if path.is_file() else {}
     start_all = _time.perf_counter()
     for k in range(count):
-        rng = np.random.default_rng([seed, k])
+        index = first - 1 + k
+        rng = np.random.default_rng([seed, index])
         name = f"case_{first + k:02d}"
         start = _time.perf_counter()
         for attempt in range(_TRIES):
-            case = draw_case(rng, effects, name=f"V{seed}-{k}")
+            case = draw_case(rng, effects, name=f"V{seed}-{index}")
             for old in (folder / name).glob("test_*"):
                 old.unlink()
             shares, clean = _write_case(case, folder / name, np.random.default_rng(
-                [seed, k, attempt]))
+                [seed, index, attempt]))
             if all(v >= LABEL_MIN for v in shares["contribution"].values()):
                 break
         else:
             raise RuntimeError(f"{name}: no draw in {_TRIES} met the label rule for {effects}")
         design = design_record(case, shares, clean)
         labels[name] = {"effects": sorted(case.effects), "truth": case.truth, "source": SOURCE,
-                        "half": "tune", "variant": True, "variant_seed": [seed, k],
+                        "half": "tune", "variant": True, "variant_seed": [seed, index],
                         "draws": attempt + 1, "design": design}
         if progress:
             pct = ", ".join(f"{e} {100 * v:.1f}%" for e, v in shares["contribution"].items())
