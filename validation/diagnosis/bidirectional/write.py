@@ -31,6 +31,7 @@ the files have no column). ``folder/labels.json``: per case ``effects``, ``truth
 shuffle.
 
     python -m validation.diagnosis.bidirectional FOLDER [--seed 2026] [--half tune|test]
+    python -m validation.diagnosis.bidirectional FOLDER --variants N [--seed S] [--effects E]
 """
 
 from __future__ import annotations
@@ -318,6 +319,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--half", choices=HALVES)
     parser.add_argument("--pairs", nargs="+", help="scenario pairs to write (e.g. B01 B10)")
     parser.add_argument("--checks", action="store_true", help="run the self-checks")
+    parser.add_argument("--variants", type=int, metavar="N",
+                        help="write N tune variants drawn from the panel's declared ranges "
+                             "instead of the panel (validation.diagnosis.bidirectional.variants)")
+    parser.add_argument("--effects", help="the variants' labelled effects: none, or a comma-"
+                        "separated set (pressure,velocity); default: drawn per variant")
+    parser.add_argument("--first", type=int, default=1,
+                        help="number of the variants' first case folder (default 1)")
     args = parser.parse_args(argv)
     if args.checks or args.folder is None:
         from validation.diagnosis.bidirectional.checks import TOLERANCES, checks
@@ -329,6 +337,20 @@ def main(argv: list[str] | None = None) -> int:
             return 1
         if args.folder is None:
             return 0
+    if args.variants is not None:
+        from validation.diagnosis.bidirectional.variants import parse_effects, write_variants
+
+        if args.half == "test" or args.pairs:
+            parser.error("--variants writes tune variants only (no --half test, no --pairs)")
+        try:
+            effects = parse_effects(args.effects)
+        except ValueError as error:
+            parser.error(str(error))
+        write_variants(args.folder, args.variants, seed=args.seed, effects=effects,
+                       first=args.first, progress=True)
+        return 0
+    if args.effects is not None:
+        parser.error("--effects goes with --variants")
     write_panel(args.folder, seed=args.seed, half=args.half,
                 pairs=tuple(args.pairs) if args.pairs else None, progress=True)
     return 0
