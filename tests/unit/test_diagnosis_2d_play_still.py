@@ -12,7 +12,7 @@ play_return_map_2d`).
 
 A small campaign made by the model itself (a square, then a circle; a play of 5 mm in x and
 2 mm in y, the bearing held by its friction on an open axis) with white displacement noise:
-about a second.
+about half a second (4 s with the imports).
 """
 
 from __future__ import annotations
