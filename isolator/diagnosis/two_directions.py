@@ -29,7 +29,9 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    g_y in the load train, one direction's play on each axis: after a reversal the axis's
    pre-sliding spring unloads, then the gap opens and that axis stands still and carries no
    force until it closes; :func:`play_return_map_2d`) and ``lag`` (one force-channel lag
-   for the campaign), each with u_y and the channel lag refitted. The lag is judged against
+   for the campaign), each with u_y and the channel lag refitted; the play is driven by the
+   displacement held where an axis stands still within the sensors' noise (a square's side:
+   :func:`held_still`), so that jitter does not open its gap. The lag is judged against
    the baseline with no lag (the nuisance judged as an effect) and named as in one direction
    (:func:`~isolator.diagnosis.decision.lag_reason`): the force after the displacement by
    ``lag_min_samples`` up to ``LAG_PLAUSIBLE_MAX``, the lags fitted test by test agreeing (a
@@ -133,6 +135,8 @@ SLOW_SHARE = 0.05  # of the peak speed: a stop
 MAX_FRICTION_EFFECTS = 3
 BLOCK_TURN = 0.25  # a block: this share of a turn of a circle of the peak radius, as path
 SMOOTH_NOISE = 0.1  # displacement noise over u_y beyond which the displacement is smoothed
+PLAY_STILL_NOISE = 6.0  # a play's path stands still where the measured one stays within ...
+PLAY_STILL_TIME = 0.1  # [s] ... this many sensor-noise std over this time (jitter: no motion)
 _YIELD_GRID = np.geomspace(RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_MAX, 14)
 _LAG_GRID = np.arange(-NUISANCE_LAG_SAMPLES, NUISANCE_LAG_SAMPLES + 0.25, 0.5)
 _REPLICATES = 6
@@ -194,6 +198,11 @@ def play_return_map_2d(ux, uy, half_x, half_y, yield_displacement, static_ratio=
     |z_k| <= sqrt(1 - z_j^2); the gap closed, the force rebuilds from that z_j. With
     ``static_ratio`` 0 the open axis's z is 0 (the force on it is zero either way, through
     ``engaged``). ``static_ratio`` [1/m] is one value or one per sample (s / (R mu(t))).
+
+    The contact only pushes: moving off the face it pushed, an axis whose spring is loaded
+    the other way (rebuilt from the statics' z_j after the gap closed) opens at once; and an
+    axis that does not move at all (a path held still, :func:`held_still`) stays as it was,
+    open or closed.
     """
     ratio = np.broadcast_to(np.asarray(static_ratio, dtype=float), np.shape(ux))
     return _play_kernel_2d(ux, uy, half_x, half_y, yield_displacement,
@@ -222,10 +231,16 @@ def _play_kernel_2d(ux, uy, half_x, half_y, yield_displacement, ratio):
             u_then = ux[i - 1] if j == 0 else uy[i - 1]
             r = u_now - u_then
             held[j] = crossing[j] and static_ratio != 0.0
-            crossing[j] = False
+            # an axis standing still in its open gap stays open (a path held still,
+            # :func:`held_still`, does not move at all)
+            crossing[j] = crossing[j] and r == 0.0 and half[j] > 0.0
             if half[j] > 0.0:
                 keep = zs[j]
                 if held[j]:  # still in the gap: the statics' z_j is no spring to unload
+                    zs[j] = 0.0
+                if zs[j] * r >= 0.0 and p[j] * r < 0.0 and abs(p[j]) >= half[j]:
+                    # moving off the face pushed with a spring loaded the other way (rebuilt
+                    # from the statics): the contact cannot pull, the gap opens
                     zs[j] = 0.0
                 if zs[j] * r < 0.0:  # unload the spring towards zero force
                     dz = r / yield_displacement
@@ -470,6 +485,7 @@ class Data2D:
     temperature_rise: np.ndarray = field(default_factory=lambda: np.zeros(0))
     mu_shape: np.ndarray = field(default_factory=lambda: np.zeros(0))
     smoothed: bool = True
+    still_tolerance: float = 0.0  # [m] jitter of an axis standing still (:func:`held_still`)
     _play_paths: list = field(default_factory=list)
 
     @property
@@ -479,14 +495,73 @@ class Data2D:
     def play_paths(self) -> list[np.ndarray]:
         """The displacement a play is driven with, per test (n_k, 2): smoothed as in one
         direction even when the rest of the diagnosis uses it as measured, since a sensor's
-        jitter reopens a just-closed gap, which zeroes that axis's force for a sample."""
-        if self.smoothed:
-            return self.displacement
+        jitter reopens a just-closed gap, which zeroes that axis's force for a sample; and
+        held where one axis stands still while the other moves (:func:`held_still`: a side
+        of a square orbit), where even the smoothed jitter would open the gap of an axis
+        whose friction has turned towards the other axis's motion."""
         if not self._play_paths:
-            self._play_paths = [np.column_stack([smoothed_displacement(t, u[:, j])
-                                                 for j in range(2)])
-                                for t, u in zip(self.time, self.displacement, strict=True)]
+            self._play_paths = [
+                np.column_stack([held_still(t, u[:, j] if self.smoothed
+                                            else smoothed_displacement(t, u[:, j]),
+                                            self.still_tolerance, rec.displacement[:, j],
+                                            rec.displacement[:, 1 - j])
+                                 for j in range(2)])
+                for t, u, rec in zip(self.time, self.displacement, self.campaign.tests,
+                                     strict=True)]
         return self._play_paths
+
+
+def standing(time: np.ndarray, measured: np.ndarray, tolerance: float) -> np.ndarray:
+    """Whether an axis stands still at each sample: its next or previous samples within
+    :data:`PLAY_STILL_TIME` [s] of the ``measured`` displacement [m] lie within
+    ``tolerance`` [m] of each other (the sensors' jitter; one side is enough, and the
+    measured path has no smoothing filter's ripple at a square's corner to hide the stop
+    after it). A reversal moves the path by more than the tolerance on both sides within
+    that time unless it is very slow. All False with ``tolerance`` 0."""
+    measured = np.asarray(measured, dtype=float)
+    if tolerance <= 0.0 or measured.size < 3:
+        return np.zeros(measured.size, dtype=bool)
+    step = float(np.median(np.diff(time)))
+    size = min(max(round(PLAY_STILL_TIME / step), 1) + 1, measured.size)
+    windows = np.lib.stride_tricks.sliding_window_view(measured, size)
+    flat = np.ptp(windows, axis=1) <= tolerance  # the window starting at each sample
+    pad = np.zeros(size - 1, dtype=bool)
+    return np.concatenate([flat, pad]) | np.concatenate([pad, flat])  # ahead | behind
+
+
+def held_still(time: np.ndarray, values: np.ndarray, tolerance: float,
+               measured: np.ndarray | None = None,
+               other: np.ndarray | None = None) -> np.ndarray:
+    """``values`` [m] (a play's path) held constant where the axis stands still
+    (:func:`standing` on the ``measured`` displacement, default ``values``) while the
+    ``other`` axis's measured displacement moves (when given), after the axis has first
+    moved, from the first such sample of a stretch on; elsewhere (and with ``tolerance`` 0)
+    as given. That is where jitter does harm: the axis pushed a face of its gap and its
+    friction has turned towards the other axis's motion (z_j near 0), so every backward
+    jitter would open the gap. Where both axes rest, or before the axis has moved (its gap
+    still centred), the path is left as it is."""
+    values = np.asarray(values, dtype=float)
+    still = standing(time, values if measured is None else measured, tolerance)
+    if other is not None:
+        still &= ~standing(time, other, tolerance)
+    if still.any():
+        still[:int(np.argmin(still))] = False  # not before the axis's first motion
+    if not still.any():
+        return values
+    hold = np.concatenate([[False], still[1:] & still[:-1]])
+    source = np.maximum.accumulate(np.where(hold, 0, np.arange(values.size)))
+    return values[source]
+
+
+def play_still_tolerance(campaign: Campaign2D) -> float:
+    """The jitter [m] within which an axis counts as standing still for a play's path
+    (:func:`held_still`): :data:`PLAY_STILL_NOISE` times the displacement sensors' white
+    noise (the largest estimate over the tests and axes,
+    :func:`~isolator.diagnosis.kinematics.noise_std`), the range a few dozen samples of
+    that noise seldom exceed."""
+    sensor = max((noise_std(r.displacement[:, j]) for r in campaign.tests for j in range(2)),
+                 default=0.0)
+    return PLAY_STILL_NOISE * sensor
 
 
 def _smooth(time: np.ndarray, values: np.ndarray, smooth: bool) -> np.ndarray:
@@ -523,7 +598,8 @@ def _prepare(campaign: Campaign2D, smooth: bool = True) -> Data2D:
                   velocity, np.hypot(*velocity.T), pressure, float(np.mean(pressure)),
                   np.concatenate(travel), test, block, fold, scheme,
                   float(np.median(np.concatenate([np.diff(t) for t in times]))),
-                  campaign.effective_radius, smoothed=smooth)
+                  campaign.effective_radius, smoothed=smooth,
+                  still_tolerance=play_still_tolerance(campaign))
 
 
 def kinematic_state(d: Data2D, yield_displacement: float, lag: float = 0.0,

@@ -254,7 +254,8 @@ def _write_case(case: Case, out: Path, rng: np.random.Generator) -> tuple[dict, 
 
 
 def write_panel(folder: str | Path, *, seed: int = 2026, half: str | None = None,
-                pairs: tuple[str, ...] | None = None, progress: bool = False) -> Path:
+                pairs: tuple[str, ...] | None = None, progress: bool = False,
+                cases: tuple[Case, ...] | None = None) -> Path:
     """Write the bidirectional panel to ``folder``; return the labels file.
 
     Parameters
@@ -269,16 +270,21 @@ def write_panel(folder: str | Path, *, seed: int = 2026, half: str | None = None
         Write these scenario pairs only (e.g. ``("B01", "B10")``; None: all).
     progress : bool
         Print a line per case.
+    cases : tuple of Case or None
+        The cases to write (None: the panel's :data:`~.cases.CASES`, checked as tune/test
+        pairs; e.g. the tune variants of :data:`~.play_variants.PLAY_VARIANTS`, not checked).
     """
-    check_design()
+    if cases is None:
+        check_design()
+        cases = CASES
     if half is not None and half not in HALVES:
         raise ValueError(f"half must be one of {HALVES}, not {half!r}")
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    order = np.random.default_rng(seed).permutation(len(CASES))
+    order = np.random.default_rng(seed).permutation(len(cases))
     labels, start_all = {}, _time.perf_counter()
     for number, index in enumerate(order, start=1):
-        case = CASES[int(index)]
+        case = cases[int(index)]
         if (half and case.half != half) or (pairs and case.pair not in pairs):
             continue
         start = _time.perf_counter()
@@ -300,6 +306,7 @@ def write_panel(folder: str | Path, *, seed: int = 2026, half: str | None = None
     (folder / "panel.json").write_text(json.dumps({
         "panel": "bidirectional", "seed": seed, "cases": len(labels), "half": half or "all",
         "pairs": list(pairs) if pairs else "all",
+        "cases_of": "panel" if cases is CASES else "variants",
         "seconds": round(_time.perf_counter() - start_all, 1)}, indent=2) + "\n")
     return path
 
@@ -326,6 +333,10 @@ def main(argv: list[str] | None = None) -> int:
                         "separated set (pressure,velocity); default: drawn per variant")
     parser.add_argument("--first", type=int, default=1,
                         help="number of the variants' first case folder (default 1)")
+    parser.add_argument("--play-variants", action="store_true",
+                        help="write the tune variants of the plays (unequal per axis, "
+                             "validation.diagnosis.bidirectional.play_variants) instead of the "
+                             "panel; all labelled tune")
     args = parser.parse_args(argv)
     if args.checks or args.folder is None:
         from validation.diagnosis.bidirectional.checks import TOLERANCES, checks
@@ -351,6 +362,12 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if args.effects is not None:
         parser.error("--effects goes with --variants")
+    variants = None
+    if args.play_variants:
+        from validation.diagnosis.bidirectional.play_variants import PLAY_VARIANTS
+
+        variants = PLAY_VARIANTS
     write_panel(args.folder, seed=args.seed, half=args.half,
-                pairs=tuple(args.pairs) if args.pairs else None, progress=True)
+                pairs=tuple(args.pairs) if args.pairs else None, progress=True,
+                cases=variants)
     return 0
