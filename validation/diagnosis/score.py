@@ -70,7 +70,10 @@ def case_names(folder: str | Path, half: str | None) -> list[str]:
 def diagnose_cases(folder: str | Path, names: list[str],
                    thresholds: Thresholds | None = None,
                    progress: bool = False) -> dict[str, tuple[Diagnosis, float]]:
-    """``{case: (diagnosis, seconds)}`` from each case's files alone."""
+    """``{case: (diagnosis, seconds)}`` from each case's files alone. ``progress`` prints a
+    line per case with its time only: the verdicts are shown once, in the table the scorer
+    prints after the whole half is diagnosed and the labels read, so that no verdict of a
+    held-out half is seen while it can still be acted on."""
     out = {}
     for name in names:
         start = time.perf_counter()
@@ -78,7 +81,7 @@ def diagnose_cases(folder: str | Path, names: list[str],
         out[name] = (diagnose(campaign, spec, thresholds=thresholds),
                      time.perf_counter() - start)
         if progress:
-            print(f"  {name}: {out[name][0].verdict} ({out[name][1]:.1f} s)", flush=True)
+            print(f"  {name}: diagnosed ({out[name][1]:.1f} s)", flush=True)
     return out
 
 
