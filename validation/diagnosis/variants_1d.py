@@ -24,17 +24,11 @@ own difference and the label-rule warning says so; the labelled effect is the la
 from __future__ import annotations
 
 import argparse
-import json
-import time as _time
-import warnings
 from pathlib import Path
-
-import numpy as np
 
 from validation.diagnosis import independent as ind
 from validation.diagnosis.outside.cases import ASCE, HEAT, SINE_SET, Case, S
-from validation.diagnosis.outside.labels import design_record
-from validation.diagnosis.outside.write import _write_case
+from validation.diagnosis.outside.write import write_panel
 
 # precise truth (Eq. 1, 3-5, 7) without its velocity factor: the velocity effect is switched on
 # with the label, in the law of each case
@@ -116,37 +110,14 @@ KINDS = {"A": "precise baseline told --without velocity, a true velocity effect"
 def write_variants(folder: str | Path, *, seed: int = 2026,
                    kinds: tuple[str, ...] = ("A", "B"), progress: bool = False) -> Path:
     """Write the variants of ``kinds`` to ``folder`` (a panel folder scored by
-    :mod:`validation.diagnosis.score`, every case in the ``tune`` half); return the labels
-    file. ``seed`` sets the case numbering and the measurement noise."""
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    order = np.random.default_rng(seed).permutation(len(VARIANTS))
-    labels, start_all = {}, _time.perf_counter()
-    for number, index in enumerate(order, start=1):
-        case = VARIANTS[int(index)]
-        kind = case.pair[1]
-        if kind not in kinds:
-            continue
-        start = _time.perf_counter()
-        name = f"case_{number:02d}"
-        shares = _write_case(case, folder / name, np.random.default_rng([seed, 1000 + int(index)]))
-        design = design_record(case, shares)
-        design["variant"] = f"tune variant {case.pair}: {KINDS[kind]}"
-        if not design["label_rule_met"]:
-            warnings.warn(f"{name} ({case.pair}) breaks the label rule: {shares}", stacklevel=2)
-        labels[name] = {"effects": list(case.effects), "truth": case.truth,
-                        "source": case.source, "half": case.half, "design": design}
-        if progress:
-            pct = ", ".join(f"{k} {100 * v:.1f}%" for k, v in shares["contribution"].items())
-            un = ", ".join(f"{k[:24]} {100 * v:.1f}%" for k, v in shares["unlabelled"].items())
-            print(f"{name} {case.pair} {case.source:11s} {','.join(case.effects) or 'none':17s} "
-                  f"{pct} [{un}] ({_time.perf_counter() - start:.1f} s)", flush=True)
-    path = folder / "labels.json"
-    path.write_text(json.dumps(dict(sorted(labels.items())), indent=1) + "\n")
-    (folder / "panel.json").write_text(json.dumps({
-        "seed": seed, "cases": len(labels), "half": "tune", "variants": "issue 21, 1D",
-        "seconds": round(_time.perf_counter() - start_all, 1)}, indent=2) + "\n")
-    return path
+    :mod:`validation.diagnosis.score`, every case in the ``tune`` half) with the outside
+    panel's writer; return the labels file. ``seed`` sets the case numbering and the
+    measurement noise (each variant's drawn apart from the panel's cases)."""
+    return write_panel(folder, seed=seed, progress=progress, cases=VARIANTS,
+                       pairs=tuple(c.pair for c in VARIANTS if c.pair[1] in kinds),
+                       noise_offset=1000, opensees=False,
+                       variant=lambda c: f"tune variant {c.pair}: {KINDS[c.pair[1]]}",
+                       panel_info={"half": "tune", "variants": "issue 21, 1D"})
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -26,6 +26,7 @@ import argparse
 import json
 import time as _time
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -101,7 +102,9 @@ def _write_case(case: Case, out: Path, rng: np.random.Generator) -> dict:
 
 def write_panel(folder: str | Path, *, seed: int = 2026, opensees: bool | None = None,
                 half: str | None = None, progress: bool = False,
-                pairs: tuple[str, ...] | None = None) -> Path:
+                pairs: tuple[str, ...] | None = None, cases: tuple[Case, ...] | None = None,
+                noise_offset: int = 0, variant: Callable[[Case], str] | None = None,
+                panel_info: dict | None = None) -> Path:
     """Write the panel to ``folder`` (see the module docstring); return the labels file.
 
     Parameters
@@ -119,25 +122,40 @@ def write_panel(folder: str | Path, *, seed: int = 2026, opensees: bool | None =
     pairs : tuple of str or None
         Write these scenario pairs only (``("P25", "P31")``; None: all). The case numbers and
         each case's noise stay those of the whole panel.
+    cases : tuple of Case or None
+        The cases to write (None: the panel's :data:`~.cases.CASES`, checked as tune/test
+        pairs; e.g. the tune variants of :mod:`validation.diagnosis.variants_1d`, not
+        checked).
+    noise_offset : int
+        Added to each case's index in the seed of its noise (``[seed, noise_offset +
+        index]``), so that cases written apart from the panel draw noise of their own.
+    variant : callable or None
+        ``case -> text`` stored as the case's ``design["variant"]`` (what a tune variant is).
+    panel_info : dict or None
+        Keys to store in ``panel.json`` instead of ``half`` and ``opensees``.
     """
-    check_design()
+    if cases is None:
+        check_design()
+        cases = CASES
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     if opensees is None:
         opensees = opensees_available()
-    order = np.random.default_rng(seed).permutation(len(CASES))
+    order = np.random.default_rng(seed).permutation(len(cases))
     labels, start_all = {}, _time.perf_counter()
     for number, index in enumerate(order, start=1):
-        case = CASES[int(index)]
+        case = cases[int(index)]
         if (case.source == "opensees" and not opensees) or (half and case.half != half):
             continue
         if pairs is not None and case.pair not in pairs:
             continue
         start = _time.perf_counter()
         name = f"case_{number:02d}"
-        rng = np.random.default_rng([seed, int(index)])
+        rng = np.random.default_rng([seed, noise_offset + int(index)])
         shares = _write_case(case, folder / name, rng)
         design = design_record(case, shares)
+        if variant is not None:
+            design["variant"] = variant(case)
         if not design["label_rule_met"]:
             warnings.warn(f"{name} ({case.pair} {case.half}) breaks the label rule: {shares}",
                           stacklevel=2)
@@ -150,8 +168,9 @@ def write_panel(folder: str | Path, *, seed: int = 2026, opensees: bool | None =
                   f"({_time.perf_counter() - start:.1f} s)", flush=True)
     path = folder / "labels.json"
     path.write_text(json.dumps(dict(sorted(labels.items())), indent=1) + "\n")
+    info = panel_info or {"half": half or "all", "opensees": bool(opensees)}
     (folder / "panel.json").write_text(json.dumps({
-        "seed": seed, "cases": len(labels), "half": half or "all", "opensees": bool(opensees),
+        "seed": seed, "cases": len(labels), **info,
         "seconds": round(_time.perf_counter() - start_all, 1)}, indent=2) + "\n")
     return path
 
