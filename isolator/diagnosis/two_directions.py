@@ -1074,17 +1074,34 @@ def _repair_faults(campaign: Campaign2D) -> tuple[Campaign2D, list[str]]:
                     continue
                 t = np.asarray(rec.time)
                 force[a:b, j] = CubicSpline(t[good], force[good, j])(t[a:b])
-                said.append(f"force_{axis} {kind} at {t[a]:.3f} s"
-                            + (f" ({b - a} samples)" if b - a > 1 else ""))
+                said.append((f"force_{axis}", kind, f"{t[a]:.3f} s"
+                             + (f" ({b - a} samples)" if b - a > 1 else "")))
         if said:
             tests.append(replace(rec, force=force))
             notes.append(f"test {rec.name!r}: sensor faults bridged from the samples around "
-                         f"them: {', '.join(said)}")
+                         f"them: {_fault_summary(said)}")
         else:
             tests.append(rec)
     if not notes:
         return campaign, []
     return replace(campaign, tests=tuple(tests)), notes
+
+
+FAULTS_LISTED = 4  # the note lists the first few faults of a kind on a channel, then counts
+
+
+def _fault_summary(said: list[tuple[str, str, str]]) -> str:
+    """The faults bridged on a test, (channel, kind, where) each, grouped by channel and kind:
+    "force_x spike at 1.200 s, 3.400 s, ... and 9 more; force_y stuck at 2.000 s (20 samples)"."""
+    groups: dict[tuple[str, str], list[str]] = {}
+    for channel, kind, where in said:
+        groups.setdefault((channel, kind), []).append(where)
+    parts = []
+    for (channel, kind), wheres in groups.items():
+        listed = ", ".join(wheres[:FAULTS_LISTED])
+        more = len(wheres) - FAULTS_LISTED
+        parts.append(f"{channel} {kind} at {listed}" + (f" and {more} more" if more > 0 else ""))
+    return "; ".join(parts)
 
 
 CHANNELS = ("force_y", "displacement_x", "displacement_y")

@@ -22,6 +22,7 @@ from isolator.diagnosis.data import BearingRecord2D, Campaign2D
 from isolator.diagnosis.two_directions import (
     _calibrate,
     _channel_gain,
+    _fault_summary,
     _prepare,
     _repair_faults,
     diagnose_2d,
@@ -80,12 +81,19 @@ def test_a_stuck_run_and_spikes_are_found_and_bridged():
     repaired, notes = _repair_faults(_campaign(faults=True))
     assert len(notes) == 2
     assert "force_x stuck at 3.000 s (20 samples)" in notes[0]
-    assert notes[1].count("force_y spike") == 2
+    assert re.search(r"force_y spike at \d+\.\d{3} s, \d+\.\d{3} s$", notes[1])
     truth = _campaign()
     for got, want in zip(repaired.tests, truth.tests, strict=True):
         error = np.abs(got.force - want.force)
         assert error.max() < 6.0 * NOISE  # bridged to within the noise
     assert _repair_faults(truth)[1] == []
+
+
+def test_the_fault_note_lists_a_few_faults_of_a_kind_and_counts_the_rest():
+    said = [("force_x", "spike", f"{0.1 * k:.3f} s") for k in range(1, 11)]
+    said.append(("force_y", "stuck", "2.000 s (20 samples)"))
+    assert _fault_summary(said) == ("force_x spike at 0.100 s, 0.200 s, 0.300 s, 0.400 s and "
+                                    "6 more; force_y stuck at 2.000 s (20 samples)")
 
 
 def test_a_sensor_gain_is_read_on_its_own_channel():
