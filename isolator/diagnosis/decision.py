@@ -47,7 +47,7 @@ u_y finding); ``["unexplained"]`` when a real gap remains that no candidate clos
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from itertools import combinations
 
 import numpy as np
@@ -57,7 +57,7 @@ from isolator.diagnosis.effects import Context, Effect
 from isolator.diagnosis.features import Features, return_map, with_baseline
 from isolator.diagnosis.fitting import Fit, HoldOut, Model, fit, kinematic_change
 from isolator.diagnosis.flexible import direction, flexible
-from isolator.diagnosis.implied import ImpliedHeat
+from isolator.diagnosis.implied import ImpliedHeat, temperature_slope
 from isolator.diagnosis.selection import (
     MAX_EFFECTS,
     MAX_KINEMATIC,
@@ -80,6 +80,9 @@ from isolator.diagnosis.transition import TIMING, in_transition, window_statisti
 
 LAG_PLAUSIBLE_MAX = 0.1  # [s] the largest lag a laboratory channel can plausibly have
 LAG_SPREAD = 1.0  # [samples] per-test lags of one channel agree within this (or 20 %)
+IMPLIED_HEAT = "implied heat"  # the baseline's own heat with the named laws' mu (never named)
+IMPLIED_REFITS = 8  # the chosen model's refits with the implied heat, at most
+IMPLIED_TOLERANCE = 1e-4  # [-] ... until its log temperature factor moves less than this
 
 
 def lag_reason(samples: float, sample_interval: float, per_test: np.ndarray,
@@ -371,6 +374,16 @@ class Problem:
             return self._assessed("kinematic", kinematic)
         return current
 
+    def implied_of(self, work: Workspace, chosen: Assessment | None) -> ImpliedFit | None:
+        """How ``chosen`` (a selection's chosen model on ``work``) carries the heat its laws
+        imply (:meth:`carried`), or None when it does not."""
+        if chosen is None:
+            return None
+        for key, value in work.cache.items():
+            if key and key[0] == "carried" and (value[0] is chosen or value[1].without is chosen):
+                return value[1]
+        return None
+
     # -- stage 2 -----------------------------------------------------------------------------
 
     def stage(self, kinematic: Assessment | None) -> Stage:
@@ -489,6 +502,16 @@ class Problem:
         kin_names = [] if kinematic is None else list(kinematic.model.names)
         if named and explained < th.name_min and joint is None:  # stand-ins, not named
             named, real_gap, current, form, explained = [], True, base, {}, 0.0
+        carried = (self.carried(work, current, len(base.model.effects)) if named
+                   else None)
+        if carried is not None and carried[1].fits:
+            # the baseline's own heat follows the named laws' friction power: the model
+            # reported carries it (the names were decided without it)
+            current = carried[0]
+            explained = ((base.weighted - current.weighted) / excess if excess > 0.0
+                         else 0.0)
+            left = work.excess_rms(current.prediction)
+            real_gap = material(current.score, left, th.practical_remain, th)
         findings: list[str] = []
         if real_gap and not noise_like:
             findings.append("sliding")
@@ -598,6 +621,23 @@ class Problem:
                 options.append(judged)
         return min(options, key=lambda a: a.weighted) if options else None
 
+    def _heat_parts(self, model: Model, frozen: int) -> list[tuple[Effect, slice]]:
+        """(effect, parameter slice) of the laws on mu of ``model`` from position ``frozen``
+        on whose friction power a heating baseline's temperature follows (``heating`` and the
+        implied heat itself left out)."""
+        return [(e, part) for i, (e, part) in enumerate(zip(model.effects, model.slices(),
+                                                            strict=True))
+                if i >= frozen and e.acts_on == "mu" and e.factor is not None
+                and e.name not in ("heating", IMPLIED_HEAT)]
+
+    def _implied_log(self, parts: list[tuple[Effect, slice]], theta: np.ndarray) -> np.ndarray:
+        """The change of the baseline's log temperature factor at every sample [-] when its
+        mu is the model's (mu's scale ``theta[0]`` times the laws ``parts`` at ``theta``)."""
+        m = np.full(len(self.features), float(theta[0]))  # mu's scale
+        for effect, part in parts:
+            m = m * effect.factor(theta[part], self.features, self.context)
+        return self.implied(m)
+
     def _implied_reference(self, work: Workspace, current: Assessment,
                            frozen: int) -> Assessment | None:
         """``current`` with the heat its named laws on mu imply for a baseline that heats
@@ -608,27 +648,82 @@ class Problem:
         baseline's heat computed with the wrong mu leaves is not a second effect."""
         if self.implied is None:
             return None
-        parts = [(e, part) for i, (e, part) in enumerate(zip(current.model.effects,
-                                                             current.model.slices(),
-                                                             strict=True))
-                 if i >= frozen and e.acts_on == "mu" and e.factor is not None
-                 and e.name != "heating"]
+        parts = self._heat_parts(current.model, frozen)
         if not parts:
             return None
         key = ("implied", *current.model.names, *map(float, current.fit.theta))
         if key not in work.cache:
-            m = np.full(len(self.features), float(current.fit.theta[0]))  # mu's scale
-            for effect, part in parts:
-                m = m * effect.factor(current.fit.theta[part], self.features, self.context)
-            log_change = self.implied(m)
-            samples = self.features.sample
-            effect = Effect("implied heat", "the baseline's heat with the named law's mu",
-                            "the baseline's own temperature factor, its heat input computed "
-                            "with the named law's friction power", (), "mu",
-                            factor=lambda _t, f, _c: np.exp(on_samples(log_change, samples,
-                                                                       f.sample)))
+            effect = _heat_effect(self._implied_log(parts, current.fit.theta),
+                                  self.features.sample, "the baseline's heat with the named "
+                                  "law's mu")
             model = Model((*current.model.effects, effect))
             work.cache[key] = assess(work, model, None, [np.array(current.fit.theta)])
+        return work.cache[key]
+
+    def carried(self, work: Workspace, current: Assessment,
+                frozen: int) -> tuple[Assessment, ImpliedFit] | None:
+        """``current`` (the chosen model, its named laws from position ``frozen`` on) carrying
+        the heat its laws on mu imply for a baseline that heats: the baseline's own
+        temperature computed with the chosen model's friction power, never an effect of its
+        own. The laws are refitted *with* that heat to consistency (the heat from the
+        parameters, the parameters refitted with the heat held, until the log temperature
+        factor moves less than ``IMPLIED_TOLERANCE``, at most ``IMPLIED_REFITS`` refits), on
+        all samples of ``work`` and in every fold (each fold's heat from its own parameters,
+        so the held-out prediction stays held out). None when the baseline does not heat or
+        no law on mu other than ``heating`` is named."""
+        if self.implied is None or current.fit is None:
+            return None
+        parts = self._heat_parts(current.model, frozen)
+        if not parts:
+            return None
+        key = ("carried", *current.model.names, *map(float, current.fit.theta))
+        if key in work.cache:
+            return work.cache[key]
+        samples, context = self.features.sample, work.context
+        law = current.model
+        low, high = law.bounds()
+
+        def consistent(train: Features, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray,
+                                                                     int]:
+            log = self._implied_log(parts, theta)
+            refits, last = 0, None
+            while refits < IMPLIED_REFITS:
+                model = Model((*law.effects, _heat_effect(log, samples)))
+                new_theta = fit(model, train, context, [theta]).theta
+                refits += 1
+                new = self._implied_log(parts, new_theta)
+                moved = float(np.max(np.abs(new - log)))
+                if moved < IMPLIED_TOLERANCE:
+                    theta, log = new_theta, new
+                    break
+                ratio = moved / last if last else 0.0
+                if 0.0 < ratio < 0.9:
+                    # the refits converge geometrically (a higher friction heats more, which
+                    # the scale of mu answers): jump to the limit of the sequence
+                    new_theta = np.clip(new_theta + ratio / (1.0 - ratio) * (new_theta - theta),
+                                        low, high)
+                    new = self._implied_log(parts, new_theta)
+                    last = None
+                else:
+                    last = moved
+                theta, log = new_theta, new
+            return theta, log, refits
+
+        theta, log, refits = consistent(work.features, np.array(current.fit.theta, float))
+        model = Model((*law.effects, _heat_effect(log, samples)))
+        full = fit(model, work.features, context, [theta], uncertainty=True)
+        full = replace(full, theta=theta)  # the parameters the heat is consistent with
+        prediction = np.empty(len(work.features))
+        folds = work.holdout
+        for (_, te), train, held in zip(folds.folds, folds.training, folds.held_out,
+                                        strict=True):
+            own = fit(law, train, context, [np.array(current.fit.theta, float)]).theta
+            own, own_log, _ = consistent(train, own)
+            prediction[te] = Model((*law.effects, _heat_effect(own_log, samples))).force(
+                own, held, context)
+        judged = work.judge(model, full, prediction)
+        info = ImpliedFit(tuple(e.name for e, _ in parts), refits, log, judged, current)
+        work.cache[key] = (judged, info)
         return work.cache[key]
 
     def _extended(self, work: Workspace, current: Assessment,
@@ -707,3 +802,51 @@ def _frozen(model: Model, theta: np.ndarray) -> Model:
             extra=(None if effect.extra is None
                    else (lambda _t, f, c, e=effect, v=fixed: e.extra(v, f, c)))))
     return Model(tuple(effects))
+
+
+@dataclass(frozen=True, eq=False)
+class ImpliedFit:
+    """How the chosen model carries the heat its laws on mu imply (:meth:`Problem.carried`).
+
+    Attributes
+    ----------
+    laws : tuple of str
+        The named laws on mu whose friction power the baseline's temperature follows.
+    refits : int
+        Refits of the laws with the heat until it was consistent with their parameters.
+    log_change : ndarray
+        The change of the baseline's log temperature factor at every sample [-].
+    carrying, without : Assessment
+        The chosen model carrying the implied heat, and without it (the laws as named,
+        fitted on their own), both judged held out.
+    """
+
+    laws: tuple[str, ...]
+    refits: int
+    log_change: np.ndarray
+    carrying: Assessment
+    without: Assessment
+
+    @property
+    def fits(self) -> bool:
+        """Whether the model carrying the heat fits at least as well held out (weighted mean
+        square) as without it, so that the chosen model carries it: a baseline whose heat
+        is off in another way (a campaign's heat carried over its rests, which it starts
+        cold) can fit worse with the named law's friction power."""
+        return self.carrying.weighted <= self.without.weighted
+
+    @property
+    def temperature_change(self) -> np.ndarray:
+        """The change of the baseline's contact temperature at every sample [degC]."""
+        return self.log_change / temperature_slope()
+
+
+def _heat_effect(log_change: np.ndarray, samples: np.ndarray,
+                 description: str = "the baseline's own heat with the named laws' mu"
+                 ) -> Effect:
+    """The baseline's temperature factor changed by ``exp(log_change)`` (given at every one of
+    ``samples``), as an effect without parameters on mu."""
+    return Effect(IMPLIED_HEAT, description,
+                  "the baseline's own temperature factor, its heat input computed with the named "
+                  "law's friction power", (), "mu",
+                  factor=lambda _t, f, _c: np.exp(on_samples(log_change, samples, f.sample)))

@@ -23,7 +23,7 @@ from isolator.diagnosis.baseline import (
     nuisance_edges,
 )
 from isolator.diagnosis.data import Campaign, Campaign2D
-from isolator.diagnosis.decision import Problem
+from isolator.diagnosis.decision import IMPLIED_HEAT, Problem
 from isolator.diagnosis.effects import EFFECT_NAMES, Context, effects_named
 from isolator.diagnosis.features import kinematic_features, with_baseline
 from isolator.diagnosis.fitting import Kinematics
@@ -164,7 +164,8 @@ def _uncertainty(problem: Problem, selection: Selection) -> tuple[dict, dict]:
         ranges.update(intervals(problem.all, kinematic))
     stage, chosen = selection.stage, selection.chosen
     frozen = len(stage.baseline.model.effects)
-    own = [] if chosen is None else list(chosen.model.names[frozen:])
+    own = [] if chosen is None else [n for n in chosen.model.names[frozen:]
+                                     if n != IMPLIED_HEAT]
     if own and [n for n in selection.verdict if n not in ("unexplained",)]:
         for name in own:
             others = [n for n in own if n != name]

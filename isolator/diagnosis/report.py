@@ -284,6 +284,13 @@ def markdown(d: Diagnosis, summary: dict, figures: list[str]) -> str:
             a, b = chosen[f"{q}_rms_error_before"], chosen[f"{q}_rms_error_after"]
             if a is not None and b is not None:
                 lines.append(f"- {q} per-cycle RMS error: {100 * a:.1f} % -> {100 * b:.1f} %.")
+        heat = chosen.get("baseline_heat")
+        if heat and heat["follows_named_laws"]:
+            lines.append(f"- {heat['statement']} Without it the NRMSE after would be "
+                         f"{heat['gap_after_without']:.4f} (shrink "
+                         f"{100 * heat['shrink_without']:.0f} %).")
+        elif heat and heat["laws"]:
+            lines.append(f"- {heat['statement']}")
         lines += ["", "Fitted parameters (standard errors from the Jacobian, inflated for "
                   "serial correlation):", ""]
         for effect, params in effect_parameters(d, d.selection.chosen).items():

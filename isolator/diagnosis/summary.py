@@ -6,7 +6,9 @@ Keys: ``baseline`` (model and calibrated parameters), ``gap`` (``metric`` = "for
 characteristic errors), ``where`` (the statement and the breakdowns), ``effects`` (every
 candidate, best first, with ``gap_after``, ``shrink`` = 1 - after / before, ``parameters``,
 their ``stderr`` and ``units``, and its ``role``), ``chosen`` (the combination named in the
-verdict, with the gap and the per-cycle EDC and Keff errors before and after), ``verdict`` and
+verdict, with the gap and the per-cycle EDC and Keff errors before and after; for a baseline
+that heats, ``baseline_heat``: whether its temperature follows the named laws' friction power,
+which the chosen model then carries), ``verdict`` and
 ``unexplained`` (where a real gap remains and what it looks like).
 """
 
@@ -19,7 +21,7 @@ import numpy as np
 
 from isolator.diagnosis.baseline import BaselineFit, nuisance_edges
 from isolator.diagnosis.data import Campaign
-from isolator.diagnosis.decision import Problem
+from isolator.diagnosis.decision import IMPLIED_HEAT, Problem
 from isolator.diagnosis.selection import Assessment, Selection, Workspace
 from isolator.diagnosis.transition import NUISANCE_LAG_SAMPLES, TransitionFinding
 from isolator.diagnosis.where import QUANTITIES, CycleErrors, Where
@@ -57,6 +59,8 @@ def effect_parameters(d: Diagnosis, assessment: Assessment) -> dict[str, dict]:
                                                          float(fit.stderr[0]), "-")}}
     kinematic = d.selection.kinematic
     for effect, part in zip(assessment.model.effects, assessment.model.slices(), strict=True):
+        if effect.name == IMPLIED_HEAT:  # the baseline's own heat: no parameters, not an effect
+            continue
         if not effect.parameters and kinematic is not None:
             own = dict(zip(kinematic.model.names, kinematic.model.slices(), strict=True))
             k_effect = kinematic.model.effects[kinematic.model.names.index(effect.name)]
@@ -85,6 +89,47 @@ def _role(d: Diagnosis, name: str, assessment: Assessment) -> str:
     if assessment.earns_keep:
         return "earns its keep alone, adds too little to the chosen effects"
     return "does not earn its keep on held-out data"
+
+
+def baseline_heat(d: Diagnosis) -> dict | None:
+    """The JSON ``chosen.baseline_heat`` entry, for a baseline that heats: whether its
+    temperature follows the named laws' friction power in the chosen model (its own physics,
+    never an effect), with the change of its temperature and of its temperature factor and
+    the gap the chosen model would leave without it; None for a baseline that does not heat."""
+    if not d.baseline.spec.heats or d.selection.chosen is None:
+        return None
+    info = d.problem.implied_of(d.work, d.selection.chosen)
+    if info is None:
+        return {"follows_named_laws": False, "laws": [],
+                "statement": "No law on mu other than heating is named: the baseline's "
+                             "temperature follows its own friction power."}
+    before = d.gap_before
+    with_heat = d.work.nrmse(info.carrying.prediction)
+    without = d.work.nrmse(info.without.prediction)
+    change = info.temperature_change
+    factor = np.exp(info.log_change)
+    laws = " and ".join(info.laws)
+    size = (f"its contact temperature changes by {float(change.min()):.3g} to "
+            f"{float(change.max()):.3g} degC, its temperature factor by "
+            f"{float(factor.min()):.4g} to {float(factor.max()):.4g}")
+    if info.fits:
+        statement = (f"The baseline's temperature follows the friction power of the named "
+                     f"{laws} (its heat input computed with the chosen model's mu: the "
+                     f"baseline's own physics, not an effect of its own), the parameters "
+                     f"refitted with that heat ({info.refits} refits): {size}.")
+    else:
+        statement = (f"The baseline's temperature follows its own friction power: with the "
+                     f"friction power of the named {laws} ({size}, the parameters refitted "
+                     f"with that heat) the chosen model fits worse held out (NRMSE "
+                     f"{with_heat:.4f}), so the baseline's heat is off in another way too "
+                     f"and the chosen model does not carry it.")
+    return {"follows_named_laws": bool(info.fits), "laws": list(info.laws),
+            "statement": statement, "refitted_with_heat": True, "refits": info.refits,
+            "temperature_change": [float(change.min()), float(change.max())],
+            "temperature_factor": [float(factor.min()), float(factor.max())],
+            "gap_after_with": with_heat, "shrink_with": 1.0 - with_heat / before if before
+            else 0.0, "gap_after_without": without,
+            "shrink_without": 1.0 - without / before if before else 0.0}
 
 
 def _transition(d: Diagnosis) -> dict | None:
@@ -250,6 +295,9 @@ def summary(d: Diagnosis) -> dict:
             "confidence": {k: _number(v) for k, v in d.confidence.items()},
             "intervals": d.intervals,
         }
+        heat = baseline_heat(d)
+        if heat is not None:  # a baseline that heats (absent for one that does not)
+            chosen["baseline_heat"] = heat
     unexplained = None
     if sel.real_gap_remains and d.remaining is not None:
         unexplained = {"statement": _gap_statement(d), "looks_like": d.looks_like,

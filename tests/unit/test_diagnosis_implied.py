@@ -11,7 +11,11 @@ with the wrong mu:
   less, so the implied temperature factor rises, by the paper's -0.007 per degC, linearly in
   the change;
 - a campaign of the full precise model (our own element) told ``precise --without velocity``
-  is diagnosed ``velocity`` without ``heating`` (it was ``velocity, heating, unexplained``).
+  is diagnosed ``velocity`` without ``heating`` (it was ``velocity, heating, unexplained``);
+- the chosen model carries that heat (:meth:`isolator.diagnosis.decision.Problem.carried`:
+  the baseline's own physics, never an effect): its held-out gap is smaller than the law's
+  without it, the implied heat is named nowhere, and the JSON (``chosen.baseline_heat``) and
+  the report say that the baseline's temperature follows the named law's friction power.
 """
 
 from __future__ import annotations
@@ -23,8 +27,10 @@ import pytest
 
 from isolator.diagnosis import diagnose
 from isolator.diagnosis.baseline import BaselineSpec, calibrate
+from isolator.diagnosis.decision import IMPLIED_HEAT
 from isolator.diagnosis.features import kinematic_features
 from isolator.diagnosis.implied import implied_heat, temperature_slope
+from isolator.diagnosis.report import markdown
 from validation.diagnosis.outside.cases import Case, S
 from validation.diagnosis.outside.write import _write_case
 from validation.diagnosis.score import load_case, named
@@ -61,7 +67,34 @@ def test_the_implied_heat_follows_the_change_of_friction_power(folder):
     assert temperature_slope() == pytest.approx(-0.007)
 
 
-def test_a_precise_baseline_told_without_velocity_names_velocity_not_heating(folder):
+@pytest.fixture(scope="module")
+def diagnosis(folder):
     campaign, spec = load_case(folder)
-    d = diagnose(campaign, spec)
-    assert named(d.verdict) == {"velocity"}, d.verdict
+    return diagnose(campaign, spec)
+
+
+def test_a_precise_baseline_told_without_velocity_names_velocity_not_heating(diagnosis):
+    assert named(diagnosis.verdict) == {"velocity"}, diagnosis.verdict
+
+
+def test_the_chosen_model_carries_the_heat_the_named_law_implies(diagnosis):
+    d = diagnosis
+    summary = d.to_json()
+    chosen = summary["chosen"]
+    heat = chosen["baseline_heat"]
+    assert heat["follows_named_laws"] and heat["laws"] == ["velocity"]
+    assert heat["refits"] >= 1
+    # the model reported is the one carrying the heat, and it fits better held out
+    assert chosen["gap_after"] == pytest.approx(heat["gap_after_with"])
+    assert chosen["gap_after"] < heat["gap_after_without"]
+    assert chosen["shrink"] > heat["shrink_without"]
+    # the baseline's physics, not an effect: named nowhere, no parameters of its own
+    assert IMPLIED_HEAT not in summary["verdict"] and IMPLIED_HEAT not in chosen["names"]
+    assert IMPLIED_HEAT not in chosen["parameters"]
+    assert all(e["name"] != IMPLIED_HEAT for e in summary["effects"])
+    assert set(chosen["confidence"]) <= {"velocity"}
+    # a faster friction heats more: the implied rise is mostly positive, the factor below 1
+    assert heat["temperature_factor"][0] < 1.0 and heat["temperature_change"][1] > 0.0
+    text = markdown(d, summary, [])
+    assert "follows the friction power of the named velocity" in text
+    assert "Without it the NRMSE after would be" in text
