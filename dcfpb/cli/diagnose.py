@@ -186,6 +186,9 @@ def _lines(summary: dict) -> list[str]:
     if chosen is not None and summary["verdict"] != ["unexplained"]:
         emit(f"gap with {' + '.join(chosen['names'])}: {chosen['gap_before']:.4f} -> "
               f"{chosen['gap_after']:.4f} (shrink {100 * chosen['shrink']:.0f} %)")
+        heat = chosen.get("baseline_heat")
+        if heat and heat["laws"]:
+            emit(f"baseline heat: {heat['statement']}")
         for name, value in chosen.get("confidence", {}).items():
             if value is not None:
                 emit(f"confidence in {name}: {100 * value:.0f} % of block resamples")

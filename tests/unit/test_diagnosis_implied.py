@@ -15,7 +15,8 @@ with the wrong mu:
 - the chosen model carries that heat (:meth:`isolator.diagnosis.decision.Problem.carried`:
   the baseline's own physics, never an effect): its held-out gap is smaller than the law's
   without it, the implied heat is named nowhere, and the JSON (``chosen.baseline_heat``) and
-  the report say that the baseline's temperature follows the named law's friction power.
+  the report and the printed summary say that the baseline's temperature follows the named
+  law's friction power.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ import json
 import numpy as np
 import pytest
 
+from dcfpb.cli.diagnose import _lines
 from isolator.diagnosis import diagnose
 from isolator.diagnosis.baseline import BaselineSpec, calibrate
 from isolator.diagnosis.decision import IMPLIED_HEAT
@@ -98,3 +100,6 @@ def test_the_chosen_model_carries_the_heat_the_named_law_implies(diagnosis):
     text = markdown(d, summary, [])
     assert "follows the friction power of the named velocity" in text
     assert "Without it the NRMSE after would be" in text
+    printed = _lines(summary)  # what dcfpb diagnose prints
+    assert any(line.startswith("baseline heat: The baseline's temperature follows the friction "
+                               "power of the named velocity") for line in printed)
