@@ -17,6 +17,8 @@ kernel's limits are those its docstring states.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from isolator.diagnosis import two_directions
@@ -25,6 +27,7 @@ from isolator.diagnosis.data import BearingRecord2D, Campaign2D
 from isolator.diagnosis.two_directions import (
     _calibrate,
     _prepare,
+    _repair_faults,
     diagnose_2d,
     return_map_2d,
     smooth_return_map_2d,
@@ -48,16 +51,17 @@ def _paths(dt: float = 0.005) -> list[tuple[np.ndarray, np.ndarray]]:
     return [(t, ellipse), (t, square)]
 
 
-def _campaign(exponent: int, seed: int = 3) -> Campaign2D:
+def _campaign(exponent: int, seed: int = 3, noise: bool = True) -> Campaign2D:
     rng = np.random.default_rng(seed)
+    level = 1.0 if noise else 0.0
     records = []
     for k, (t, u) in enumerate(_paths()):
         x, y = np.ascontiguousarray(u[:, 0]), np.ascontiguousarray(u[:, 1])
         zx, zy = (smooth_return_map_2d(x, y, YIELD, exponent) if exponent
                   else return_map_2d(x, y, YIELD))
         force = AXIAL * (u / RADIUS + MU * np.column_stack([zx, zy]))
-        force = force + rng.normal(0.0, 0.006 * MU * AXIAL, force.shape)
-        measured = u + rng.normal(0.0, 2e-5, u.shape)
+        force = force + level * rng.normal(0.0, 0.006 * MU * AXIAL, force.shape)
+        measured = u + level * rng.normal(0.0, 2e-5, u.shape)
         records.append(BearingRecord2D(f"t{k}", t, measured, force, np.full(t.size, AXIAL)))
     return Campaign2D(tuple(records), RADIUS, SLIDER)
 
@@ -102,3 +106,27 @@ def test_elastic_plastic_data_keep_the_return_map_and_the_smooth_edge_is_reporte
     base = _calibrate(d, BaselineSpec("constant"))
     assert base.exponent == 1
     assert transition_entry(base)["at_edge"] == "smoothest"
+
+
+def test_a_stuck_run_over_a_corner_is_bridged_along_the_baseline():
+    """A force channel stuck for 20 samples across a square's corner: a spline through the
+    good samples around it misses the friction force turning there; bridged along the
+    calibrated baseline it is back within the noise."""
+    clean = _campaign(0, noise=False)
+    _, u = _paths()[1]
+    corner = int(np.argmin(np.hypot(u[:, 0] - 0.03, u[:, 1] - 0.03)))
+    rec = clean.tests[1]
+    force = rec.force.copy()
+    force[corner - 10:corner + 10, 0] = force[corner - 10, 0]
+    stuck = Campaign2D((clean.tests[0], replace(rec, force=force)), RADIUS, SLIDER)
+    plain, notes = _repair_faults(stuck)
+    assert "force_x stuck" in notes[-1]
+    d = _prepare(plain, smooth=False)
+    base = _calibrate(d, BaselineSpec("constant"))
+    n = len(clean.tests[0])
+    along, _ = _repair_faults(stuck, [base.force[:n], base.force[n:]])
+    window = slice(corner - 10, corner + 10)
+    spline = np.max(np.abs(plain.tests[1].force[window, 0] - rec.force[window, 0]))
+    bridged = np.max(np.abs(along.tests[1].force[window, 0] - rec.force[window, 0]))
+    assert spline > 0.3 * MU * AXIAL
+    assert bridged < 0.02 * MU * AXIAL
