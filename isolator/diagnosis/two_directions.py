@@ -144,7 +144,6 @@ _GAIN_GRID = np.linspace(-0.06, 0.06, 13)  # a sensor's gain [-], searched to th
 REFINE_XATOL = 2e-3  # log10 u_y: the refined baseline's resolution
 REFINE_FTOL = 1e-6  # of the grid's best cost
 REFINE_EVALUATIONS = 80  # the refinement's budget of baseline fits
-REFINE_LAGS = 2  # u_y refined at this many of the best lags (a half-sample lag trades with u_y)
 AXIS_GAIN_MIN = 0.01  # a sensor's gain (y force against x, or a displacement) from 1 % ...
 AXIS_GAIN_MAX = 0.05  # ... to 5 % in every test is corrected as its calibration
 AXIS_GAIN_SPREAD = 0.3  # ... when the tests' gains agree within this share of their mean
@@ -1049,20 +1048,14 @@ def _fit_at(d: Data2D, yield_displacement: float, lag_samples: float,
 
 def _grid_fit(d: Data2D, grid_uy, lags=_LAG_GRID) -> tuple:
     """The best (cost, mu, u_y, lag, u_b, z, force) over the u_y and nuisance-lag grids, u_y
-    refined continuously (:func:`_refine`) from the best grid point of each of the
-    :data:`REFINE_LAGS` best lags: a lag half a sample off traded against a u_y between the
-    grid's points (0.5 samples and 1.07 mm for a true 0 and 1 mm) left the refined u_y
-    beside the optimum at every sharp direction change (a square's corners)."""
-    grid = np.asarray(grid_uy, float)
-    per_lag = {}
+    refined continuously (:func:`_refine`)."""
+    best, at = None, 0
     for a, uy in enumerate(grid_uy):
         for lag_samples in lags:
             fit = _fit_at(d, uy, float(lag_samples))
-            key = float(lag_samples)
-            if key not in per_lag or fit[0] < per_lag[key][0][0]:
-                per_lag[key] = (fit, a)
-    ranked = sorted(per_lag.values(), key=lambda item: item[0][0])[:REFINE_LAGS]
-    return min((_refine(d, fit, grid, a) for fit, a in ranked), key=lambda f: f[0])
+            if best is None or fit[0] < best[0]:
+                best, at = fit, a
+    return _refine(d, best, np.asarray(grid_uy, float), at)
 
 
 def _refine(d: Data2D, best: tuple, grid_uy: np.ndarray, at: int,
