@@ -13,10 +13,14 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
 1. **Baseline.** mu (or mu_t0 of the element's friction model), u_y on a grid from 10 um to
    2.5 mm and a channel lag of up to two samples, on all samples, u_y then refined
    continuously from the grid's best (:func:`_refine`); a u_y or lag at the edge of its range
-   is reported as a finding. The displacement is used as measured, or smoothed as
+   is reported as a finding. The transition's shape is a nuisance too: the isotropic
+   Bouc-Wen law of exponent 4, 2 or 1 on the smoothed displacement, taken when it fits
+   better than the elastic-plastic return map by ``TRANSITION_GAIN`` (:func:`_transition_fit`;
+   n = 1, the smooth edge, a finding). The displacement is used as measured, or smoothed as
    in one direction when the sensors' noise exceeds a tenth of u_y (smoothing bends the
    corners and stops of an orbit). The force channels' faults (a stuck run, spikes) are
-   bridged from the samples around them (:func:`_repair_faults`); one sensor's gain of 1-5 %,
+   bridged from the samples around them, then again along the calibrated baseline
+   (:func:`_repair_faults`); one sensor's gain of 1-5 %,
    the same in every test (the y load cell against the x one, or either displacement
    channel, told apart by what each does to the restoring and the friction force), is
    corrected as its calibration (:func:`_channel_gain`); the force noise is measured beyond
