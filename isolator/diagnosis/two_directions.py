@@ -1925,8 +1925,9 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         test, a speed law seen in the slowest test) are mimicked by one drift over the
         campaign's travel, which leave-one-test-out extrapolates better than either law alone;
         the pair that explains both is then never tried, as the best single passes
-        ``name_min``. Pairs holding the best single are left to the forward step (its
-        flexible reference guards the second member)."""
+        ``name_min``. The rival pair must leave no real gap on the sliding samples, and fit
+        better held out than each pair holding the best single (those are left to the
+        forward step, whose flexible reference guards the second member)."""
         best = min(passing, key=lambda k: trials[k].weighted)
         single = trials[best]
         if not material(problem.score(single.prediction, sliding),
@@ -1943,6 +1944,24 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         if not (z >= th.second_z and share >= th.second_explained
                 and size >= th.practical_gain):
             return None
+        # it closes the gap the single leaves (no real gap left on the sliding samples): a
+        # pair that leaves one is as likely another stand-in (two drifts, heating and wear,
+        # fit the per-test levels of a pressure and a speed law seen in the slowest test)
+        if material(problem.score(pair.prediction, sliding),
+                    problem.excess_rms(pair.prediction, sliding), th.practical_remain, th):
+            return None
+        # and it fits better held out than the best single with any partner (the forward
+        # step's pair)
+        own = single.theta[len(single.theta) - len(LIBRARY_2D[best].parameters):]
+        for other, j in trials.items():
+            if other == best:
+                continue
+            partner = j.theta[len(j.theta) - len(LIBRARY_2D[other].parameters):]
+            model = Model2D(friction=(best, other), kinematic=kinematic, free=True)
+            with_best = problem.judge(model, sliding,
+                                      start=np.concatenate([cur.theta, own, partner]))
+            if with_best.weighted <= pair.weighted:
+                return None
         roles[best] = (f"closes {100 * single.explained:.0f} % alone, but "
                        f"{' + '.join(pair.model.friction)} fit better held out (z = {z:.1f}, "
                        f"{100 * share:.0f} % of what {best} leaves)")
