@@ -1865,12 +1865,14 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
 
     def _sized_over(j: Judged, cur: Judged) -> None:
         """A second effect judged against the flexible reference (held-out z and share)
-        keeps the force it changes measured against the named law in its own form: where the
+        has the force it changes measured against that reference or against the named law in
+        its own form, the larger (it changes the force materially against one of the
+        forms the first law is given, and the other mimics it no better held out): where the
         first law's variable hardly varies within a test (a speed on circles at constant speed,
         a pressure per test) its flexible form is a level per test and takes up the part of any
         other per-test effect, so that the change against it is small although the pair fits
         better held out than the flexible form."""
-        size = problem.scores(cur, j, sliding)[2]
+        size = max(j.practical, problem.scores(cur, j, sliding)[2])
         j.practical = size
         j.earns = (j.z >= th.second_z and j.explained >= th.second_explained
                    and size >= th.practical_gain and not j.at_bound)
