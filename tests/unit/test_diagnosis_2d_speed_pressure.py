@@ -12,7 +12,7 @@ measured against the named law in its own form (``_sized_over`` in ``diagnose_2d
 
 Checked: both laws named, nothing else; and the guard against a false pair: the same campaign
 with the speed law alone (the pressures still differing per test) names the speed law alone.
-About 30 s (two diagnoses of 4400 samples).
+About 70 s on the shared 2-core machine (two diagnoses of 4400 samples).
 """
 
 from __future__ import annotations
