@@ -212,18 +212,10 @@ def smooth_return_map_2d(ux, uy, yield_displacement, exponent):
             hy = dy / parts / yield_displacement
             for _ in range(parts):
                 # the midpoint rule: the rate at z, then at z + rate / 2
-                size = math.sqrt(ax * ax + ay * ay)
-                c = 0.0
-                if size > 0.0:
-                    c = size ** power * max(ax * hx + ay * hy, 0.0)
-                mx = ax + 0.5 * (hx - c * ax)
-                my = ay + 0.5 * (hy - c * ay)
-                size = math.sqrt(mx * mx + my * my)
-                c = 0.0
-                if size > 0.0:
-                    c = size ** power * max(mx * hx + my * hy, 0.0)
-                ax += hx - c * mx
-                ay += hy - c * my
+                rx, ry = _bouc_wen_step(ax, ay, hx, hy, power)
+                rx, ry = _bouc_wen_step(ax + 0.5 * rx, ay + 0.5 * ry, hx, hy, power)
+                ax += rx
+                ay += ry
             size = math.sqrt(ax * ax + ay * ay)
             if size > 1.0:
                 ax /= size
@@ -231,6 +223,17 @@ def smooth_return_map_2d(ux, uy, yield_displacement, exponent):
         zx[i] = ax
         zy[i] = ay
     return zx, zy
+
+
+@jit
+def _bouc_wen_step(zx, zy, hx, hy, power):
+    """The change of z (x, y) [-] over a sub-step h = du / u_y (x, y) [-] at z:
+    h - |z|^``power`` z max(z . h, 0) (:func:`smooth_return_map_2d`)."""
+    size = math.sqrt(zx * zx + zy * zy)
+    c = 0.0
+    if size > 0.0:
+        c = size ** power * max(zx * hx + zy * hy, 0.0)
+    return hx - c * zx, hy - c * zy
 
 
 def play_return_map_2d(ux, uy, half_x, half_y, yield_displacement, static_ratio=0.0):
