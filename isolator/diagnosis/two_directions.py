@@ -176,15 +176,21 @@ def return_map_2d(ux, uy, yield_displacement):
     ax = 0.0
     ay = 0.0
     for i in range(1, n):
-        ax += (ux[i] - ux[i - 1]) / yield_displacement
-        ay += (uy[i] - uy[i - 1]) / yield_displacement
-        size = math.sqrt(ax * ax + ay * ay)
-        if size > 1.0:
-            ax /= size
-            ay /= size
+        ax, ay = _within_unit(ax + (ux[i] - ux[i - 1]) / yield_displacement,
+                              ay + (uy[i] - uy[i - 1]) / yield_displacement)
         zx[i] = ax
         zy[i] = ay
     return zx, zy
+
+
+@jit
+def _within_unit(ax, ay):
+    """(ax, ay) [-] brought back to the unit circle when outside it (the return map's
+    normalisation z* / |z*|)."""
+    size = math.sqrt(ax * ax + ay * ay)
+    if size > 1.0:
+        return ax / size, ay / size
+    return ax, ay
 
 
 @jit
@@ -216,10 +222,7 @@ def smooth_return_map_2d(ux, uy, yield_displacement, exponent):
                 rx, ry = _bouc_wen_step(ax + 0.5 * rx, ay + 0.5 * ry, hx, hy, power)
                 ax += rx
                 ay += ry
-            size = math.sqrt(ax * ax + ay * ay)
-            if size > 1.0:
-                ax /= size
-                ay /= size
+            ax, ay = _within_unit(ax, ay)
         zx[i] = ax
         zy[i] = ay
     return zx, zy
@@ -339,10 +342,7 @@ def _play_kernel_2d(ux, uy, half_x, half_y, yield_displacement, ratio):
             else:
                 ax = other
         else:
-            size = math.sqrt(ax * ax + ay * ay)
-            if size > 1.0:
-                ax /= size
-                ay /= size
+            ax, ay = _within_unit(ax, ay)
         zs[0] = ax
         zs[1] = ay
         ub[i, 0] = ux[i] - p[0]
