@@ -374,16 +374,6 @@ class Problem:
             return self._assessed("kinematic", kinematic)
         return current
 
-    def implied_of(self, work: Workspace, chosen: Assessment | None) -> ImpliedFit | None:
-        """How ``chosen`` (a selection's chosen model on ``work``) carries the heat its laws
-        imply (:meth:`carried`), or None when it does not."""
-        if chosen is None:
-            return None
-        for key, value in work.cache.items():
-            if key and key[0] == "carried" and (value[0] is chosen or value[1].without is chosen):
-                return value[1]
-        return None
-
     # -- stage 2 -----------------------------------------------------------------------------
 
     def stage(self, kinematic: Assessment | None) -> Stage:
@@ -536,7 +526,8 @@ class Problem:
         return Selection(stage, kinematic, {n: a for n, a in self.kinematic.items()
                                             if n not in exclude},
                          chosen, verdict, explained, real_gap, order, form, th,
-                         _all=self.features.sample, findings=tuple(findings))
+                         _all=self.features.sample, findings=tuple(findings),
+                         implied=None if carried is None else carried[1])
 
     def _forward(self, stage: Stage, testable: list[Assessment],
                  th: Thresholds) -> tuple[Assessment, list[str], dict[str, str]]:

@@ -20,6 +20,7 @@ verdict: :mod:`.decision`.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,6 +28,9 @@ from isolator.diagnosis.effects import Context
 from isolator.diagnosis.features import Features
 from isolator.diagnosis.fitting import Fit, HoldOut, Model, fit, multistart
 from isolator.diagnosis.thresholds import Thresholds
+
+if TYPE_CHECKING:
+    from isolator.diagnosis.decision import ImpliedFit
 
 MAX_EFFECTS = 3  # effects on the friction law named at most
 MAX_KINEMATIC = 2  # effects on the kinematics named at most
@@ -266,6 +270,9 @@ class Selection:
         Where a real gap lies: ``"sliding"`` (the sliding phase), ``"transition"`` (the
         transition windows after the reversals, far above the noise there) and the baseline's
         nuisance parameters fitted at an edge of their range.
+    implied : ImpliedFit or None
+        How ``chosen`` carries the heat its named laws on mu imply for a baseline that heats
+        (:meth:`isolator.diagnosis.decision.Problem.carried`), or None when it was not tried.
     """
 
     stage: Stage
@@ -302,6 +309,7 @@ class Selection:
 
     _all: np.ndarray = field(default=None, repr=False)
     findings: tuple[str, ...] = ()
+    implied: ImpliedFit | None = None
 
 
 def on_samples(prediction: np.ndarray, samples: np.ndarray, wanted: np.ndarray) -> np.ndarray:

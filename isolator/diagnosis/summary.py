@@ -98,7 +98,7 @@ def baseline_heat(d: Diagnosis) -> dict | None:
     the gap the chosen model would leave without it; None for a baseline that does not heat."""
     if not d.baseline.spec.heats or d.selection.chosen is None:
         return None
-    info = d.problem.implied_of(d.work, d.selection.chosen)
+    info = d.selection.implied
     if info is None:
         return {"follows_named_laws": False, "laws": [],
                 "statement": "No law on mu other than heating is named: the baseline's "
