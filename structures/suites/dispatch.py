@@ -99,6 +99,7 @@ def compute_runs(specs: Sequence[RunSpec], motions: Mapping[Any, Any],
         else:
             pending.append(spec)
     skipped = sum(row["status"] == "done" for row in rows.values())
+    store.log_recovered(run_id for run_id, row in rows.items() if row["status"] == "done")
     counts = {"done": skipped, "failed": len(rows) - skipped}
     bar = tqdm(total=len(specs), initial=len(rows), unit="run", disable=not progress,
                file=sys.stderr, desc=label, postfix=counts)

@@ -12,12 +12,16 @@ Every file is written under a temporary name and renamed with ``os.replace`` (at
 under its final name is whole. A run is complete when its row parses, names the run as done and
 its netCDF file has the size the row records; anything else is computed again. Files are not
 fsynced: one lost to a power cut fails the same test. A log line is one ``write``, kept whole
-between processes on a local POSIX file system.
+between processes on a local POSIX file system. A run's ``done`` line follows its row, so a suite
+killed between the two leaves a complete run without one; the next suite finds it complete and
+logs it then, marked ``recovered=true`` (:meth:`RunStore.log_recovered`): the log holds one
+``done`` line per finished run.
 """
 
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
@@ -127,6 +131,16 @@ class RunStore:
         line = f"{stamp} {event} {run_id} {extra}".rstrip() + "\n"
         with open(self.log_path, "a", encoding="utf-8") as handle:
             handle.write(line)
+
+    def log_recovered(self, run_ids: Iterable[str]) -> list[str]:
+        """Log ``done`` (``recovered=true``) for each of ``run_ids`` (runs found complete) that
+        has no ``done`` line, as a suite killed between a row and its line leaves it; return
+        those run ids."""
+        logged = {run_id for event, run_id in self.events() if event == "done"}
+        missing = [run_id for run_id in run_ids if run_id not in logged]
+        for run_id in missing:
+            self.log("done", run_id, recovered=True)
+        return missing
 
     def events(self) -> list[tuple[str, str]]:
         """``(event, run id)`` of every line of the log, oldest first."""

@@ -202,6 +202,7 @@ def compute_and_store(spec: RunSpec, motion: Any, config: BuildingConfig,
     store = RunStore(out_dir)
     row = store.completed_row(spec.run_id, storage, DESIGN_MARK if design else ())
     if row is not None:
+        store.log_recovered([spec.run_id])
         return row
     row, data = execute_run(spec, motion, config, time_limit, max_steps, storage, design)
     return store.save_failure(row) if data is None else store.save_done(row, data)

@@ -177,6 +177,29 @@ def test_killed_suite_resumes_without_recomputing(config, scheduler, tmp_path):
     pd.testing.assert_frame_equal(result.peaks[SAME], whole.peaks[SAME])
 
 
+def test_a_run_killed_between_its_row_and_its_log_line_is_logged_once(config, scheduler,
+                                                                        tmp_path):
+    """The window (b) can hit: the row is written, the ``done`` line not yet. The next suite
+    keeps the run and logs it then (``recovered``), so the log still has one line per run."""
+    suite = Suite(config, [ELCENTRO], models=("constant",), scales=(0.5, 1.0), duration=4.0,
+                  dt=0.02)
+    out = tmp_path / "out"
+    first = run_suite(suite, out, scheduler_address=scheduler, progress=False)
+    store = RunStore(out)
+    lines = store.log_path.read_text().splitlines(keepends=True)
+    lost = lines[-1].split(" ")[2]
+    store.log_path.write_text("".join(lines[:-1]))  # as if killed before the last line
+    stamp = store.row_path(lost).stat().st_mtime_ns
+
+    again = run_suite(suite, out, scheduler_address=scheduler, progress=False)
+    assert (again.skipped, again.computed) == (first.computed, 0)
+    assert store.row_path(lost).stat().st_mtime_ns == stamp
+    done = [rid for event, rid in store.events() if event == "done"]
+    assert sorted(done) == sorted(first.peaks["run_id"])
+    assert store.log_path.read_text().splitlines()[-1].endswith(f"done {lost} recovered=true")
+    assert store.log_recovered(done) == []  # logged once, never again
+
+
 def _bad_set(tmp_path: Path) -> Path:
     shutil.copy(ELCENTRO, tmp_path / "elcentro.at2")
     (tmp_path / "broken.AT2").write_text("PEER\nEVENT\nUNITS OF G\nNPTS=  5, DT= .0100 SEC\n"
