@@ -993,6 +993,19 @@ class Problem2D:
         return Judged(model, theta, stderr, params, held, full,
                       weighted=self.weighted(held, mask), at_bound=at_bound)
 
+    def rebased(self, simpler: Judged, starts: Sequence[np.ndarray],
+                mask: np.ndarray) -> Judged:
+        """``simpler`` refitted from each of ``starts`` (the parameters it shares with a richer
+        model, as that model's fit left them) when that fits better held out, else
+        ``simpler``: a richer model is never credited with the better basin of the shared
+        nuisances (u_y, the lag, the play's widths) that its own fit happened to reach."""
+        best = simpler
+        for start in starts:
+            again = self.judge(simpler.model, mask, start=start)
+            if again.weighted < best.weighted:
+                best = again
+        return best
+
     def compare(self, current: Judged, new: Judged, mask: np.ndarray, *, z_min: float,
                 explained_min: float, practical_min: float) -> Judged:
         """Whether ``new`` earns its keep over ``current`` on the samples of ``mask``."""
@@ -2045,6 +2058,16 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 trials[k] = j
                 judged[k] = j
                 beside[k] = tuple(law)
+            if not law:  # each law judged over the best basin of the shared nuisances
+                shared = len(cur.theta)
+                rebased = problem.rebased(cur, [j.theta[:shared] for j in trials.values()
+                                                if len(j.theta) > shared], sliding)
+                if rebased is not cur:
+                    cur = law_base = rebased
+                    for k, j in trials.items():
+                        trials[k] = judged[k] = problem.compare(
+                            cur, j, sliding, z_min=th.z_min, explained_min=th.explained_min,
+                            practical_min=th.practical_gain)
             passing = [k for k, j in trials.items() if j.earns]
             # a pair when no single qualifies, as in one direction, or when the best single
             # closes too little to be named alone (``name_min``) and the pair fits better
@@ -2117,8 +2140,10 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                    for k in (a, b)]
             j = problem.judge(model, sliding, start=np.concatenate([cur.theta, *own]))
             # each member earns its keep against the other held out (dropping either loses
-            # materially), as a play and a law judged together (:func:`_joint_pair`)
-            members = [problem.scores(trials[k], j, sliding) for k in (b, a)]
+            # materially), as a play and a law judged together (:func:`_joint_pair`), the other
+            # alone refitted from the pair's fit too (:meth:`Problem2D.rebased`)
+            members = [problem.scores(_alone_from(trials[k], k, j, (a, b)), j, sliding)
+                       for k in (b, a)]
             j = problem.compare(cur, j, sliding, z_min=th.z_min, explained_min=th.explained_min,
                                 practical_min=th.practical_gain)
             keeps = all(z >= th.z_min and gain >= th.explained_min and size >= th.practical_gain
@@ -2126,6 +2151,18 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             if j.earns and keeps and (best is None or j.weighted < best.weighted):
                 best = j
         return best
+
+    def _alone_from(single: Judged, name: str, pair: Judged, order: tuple[str, str]) -> Judged:
+        """``single`` (the law ``name`` alone) or, if better held out, refitted from ``pair``'s
+        fit (the kinematic part and ``name``'s own parameters; ``order`` the pair's laws)."""
+        ks = pair.model.kinematic_size
+        i = ks
+        for law_name in order:
+            size = len(LIBRARY_2D[law_name].parameters)
+            if law_name == name:
+                own = pair.theta[i:i + size]
+            i += size
+        return problem.rebased(single, [np.concatenate([pair.theta[:ks], own])], sliding)
 
     def _rival_pair(trials: dict[str, Judged], passing: list[str], kinematic: tuple[str, ...],
                     cur: Judged, roles: dict) -> Judged | None:
