@@ -21,8 +21,8 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    corners and stops of an orbit). The force channels' faults (a stuck run, spikes) are
    bridged from the samples around them, then again along the calibrated baseline
    (:func:`_repair_faults`); one sensor's gain of 1-5 %,
-   the same in every test (the y load cell against the x one, or either displacement
-   channel, told apart by what each does to the restoring and the friction force), is
+   the same in every test (either load cell, or either displacement channel, told apart by
+   what each does to the restoring and the friction force), is
    corrected as its calibration (:func:`_channel_gain`); the force noise is measured beyond
    its correlation when it is correlated (:func:`force_noise_std`).
 2. **Direction-change windows** (the reversal windows of one direction, generalised): the
