@@ -52,11 +52,11 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    (1 + c g(s / S) / g(1), g(x) = 1 - exp(-x / L), s the path travelled over the campaign, S
    its total: c the change over the campaign, L a share of S, as in one direction) join by
    forward selection on held-out data (leave-one-test-out, or alternate blocks of one test),
-   u_y and the lag refitted with each model, the model a law extends refitted from the
-   shared parameters each law's fit reached when that fits better held out
-   (:meth:`Problem2D.rebased`: a law is never credited with a better basin of the nuisances)
-   (a pair as one when no single effect qualifies and
-   the sliding phase holds a real gap, as in one direction), a second effect under the
+   u_y and the lag refitted with each model (a pair as one when no single effect qualifies and
+   the sliding phase holds a real gap, as in one direction; the model a law extends refitted
+   from the shared parameters each law's fit reached when that fits better held out,
+   :meth:`Problem2D.rebased`, so that a law is never credited with a better basin of the
+   nuisances), a second effect under the
    stricter ``second_*`` thresholds and over the first in its flexible monotone form (as in
    one direction: what a wrong shape leaves cannot name another effect);
    then the kinematic candidates are tried again beside the friction law named. A kinematic
