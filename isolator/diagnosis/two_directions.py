@@ -21,8 +21,8 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    corners and stops of an orbit). The force channels' faults (a stuck run, spikes) are
    bridged from the samples around them, then again along the calibrated baseline
    (:func:`_repair_faults`); one sensor's gain of 1-5 %,
-   the same in every test (the y load cell against the x one, or either displacement
-   channel, told apart by what each does to the restoring and the friction force), is
+   the same in every test (either load cell, or either displacement channel, told apart by
+   what each does to the restoring and the friction force), is
    corrected as its calibration (:func:`_channel_gain`); the force noise is measured beyond
    its correlation when it is correlated (:func:`force_noise_std`).
 2. **Direction-change windows** (the reversal windows of one direction, generalised): the
@@ -53,7 +53,10 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    its total: c the change over the campaign, L a share of S, as in one direction) join by
    forward selection on held-out data (leave-one-test-out, or alternate blocks of one test),
    u_y and the lag refitted with each model (a pair as one when no single effect qualifies and
-   the sliding phase holds a real gap, as in one direction), a second effect under the
+   the sliding phase holds a real gap, as in one direction; the model a law extends refitted
+   from the shared parameters each law's fit reached when that fits better held out,
+   :meth:`Problem2D.rebased`, so that a law is never credited with a better basin of the
+   nuisances), a second effect under the
    stricter ``second_*`` thresholds and over the first in its flexible monotone form (as in
    one direction: what a wrong shape leaves cannot name another effect);
    then the kinematic candidates are tried again beside the friction law named. A kinematic
@@ -993,6 +996,19 @@ class Problem2D:
         return Judged(model, theta, stderr, params, held, full,
                       weighted=self.weighted(held, mask), at_bound=at_bound)
 
+    def rebased(self, simpler: Judged, starts: Sequence[np.ndarray],
+                mask: np.ndarray) -> Judged:
+        """``simpler`` refitted from each of ``starts`` (the parameters it shares with a richer
+        model, as that model's fit left them) when that fits better held out, else
+        ``simpler``: a richer model is never credited with the better basin of the shared
+        nuisances (u_y, the lag, the play's widths) that its own fit happened to reach."""
+        best = simpler
+        for start in starts:
+            again = self.judge(simpler.model, mask, start=start)
+            if again.weighted < best.weighted:
+                best = again
+        return best
+
     def compare(self, current: Judged, new: Judged, mask: np.ndarray, *, z_min: float,
                 explained_min: float, practical_min: float) -> Judged:
         """Whether ``new`` earns its keep over ``current`` on the samples of ``mask``."""
@@ -1245,7 +1261,7 @@ def _fault_summary(said: list[tuple[str, str, str]]) -> str:
     return "; ".join(parts)
 
 
-CHANNELS = ("force_y", "displacement_x", "displacement_y")
+CHANNELS = ("force_x", "force_y", "displacement_x", "displacement_y")
 
 
 def _channel_data(d: Data2D, channel: str, gain: float) -> Data2D:
@@ -1253,9 +1269,9 @@ def _channel_data(d: Data2D, channel: str, gain: float) -> Data2D:
     1 + gain times its true value)."""
     if not gain:
         return d
-    if channel == "force_y":
+    if channel.startswith("force"):
         force = d.force.copy()
-        force[:, 1] /= 1.0 + gain
+        force[:, "xy".index(channel[-1])] /= 1.0 + gain
         return replace(d, force=force)
     scale = np.ones(2)
     scale["xy".index(channel[-1])] = 1.0 / (1.0 + gain)
@@ -1273,7 +1289,9 @@ def _channel_costs(d: Data2D, base: Baseline2D, channel: str,
     back = np.ones(2)
     for b, g in enumerate(_GAIN_GRID):
         trial = _channel_data(d, channel, float(g))
-        back[1] = 1.0 + g if channel == "force_y" else 1.0
+        back[:] = 1.0
+        if channel.startswith("force"):
+            back["xy".index(channel[-1])] = 1.0 + g
         for a, lag in enumerate(lags):
             force = _fit_at(trial, base.yield_displacement, float(lag))[6] * back
             r2 = ((d.force - force) ** 2).sum(axis=1)
@@ -1308,11 +1326,11 @@ class ChannelGain:
 
     def note(self) -> str:
         """What was found, in words."""
-        what = ("the y force channel reads {:+.1f} % against the x one" if self.channel ==
-                "force_y" else f"the {self.channel[-1]} displacement channel reads "
-                + "{:+.1f} %").format(100 * self.gain)
+        load_cell = self.channel.startswith("force")
+        what = (f"the {self.channel[-1]} {'force' if load_cell else 'displacement'} channel "
+                f"reads {100 * self.gain:+.1f} %")
         tests = ", ".join(f"{100 * v:+.1f}" for v in self.per_test)
-        kind = "the load cells'" if self.channel == "force_y" else "a displacement sensor's"
+        kind = "a load cell's" if load_cell else "a displacement sensor's"
         tail = ("corrected as a nuisance" if self.corrected else
                 "at the edge of that range: not corrected, a finding")
         return (f"{what} (tests: {tests} %; {kind} gain, "
@@ -1324,9 +1342,10 @@ def _channel_gain(d: Data2D, base: Baseline2D) -> ChannelGain | None:
 
     A load cell's gain scales the force of its axis; a displacement sensor's scales the
     restoring force of its axis and turns the friction force's direction (the return map
-    sees a distorted orbit); a friction effect acts on both axes alike. The three
-    candidates (:data:`CHANNELS`: the y load cell against the x one, either displacement
-    channel) are each refitted over ``_GAIN_GRID`` with the channel lag within a sample of
+    sees a distorted orbit); a friction effect acts on both axes alike. The four
+    candidates (:data:`CHANNELS`: either load cell, either displacement channel; on a flat
+    surface, with no restoring force to scale the forces by, only the y load cell against the
+    x one) are each refitted over ``_GAIN_GRID`` with the channel lag within a sample of
     the calibration's on a quarter-sample grid (a gain and a lag trade off on a curved
     orbit): :func:`_channel_costs`. The candidate lowering the campaign's error most is
     taken when every test (two at least), at the campaign's lag, reads a gain of one sign,
@@ -1350,7 +1369,7 @@ def _channel_gain(d: Data2D, base: Baseline2D) -> ChannelGain | None:
     zero = int(np.argmin(np.abs(_GAIN_GRID)))
     best = None
     for channel in CHANNELS:
-        if channel != "force_y" and math.isinf(d.radius):
+        if channel != "force_y" and math.isinf(d.radius):  # a flat surface: forces relative
             continue
         costs = _channel_costs(d, base, channel, lags)
         total = costs.sum(axis=2)
@@ -1366,7 +1385,7 @@ def _channel_gain(d: Data2D, base: Baseline2D) -> ChannelGain | None:
                                for j in range(2)) for k, r in enumerate(d.campaign.tests)]))
     closes = drop / max(before / tests - noise, 1e-300) / tests
     size = np.abs(each)
-    spread = AXIS_GAIN_SPREAD if channel == "force_y" else DISPLACEMENT_GAIN_SPREAD
+    spread = AXIS_GAIN_SPREAD if channel.startswith("force") else DISPLACEMENT_GAIN_SPREAD
     if (size.min() < AXIS_GAIN_MIN or np.ptp(np.sign(each)) > 0
             or np.ptp(each) > spread * size.mean() or abs(gain) < AXIS_GAIN_MIN
             or abs(gain) >= _GAIN_GRID[-1]  # at the grid's end: no gain's optimum
@@ -1378,8 +1397,8 @@ def _channel_gain(d: Data2D, base: Baseline2D) -> ChannelGain | None:
 def _corrected(campaign: Campaign2D, found: ChannelGain) -> Campaign2D:
     """``campaign`` with the channel of ``found`` divided by 1 + its gain in every test."""
     factor = np.ones(2)
-    factor[0 if found.channel == "displacement_x" else 1] = 1.0 / (1.0 + found.gain)
-    if found.channel == "force_y":
+    factor["xy".index(found.channel[-1])] = 1.0 / (1.0 + found.gain)
+    if found.channel.startswith("force"):
         tests = [replace(r, force=np.asarray(r.force) * factor) for r in campaign.tests]
     else:
         tests = [replace(r, displacement=np.asarray(r.displacement) * factor,
@@ -2045,6 +2064,16 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 trials[k] = j
                 judged[k] = j
                 beside[k] = tuple(law)
+            if not law:  # each law judged over the best basin of the shared nuisances
+                shared = len(cur.theta)
+                rebased = problem.rebased(cur, [j.theta[:shared] for j in trials.values()
+                                                if len(j.theta) > shared], sliding)
+                if rebased is not cur:
+                    cur = law_base = rebased
+                    for k, j in trials.items():
+                        trials[k] = judged[k] = problem.compare(
+                            cur, j, sliding, z_min=th.z_min, explained_min=th.explained_min,
+                            practical_min=th.practical_gain)
             passing = [k for k, j in trials.items() if j.earns]
             # a pair when no single qualifies, as in one direction, or when the best single
             # closes too little to be named alone (``name_min``) and the pair fits better
@@ -2117,8 +2146,10 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                    for k in (a, b)]
             j = problem.judge(model, sliding, start=np.concatenate([cur.theta, *own]))
             # each member earns its keep against the other held out (dropping either loses
-            # materially), as a play and a law judged together (:func:`_joint_pair`)
-            members = [problem.scores(trials[k], j, sliding) for k in (b, a)]
+            # materially), as a play and a law judged together (:func:`_joint_pair`), the other
+            # alone refitted from the pair's fit too (:meth:`Problem2D.rebased`)
+            members = [problem.scores(_alone_from(trials[k], k, j, (a, b)), j, sliding)
+                       for k in (b, a)]
             j = problem.compare(cur, j, sliding, z_min=th.z_min, explained_min=th.explained_min,
                                 practical_min=th.practical_gain)
             keeps = all(z >= th.z_min and gain >= th.explained_min and size >= th.practical_gain
@@ -2126,6 +2157,18 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             if j.earns and keeps and (best is None or j.weighted < best.weighted):
                 best = j
         return best
+
+    def _alone_from(single: Judged, name: str, pair: Judged, order: tuple[str, str]) -> Judged:
+        """``single`` (the law ``name`` alone) or, if better held out, refitted from ``pair``'s
+        fit (the kinematic part and ``name``'s own parameters; ``order`` the pair's laws)."""
+        ks = pair.model.kinematic_size
+        i = ks
+        for law_name in order:
+            size = len(LIBRARY_2D[law_name].parameters)
+            if law_name == name:
+                own = pair.theta[i:i + size]
+            i += size
+        return problem.rebased(single, [np.concatenate([pair.theta[:ks], own])], sliding)
 
     def _rival_pair(trials: dict[str, Judged], passing: list[str], kinematic: tuple[str, ...],
                     cur: Judged, roles: dict) -> Judged | None:

@@ -83,20 +83,26 @@ def test_no_effect_with_noise_is_none(example):
     assert summary["chosen"] is None
 
 
-def test_a_gain_error_on_one_axis_and_coloured_noise_are_none(example):
-    """A 3 % gain on force_y (a load cell's calibration) and AR(1) force noise (0.9) are
-    nuisance: corrected as the load cells' relative gain, and measured beyond the noise's
+@pytest.mark.parametrize("axis", [1, 0])
+def test_a_gain_error_on_one_axis_and_coloured_noise_are_none(example, axis):
+    """A 3 % gain on the y or the x load cell (its calibration) and AR(1) force noise (0.9)
+    are nuisance: corrected as that load cell's gain, and measured beyond the noise's
     correlation."""
+    scale = np.ones(2)
+    scale[axis] = 1.03
     tests = example.synthesise("none", seed=5, orbits=SMALL, colour=0.9)
     records = tuple(
         BearingRecord2D(f"{k + 1:02d}_{t['name']}", t["time"],
                         np.column_stack([t["displacement_x"], t["displacement_y"]]),
-                        np.column_stack([t["force_x"], 1.03 * t["force_y"]]), t["axial_force"])
+                        np.column_stack([t["force_x"], t["force_y"]]) * scale,
+                        t["axial_force"])
         for k, t in enumerate(tests))
     summary = diagnose_2d(Campaign2D(records, example.RADIUS, example.SLIDER),
                           "constant").to_json()
     assert summary["verdict"] == ["none"]
-    assert any("y force channel reads +" in n for n in summary["baseline_notes"])
+    found = [n for n in summary["baseline_notes"] if "force channel reads" in n]
+    assert len(found) == 1 and found[0].startswith(f"the {'xy'[axis]} force channel reads +")
+    assert 2.0 <= float(found[0].split("reads ")[1].split(" %")[0]) <= 4.0
 
 
 def test_heating_on_the_2d_field_is_named(example):
