@@ -579,12 +579,10 @@ class Data2D:
         whose friction has turned towards the other axis's motion."""
         if not self._play_paths:
             self._play_paths = [
-                np.column_stack([held_still(t, u[:, j] if self.smoothed
-                                            else smoothed_displacement(t, u[:, j]),
-                                            self.still_tolerance, rec.displacement[:, j],
-                                            rec.displacement[:, 1 - j])
+                np.column_stack([held_still(t, u[:, j], self.still_tolerance,
+                                            rec.displacement[:, j], rec.displacement[:, 1 - j])
                                  for j in range(2)])
-                for t, u, rec in zip(self.time, self.displacement, self.campaign.tests,
+                for t, u, rec in zip(self.time, self.smooth_paths(), self.campaign.tests,
                                      strict=True)]
         return self._play_paths
 
@@ -1132,7 +1130,6 @@ def _transition_fit(d: Data2D, best: tuple, grid_uy) -> tuple[tuple, int, dict[i
     fits = {}
     for n in (0, *TRANSITION_EXPONENTS):
         d.exponent = n
-
         fit = min((_fit_at(d, best[2], float(lag), smooth=True) for lag in _LAG_GRID),
                   key=lambda f: f[0])
         fit = _refine(d, fit, grid, at, smooth=True)
