@@ -70,8 +70,10 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    (:func:`_joint_pair`); a pair of friction-law effects is taken only when each member
    earns its keep against the other held out too (by a single effect's ``z_min``,
    ``explained_min`` and ``practical_gain``).
-5. **Verdict**: ``none``, the named effects, ``unexplained`` (where it lies, ``findings``, and
-   what it looks like, :func:`looks_like_2d`), by one direction's rule
+5. **Verdict**: the named effects' model fitted on every sample and, when a law is named, on
+   the sliding samples it was chosen on too (predicted on every sample, as in one direction),
+   the better held out kept; then ``none``, the named effects, ``unexplained`` (where it
+   lies, ``findings``, and what it looks like, :func:`looks_like_2d`), by one direction's rule
    (:func:`~isolator.diagnosis.selection.material`,
    :func:`~isolator.diagnosis.selection.verdict_of`), over the whole test (every sample, the
    direction-change windows included).
