@@ -16,7 +16,8 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    finding. A test's samples count from where the bearing has moved ``STARTUP_NOISE``
    displacement-noise std from its first position (:func:`settled`; before that the direction
    of its friction is below the sensors' noise): the calibration and every judgement below
-   leave the samples before out, the model runs through them. The transition's shape is a
+   leave the samples before out (the sensor-gain search's error still averages over them,
+   :func:`_channel_costs`), the model runs through them. The transition's shape is a
    nuisance too: the isotropic Bouc-Wen law of exponent 4, 2 or 1 on the smoothed displacement,
    taken when it fits better than the elastic-plastic return map by ``TRANSITION_GAIN``
    (:func:`_transition_fit`; n = 1, the smooth edge, a finding). The displacement is used as
@@ -1328,7 +1329,8 @@ def _channel_costs(d: Data2D, base: Baseline2D, channel: str,
     """The baseline's mean squared force error [N^2] in the measured force's units with
     ``channel`` corrected for each gain of ``_GAIN_GRID`` (second index) and each channel
     lag of ``lags`` [samples] (first), per test (third); u_y held at the calibration's, mu
-    refitted."""
+    refitted (on the counted samples, :func:`_fit_at`). The error is averaged over every
+    sample of a test, the start-up samples left out elsewhere (:func:`settled`) included."""
     out = np.empty((lags.size, _GAIN_GRID.size, len(d.time)))
     back = np.ones(2)
     for b, g in enumerate(_GAIN_GRID):
