@@ -552,7 +552,10 @@ class Data2D:
     temperature_rise: np.ndarray = field(default_factory=lambda: np.zeros(0))
     mu_shape: np.ndarray = field(default_factory=lambda: np.zeros(0))
     smoothed: bool = True
-    still_tolerance: float = 0.0  # [m] jitter of an axis standing still (:func:`held_still`)
+    # [m] jitter of an axis standing still (:func:`held_still`): PLAY_STILL_NOISE times the
+    # displacement sensors' noise (:func:`displacement_noise`), the range a few dozen samples
+    # of that noise seldom exceed
+    still_tolerance: float = 0.0
     # the samples counted in the calibration and the verdict (:func:`settled`)
     counted: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
     # the baseline's transition (:func:`transition_map_2d`): 0 elastic-plastic, else the
@@ -643,14 +646,6 @@ def displacement_noise(campaign: Campaign2D) -> float:
     axes (:func:`~isolator.diagnosis.kinematics.noise_std`)."""
     return max((noise_std(r.displacement[:, j]) for r in campaign.tests for j in range(2)),
                default=0.0)
-
-
-def play_still_tolerance(campaign: Campaign2D) -> float:
-    """The jitter [m] within which an axis counts as standing still for a play's path
-    (:func:`held_still`): :data:`PLAY_STILL_NOISE` times the displacement sensors' white
-    noise (:func:`displacement_noise`), the range a few dozen samples of that noise seldom
-    exceed."""
-    return PLAY_STILL_NOISE * displacement_noise(campaign)
 
 
 def settled(displacement: np.ndarray, tolerance: float) -> np.ndarray:
@@ -860,6 +855,16 @@ class Model2D:
                                          else mu)
                 i += 3
         return kinematic_state(d, 10.0 ** float(theta[1]), lag, widths, ratio)
+
+    def law_slice(self, name: str) -> slice:
+        """Where the friction-law effect ``name``'s parameters lie in theta."""
+        i = self.kinematic_size
+        for other in self.friction:
+            size = len(self._law_parameters(other))
+            if other == name:
+                return slice(i, i + size)
+            i += size
+        raise KeyError(name)
 
     def mu(self, theta: np.ndarray, d: Data2D, base: Baseline2D) -> np.ndarray:
         mu = float(theta[0]) * d.mu_shape
@@ -1122,24 +1127,23 @@ def _refine(d: Data2D, best: tuple, grid_uy: np.ndarray, at: int,
     500 Hz; issue 21)."""
     logs = np.log10(grid_uy)
     lag_grid = np.asarray(lags, float)
+    free_uy, free_lag = logs.size >= 2, lag_grid.size >= 2
     start, steps, bounds = [], [], []
-    if logs.size >= 2:
-        i = at
-        lo, hi = max(i - 1, 0), min(i + 1, logs.size - 1)
+    if free_uy:
+        lo, hi = max(at - 1, 0), min(at + 1, logs.size - 1)
         start.append(math.log10(best[2]))
         steps.append(float(logs[hi] - logs[lo]) / (hi - lo))
         bounds.append((float(logs[0]), float(logs[-1])))
-    if lag_grid.size >= 2:
+    if free_lag:
         start.append(best[3] / d.dt)
         steps.append(float(lag_grid[1] - lag_grid[0]))
         bounds.append((float(lag_grid[0]), float(lag_grid[-1])))
     if not start:
         return best
-    free_uy = logs.size >= 2
 
     def point(y: np.ndarray) -> tuple[float, float]:
         uy = 10.0 ** float(y[0]) if free_uy else best[2]
-        lag_samples = float(y[-1]) if lag_grid.size >= 2 else best[3] / d.dt
+        lag_samples = float(y[-1]) if free_lag else best[3] / d.dt
         return uy, lag_samples
 
     def cost(y: np.ndarray) -> float:
@@ -2007,8 +2011,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             measured, [base.force[a:b] for a, b in pairwise(ends)])
         d = _prepare(campaign, smooth=False)
         base = _calibrate(d, spec)
-    sensor = max(noise_std(r.displacement[:, j]) for r in campaign.tests for j in range(2))
-    if sensor > SMOOTH_NOISE * base.yield_displacement:
+    if displacement_noise(campaign) > SMOOTH_NOISE * base.yield_displacement:
         d = _prepare(campaign, smooth=True)
         base = _calibrate(d, spec)
     found = _channel_gain(d, base)
@@ -2025,7 +2028,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         base.edges.append(
             f"{left_out} samples at the tests' starts left out of the calibration and the "
             f"verdict: the bearing had not yet moved {STARTUP_NOISE:g} displacement-noise std "
-            f"({1e6 * STARTUP_NOISE * displacement_noise(campaign):.0f} um) from where it "
+            f"({1e6 * STARTUP_NOISE * displacement_noise(d.campaign):.0f} um) from where it "
             "started, so the direction its friction had turned to is below the sensors' noise")
     variance = noise_variance(d, base)
     problem = Problem2D(d, base, variance, th)
@@ -2175,11 +2178,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         """``cur`` with its friction-law effects in flexible monotone form (knots in each
         effect's own variable), if that is better on held-out data."""
         ks = cur.model.kinematic_size
-        forms, i = [], ks
-        for name in law:
-            size = len(LIBRARY_2D[name].parameters)
-            forms.append(_flex_form(name, cur.theta[i:i + size], d))
-            i += size
+        forms = [_flex_form(name, cur.theta[cur.model.law_slice(name)], d) for name in law]
         model = Model2D(friction=tuple(law), kinematic=kinematic, free=True, flex=tuple(forms))
         start = np.concatenate([cur.theta[:ks], *[
             np.full(f[1].size - 1, 0.05 if f[2] else -0.05) for f in forms]])
@@ -2203,7 +2202,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             # each member earns its keep against the other held out (dropping either loses
             # materially), as a play and a law judged together (:func:`_joint_pair`), the other
             # alone refitted from the pair's fit too (:meth:`Problem2D.rebased`)
-            members = [problem.scores(_alone_from(trials[k], k, j, (a, b)), j, sliding)
+            members = [problem.scores(_alone_from(trials[k], k, j), j, sliding)
                        for k in (b, a)]
             j = problem.compare(cur, j, sliding, z_min=th.z_min, explained_min=th.explained_min,
                                 practical_min=th.practical_gain)
@@ -2213,17 +2212,12 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 best = j
         return best
 
-    def _alone_from(single: Judged, name: str, pair: Judged, order: tuple[str, str]) -> Judged:
+    def _alone_from(single: Judged, name: str, pair: Judged) -> Judged:
         """``single`` (the law ``name`` alone) or, if better held out, refitted from ``pair``'s
-        fit (the kinematic part and ``name``'s own parameters; ``order`` the pair's laws)."""
-        ks = pair.model.kinematic_size
-        i = ks
-        for law_name in order:
-            size = len(LIBRARY_2D[law_name].parameters)
-            if law_name == name:
-                own = pair.theta[i:i + size]
-            i += size
-        return problem.rebased(single, [np.concatenate([pair.theta[:ks], own])], sliding)
+        fit (the kinematic part and ``name``'s own parameters)."""
+        own = pair.theta[pair.model.law_slice(name)]
+        return problem.rebased(single, [np.concatenate(
+            [pair.theta[:pair.model.kinematic_size], own])], sliding)
 
     def _rival_pair(trials: dict[str, Judged], passing: list[str], kinematic: tuple[str, ...],
                     cur: Judged, roles: dict) -> Judged | None:
@@ -2367,7 +2361,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
             # the transition's misfit lies, and mispredicts a slow circle
             on_sliding = problem.judge(model, sliding, start=start)
             held_out = problem.weighted(on_sliding.prediction, every)
-            if held_out < problem.weighted(chosen.prediction, every):
+            if held_out < chosen.weighted:  # judge's held-out error on every sample
                 on_sliding.weighted = held_out
                 chosen = on_sliding
         problem.compare(base_all, chosen, every, z_min=0.0, explained_min=0.0,
