@@ -16,8 +16,7 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    finding. A test's samples count from where the bearing has moved ``STARTUP_NOISE``
    displacement-noise std from its first position (:func:`settled`; before that the direction
    of its friction is below the sensors' noise): the calibration and every judgement below
-   leave the samples before out (the sensor-gain search's error still averages over them,
-   :func:`_channel_costs`), the model runs through them. The transition's shape is a
+   leave the samples before out, the model runs through them. The transition's shape is a
    nuisance too: the isotropic Bouc-Wen law of exponent 4, 2 or 1 on the smoothed displacement,
    taken when it fits better than the elastic-plastic return map by ``TRANSITION_GAIN``
    (:func:`_transition_fit`; n = 1, the smooth edge, a finding). The displacement is used as
@@ -1333,10 +1332,13 @@ def _channel_costs(d: Data2D, base: Baseline2D, channel: str,
     """The baseline's mean squared force error [N^2] in the measured force's units with
     ``channel`` corrected for each gain of ``_GAIN_GRID`` (second index) and each channel
     lag of ``lags`` [samples] (first), per test (third); u_y held at the calibration's, mu
-    refitted (on the counted samples, :func:`_fit_at`). The error is averaged over every
-    sample of a test, the start-up samples left out elsewhere (:func:`settled`) included."""
+    refitted (on the counted samples, :func:`_fit_at`). The error is averaged over the
+    counted samples (:func:`settled`), as every judgement is: the start-up samples would
+    inflate the excess a gain's share of it is judged against (``GAIN_CLOSES``)."""
     out = np.empty((lags.size, _GAIN_GRID.size, len(d.time)))
     back = np.ones(2)
+    counted = d.counted.astype(float)
+    samples = np.bincount(d.test, weights=counted)
     for b, g in enumerate(_GAIN_GRID):
         trial = _channel_data(d, channel, float(g))
         back[:] = 1.0
@@ -1344,8 +1346,8 @@ def _channel_costs(d: Data2D, base: Baseline2D, channel: str,
             back["xy".index(channel[-1])] = 1.0 + g
         for a, lag in enumerate(lags):
             force = _fit_at(trial, base.yield_displacement, float(lag))[6] * back
-            r2 = ((d.force - force) ** 2).sum(axis=1)
-            out[a, b] = np.bincount(d.test, weights=r2) / np.bincount(d.test)
+            r2 = ((d.force - force) ** 2).sum(axis=1) * counted
+            out[a, b] = np.bincount(d.test, weights=r2) / samples
     return out
 
 
@@ -1877,15 +1879,15 @@ def _orbit_entry(rec) -> dict:
 
 
 def _axes(d: Data2D, before: np.ndarray, after: np.ndarray) -> dict:
-    out = {}
-    for j, axis in enumerate(("x", "y")):
-        rms = float(np.sqrt(np.mean(d.force[:, j] ** 2)))
-        out[axis] = {"force_rms": rms,
-                     "error_rms_before": float(np.sqrt(np.mean((d.force[:, j]
-                                                                - before[:, j]) ** 2))),
-                     "error_rms_after": float(np.sqrt(np.mean((d.force[:, j]
-                                                               - after[:, j]) ** 2)))}
-    return out
+    """Per axis, the measured force's RMS and the baseline's (``before``) and the final
+    model's (``after``) force error RMS [N], over the samples judged (:func:`settled`)."""
+    def rms(values: np.ndarray) -> float:
+        return float(np.sqrt(np.mean(values[d.counted] ** 2)))
+
+    return {axis: {"force_rms": rms(d.force[:, j]),
+                   "error_rms_before": rms(d.force[:, j] - before[:, j]),
+                   "error_rms_after": rms(d.force[:, j] - after[:, j])}
+            for j, axis in enumerate(("x", "y"))}
 
 
 def looks_like_2d(d: Data2D, prediction: np.ndarray, window: np.ndarray) -> list[str]:
@@ -1972,6 +1974,47 @@ def locate_2d(d: Data2D, prediction: np.ndarray, window: np.ndarray) -> dict:
 
 # --- the diagnosis ----------------------------------------------------------------------------
 
+def calibrated_baseline(campaign: Campaign2D, spec: BaselineSpec
+                        ) -> tuple[Data2D, Baseline2D, list[str], ChannelGain | None]:
+    """The campaign's data and calibrated baseline, the first step of :func:`diagnose_2d`.
+
+    The force channels' faults are bridged (:func:`_repair_faults`), then again along the
+    calibrated baseline; the displacement is used as measured, or smoothed (a Savitzky-Golay
+    filter cuts the noise the return map's elastic branch amplifies but bends an orbit's
+    corners and stops) when the displacement sensors' noise exceeds ``SMOOTH_NOISE`` of the
+    calibrated u_y; one sensor's gain (:func:`_channel_gain`) is corrected and the baseline
+    calibrated again, or reported at the edge of its range.
+
+    Returns
+    -------
+    tuple
+        The data (:class:`Data2D`), the baseline (:class:`Baseline2D`, its ``edges`` noting
+        the gain found), the faults' notes, and the sensor gain found (or None).
+    """
+    measured = campaign
+    campaign, faults = _repair_faults(campaign)
+    d = _prepare(campaign, smooth=False)
+    base = _calibrate(d, spec)
+    if faults:  # bridged again along the calibrated baseline (a run over a corner)
+        ends = np.cumsum([0, *(len(r) for r in campaign.tests)])
+        campaign, faults = _repair_faults(
+            measured, [base.force[a:b] for a, b in pairwise(ends)])
+        d = _prepare(campaign, smooth=False)
+        base = _calibrate(d, spec)
+    if displacement_noise(campaign) > SMOOTH_NOISE * base.yield_displacement:
+        d = _prepare(campaign, smooth=True)
+        base = _calibrate(d, spec)
+    found = _channel_gain(d, base)
+    if found is not None:  # a sensor's calibration (a nuisance), or a finding at its edge
+        if found.corrected:
+            d = _prepare(_corrected(campaign, found), smooth=d.smoothed)
+            base = _calibrate(d, spec)
+        else:
+            base.at_edge["channel_gain"] = "top"
+        base.edges.append(found.note())
+    return d, base, faults, found
+
+
 def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant", *,
                 candidates: Sequence[str] = EFFECTS_2D, exclude: Sequence[str] = (),
                 thresholds: Thresholds | None = None) -> Diagnosis2D:
@@ -1998,30 +2041,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
     th = thresholds or Thresholds.load()
     spec = baseline if isinstance(baseline, BaselineSpec) else BaselineSpec(baseline)
     names = [c for c in candidates if c in LIBRARY_2D and c not in exclude]
-    # the displacement as measured, or smoothed (a Savitzky-Golay filter cuts the noise the
-    # return map's elastic branch amplifies but bends an orbit's corners and stops) when the
-    # displacement sensors' noise exceeds SMOOTH_NOISE of the calibrated u_y
-    measured = campaign
-    campaign, faults = _repair_faults(campaign)
-    d = _prepare(campaign, smooth=False)
-    base = _calibrate(d, spec)
-    if faults:  # bridged again along the calibrated baseline (a run over a corner)
-        ends = np.cumsum([0, *(len(r) for r in campaign.tests)])
-        campaign, faults = _repair_faults(
-            measured, [base.force[a:b] for a, b in pairwise(ends)])
-        d = _prepare(campaign, smooth=False)
-        base = _calibrate(d, spec)
-    if displacement_noise(campaign) > SMOOTH_NOISE * base.yield_displacement:
-        d = _prepare(campaign, smooth=True)
-        base = _calibrate(d, spec)
-    found = _channel_gain(d, base)
-    if found is not None:  # a sensor's calibration (a nuisance), or a finding at its edge
-        if found.corrected:
-            d = _prepare(_corrected(campaign, found), smooth=d.smoothed)
-            base = _calibrate(d, spec)
-        else:
-            base.at_edge["channel_gain"] = "top"
-        base.edges.append(found.note())
+    d, base, faults, _ = calibrated_baseline(campaign, spec)
     base.edges.append(transition_note(base))
     left_out = int(d.n - d.counted.sum())
     if left_out:
@@ -2401,7 +2421,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         reference = base_all if _kinematic(k) else law_base
         share = th.kinematic_explained if _kinematic(k) else th.explained_min
         confidence[k] = problem.confidence(reference, j, mask, share)
-    result = Diagnosis2D(measured, d, problem, base, base_all, window, judged, roles, verdict,
+    result = Diagnosis2D(campaign, d, problem, base, base_all, window, judged, roles, verdict,
                          chosen, confidence, notes, tuple(exclude), findings=tuple(findings))
     if "unexplained" in verdict:
         result.looks_like = tuple(looks_like_2d(d, remaining, window))
