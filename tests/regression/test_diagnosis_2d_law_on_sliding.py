@@ -7,7 +7,11 @@ velocity and pressure, but refitted on every sample the speed law learnt its low
 the squares' corners, inside the windows where the transition's misfit lies, and mispredicted
 the slow circle held out: the pair closed too little of the excess and nothing was named
 (``unexplained``). Fitted on the sliding samples and predicted on every sample (as one
-direction does, when that predicts the held-out samples better) it names both. About 90 s.
+direction does, when that predicts the held-out samples better) it names both.
+
+The candidates are the two true laws alone: the others (the kinematic ones, heating, wear)
+do not bear on the final fit, and the whole library gives the same verdict and shrink (53 %)
+in 94 s against 15 s; before the change both say ``unexplained``.
 """
 
 from __future__ import annotations
@@ -29,7 +33,7 @@ def test_a_speed_law_and_a_pressure_named_from_the_sliding_samples(tmp_path):
     assert labels["effects"] == ["pressure", "velocity"]
     assert "circle 0.184 m T=18.75 s" in labels["truth"]
     campaign, baseline = load_case(tmp_path / "case_04")
-    summary = diagnose_2d(campaign, baseline).to_json()
+    summary = diagnose_2d(campaign, baseline, candidates=("velocity", "pressure")).to_json()
     named = [name for name in summary["verdict"] if name != "unexplained"]
     assert sorted(named) == ["pressure", "velocity"], summary["verdict"]
     assert summary["chosen"]["shrink"] > 0.3
