@@ -8,7 +8,7 @@ the no-effect tune variant 302/17 of the bidirectional panel (rigid-plastic; a s
 circle and an earthquake orbit at 250 Hz; AR(1) noise; the x load cell reading -2.4 %) those
 samples inflated the excess: the gain closed 8 % of it and was not corrected. Over the
 counted samples it closes 12 % and is corrected. The calibration and gain step only, about
-10 s.
+15 s.
 """
 
 from __future__ import annotations
