@@ -54,7 +54,10 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    speed |v|), ``pressure`` ((p / p_mean)^-n), ``wear``
    (1 + c g(s / S) / g(1), g(x) = 1 - exp(-x / L), s the path travelled over the campaign, S
    its total: c the change over the campaign, L a share of S, as in one direction) join by
-   forward selection on held-out data (leave-one-test-out, or alternate blocks of one test),
+   forward selection on held-out data (leave-one-test-out, or alternate blocks of one test;
+   a test whose speeds lie outside every other test's is held out in alternate blocks of
+   itself, for every model alike, :func:`_speeds_apart`: held out whole it would ask a speed
+   law to extrapolate),
    u_y and the lag refitted with each model (a pair as one when no single effect qualifies and
    the sliding phase holds a real gap, as in one direction; the model a law extends refitted
    from the shared parameters each law's fit reached when that fits better held out,
