@@ -711,9 +711,11 @@ def _prepare(campaign: Campaign2D, smooth: bool = True) -> Data2D:
         for k in apart:  # the other tests cannot tell how the friction goes at its speeds
             fold[(test == k) & (block % 2 == 1)] = len(campaign.tests) + k
         if apart:
-            scheme += (" (alternate blocks of test" + "s" * (len(apart) > 1) + " "
-                       + ", ".join(str(k + 1) for k in apart)
-                       + ": its speeds lie outside the other tests')")
+            which = ", ".join(str(k + 1) for k in apart)
+            scheme += (f", test {which} in alternate blocks of itself: its speeds lie "
+                       "outside the other tests'" if len(apart) == 1 else
+                       f", tests {which} each in alternate blocks of itself: the speeds of "
+                       "each lie outside the other tests'")
     else:
         fold, scheme = block % 2, "alternate blocks (half turns) of the test"
     pressure = axial / campaign.contact_area

@@ -29,7 +29,7 @@ def test_a_slow_test_apart_is_held_out_in_blocks_and_both_laws_are_named(tmp_pat
     assert "circle 0.122 m T=11.04 s" in labels["truth"]
     campaign, baseline = load_case(tmp_path / "case_04")
     summary = diagnose_2d(campaign, baseline, candidates=("velocity", "pressure")).to_json()
-    assert "alternate blocks of test 3" in summary["gap"]["holdout"]
+    assert "test 3 in alternate blocks of itself" in summary["gap"]["holdout"]
     named = [name for name in summary["verdict"] if name != "unexplained"]
     assert sorted(named) == ["pressure", "velocity"], summary["verdict"]
     assert summary["chosen"]["shrink"] > 0.5
