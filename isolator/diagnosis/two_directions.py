@@ -54,10 +54,7 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    speed |v|), ``pressure`` ((p / p_mean)^-n), ``wear``
    (1 + c g(s / S) / g(1), g(x) = 1 - exp(-x / L), s the path travelled over the campaign, S
    its total: c the change over the campaign, L a share of S, as in one direction) join by
-   forward selection on held-out data (leave-one-test-out, or alternate blocks of one test;
-   a test whose speeds lie outside every other test's is held out in alternate blocks of
-   itself, for every model alike, :func:`_speeds_apart`: held out whole it would ask a speed
-   law to extrapolate),
+   forward selection on held-out data (leave-one-test-out, or alternate blocks of one test),
    u_y and the lag refitted with each model (a pair as one when no single effect qualifies and
    the sliding phase holds a real gap, as in one direction; the model a law extends refitted
    from the shared parameters each law's fit reached when that fits better held out,
@@ -668,22 +665,6 @@ def _smooth(time: np.ndarray, values: np.ndarray, smooth: bool) -> np.ndarray:
     return smoothed_displacement(time, values) if smooth else np.asarray(values, dtype=float)
 
 
-def _speeds_apart(speeds: Sequence[np.ndarray]) -> list[int]:
-    """The tests whose sliding speeds [m/s] (5-95 % of the samples above a tenth of the test's
-    peak) lie wholly below or above every other test's: held out whole, a speed law would be
-    asked to extrapolate."""
-    ranges = []
-    for v in speeds:
-        moving = v[v > 0.1 * float(np.max(v))] if v.size else v
-        ranges.append(np.percentile(moving, [5.0, 95.0]) if moving.size else (0.0, 0.0))
-    apart = []
-    for k, (low, high) in enumerate(ranges):
-        others = [r for j, r in enumerate(ranges) if j != k]
-        if high < min(r[0] for r in others) or low > max(r[1] for r in others):
-            apart.append(k)
-    return apart
-
-
 def _prepare(campaign: Campaign2D, smooth: bool = True) -> Data2D:
     times, disps, test, block, travel = [], [], [], [], []
     offset_block, offset_travel = 0, 0.0
@@ -703,21 +684,12 @@ def _prepare(campaign: Campaign2D, smooth: bool = True) -> Data2D:
         test.append(np.full(len(rec), k))
     test = np.concatenate(test)
     block = np.concatenate(block)
-    axial = np.concatenate([r.axial_force for r in campaign.tests])
-    velocity = np.vstack([r.velocity for r in campaign.tests])
     if len(campaign.tests) >= 2:
         fold, scheme = test.copy(), "leave-one-test-out"
-        apart = _speeds_apart([np.hypot(*np.asarray(r.velocity).T) for r in campaign.tests])
-        for k in apart:  # the other tests cannot tell how the friction goes at its speeds
-            fold[(test == k) & (block % 2 == 1)] = len(campaign.tests) + k
-        if apart:
-            which = ", ".join(str(k + 1) for k in apart)
-            scheme += (f", test {which} in alternate blocks of itself: its speeds lie "
-                       "outside the other tests'" if len(apart) == 1 else
-                       f", tests {which} each in alternate blocks of itself: the speeds of "
-                       "each lie outside the other tests'")
     else:
         fold, scheme = block % 2, "alternate blocks (half turns) of the test"
+    axial = np.concatenate([r.axial_force for r in campaign.tests])
+    velocity = np.vstack([r.velocity for r in campaign.tests])
     pressure = axial / campaign.contact_area
     sensor = displacement_noise(campaign)
     counted = np.concatenate([settled(r.displacement, STARTUP_NOISE * sensor)
