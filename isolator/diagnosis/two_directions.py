@@ -555,6 +555,8 @@ class Data2D:
     # displacement sensors' noise (:func:`displacement_noise`), the range a few dozen samples
     # of that noise seldom exceed
     still_tolerance: float = 0.0
+    # [m] the displacement sensors' white noise (:func:`displacement_noise`)
+    sensor_noise: float = 0.0
     # the samples counted in the calibration and the verdict (:func:`settled`)
     counted: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
     # the baseline's transition (:func:`transition_map_2d`): 0 elastic-plastic, else the
@@ -699,7 +701,8 @@ def _prepare(campaign: Campaign2D, smooth: bool = True) -> Data2D:
                   np.concatenate(travel), test, block, fold, scheme,
                   float(np.median(np.concatenate([np.diff(t) for t in times]))),
                   campaign.effective_radius, smoothed=smooth,
-                  still_tolerance=PLAY_STILL_NOISE * sensor, counted=counted)
+                  still_tolerance=PLAY_STILL_NOISE * sensor, sensor_noise=sensor,
+                  counted=counted)
 
 
 def transition_map_2d(ux: np.ndarray, uy: np.ndarray, yield_displacement: float,
@@ -2001,7 +2004,7 @@ def calibrated_baseline(campaign: Campaign2D, spec: BaselineSpec
             measured, [base.force[a:b] for a, b in pairwise(ends)])
         d = _prepare(campaign, smooth=False)
         base = _calibrate(d, spec)
-    if displacement_noise(campaign) > SMOOTH_NOISE * base.yield_displacement:
+    if d.sensor_noise > SMOOTH_NOISE * base.yield_displacement:
         d = _prepare(campaign, smooth=True)
         base = _calibrate(d, spec)
     found = _channel_gain(d, base)
@@ -2048,7 +2051,7 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
         base.edges.append(
             f"{left_out} samples at the tests' starts left out of the calibration and the "
             f"verdict: the bearing had not yet moved {STARTUP_NOISE:g} displacement-noise std "
-            f"({1e6 * STARTUP_NOISE * displacement_noise(d.campaign):.0f} um) from where it "
+            f"({1e6 * STARTUP_NOISE * d.sensor_noise:.0f} um) from where it "
             "started, so the direction its friction had turned to is below the sensors' noise")
     variance = noise_variance(d, base)
     problem = Problem2D(d, base, variance, th)
