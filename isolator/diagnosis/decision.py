@@ -56,7 +56,7 @@ from isolator.diagnosis.baseline import RIGID_PLASTIC_LIMIT, YIELD_DISPLACEMENT_
 from isolator.diagnosis.effects import Context, Effect
 from isolator.diagnosis.features import Features, return_map, with_baseline
 from isolator.diagnosis.fitting import Fit, HoldOut, Model, fit, kinematic_change
-from isolator.diagnosis.flexible import direction, flexible
+from isolator.diagnosis.flexible import FINE_KNOTS, KNOTS, direction, flexible
 from isolator.diagnosis.implied import ImpliedHeat, temperature_slope
 from isolator.diagnosis.selection import (
     MAX_EFFECTS,
@@ -558,9 +558,9 @@ class Problem:
         return current, named, form
 
     def _flexible_reference(self, work: Workspace, current: Assessment,
-                            frozen: int) -> Assessment:
-        """``current`` with its friction-law effects on mu in flexible form, if that is
-        better on held-out data."""
+                            frozen: int, count: int = KNOTS) -> Assessment:
+        """``current`` with its friction-law effects on mu in flexible form (``count``
+        knots), if that is better on held-out data."""
         effects = list(current.model.effects)
         theta = current.fit.theta
         changed = False
@@ -570,12 +570,12 @@ class Problem:
             if effect.name == "asymmetry":
                 continue
             up = direction(effect, theta[part], work.features, work.context)
-            effects[i] = flexible(effect, self.features, self.context, up)
+            effects[i] = flexible(effect, self.features, self.context, up, count)
             changed = True
         if not changed:
             return current
         model = Model(tuple(effects))
-        key = ("flexible", *model.names)
+        key = ("flexible", count, *model.names)
         if key not in work.cache:
             work.cache[key] = assess(work, model, None)
         candidate = work.cache[key]
@@ -583,7 +583,10 @@ class Problem:
 
     def _reported_form(self, work: Workspace, current: Assessment, frozen: int,
                        th: Thresholds) -> tuple[Assessment, dict[str, str]]:
-        flex = self._flexible_reference(work, current, frozen)
+        # the named law's shape: its own (paper) form, the flexible form that judges a second
+        # effect, or a finer one, whichever predicts the held-out samples best
+        flex = min((self._flexible_reference(work, current, frozen, count)
+                    for count in (KNOTS, FINE_KNOTS)), key=lambda a: a.weighted)
         form = {e.name: "paper" for e in current.model.effects[frozen:] if e.acts_on == "mu"}
         if flex is current:
             return current, form

@@ -9,7 +9,8 @@ each effect on mu also has a flexible monotone form in its own variable x:
 with knots x_k at quantiles of x (for wear also at the start of every test after the first:
 a drop from test to test) and all c_k of the sign of the effect's own fit, so m is monotone
 and positive. A second effect is named only if it earns its keep over the first in this form
-(:mod:`isolator.diagnosis.decision`).
+(:mod:`isolator.diagnosis.decision`). A named law is reported in its paper form, this form or
+a finer one (``FINE_KNOTS``), whichever predicts the held-out samples best.
 """
 
 from __future__ import annotations
@@ -22,12 +23,14 @@ from dcfpb.common.errors import InputError
 from isolator.diagnosis.effects import Context, Effect, Parameter
 
 KNOTS = 6  # knot positions (quantiles of the variable): five ramps
+FINE_KNOTS = 11  # the finer form a named law may also be reported in: ten ramps
 _MAX_STEP = 4.0  # |c_k| bound: a factor of e^4 per ramp at most
 
 
-def knots(x: np.ndarray, extra: np.ndarray | None = None) -> np.ndarray:
-    """Knot positions: quantiles of ``x`` and the ``extra`` positions, distinct, sorted."""
-    q = np.quantile(x, np.linspace(0.0, 1.0, KNOTS))
+def knots(x: np.ndarray, extra: np.ndarray | None = None, count: int = KNOTS) -> np.ndarray:
+    """Knot positions: ``count`` quantiles of ``x`` and the ``extra`` positions, distinct,
+    sorted."""
+    q = np.quantile(x, np.linspace(0.0, 1.0, count))
     if extra is not None and extra.size:
         q = np.concatenate([q, extra, extra + 1e-9 * max(float(np.ptp(x)), 1e-12)])
     q = np.unique(q)
@@ -41,9 +44,11 @@ def ramps(x: np.ndarray, positions: np.ndarray) -> np.ndarray:
     return np.clip((x[:, None] - lo) / (hi - lo), 0.0, 1.0)
 
 
-def flexible(effect: Effect, features, context: Context, increasing: bool) -> Effect:
+def flexible(effect: Effect, features, context: Context, increasing: bool,
+             count: int = KNOTS) -> Effect:
     """``effect`` (on mu, with a ``variable``) in its flexible monotone form, rising with its
-    variable if ``increasing``, with knots at quantiles of the variable over ``features``."""
+    variable if ``increasing``, with ``count`` knots at quantiles of the variable over
+    ``features``."""
     if effect.acts_on != "mu" or effect.variable is None:
         raise InputError(f"Effect {effect.name!r} has no flexible form (it must act on mu "
                          "and name its variable).")
@@ -53,7 +58,7 @@ def flexible(effect: Effect, features, context: Context, increasing: bool) -> Ef
         starts = [features.campaign_travel[features.test == k].min()
                   for k in np.unique(features.test)[1:]]
         extra = np.asarray(starts, dtype=float)
-    positions = knots(x, extra)
+    positions = knots(x, extra, count)
     count = max(positions.size - 1, 1)
     if positions.size < 2:
         positions = np.array([x.min(), x.min() + 1.0])
