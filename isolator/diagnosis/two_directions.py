@@ -76,7 +76,10 @@ The steps are those of one direction (``docs/diagnosis.md``), with the threshold
    lies, ``findings``, and what it looks like, :func:`looks_like_2d`), by one direction's rule
    (:func:`~isolator.diagnosis.selection.material`,
    :func:`~isolator.diagnosis.selection.verdict_of`), over the whole test (every sample, the
-   direction-change windows included).
+   direction-change windows included) once effects are named; with nothing named, as in one
+   direction, only where the gap lies: the sliding samples by the materiality rule or the
+   windows by their own (``transition_score``, ``transition_practical``), or a nuisance at the
+   edge of its range, not the two parts summed.
 6. **Uncertainty**: confidence by one direction's block bootstrap
    (:func:`~isolator.diagnosis.uncertainty.block_confidence`), 5-95 % intervals of the
    parameters.
@@ -2402,6 +2405,8 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                    practical, th)
     findings = _findings(problem, remaining, window, sliding, practical, gap, th,
                          transition=not named)
+    if not named:  # one direction's rule: a gap where it lies, not on the two parts summed
+        gap = False
     if _yield_at_top(base, chosen, named):
         findings.append("yield_displacement at the top of its range")
     if base.at_edge.get("channel_gain"):
@@ -2503,17 +2508,19 @@ def _findings(problem: Problem2D, prediction: np.ndarray, window: np.ndarray,
     """Where the real gap ``prediction`` leaves lies, as in one direction: ``sliding`` (the
     materiality rule outside the direction-change windows), ``transition`` (only when
     ``transition``, i.e. nothing is named: inside the windows far above the noise,
-    ``transition_score``, and material over the whole test, ``transition_practical``), else
-    ``every sample`` for a ``gap`` neither part holds."""
+    ``transition_score``, and material over the whole test, ``transition_practical``), else,
+    once effects are named, ``every sample`` for a ``gap`` neither part holds. With nothing
+    named, as in one direction, a residual that is material only over the two parts summed
+    (each within its own bar) is no gap: the verdict is ``none`` unless it lies somewhere."""
     out = []
-    if gap and material(problem.score(prediction, sliding),
-                        problem.excess_rms(prediction, sliding), practical, th):
+    if (gap or transition) and material(problem.score(prediction, sliding),
+                                        problem.excess_rms(prediction, sliding), practical, th):
         out.append("sliding")
     if transition and window.any():
         score, excess = problem.window_statistics(prediction, window)
         if score >= th.transition_score and excess >= th.transition_practical:
             out.append("transition")
-    if gap and not out:
+    if gap and not out and not transition:
         out.append("every sample")
     return out
 
