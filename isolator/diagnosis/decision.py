@@ -558,8 +558,8 @@ class Problem:
         return current, named, form
 
     def _flexible_reference(self, work: Workspace, current: Assessment,
-                            frozen: int, count: int = KNOTS) -> Assessment:
-        """``current`` with its friction-law effects on mu in flexible form (``count``
+                            frozen: int, knot_count: int = KNOTS) -> Assessment:
+        """``current`` with its friction-law effects on mu in flexible form (``knot_count``
         knots), if that is better on held-out data."""
         effects = list(current.model.effects)
         theta = current.fit.theta
@@ -570,12 +570,12 @@ class Problem:
             if effect.name == "asymmetry":
                 continue
             up = direction(effect, theta[part], work.features, work.context)
-            effects[i] = flexible(effect, self.features, self.context, up, count)
+            effects[i] = flexible(effect, self.features, self.context, up, knot_count)
             changed = True
         if not changed:
             return current
         model = Model(tuple(effects))
-        key = ("flexible", count, *model.names)
+        key = ("flexible", knot_count, *model.names)
         if key not in work.cache:
             work.cache[key] = assess(work, model, None)
         candidate = work.cache[key]
@@ -585,8 +585,8 @@ class Problem:
                        th: Thresholds) -> tuple[Assessment, dict[str, str]]:
         # the named law's shape: its own (paper) form, the flexible form that judges a second
         # effect, or a finer one, whichever predicts the held-out samples best
-        flex = min((self._flexible_reference(work, current, frozen, count)
-                    for count in (KNOTS, FINE_KNOTS)), key=lambda a: a.weighted)
+        flex = min((self._flexible_reference(work, current, frozen, knot_count)
+                    for knot_count in (KNOTS, FINE_KNOTS)), key=lambda a: a.weighted)
         form = {e.name: "paper" for e in current.model.effects[frozen:] if e.acts_on == "mu"}
         if flex is current:
             return current, form

@@ -45,9 +45,9 @@ def ramps(x: np.ndarray, positions: np.ndarray) -> np.ndarray:
 
 
 def flexible(effect: Effect, features, context: Context, increasing: bool,
-             count: int = KNOTS) -> Effect:
+             knot_count: int = KNOTS) -> Effect:
     """``effect`` (on mu, with a ``variable``) in its flexible monotone form, rising with its
-    variable if ``increasing``, with ``count`` knots at quantiles of the variable over
+    variable if ``increasing``, with ``knot_count`` knots at quantiles of the variable over
     ``features``."""
     if effect.acts_on != "mu" or effect.variable is None:
         raise InputError(f"Effect {effect.name!r} has no flexible form (it must act on mu "
@@ -58,7 +58,7 @@ def flexible(effect: Effect, features, context: Context, increasing: bool,
         starts = [features.campaign_travel[features.test == k].min()
                   for k in np.unique(features.test)[1:]]
         extra = np.asarray(starts, dtype=float)
-    positions = knots(x, extra, count)
+    positions = knots(x, extra, knot_count)
     count = max(positions.size - 1, 1)
     if positions.size < 2:
         positions = np.array([x.min(), x.min() + 1.0])
