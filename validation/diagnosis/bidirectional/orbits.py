@@ -20,6 +20,7 @@ as a function of time, with its velocity, for t >= 0; it starts at rest at the o
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -164,6 +165,9 @@ def ground_pair(name: str) -> tuple[np.ndarray, float, str]:
         n = min(ax.size, ay.size)
         return np.column_stack([ax[:n], ay[:n]]), dt, f"PEER pair {name} ({PAIRS})"
     seed = sum(map(ord, name))
+    warnings.warn(f"the shared pair {name} is absent at {PAIRS} (the shared data is looked "
+                  "for beside the repository this code runs from): a synthetic stand-in pair "
+                  "is written, so the panel is not the published one", stacklevel=2)
     acc, dt = synthetic_pair(seed)
     return acc, dt, f"synthetic pair (seed {seed}; shared pair {name} absent)"
 
