@@ -23,12 +23,16 @@ from validation.diagnosis.score import load_case
 pytestmark = pytest.mark.slow
 
 
-def test_the_start_below_the_sensor_noise_is_left_out(tmp_path):
+@pytest.mark.shared
+def test_the_start_below_the_sensor_noise_is_left_out(tmp_path, shared_dir):
+    # the variant's two earthquake orbits are the shared PEER pair CHY023 (a synthetic
+    # stand-in when it is absent is another campaign, without this one's start)
     write_variants(tmp_path, 1, seed=301, effects=(), first=20)
     case = tmp_path / "case_20"
     labels = json.loads((tmp_path / "labels.json").read_text())["case_20"]
     assert labels["effects"] == [] and "rigid-plastic" in labels["truth"]
     assert "lag 1.32 samples" in labels["truth"]
+    assert all("PEER pair CHY023" in t["orbit"] for t in labels["design"]["tests"])
     campaign, baseline = load_case(case)
     summary = diagnose_2d(campaign, baseline).to_json()
     gap = summary["gap"]
