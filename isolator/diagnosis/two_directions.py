@@ -2399,14 +2399,13 @@ def diagnose_2d(campaign: Campaign2D, baseline: BaselineSpec | str = "constant",
                 roles[k] = "earns its keep but closes too little"
             named, chosen = [], None
     remaining = chosen.prediction if chosen is not None else base_all.prediction
-    # the materiality rule of one direction over the whole test, and where a gap lies
+    # the materiality rule of one direction: once effects are named over the whole test; with
+    # nothing named only where a gap lies (never on the two parts summed), as in one direction
     practical = th.practical_remain if named else th.practical_none
-    gap = material(problem.score(remaining, every), problem.excess_rms(remaining, every),
-                   practical, th)
+    gap = bool(named) and material(problem.score(remaining, every),
+                                   problem.excess_rms(remaining, every), practical, th)
     findings = _findings(problem, remaining, window, sliding, practical, gap, th,
                          transition=not named)
-    if not named:  # one direction's rule: a gap where it lies, not on the two parts summed
-        gap = False
     if _yield_at_top(base, chosen, named):
         findings.append("yield_displacement at the top of its range")
     if base.at_edge.get("channel_gain"):
@@ -2508,10 +2507,10 @@ def _findings(problem: Problem2D, prediction: np.ndarray, window: np.ndarray,
     """Where the real gap ``prediction`` leaves lies, as in one direction: ``sliding`` (the
     materiality rule outside the direction-change windows), ``transition`` (only when
     ``transition``, i.e. nothing is named: inside the windows far above the noise,
-    ``transition_score``, and material over the whole test, ``transition_practical``), else,
-    once effects are named, ``every sample`` for a ``gap`` neither part holds. With nothing
-    named, as in one direction, a residual that is material only over the two parts summed
-    (each within its own bar) is no gap: the verdict is ``none`` unless it lies somewhere."""
+    ``transition_score``, and material over the whole test, ``transition_practical``), else
+    ``every sample`` for a ``gap`` (the whole test material once effects are named; False
+    with nothing named, as in one direction: a residual material only over the two parts
+    summed, each within its own bar, is no gap) neither part holds."""
     out = []
     if (gap or transition) and material(problem.score(prediction, sliding),
                                         problem.excess_rms(prediction, sliding), practical, th):
@@ -2520,7 +2519,7 @@ def _findings(problem: Problem2D, prediction: np.ndarray, window: np.ndarray,
         score, excess = problem.window_statistics(prediction, window)
         if score >= th.transition_score and excess >= th.transition_practical:
             out.append("transition")
-    if gap and not out and not transition:
+    if gap and not out:
         out.append("every sample")
     return out
 
