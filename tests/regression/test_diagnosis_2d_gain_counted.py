@@ -13,23 +13,20 @@ counted samples it closes 12 % and is corrected. The calibration and gain step o
 
 from __future__ import annotations
 
-import json
-
 import pytest
 
 from isolator.diagnosis.baseline import BaselineSpec
 from isolator.diagnosis.two_directions import calibrated_baseline
-from validation.diagnosis.bidirectional.variants import write_variants
+from validation.diagnosis.bidirectional.variants import write_variant
 from validation.diagnosis.score import load_case
 
 pytestmark = pytest.mark.slow
 
 
 def test_a_load_cell_gain_is_found_over_the_counted_samples(tmp_path):
-    write_variants(tmp_path, 1, seed=302, effects=(), first=17)
-    labels = json.loads((tmp_path / "labels.json").read_text())["case_17"]
+    labels, case = write_variant(tmp_path, 17, seed=302, effects=())
     assert labels["effects"] == [] and "gain -0.024 on force_x" in labels["truth"]
-    campaign, baseline = load_case(tmp_path / "case_17")
+    campaign, baseline = load_case(case)
     spec = baseline if isinstance(baseline, BaselineSpec) else BaselineSpec(baseline)
     d, base, _, found = calibrated_baseline(campaign, spec)
     assert d.counted.sum() < d.n  # the test starts are left out

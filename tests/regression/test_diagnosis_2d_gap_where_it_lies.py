@@ -15,23 +15,20 @@ One diagnosis, about 15 s.
 
 from __future__ import annotations
 
-import json
-
 import pytest
 
 from isolator.diagnosis.selection import material
 from isolator.diagnosis.two_directions import diagnose_2d
-from validation.diagnosis.bidirectional.variants import write_variants
+from validation.diagnosis.bidirectional.variants import write_variant
 from validation.diagnosis.score import load_case
 
 pytestmark = pytest.mark.slow
 
 
 def test_no_gap_on_the_two_parts_summed_when_nothing_is_named(tmp_path):
-    write_variants(tmp_path, 1, seed=301, effects=(), first=11)
-    labels = json.loads((tmp_path / "labels.json").read_text())["case_11"]
+    labels, case = write_variant(tmp_path, 11, seed=301, effects=())
     assert labels["effects"] == [] and "rigid-plastic" in labels["truth"]
-    campaign, baseline = load_case(tmp_path / "case_11")
+    campaign, baseline = load_case(case)
     d = diagnose_2d(campaign, baseline)
     th, p = d.problem.th, d.problem
     every = d.data.counted

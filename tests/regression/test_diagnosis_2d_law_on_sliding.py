@@ -16,23 +16,20 @@ in 94 s against 15 s; before the change both say ``unexplained``.
 
 from __future__ import annotations
 
-import json
-
 import pytest
 
 from isolator.diagnosis.two_directions import diagnose_2d
-from validation.diagnosis.bidirectional.variants import write_variants
+from validation.diagnosis.bidirectional.variants import write_variant
 from validation.diagnosis.score import load_case
 
 pytestmark = pytest.mark.slow
 
 
 def test_a_speed_law_and_a_pressure_named_from_the_sliding_samples(tmp_path):
-    write_variants(tmp_path, 1, seed=202, effects=("pressure", "velocity"), first=4)
-    labels = json.loads((tmp_path / "labels.json").read_text())["case_04"]
+    labels, case = write_variant(tmp_path, 4, seed=202, effects=("pressure", "velocity"))
     assert labels["effects"] == ["pressure", "velocity"]
     assert "circle 0.184 m T=18.75 s" in labels["truth"]
-    campaign, baseline = load_case(tmp_path / "case_04")
+    campaign, baseline = load_case(case)
     summary = diagnose_2d(campaign, baseline, candidates=("velocity", "pressure")).to_json()
     named = [name for name in summary["verdict"] if name != "unexplained"]
     assert sorted(named) == ["pressure", "velocity"], summary["verdict"]

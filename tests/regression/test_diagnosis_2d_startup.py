@@ -12,12 +12,10 @@ within 20 % of the noise's NRMSE (it was 52 % above it). About 25 s.
 
 from __future__ import annotations
 
-import json
-
 import pytest
 
 from isolator.diagnosis.two_directions import diagnose_2d
-from validation.diagnosis.bidirectional.variants import write_variants
+from validation.diagnosis.bidirectional.variants import write_variant
 from validation.diagnosis.score import load_case
 
 pytestmark = pytest.mark.slow
@@ -27,9 +25,7 @@ pytestmark = pytest.mark.slow
 def test_the_start_below_the_sensor_noise_is_left_out(tmp_path, shared_dir):
     # the variant's two earthquake orbits are the shared PEER pair CHY023 (a synthetic
     # stand-in when it is absent is another campaign, without this one's start)
-    write_variants(tmp_path, 1, seed=301, effects=(), first=20)
-    case = tmp_path / "case_20"
-    labels = json.loads((tmp_path / "labels.json").read_text())["case_20"]
+    labels, case = write_variant(tmp_path, 20, seed=301, effects=())
     assert labels["effects"] == [] and "rigid-plastic" in labels["truth"]
     assert "lag 1.32 samples" in labels["truth"]
     assert all("PEER pair CHY023" in t["orbit"] for t in labels["design"]["tests"])

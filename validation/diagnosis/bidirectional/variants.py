@@ -228,6 +228,17 @@ def draw_case(rng: np.random.Generator, effects: tuple[str, ...] | None = None,
                 **nuisance)
 
 
+def write_variant(folder: str | Path, number: int, *, seed: int,
+                  effects: tuple[str, ...] | None = None) -> tuple[dict, Path]:
+    """Write the tune variant numbered ``number`` of ``seed`` alone (the case
+    :func:`write_variants` writes as ``case_NN`` among others) to ``folder``; return its
+    labels and its case folder."""
+    labels = json.loads(write_variants(folder, 1, seed=seed, effects=effects,
+                                       first=number).read_text())
+    name = f"case_{number:02d}"
+    return labels[name], Path(folder) / name
+
+
 def write_variants(folder: str | Path, count: int, *, seed: int = 1,
                    effects: tuple[str, ...] | None = None, first: int = 1,
                    progress: bool = False) -> Path:
